@@ -1,0 +1,197 @@
+#include "render/gl/objects.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "voxspan/error.h"
+
+namespace voxspan::gl {
+namespace {
+
+GLuint create_buffer() {
+  GLuint id = 0;
+  glCreateBuffers(1, &id);
+  return id;
+}
+
+const char* gl_error_name(GLenum e) {
+  switch (e) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    default: return "GL error";
+  }
+}
+
+}  // namespace
+
+void check_error(std::string_view what) {
+  GLenum e = glGetError();
+  if (e == GL_NO_ERROR) return;
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  throw make_error(what, ": ", gl_error_name(e));
+}
+
+// --- Buffer -----------------------------------------------------------------------------------
+
+Buffer::Buffer(std::size_t bytes, const void* data) : handle_(create_buffer()), size_(bytes) {
+  // GL refuses zero-sized storage; keep one word so an empty buffer is still bindable.
+  glNamedBufferStorage(id(), static_cast<GLsizeiptr>(bytes == 0 ? 4 : bytes), data,
+                       GL_DYNAMIC_STORAGE_BIT);
+  check_error("allocating a GL buffer of " + std::to_string(bytes) + " bytes");
+}
+
+bool Buffer::reserve(std::size_t bytes) {
+  if (handle_.get() != 0 && bytes <= size_) return false;
+  // Grow by half again so a slowly growing count does not reallocate every step.
+  std::size_t grown = size_ + size_ / 2;
+  *this = Buffer(bytes > grown ? bytes : grown);
+  return true;
+}
+
+void Buffer::upload(const void* data, std::size_t bytes, std::size_t offset) {
+  if (bytes == 0) return;
+  if (offset + bytes > size_)
+    throw make_error("Buffer::upload: ", bytes, " bytes at ", offset, " exceed the buffer's ",
+                     size_);
+  glNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
+}
+
+void Buffer::download(void* out, std::size_t bytes, std::size_t offset) const {
+  if (bytes == 0) return;
+  if (offset + bytes > size_)
+    throw make_error("Buffer::download: ", bytes, " bytes at ", offset, " exceed the buffer's ",
+                     size_);
+  glGetNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
+                          out);
+}
+
+void Buffer::clear(std::size_t offset, std::size_t bytes) {
+  if (offset >= size_) return;
+  if (bytes > size_ - offset) bytes = size_ - offset;
+  glClearNamedBufferSubData(id(), GL_R32UI, static_cast<GLintptr>(offset),
+                            static_cast<GLsizeiptr>(bytes), GL_RED_INTEGER, GL_UNSIGNED_INT,
+                            nullptr);
+}
+
+void Buffer::bind(GLenum target, GLuint index) const { glBindBufferBase(target, index, id()); }
+
+void Buffer::bind_range(GLenum target, GLuint index, std::size_t offset, std::size_t bytes) const {
+  glBindBufferRange(target, index, id(), static_cast<GLintptr>(offset),
+                    static_cast<GLsizeiptr>(bytes));
+}
+
+// --- Program ----------------------------------------------------------------------------------
+
+Program Program::compute(std::string_view name, const std::string& source) {
+  GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    GLint length = 0;
+    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+    std::string info(static_cast<std::size_t>(length > 0 ? length : 1), '\0');
+    glGetShaderInfoLog(shader, length, nullptr, info.data());
+    glDeleteShader(shader);
+    throw make_error("compiling ", name, " failed:\n", info.c_str());
+  }
+  Program program;
+  program.handle_ = Handle<DeleteProgram>(glCreateProgram());
+  program.name_ = std::string(name);
+  glAttachShader(program.id(), shader);
+  glLinkProgram(program.id());
+  glDeleteShader(shader);  // freed with the program
+  glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+  if (!ok) {
+    GLint length = 0;
+    glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
+    std::string info(static_cast<std::size_t>(length > 0 ? length : 1), '\0');
+    glGetProgramInfoLog(program.id(), length, nullptr, info.data());
+    throw make_error("linking ", name, " failed:\n", info.c_str());
+  }
+  return program;
+}
+
+void Program::dispatch(GLuint x, GLuint y, GLuint z) const {
+  if (x == 0 || y == 0 || z == 0) return;
+  use();
+  glDispatchCompute(x, y, z);
+}
+
+GLint Program::uniform(const char* name) const {
+  auto it = locations_.find(name);
+  if (it != locations_.end()) return it->second;
+  GLint loc = glGetUniformLocation(id(), name);
+  locations_.emplace(name, loc);
+  return loc;
+}
+
+void Program::set(const char* n, glm::vec2 v) const {
+  glProgramUniform2fv(id(), uniform(n), 1, glm::value_ptr(v));
+}
+void Program::set(const char* n, glm::vec3 v) const {
+  glProgramUniform3fv(id(), uniform(n), 1, glm::value_ptr(v));
+}
+void Program::set(const char* n, glm::vec4 v) const {
+  glProgramUniform4fv(id(), uniform(n), 1, glm::value_ptr(v));
+}
+void Program::set(const char* n, glm::ivec2 v) const {
+  glProgramUniform2iv(id(), uniform(n), 1, glm::value_ptr(v));
+}
+void Program::set(const char* n, glm::ivec3 v) const {
+  glProgramUniform3iv(id(), uniform(n), 1, glm::value_ptr(v));
+}
+void Program::set(const char* n, glm::uvec2 v) const {
+  glProgramUniform2uiv(id(), uniform(n), 1, glm::value_ptr(v));
+}
+void Program::set(const char* n, glm::uvec3 v) const {
+  glProgramUniform3uiv(id(), uniform(n), 1, glm::value_ptr(v));
+}
+void Program::set(const char* n, const glm::mat4& v) const {
+  glProgramUniformMatrix4fv(id(), uniform(n), 1, GL_FALSE, glm::value_ptr(v));
+}
+
+glm::uvec3 Program::work_group_size() const {
+  GLint size[3] = {0, 0, 0};
+  glGetProgramiv(id(), GL_COMPUTE_WORK_GROUP_SIZE, size);
+  return {static_cast<unsigned>(size[0]), static_cast<unsigned>(size[1]),
+          static_cast<unsigned>(size[2])};
+}
+
+// --- Texture3D --------------------------------------------------------------------------------
+
+Texture3D::Texture3D(GLenum internal_format, glm::ivec3 size) : size_(size) {
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_3D, 1, &id);
+  handle_ = Handle<DeleteTexture>(id);
+  glTextureStorage3D(id, 1, internal_format, size.x, size.y, size.z);
+  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  check_error("allocating a 3D texture");
+}
+
+void Texture3D::upload(GLenum format, GLenum type, const void* data) {
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage3D(id(), 0, 0, 0, 0, size_.x, size_.y, size_.z, format, type, data);
+}
+
+// --- TimerQuery -------------------------------------------------------------------------------
+
+TimerQuery::TimerQuery() {
+  GLuint id = 0;
+  glCreateQueries(GL_TIME_ELAPSED, 1, &id);
+  handle_ = Handle<DeleteQuery>(id);
+}
+
+double TimerQuery::milliseconds() const {
+  GLuint64 ns = 0;
+  glGetQueryObjectui64v(handle_.get(), GL_QUERY_RESULT, &ns);
+  return static_cast<double>(ns) * 1e-6;
+}
+
+}  // namespace voxspan::gl

@@ -1,0 +1,156 @@
+// render/gl/objects.h - small RAII owners of GL objects: Buffer, Program, Texture3D,
+// TimerQuery. Each owns one GL name, is move-only, and uses direct state access (GL 4.5),
+// so no binding leaks between passes. Call only with a current context.
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace voxspan::gl {
+
+// Shared move-only ownership of one GL name; Deleter frees it.
+template <class Deleter>
+class Handle {
+ public:
+  Handle() = default;
+  explicit Handle(GLuint id) : id_(id) {}
+  ~Handle() { reset(); }
+  Handle(Handle&& o) noexcept : id_(o.id_) { o.id_ = 0; }
+  Handle& operator=(Handle&& o) noexcept {
+    if (this != &o) {
+      reset();
+      id_ = o.id_;
+      o.id_ = 0;
+    }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  GLuint get() const { return id_; }
+  void reset() {
+    if (id_ != 0) Deleter{}(id_);
+    id_ = 0;
+  }
+
+ private:
+  GLuint id_ = 0;
+};
+
+struct DeleteBuffer { void operator()(GLuint id) const { glDeleteBuffers(1, &id); } };
+struct DeleteProgram { void operator()(GLuint id) const { glDeleteProgram(id); } };
+struct DeleteTexture { void operator()(GLuint id) const { glDeleteTextures(1, &id); } };
+struct DeleteQuery { void operator()(GLuint id) const { glDeleteQueries(1, &id); } };
+
+// An immutable-storage buffer. Growing means a new buffer: reserve() reallocates only when the
+// request exceeds the capacity, so steady-state steps allocate nothing.
+class Buffer {
+ public:
+  Buffer() = default;
+  explicit Buffer(std::size_t bytes, const void* data = nullptr);
+
+  GLuint id() const { return handle_.get(); }
+  std::size_t size() const { return size_; }
+
+  // Ensures at least `bytes` of storage (contents are lost when it grows). Returns true if it
+  // reallocated.
+  bool reserve(std::size_t bytes);
+  void upload(const void* data, std::size_t bytes, std::size_t offset = 0);
+  void download(void* out, std::size_t bytes, std::size_t offset = 0) const;
+  // Zero-fills [offset, offset+bytes) with glClearNamedBufferSubData: fine for small buffers;
+  // large bit grids are cleared by a compute shader (GPU-NOTES: 50x faster on NVIDIA).
+  void clear(std::size_t offset = 0, std::size_t bytes = SIZE_MAX);
+
+  template <class T>
+  std::vector<T> read(std::size_t count, std::size_t first = 0) const {
+    std::vector<T> out(count);
+    if (count != 0) download(out.data(), count * sizeof(T), first * sizeof(T));
+    return out;
+  }
+
+  // Binds the whole buffer (or a range) to an indexed target (GL_SHADER_STORAGE_BUFFER...).
+  // NVIDIA breaks on single bindings of 2 GiB or more (GPU-NOTES): bind ranges below that.
+  void bind(GLenum target, GLuint index) const;
+  void bind_range(GLenum target, GLuint index, std::size_t offset, std::size_t bytes) const;
+
+ private:
+  Handle<DeleteBuffer> handle_;
+  std::size_t size_ = 0;
+};
+
+// A linked compute program. Uniforms are set by name with direct state access.
+class Program {
+ public:
+  Program() = default;
+  // Compiles and links; throws voxspan::Error with the driver's log on failure. `name` is the
+  // shader's file name, for the message.
+  static Program compute(std::string_view name, const std::string& source);
+
+  GLuint id() const { return handle_.get(); }
+  const std::string& name() const { return name_; }
+  void use() const { glUseProgram(id()); }
+  // Uses the program and dispatches; work-group counts must be within the GL limits.
+  void dispatch(GLuint x, GLuint y = 1, GLuint z = 1) const;
+
+  // Location of a uniform, -1 if the compiler removed it (setting -1 is a GL no-op).
+  GLint uniform(const char* name) const;
+  void set(const char* name, int v) const { glProgramUniform1i(id(), uniform(name), v); }
+  void set(const char* name, unsigned v) const { glProgramUniform1ui(id(), uniform(name), v); }
+  void set(const char* name, float v) const { glProgramUniform1f(id(), uniform(name), v); }
+  void set(const char* name, glm::vec2 v) const;
+  void set(const char* name, glm::vec3 v) const;
+  void set(const char* name, glm::vec4 v) const;
+  void set(const char* name, glm::ivec2 v) const;
+  void set(const char* name, glm::ivec3 v) const;
+  void set(const char* name, glm::uvec2 v) const;
+  void set(const char* name, glm::uvec3 v) const;
+  void set(const char* name, const glm::mat4& v) const;
+
+  // Work-group size declared by the shader (local_size_x/y/z).
+  glm::uvec3 work_group_size() const;
+
+ private:
+  Handle<DeleteProgram> handle_;
+  std::string name_;
+  mutable std::unordered_map<std::string, GLint> locations_;
+};
+
+// An immutable 3D texture (e.g. the per-cell states of the simulation grid as R8UI).
+class Texture3D {
+ public:
+  Texture3D() = default;
+  Texture3D(GLenum internal_format, glm::ivec3 size);
+  GLuint id() const { return handle_.get(); }
+  glm::ivec3 size() const { return size_; }
+  void upload(GLenum format, GLenum type, const void* data);
+  void bind_unit(GLuint unit) const { glBindTextureUnit(unit, id()); }
+
+ private:
+  Handle<DeleteTexture> handle_;
+  glm::ivec3 size_{0};
+};
+
+// A GL_TIME_ELAPSED query. Only meaningful where Context::has_gpu_timers() is true.
+class TimerQuery {
+ public:
+  TimerQuery();
+  void begin() const { glBeginQuery(GL_TIME_ELAPSED, handle_.get()); }
+  void end() const { glEndQuery(GL_TIME_ELAPSED); }
+  // Waits for the result.
+  double milliseconds() const;
+
+ private:
+  Handle<DeleteQuery> handle_;
+};
+
+// Throws voxspan::Error naming `what` if GL has recorded an error since the last check.
+void check_error(std::string_view what);
+
+}  // namespace voxspan::gl
