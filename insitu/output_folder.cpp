@@ -1,0 +1,46 @@
+#include "insitu/output_folder.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <system_error>
+
+#include "voxspan/error.h"
+
+namespace voxspan {
+
+void prepare_output_folder(const std::filesystem::path& folder, std::string_view what) {
+  auto fail = [&](const std::string& why) -> Error {
+    return make_error("cannot use ", what, " folder ", folder.string(), ": ", why);
+  };
+  if (folder.empty()) throw fail("the folder name is empty");
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw fail(ec.message());
+  if (!std::filesystem::is_directory(folder, ec)) throw fail("it exists but is not a folder");
+  // access(W_OK) says yes to root on a read-only mount; creating a file is the real test.
+  std::filesystem::path probe = folder / (".voxspan-probe." + std::to_string(::getpid()));
+  int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw fail(std::string("cannot create a file in it (") + std::strerror(errno) + ")");
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+std::vector<std::filesystem::path> prepare_output_folders(const Config& config) {
+  std::vector<std::filesystem::path> folders;
+  auto check = [&](const OutputCommon& output, std::string_view what) {
+    if (!output.enabled) return;
+    std::filesystem::path folder = config.folder_of(output);
+    prepare_output_folder(folder, what);
+    folders.push_back(folder);
+  };
+  check(config.outputs.png, "outputs.png");
+  check(config.outputs.stats, "outputs.stats");
+  check(config.outputs.vdb, "outputs.vdb");
+  check(config.outputs.vtk, "outputs.vtk");
+  return folders;
+}
+
+}  // namespace voxspan

@@ -1,0 +1,100 @@
+// insitu/yaml_reader.h - schema checking for YAML maps: typed getters that record an error
+// naming the key path, the file, the line and the column instead of throwing, so that one
+// load reports every problem at once. Internal to insitu/ (includes yaml-cpp).
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <array>
+#include <cstdint>
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace voxspan::yaml {
+
+// Collects errors "<source>:<line>:<column>: <key path>: <message>".
+class Checker {
+ public:
+  explicit Checker(std::string source) : source_(std::move(source)) {}
+  void error(const YAML::Mark& mark, const std::string& path, const std::string& message);
+  void error(const YAML::Node& node, const std::string& path, const std::string& message) {
+    error(node.Mark(), path, message);
+  }
+  const std::vector<std::string>& errors() const { return errors_; }
+  const std::string& source() const { return source_; }
+  // Throws voxspan::Error listing every error, one per line.
+  void throw_if_errors() const;
+
+ private:
+  std::string source_;
+  std::vector<std::string> errors_;
+};
+
+// A YAML node as text for messages: scalars quoted, maps and sequences by kind.
+std::string describe(const YAML::Node& node);
+
+// One map of the schema. A missing or null node is an empty map (every key at its default).
+// Keys outside `allowed` and duplicated keys are errors, reported at the key's line.
+class MapReader {
+ public:
+  MapReader(Checker& checker, const YAML::Node& node, std::string path,
+            std::initializer_list<std::string_view> allowed);
+
+  // Each getter leaves `out` untouched when the key is absent or its value is invalid, and
+  // returns true only when the key was present and valid.
+  bool get(std::string_view key, bool& out);
+  bool get(std::string_view key, std::string& out);
+  bool get_int(std::string_view key, std::int64_t& out, std::int64_t min, std::int64_t max);
+  bool get_int(std::string_view key, int& out, int min, int max);
+  // A number in [min, max], or (min, max] when min_open.
+  bool get_double(std::string_view key, double& out, double min, double max,
+                  bool min_open = false);
+  // `auto` (std::nullopt) or a number as get_double checks it.
+  bool get_auto_double(std::string_view key, std::optional<double>& out, double min, double max,
+                       bool min_open = false);
+  bool get_auto_int(std::string_view key, std::optional<std::int64_t>& out, std::int64_t min,
+                    std::int64_t max);
+  bool get_vec3(std::string_view key, std::array<double, 3>& out);
+  bool get_strings(std::string_view key, std::vector<std::string>& out);
+  template <class E>
+  bool get_enum(std::string_view key, E& out,
+                std::initializer_list<std::pair<std::string_view, E>> names) {
+    std::string text;
+    YAML::Node value = find(key);
+    if (!value || !get(key, text)) return false;
+    for (const auto& [name, e] : names) {
+      if (text == name) {
+        out = e;
+        return true;
+      }
+    }
+    std::string list;
+    for (const auto& [name, e] : names) list += (list.empty() ? "" : ", ") + std::string(name);
+    checker_.error(value, path(key), "expected one of " + list + "; got " + describe(value));
+    return false;
+  }
+
+  bool has(std::string_view key) const { return static_cast<bool>(find(key)); }
+  // The value node of key (an invalid node when absent) and its key path, for nested maps
+  // and sequences.
+  YAML::Node find(std::string_view key) const;
+  std::string path(std::string_view key) const;
+  const YAML::Node& node() const { return node_; }
+  Checker& checker() { return checker_; }
+  const YAML::Mark& mark() const { return mark_; }
+
+ private:
+  bool scalar(std::string_view key, YAML::Node& value, const char* expected);
+
+  Checker& checker_;
+  YAML::Node node_;
+  std::string path_;
+  YAML::Mark mark_;
+  std::vector<std::pair<std::string, YAML::Node>> entries_;
+};
+
+}  // namespace voxspan::yaml
