@@ -1,6 +1,7 @@
-# The third-party packages of voxspan_insitu, found the same way wherever they are needed
-# (imported targets are visible only in the directory that finds them): insitu/, its tests
-# and the tools that read or write snapshots include this file.
+# The third-party packages of voxspan_insitu. Their imported targets are made global, so that
+# the tests and tools that link voxspan_insitu (whose private dependencies they are) and those
+# that read its files back with VTK, OpenVDB or HDF5 see them too.
+set(CMAKE_FIND_PACKAGE_TARGETS_GLOBAL ON)
 find_package(yaml-cpp REQUIRED)
 find_package(PNG REQUIRED)
 find_package(VTK 9.1 REQUIRED COMPONENTS CommonCore CommonDataModel IOXML IOXMLParser)
@@ -8,3 +9,4 @@ find_package(HDF5 REQUIRED COMPONENTS C)
 # Debian ships OpenVDB's find module (it needs Boost.Iostreams) beside its other CMake files.
 list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB /usr/lib/cmake/OpenVDB)
 find_package(OpenVDB REQUIRED)
+set(CMAKE_FIND_PACKAGE_TARGETS_GLOBAL OFF)

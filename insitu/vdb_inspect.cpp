@@ -107,7 +107,8 @@ VdbFileSummary inspect_vdb(const std::filesystem::path& path) {
 ImageRGBA8 render_level_set(const std::filesystem::path& path, const LevelSetView& view) {
   OpenFile file(path);
   vdb::FloatGrid::Ptr level_set;
-  for (const vdb::GridBase::Ptr& grid : *file->getGrids()) {
+  vdb::GridPtrVecPtr grids = file->getGrids();  // kept: a range-for over *temporary dangles
+  for (const vdb::GridBase::Ptr& grid : *grids) {
     if (grid->getGridClass() != vdb::GRID_LEVEL_SET) continue;
     if (!view.grid.empty() && grid->getName() != view.grid) continue;
     level_set = vdb::gridPtrCast<vdb::FloatGrid>(grid);

@@ -6,6 +6,7 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Composite.h>
 #include <openvdb/tools/LevelSetFilter.h>
+#include <openvdb/tools/LevelSetTracker.h>
 #include <openvdb/tools/ParticlesToLevelSet.h>
 #include <openvdb/tools/TopologyToLevelSet.h>
 
@@ -165,7 +166,10 @@ VdbSnapshotReport write_vdb_snapshot(const std::filesystem::path& path,
   report.voxel_size = voxel;
   report.closing = list.grow;
 
-  auto fluid = vdb::createLevelSet<vdb::FloatGrid>(voxel, settings.half_width);
+  // The band is widened by the closing distance while building, so that after the erosion
+  // the closest-particle attributes still cover the final surface; it is narrowed again after.
+  const int grow_voxels = int(std::ceil(list.grow / voxel));
+  auto fluid = vdb::createLevelSet<vdb::FloatGrid>(voxel, settings.half_width + grow_voxels);
   fluid->setName("fluid");
   IndexGrid::Ptr closest;
   if (!list.valid.empty()) {
@@ -181,7 +185,8 @@ VdbSnapshotReport write_vdb_snapshot(const std::filesystem::path& path,
     mask->setTransform(fluid->transform().copy());
     report.inner_full_cells = mark_inner_full(input.cells, voxel, *mask);
     if (report.inner_full_cells > 0) {
-      auto filled = vdb::tools::topologyToLevelSet(*mask, settings.half_width, 0, 0, 0);
+      auto filled =
+          vdb::tools::topologyToLevelSet(*mask, settings.half_width + grow_voxels, 0, 0, 0);
       vdb::tools::csgUnion(*fluid, *filled);
     }
   }
@@ -189,6 +194,8 @@ VdbSnapshotReport write_vdb_snapshot(const std::filesystem::path& path,
   if (list.grow > 0 && !fluid->tree().empty()) {
     vdb::tools::LevelSetFilter<vdb::FloatGrid> filter(*fluid);
     filter.offset(static_cast<float>(list.grow));
+    vdb::tools::LevelSetTracker<vdb::FloatGrid> tracker(*fluid);
+    tracker.resize(vdb::Index(settings.half_width));
   }
   report.level_set_voxels = fluid->activeVoxelCount();
 

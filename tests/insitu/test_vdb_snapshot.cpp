@@ -54,8 +54,8 @@ TEST_F(VdbSnapshot, LevelSetHoldsTheWholeFluidFromItsBoundaryParticles) {
   std::vector<AttributeView> attributes = {{"pressure", 1, pressure}, {"velocity", 3, velocity}};
   VdbSnapshotInput input{scene.boundary, scene.cells(), attributes, 40, 0.125};
   VdbSnapshotReport report = write_vdb_snapshot(dir / "snap.vdb", input, VdbSnapshotSettings{});
-  EXPECT_DOUBLE_EQ(report.voxel_size, kDx / 4);
-  EXPECT_DOUBLE_EQ(report.closing, kDx / 2);
+  EXPECT_FLOAT_EQ(float(report.voxel_size), float(kDx / 4));
+  EXPECT_FLOAT_EQ(float(report.closing), float(kDx / 2));
   EXPECT_EQ(report.particles, scene.boundary.size());
   EXPECT_EQ(report.inner_full_cells, scene.count_state(cell::kInnerFull));
   EXPECT_EQ(test::count_temp_files(dir.path()), 0u);
@@ -71,11 +71,14 @@ TEST_F(VdbSnapshot, LevelSetHoldsTheWholeFluidFromItsBoundaryParticles) {
   openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sdf(*fluid);
   const double mid = 0.5 * kSide * kDx;
   EXPECT_LT(sdf.wsSample(openvdb::Vec3R(mid, mid, mid)), 0);
-  EXPECT_LT(sdf.wsSample(openvdb::Vec3R(mid, mid, 0.3 * kDx)), 0);
+  EXPECT_LT(sdf.wsSample(openvdb::Vec3R(mid, mid, 0.6 * kDx)), 0);
   EXPECT_GT(sdf.wsSample(openvdb::Vec3R(mid, mid, -0.3 * kDx)), 0);
   EXPECT_GT(sdf.wsSample(openvdb::Vec3R(mid, mid, kSide * kDx + 2 * kDx)), 0);
-  // The surface stays where the spheres put it: at the outer lattice plane plus dx/2.
-  EXPECT_NEAR(sdf.wsSample(openvdb::Vec3R(mid, mid, 0.0)), 0.0, 0.3 * kDx);
+  // The surface stays where the spheres put it: dx/2 beyond the outer particles' centres, and
+  // between four of them no deeper than the closed spheres' dimple (0.29 dx).
+  const double on_particle = 11.5 * kDx;
+  EXPECT_NEAR(sdf.wsSample(openvdb::Vec3R(on_particle, on_particle, 0.0)), 0.0, 0.15 * kDx);
+  EXPECT_NEAR(sdf.wsSample(openvdb::Vec3R(mid, mid, 0.0)), 0.29 * kDx, 0.15 * kDx);
 
   auto p = grid_named<openvdb::FloatGrid>(*grids, "pressure");
   ASSERT_TRUE(p);
@@ -83,13 +86,18 @@ TEST_F(VdbSnapshot, LevelSetHoldsTheWholeFluidFromItsBoundaryParticles) {
   for (auto it = p->cbeginValueOn(); it; ++it) lo = std::min(lo, *it), hi = std::max(hi, *it);
   EXPECT_FLOAT_EQ(lo, scene.boundary.front().z * 1000.f);
   EXPECT_FLOAT_EQ(hi, scene.boundary.back().z * 1000.f);
-  // The value at a voxel is its closest particle's.
-  openvdb::Vec3d corner(0.5 * kDx, 0.5 * kDx, 0.5 * kDx);
-  EXPECT_FLOAT_EQ(p->getConstAccessor().getValue(p->transform().worldToIndexNodeCentered(corner)),
-                  float(0.5 * kDx * 1000.0));
+  // On the surface, a voxel holds its closest particle's value: below the corner particle,
+  // and a half spacing inside the top face.
+  openvdb::Vec3d below_corner(0.5 * kDx, 0.5 * kDx, 0.0);
+  openvdb::Vec3d under_top(on_particle, on_particle, kSide * kDx - 0.5 * kDx);
+  auto pa = p->getConstAccessor();
+  EXPECT_TRUE(pa.isValueOn(p->transform().worldToIndexCellCentered(below_corner)));
+  EXPECT_FLOAT_EQ(pa.getValue(p->transform().worldToIndexCellCentered(below_corner)), float(0.5 * kDx * 1000.0));
+  EXPECT_NEAR(pa.getValue(p->transform().worldToIndexCellCentered(under_top)), (kSide - 0.5) * kDx * 1000.0, 1e-3);
   auto v = grid_named<openvdb::Vec3SGrid>(*grids, "velocity");
   ASSERT_TRUE(v);
-  EXPECT_EQ(v->getConstAccessor().getValue(v->transform().worldToIndexNodeCentered(corner))[0], 1.f);
+  openvdb::Vec3s v_corner = v->getConstAccessor().getValue(v->transform().worldToIndexCellCentered(below_corner));
+  EXPECT_EQ(v_corner, openvdb::Vec3s(1.f, 0.f, float(0.5 * kDx)));
 
   auto states = grid_named<openvdb::Int32Grid>(*grids, "cell_state");
   ASSERT_TRUE(states);
@@ -104,7 +112,7 @@ TEST_F(VdbSnapshot, LevelSetHoldsTheWholeFluidFromItsBoundaryParticles) {
         openvdb::Vec3d centre(scene.origin[0] + (i + 0.5) * scene.cell_size,
                               scene.origin[1] + (j + 0.5) * scene.cell_size,
                               scene.origin[2] + (k + 0.5) * scene.cell_size);
-        openvdb::Coord c = states->transform().worldToIndexNodeCentered(centre);
+        openvdb::Coord c = states->transform().worldToIndexCellCentered(centre);
         ASSERT_EQ(acc.getValue(c),
                   scene.states[std::size_t(i) + std::size_t(scene.dims[0]) * (j + std::size_t(scene.dims[1]) * k)]);
       }
@@ -150,17 +158,20 @@ TEST_F(VdbSnapshot, InspectorListsGridsAndRendersTheLevelSet) {
   write_vdb_snapshot(dir / "i.vdb", {scene.boundary, scene.cells(), attributes, 7, 0.5}, {});
   VdbFileSummary s = inspect_vdb(dir / "i.vdb");
   ASSERT_EQ(s.grids.size(), 3u);
-  EXPECT_EQ(s.grids[0].name, "fluid");
-  EXPECT_EQ(s.grids[0].value_type, "float");
-  EXPECT_EQ(s.grids[0].grid_class, "Level Set");
-  EXPECT_NEAR(s.grids[0].level_set_volume / particle_volume(), 1.0, 0.10);
-  EXPECT_NEAR(s.grids[0].world_min[0], 0.0, 4 * kDx);  // the narrow band reaches outside
-  EXPECT_EQ(s.grids[1].name, "density");
-  EXPECT_DOUBLE_EQ(s.grids[1].min_value, 1000);
-  EXPECT_DOUBLE_EQ(s.grids[1].max_value, 1000);
-  EXPECT_EQ(s.grids[2].name, "cell_state");
-  EXPECT_EQ(s.grids[2].value_type, "int32");
-  EXPECT_DOUBLE_EQ(s.grids[2].max_value, cell::kInnerFull);
+  auto named = [&](const std::string& name) -> const VdbGridSummary& {
+    for (const VdbGridSummary& g : s.grids)
+      if (g.name == name) return g;
+    throw std::runtime_error("no grid " + name);
+  };
+  const VdbGridSummary& fluid = named("fluid");
+  EXPECT_EQ(fluid.value_type, "float");
+  EXPECT_EQ(fluid.grid_class, "Level Set");
+  EXPECT_NEAR(fluid.level_set_volume / particle_volume(), 1.0, 0.10);
+  EXPECT_NEAR(fluid.world_min[0], 0.0, 4 * kDx);  // the narrow band reaches a little outside
+  EXPECT_DOUBLE_EQ(named("density").min_value, 1000);
+  EXPECT_DOUBLE_EQ(named("density").max_value, 1000);
+  EXPECT_EQ(named("cell_state").value_type, "int32");
+  EXPECT_DOUBLE_EQ(named("cell_state").max_value, cell::kInnerFull);
   bool has_step = false;
   for (const auto& [key, value] : s.metadata) has_step |= key == "step" && value == "7";
   EXPECT_TRUE(has_step);
