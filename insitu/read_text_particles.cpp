@@ -22,7 +22,12 @@ std::string trim(std::string_view s) {
   std::size_t b = 0, e = s.size();
   while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
   while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
-  std::string out(s.substr(b, e - b));
+  return std::string(s.substr(b, e - b));
+}
+
+// A CSV field without its surrounding spaces and quotes.
+std::string field_text(std::string_view s) {
+  std::string out = trim(s);
   if (out.size() >= 2 && out.front() == '"' && out.back() == '"') out = out.substr(1, out.size() - 2);
   return out;
 }
@@ -33,7 +38,7 @@ std::string lower(std::string s) {
 }
 
 bool parse_number(std::string_view text, double& out) {
-  std::string t = trim(text);
+  std::string t = field_text(text);
   const char* b = t.data();
   const char* e = b + t.size();
   if (b != e && *b == '+') ++b;
@@ -121,7 +126,7 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
     ++line_no;
     std::string t = trim(line);
     if (t.empty() || t[0] == '#') continue;
-    for (const std::string& f : split(t, ',')) header.push_back(trim(f));
+    for (const std::string& f : split(t, ',')) header.push_back(field_text(f));
   }
   if (header.empty()) throw fail(line_no, "no header row (the first row must name the columns)");
   double probe = 0;
@@ -161,7 +166,7 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
                               std::to_string(header.size()));
     for (std::size_t f = 0; f < fields.size(); ++f)
       if (!parse_number(fields[f], values[f]))
-        throw fail(line_no, "column \"" + header[f] + "\" is not a number: \"" + trim(fields[f]) + "\"");
+        throw fail(line_no, "column \"" + header[f] + "\" is not a number: \"" + field_text(fields[f]) + "\"");
     const Column& p = columns[std::size_t(position)];
     data.positions.push_back({values[p.first], values[p.first + 1], values[p.first + 2]});
     std::size_t a = 0;

@@ -4,16 +4,16 @@
 
 #include <openvdb/io/Archive.h>
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/Composite.h>
-#include <openvdb/tools/LevelSetFilter.h>
-#include <openvdb/tools/LevelSetTracker.h>
+#include <openvdb/tools/ChangeBackground.h>
+#include <openvdb/tools/FastSweeping.h>
 #include <openvdb/tools/ParticlesToLevelSet.h>
-#include <openvdb/tools/TopologyToLevelSet.h>
+#include <openvdb/tools/Prune.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 
 #include "insitu/atomic_file.h"
 #include "voxspan/error.h"
@@ -59,9 +59,13 @@ bool is_valid(const ParticleSphere& s) {
          std::isfinite(s.radius) && s.radius > 0;
 }
 
-// Every voxel whose centre lies in an inner-full cell, marked in a mask of the level set's
-// index space; runs of inner-full cells along x are filled as one box.
-std::size_t mark_inner_full(const CellStatesView& cells, double voxel, vdb::MaskGrid& mask) {
+// Every voxel whose centre lies in an inner-full cell becomes "deep inside" (-background,
+// inactive), runs of inner-full cells along x as one box. This is the union with the filled
+// cells without building their own level set: the cells' faces are never a surface of the
+// fluid (an inner-full cell's neighbours are all full, so boundary particles cover them).
+std::size_t fill_inner_full(const CellStatesView& cells, vdb::FloatGrid& sdf) {
+  const double voxel = sdf.voxelSize()[0];
+  const float inside = -sdf.background();
   std::size_t count = 0;
   const auto& d = cells.dims;
   auto first_voxel = [&](double world) { return int(std::ceil(world / voxel)); };
@@ -83,10 +87,22 @@ std::size_t mark_inner_full(const CellStatesView& cells, double voxel, vdb::Mask
                       first_voxel(cells.origin[1] + (j + 1) * cs) - 1,
                       first_voxel(cells.origin[2] + (k + 1) * cs) - 1);
         if (lo.x() <= hi.x() && lo.y() <= hi.y() && lo.z() <= hi.z())
-          mask.tree().fill(vdb::CoordBBox(lo, hi), true, true);
+          sdf.tree().fill(vdb::CoordBBox(lo, hi), inside, /*active=*/false);
         i = end;
       }
   return count;
+}
+
+// phi + distance, with the voxels beyond +-band made inactive: erosion of a level set whose
+// band holds exact distances at least `distance + band` deep.
+void erode_and_narrow(vdb::FloatGrid& sdf, float distance, float band) {
+  for (auto it = sdf.tree().beginValueOn(); it; ++it) {
+    float v = *it + distance;
+    it.setValue(std::clamp(v, -band, band));
+    if (v > band || v < -band) it.setValueOff();
+  }
+  vdb::tools::changeLevelSetBackground(sdf.tree(), band);
+  vdb::tools::pruneLevelSet(sdf.tree());
 }
 
 vdb::GridBase::Ptr attribute_grid(const IndexGrid& closest, const AttributeView& a) {
@@ -159,7 +175,7 @@ VdbSnapshotReport write_vdb_snapshot(const std::filesystem::path& path,
   }
   const bool have_cells = !input.cells.empty() && input.cells.cell_size > 0;
   double voxel = settings.voxel_size.value_or(
-      !list.valid.empty() ? 0.5 * r_min : have_cells ? 0.25 * input.cells.cell_size : 1.0);
+      !list.valid.empty() ? r_min : have_cells ? 0.25 * input.cells.cell_size : 1.0);
   if (!(voxel > 0) || !std::isfinite(voxel))
     throw make_error("VDB snapshot: voxel size ", voxel, " is not a positive number");
   list.grow = settings.closing.value_or(list.valid.empty() ? 0.0 : double(r_max));
@@ -169,6 +185,8 @@ VdbSnapshotReport write_vdb_snapshot(const std::filesystem::path& path,
   // The band is widened by the closing distance while building, so that after the erosion
   // the closest-particle attributes still cover the final surface; it is narrowed again after.
   const int grow_voxels = int(std::ceil(list.grow / voxel));
+  std::optional<ScopedTiming> stage;
+  stage.emplace(report.timings, "vdb_rasterize");
   auto fluid = vdb::createLevelSet<vdb::FloatGrid>(voxel, settings.half_width + grow_voxels);
   fluid->setName("fluid");
   IndexGrid::Ptr closest;
@@ -180,25 +198,23 @@ VdbSnapshotReport write_vdb_snapshot(const std::filesystem::path& path,
     report.particles_too_small = raster.getMinCount() + raster.getMaxCount();
     report.particles = list.valid.size() - report.particles_too_small;
   }
+  stage.emplace(report.timings, "vdb_fill");
   if (settings.fill_inner && have_cells) {
-    auto mask = vdb::MaskGrid::create(false);
-    mask->setTransform(fluid->transform().copy());
-    report.inner_full_cells = mark_inner_full(input.cells, voxel, *mask);
-    if (report.inner_full_cells > 0) {
-      auto filled =
-          vdb::tools::topologyToLevelSet(*mask, settings.half_width + grow_voxels, 0, 0, 0);
-      vdb::tools::csgUnion(*fluid, *filled);
-    }
+    report.inner_full_cells = fill_inner_full(input.cells, *fluid);
   }
-  // Erode by what the spheres grew: the closing of sec. "fluid" in the header.
+  // Erode by what the spheres grew: the closing of "fluid" in the header. The rasterized union
+  // holds true distances only outside the spheres, so first the Eikonal solution from the
+  // surface (fast sweeping over the widened band), then the surface moves inward to where
+  // that distance is -grow, and the band is cut back to half_width.
+  stage.emplace(report.timings, "vdb_close");
   if (list.grow > 0 && !fluid->tree().empty()) {
-    vdb::tools::LevelSetFilter<vdb::FloatGrid> filter(*fluid);
-    filter.offset(static_cast<float>(list.grow));
-    vdb::tools::LevelSetTracker<vdb::FloatGrid> tracker(*fluid);
-    tracker.resize(vdb::Index(settings.half_width));
+    fluid = vdb::tools::sdfToSdf(*fluid, 0.f);
+    fluid->setName("fluid");
+    erode_and_narrow(*fluid, float(list.grow), float(settings.half_width * voxel));
   }
   report.level_set_voxels = fluid->activeVoxelCount();
 
+  stage.emplace(report.timings, "vdb_attributes");
   vdb::GridCPtrVec grids{fluid};
   for (const AttributeView& a : input.attributes)
     if (closest) grids.push_back(attribute_grid(*closest, a));
@@ -212,6 +228,7 @@ VdbSnapshotReport write_vdb_snapshot(const std::filesystem::path& path,
   meta.insertMeta("inner_full_cells", vdb::Int64Metadata(std::int64_t(report.inner_full_cells)));
   meta.insertMeta("closing", vdb::DoubleMetadata(report.closing));
 
+  stage.emplace(report.timings, "vdb_write");
   AtomicFile file(path);
   try {
     StreamArchive().write_to(file.stream(), grids, meta);
@@ -221,6 +238,7 @@ VdbSnapshotReport write_vdb_snapshot(const std::filesystem::path& path,
   }
   file.commit(sync);
   report.bytes = file.bytes_written();
+  stage.reset();
   return report;
 }
 

@@ -26,12 +26,13 @@
 
 #include "insitu/config.h"
 #include "insitu/particle_data.h"
+#include "insitu/stats.h"
 #include "voxspan/cell_states.h"
 
 namespace voxspan {
 
 struct VdbSnapshotSettings {
-  std::optional<double> voxel_size;  // nullopt: half the smallest particle radius
+  std::optional<double> voxel_size;  // nullopt: the smallest particle radius
   int half_width = 3;
   std::optional<double> closing;     // nullopt: the largest particle radius; 0: no closing
   bool fill_inner = true;
@@ -52,11 +53,14 @@ struct VdbSnapshotReport {
   double voxel_size = 0;
   double closing = 0;
   std::size_t particles = 0;           // rasterized
-  std::size_t particles_too_small = 0; // under 1.5 voxels: left out (set voxel_size smaller)
+  std::size_t particles_too_small = 0; // radius + closing under 1.5 voxels: left out
   std::size_t particles_invalid = 0;   // NaN/inf position or non-positive radius: left out
   std::size_t inner_full_cells = 0;    // filled
   std::uint64_t level_set_voxels = 0;  // active voxels of "fluid"
   std::uint64_t bytes = 0;             // file size
+  // Wall time per stage: "vdb_rasterize", "vdb_fill", "vdb_close", "vdb_attributes",
+  // "vdb_write" (for the per-step stats).
+  StatsSection timings;
 };
 
 // Builds the grids and writes them atomically (temp name, fsync when sync, rename). Throws

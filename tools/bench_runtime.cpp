@@ -6,12 +6,15 @@
 //      with and without fsync, PNG frames (encode + write), and an OpenVDB snapshot of a
 //      lattice block from its boundary particles.
 //
-//   bench_runtime [--steps N] [--folder DIR] [--block N]
+//   bench_runtime [--steps N] [--folder DIR] [--block N] [--keep 1]
+// (--keep 1 leaves the files in the folder, e.g. snap.vdb for inspect_snapshot.)
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <atomic>
 #include <iostream>
 #include <string>
+#include <thread>
 #include <unistd.h>
 
 #include "insitu/atomic_file.h"
@@ -25,6 +28,13 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
+// prefix + n + suffix (written out: GCC 12 warns falsely on chained string +).
+std::string numbered(const char* prefix, int n, const char* suffix) {
+  std::string s(prefix);
+  s.append(std::to_string(n)).append(suffix);
+  return s;
+}
+
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
@@ -54,9 +64,12 @@ outputs:
 void bench_submit_when_full() {
   voxspan::BackgroundWriter writer(4, voxspan::QueuePolicy::drop);
   std::atomic<bool> release{false};
+  std::atomic<bool> started{false};
   writer.submit("blocker", [&] {
+    started = true;
     while (!release) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   });
+  while (!started) std::this_thread::yield();
   for (int i = 0; i < 4; ++i) writer.submit("fill", [] {});
   const int n = 200000;
   auto t0 = Clock::now();
@@ -80,7 +93,7 @@ void bench_files(const std::filesystem::path& folder, bool sync) {
     for (int i = 0; i < files; ++i) {
       auto s0 = Clock::now();
       writer.submit("file", [=] {
-        voxspan::write_file_atomically(folder / ("f" + std::to_string(i) + ".bin"), *payload, sync);
+        voxspan::write_file_atomically(folder / numbered("f", i, ".bin"), *payload, sync);
       });
       submit_seconds += seconds_since(s0);
     }
@@ -104,7 +117,7 @@ void bench_png(const std::filesystem::path& folder) {
     convert += seconds_since(t0);
     t0 = Clock::now();
     std::string png = voxspan::encode_png(image);
-    voxspan::write_file_atomically(folder / ("frame" + std::to_string(f) + ".png"), png, true);
+    voxspan::write_file_atomically(folder / numbered("frame", f, ".png"), png, true);
     encode += seconds_since(t0);
     bytes = png.size();
   }
@@ -125,22 +138,25 @@ void bench_vdb(const std::filesystem::path& folder, int side) {
               "cells, %llu voxels, %.1f MiB)\n",
               side, s, scene.all.size(), scene.boundary.size(), r.inner_full_cells,
               static_cast<unsigned long long>(r.level_set_voxels), double(r.bytes) / (1 << 20));
+  for (const auto& [stage, ms] : r.timings.timings_ms) std::printf("  %-16s %8.0f ms\n", stage.c_str(), ms);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   std::int64_t steps = 100000000;
-  int block = 46;  // 46^3 = 97 336 particles, about the main job's count
+  int block = 46;
+  bool keep = false;  // 46^3 = 97 336 particles, about the main job's count
   std::filesystem::path folder =
-      std::filesystem::temp_directory_path() / ("voxspan-bench-" + std::to_string(::getpid()));
+      std::filesystem::temp_directory_path() / numbered("voxspan-bench-", int(::getpid()), "");
   for (int i = 1; i + 1 < argc; i += 2) {
     std::string a = argv[i];
     if (a == "--steps") steps = std::stoll(argv[i + 1]);
     else if (a == "--folder") folder = argv[i + 1];
     else if (a == "--block") block = std::stoi(argv[i + 1]);
+    else if (a == "--keep") keep = std::stoi(argv[i + 1]) != 0;
     else {
-      std::cerr << "usage: bench_runtime [--steps N] [--folder DIR] [--block N]\n";
+      std::cerr << "usage: bench_runtime [--steps N] [--folder DIR] [--block N] [--keep 1]\n";
       return 1;
     }
   }
@@ -151,6 +167,6 @@ int main(int argc, char** argv) {
   bench_files(folder, true);
   bench_png(folder);
   bench_vdb(folder, block);
-  std::filesystem::remove_all(folder);
+  if (!keep) std::filesystem::remove_all(folder);
   return 0;
 }

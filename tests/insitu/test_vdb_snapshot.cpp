@@ -6,6 +6,8 @@
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/LevelSetMeasure.h>
 
+#include <iostream>
+
 #include "insitu/vdb_inspect.h"
 #include "insitu/vdb_snapshot.h"
 #include "lattice.h"
@@ -54,7 +56,7 @@ TEST_F(VdbSnapshot, LevelSetHoldsTheWholeFluidFromItsBoundaryParticles) {
   std::vector<AttributeView> attributes = {{"pressure", 1, pressure}, {"velocity", 3, velocity}};
   VdbSnapshotInput input{scene.boundary, scene.cells(), attributes, 40, 0.125};
   VdbSnapshotReport report = write_vdb_snapshot(dir / "snap.vdb", input, VdbSnapshotSettings{});
-  EXPECT_FLOAT_EQ(float(report.voxel_size), float(kDx / 4));
+  EXPECT_FLOAT_EQ(float(report.voxel_size), float(kDx / 2));  // the radius
   EXPECT_FLOAT_EQ(float(report.closing), float(kDx / 2));
   EXPECT_EQ(report.particles, scene.boundary.size());
   EXPECT_EQ(report.inner_full_cells, scene.count_state(cell::kInnerFull));
@@ -66,6 +68,7 @@ TEST_F(VdbSnapshot, LevelSetHoldsTheWholeFluidFromItsBoundaryParticles) {
   EXPECT_EQ(fluid->getGridClass(), openvdb::GRID_LEVEL_SET);
   double volume = openvdb::tools::levelSetVolume(*fluid);
   EXPECT_NEAR(volume / particle_volume(), 1.0, 0.10) << "volume " << volume;
+  std::cout << "default voxel: volume / particle volume = " << volume / particle_volume() << "\n";
 
   // Inside at the centre (whose particles were left out), outside beyond the block.
   openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sdf(*fluid);
@@ -129,6 +132,26 @@ TEST_F(VdbSnapshot, WithoutTheFillOnlyTheSkinRemains) {
   auto fluid = grid_named<openvdb::FloatGrid>(*grids, "fluid");
   double volume = openvdb::tools::levelSetVolume(*fluid);
   EXPECT_LT(volume / particle_volume(), 0.8) << volume;
+}
+
+TEST_F(VdbSnapshot, FinerVoxelsAndNoClosingKeepTheVolume) {
+  for (double voxel : {kDx / 4, kDx / 3}) {
+    VdbSnapshotSettings settings;
+    settings.voxel_size = voxel;
+    write_vdb_snapshot(dir / "fine.vdb", {scene.boundary, scene.cells(), {}, 0, 0}, settings);
+    auto fluid = grid_named<openvdb::FloatGrid>(*read_grids(dir / "fine.vdb"), "fluid");
+    double ratio = openvdb::tools::levelSetVolume(*fluid) / particle_volume();
+    EXPECT_NEAR(ratio, 1.0, 0.10) << "voxel " << voxel;
+    std::cout << "voxel " << voxel / kDx << " dx: volume / particle volume = " << ratio << "\n";
+  }
+  // Spheres a little larger than half the spacing close by themselves (no closing needed).
+  test::LatticeScene big = test::make_lattice_block(kSide, kDx, float(0.62 * kDx));
+  VdbSnapshotSettings settings;
+  settings.closing = 0.0;
+  settings.voxel_size = kDx / 4;
+  write_vdb_snapshot(dir / "big.vdb", {big.boundary, big.cells(), {}, 0, 0}, settings);
+  auto fluid = grid_named<openvdb::FloatGrid>(*read_grids(dir / "big.vdb"), "fluid");
+  EXPECT_NEAR(openvdb::tools::levelSetVolume(*fluid) / particle_volume(), 1.0, 0.10);
 }
 
 TEST_F(VdbSnapshot, AllParticlesWithoutCellsGiveTheSameVolume) {
