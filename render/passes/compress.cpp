@@ -1,0 +1,80 @@
+#include "render/passes/compress.h"
+
+#include <algorithm>
+
+#include "render/grid_uniforms.h"
+
+namespace voxspan {
+namespace {
+constexpr GLuint kMaxGroups = 65535;
+// Bindings of compress.comp (the span image takes 0 and 1).
+constexpr GLuint kBits = 2, kScratchSpans = 3, kScratchCounts = 4, kScratchExits = 5, kStats = 6;
+}  // namespace
+
+CompressPass::CompressPass(const gl::ShaderLibrary& shaders)
+    : count_(shaders.compute("render/passes/compress.comp")),
+      write_(shaders.compute("render/passes/compress.comp", "#define COMPRESS_WRITE 1")),
+      stats_(16) {}
+
+void CompressPass::begin_frame() { stats_.clear(); }
+
+CompressTallies CompressPass::tallies() const {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  const auto t = stats_.read<std::uint32_t>(2);
+  return {t[0], t[1]};
+}
+
+void CompressPass::set_uniforms(const gl::Program& p, const TileLayout& layout,
+                                const TileRect& tile, const CellStateTexture& cells,
+                                const CompressSettings& settings, const GpuSpanImage& image) const {
+  set_grid_uniforms(p, image.grid());
+  cells.bind(p);
+  p.set("u_chunks", static_cast<unsigned>(layout.column_bytes / 16));
+  p.set("u_tile_pixels", static_cast<unsigned>(tile.pixels()));
+  p.set("u_tile", glm::ivec4(tile.x0, tile.y0, tile.width, tile.height));
+  p.set("u_gap", float(settings.gap_bridging));
+  p.set("u_center_gap_scale", float(1 + image.grid().k_d() / 2));
+  p.set("u_cap", settings.max_spans);
+  p.set("u_scratch_spans", static_cast<unsigned>(settings.scratch_spans));
+}
+
+std::uint32_t CompressPass::run(const gl::Buffer& bits, const TileLayout& layout,
+                                const TileRect& tile, const CellStateTexture& cells,
+                                const CompressSettings& settings, GpuSpanImage& image,
+                                std::uint32_t span_base, PrefixSumPass& prefix_sum,
+                                std::size_t max_binding_bytes) {
+  const auto pixels = static_cast<std::size_t>(tile.pixels());
+  scratch_spans_.reserve(pixels * static_cast<std::size_t>(settings.scratch_spans) * 8);
+  scratch_counts_.reserve((pixels + 1) * 4);
+  scratch_exits_.reserve(pixels * 4);
+  const auto groups = static_cast<GLuint>(std::clamp<std::size_t>((pixels + 63) / 64, 1, kMaxGroups));
+  const auto bind_all = [&] {
+    image.bind(0, 1);
+    bits.bind_range(GL_SHADER_STORAGE_BUFFER, kBits, 0, layout.column_bytes * pixels);
+    scratch_spans_.bind(GL_SHADER_STORAGE_BUFFER, kScratchSpans);
+    scratch_counts_.bind(GL_SHADER_STORAGE_BUFFER, kScratchCounts);
+    scratch_exits_.bind(GL_SHADER_STORAGE_BUFFER, kScratchExits);
+    stats_.bind(GL_SHADER_STORAGE_BUFFER, kStats);
+  };
+
+  set_uniforms(count_, layout, tile, cells, settings, image);
+  bind_all();
+  count_.dispatch(groups);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+  prefix_sum.run(scratch_counts_, pixels);
+  std::uint32_t total = 0;
+  scratch_counts_.download(&total, 4, pixels * 4);
+  image.set_span_count(span_base);
+  image.reserve_spans(std::size_t(span_base) + total, max_binding_bytes);
+  image.set_span_count(std::size_t(span_base) + total);
+
+  set_uniforms(write_, layout, tile, cells, settings, image);
+  write_.set("u_span_base", span_base);
+  bind_all();
+  write_.dispatch(groups);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  return total;
+}
+
+}  // namespace voxspan

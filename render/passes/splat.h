@@ -1,0 +1,48 @@
+// render/passes/splat.h - marks the voxels of one tile that the particle spheres cover
+// (render/passes/splat.comp; paper 001, sec. 3.1, 4.1, 4.4).
+// Reads: particles (vec4), the tile's list from BinPass, or every particle (the paper's way).
+// Writes: the tile's bits (layout render/passes/bits.glsl), atomic OR.
+// Cost: one ray-sphere test per (sphere, pixel) of its footprint in the tile and one atomic per
+// 32-bit word its chord touches (two words per sphere and pixel with surface-only marking).
+#pragma once
+
+#include <cstdint>
+
+#include "render/gl/objects.h"
+#include "render/gl/shader_library.h"
+#include "render/perspective_grid.h"
+#include "render/tiling.h"
+
+namespace voxspan {
+
+// How the splat spreads work over threads (measured in docs/benchmarks.md).
+enum class SplatThreads {
+  per_pixel,     // a work group shares 64 spheres' pixels out evenly: one thread per (sphere, pixel)
+  per_particle,  // one thread per sphere loops over its pixels
+};
+
+struct SplatInput {
+  const gl::Buffer* particles = nullptr;
+  std::uint32_t particle_count = 0;  // all particles (list == nullptr)
+  const gl::Buffer* list = nullptr;  // the tile's particle indices, or nullptr for all
+  std::uint32_t list_offset = 0, list_count = 0;
+};
+
+struct SplatSettings {
+  double gap_bridging = 0;  // g, world units
+  bool surface_only = true; // with g > 0: entry and exit voxels only for spheres with 2 r < g
+  SplatThreads threads = SplatThreads::per_pixel;
+};
+
+class SplatPass {
+ public:
+  explicit SplatPass(const gl::ShaderLibrary& shaders);
+  void run(const gl::Buffer& bits, const SplatInput& input, const PerspectiveGrid& grid,
+           const TileLayout& layout, const TileRect& tile, const SplatSettings& settings) const;
+
+ private:
+  // [from list][per pixel]
+  gl::Program programs_[2][2];
+};
+
+}  // namespace voxspan
