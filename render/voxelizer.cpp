@@ -77,11 +77,13 @@ const GpuSpanImage& Voxelizer::run(const Camera& camera, std::span<const Particl
     particles_.upload(particles.data(), particles.size_bytes());
     cells_.upload(options.use_cell_states ? cells : CellStatesView{});
   }
-  const std::vector<std::uint32_t>* lists = nullptr;
-  if (options.binning == Binning::per_tile_lists) {
+  const Bins* bins = nullptr;
+  {
     auto t = timer.gpu("bin");
-    lists = &bin_.run(particles_, count, grid, layout, prefix_sum_);
-    stats.set_count("bin.entries", lists->back());
+    bins = &bin_.run(particles_, count, grid, layout, prefix_sum_,
+                     options.binning == Binning::per_tile_lists);
+    if (!bins->offsets.empty()) stats.set_count("bin.entries", bins->offsets.back());
+    stats.set_count("bin.large", bins->large);
   }
   bits_.reserve(layout.tile_bytes);
   compress_.begin_frame();
@@ -99,13 +101,13 @@ const GpuSpanImage& Voxelizer::run(const Camera& camera, std::span<const Particl
     }
     {
       auto t = timer.gpu("splat");
-      SplatInput input{&particles_, count, nullptr, 0, 0};
-      if (lists != nullptr) {
+      SplatInput input{&particles_, count, nullptr, 0, 0, &bin_.large_list(), bins->large};
+      if (!bins->offsets.empty()) {
         input.list = &bin_.lists();
-        input.list_offset = (*lists)[static_cast<std::size_t>(i)];
-        input.list_count = (*lists)[static_cast<std::size_t>(i) + 1] - input.list_offset;
+        input.list_offset = bins->offsets[static_cast<std::size_t>(i)];
+        input.list_count = bins->offsets[static_cast<std::size_t>(i) + 1] - input.list_offset;
       }
-      splat_.run(bits_, input, grid, layout, tile, splat);
+      splat_.run(bits_, input, grid, layout, tile, splat, prefix_sum_);
     }
     {
       auto t = timer.gpu("compress");

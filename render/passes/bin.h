@@ -1,8 +1,10 @@
 // render/passes/bin.h - bins particles into the screen tiles their spheres touch, once per frame
 // (render/passes/bin.comp): count, prefix sum, scatter, all on the GPU. Each tile then splats
-// only its own list, instead of every particle (the paper's way, sec. 3.1).
-// Reads: the particle buffer. Writes: lists() and the per-tile offsets into it.
-// Cost: two passes over the particles; one small read-back (tiles + 1 uints) to size the lists.
+// only its own list, instead of every particle (the paper's way, sec. 3.1). Large spheres
+// (render/passes/sphere_work.glsl) go to a list of their own for splat_large.comp; with
+// tile_lists off (the paper's re-splat mode) only that list is made.
+// Reads: the particle buffer. Writes: lists(), large_list() and the per-tile offsets.
+// Cost: two passes over the particles; one small read-back (tiles + 2 uints) to size the lists.
 #pragma once
 
 #include <cstddef>
@@ -17,20 +19,25 @@
 
 namespace voxspan {
 
+struct Bins {
+  // Tile t owns lists()[offsets[t], offsets[t + 1]); empty without tile lists.
+  std::vector<std::uint32_t> offsets;
+  std::uint32_t large = 0;  // entries of large_list()
+};
+
 class BinPass {
  public:
   explicit BinPass(const gl::ShaderLibrary& shaders);
-  // Returns the offsets of the tiles' lists: tile t owns lists()[offsets[t], offsets[t + 1]).
-  const std::vector<std::uint32_t>& run(const gl::Buffer& particles, std::size_t count,
-                                        const PerspectiveGrid& grid, const TileLayout& tiles,
-                                        PrefixSumPass& prefix_sum);
+  const Bins& run(const gl::Buffer& particles, std::size_t count, const PerspectiveGrid& grid,
+                  const TileLayout& tiles, PrefixSumPass& prefix_sum, bool tile_lists);
   const gl::Buffer& lists() const { return lists_; }
+  const gl::Buffer& large_list() const { return large_list_; }
 
  private:
-  gl::Program count_shared_, scatter_shared_, count_global_, scatter_global_;
-  gl::Buffer counts_;
-  gl::Buffer lists_;
-  std::vector<std::uint32_t> offsets_;
+  // [tile lists: 0 = large only, 1 = global atomics, 2 = shared tallies][scatter]
+  gl::Program programs_[3][2];
+  gl::Buffer counts_, lists_, large_, large_list_;
+  Bins bins_;
 };
 
 }  // namespace voxspan

@@ -8,71 +8,41 @@
 // between (sec. 4.4): the spans come out the same as with whole chords.
 // Threads: SPLAT_PER_PIXEL: a work group takes 64 spheres and shares their pixels out evenly,
 // one thread per (sphere, pixel); otherwise one thread per sphere loops over its pixels.
+// Small spheres only (render/passes/sphere_work.glsl), so every thread's loops stay short.
 // Cost: one ray-sphere test per (sphere, pixel) of the conservative footprint, one atomic per
 // word touched.
 layout(local_size_x = 64) in;
 
 #include "render/perspective_grid.glsl"
 #include "render/passes/bits.glsl"
+#include "render/passes/sphere_work.glsl"
+#include "render/passes/splat_common.glsl"
 
-layout(std430, binding = 0) buffer Bits { uint bits[]; };
 layout(std430, binding = 1) readonly buffer Particles { vec4 particles[]; };
 #ifdef SPLAT_FROM_LIST
 layout(std430, binding = 2) readonly buffer TileList { uint tile_list[]; };
 #endif
 
-uniform ivec4 u_tile;          // x0, y0, width, height
 uniform uint u_count;          // spheres to splat
 uniform uint u_list_offset;    // first entry of this tile's list
-uniform float u_gap;           // g (world units); surface-only spheres need 2 r < g
-uniform uint u_surface_only;   // 1: entry and exit voxels only, where the gap allows
 
-// The sphere in view space and its footprint clipped to the tile; false when it adds nothing.
+// The small sphere in view space and its footprint clipped to the tile; false when it adds
+// nothing here. The tile lists hold small spheres only; without them, large ones are skipped
+// here and splatted by splat_large.comp.
 bool load_sphere(uint i, out vec4 sphere, out ivec4 rect) {
 #ifdef SPLAT_FROM_LIST
   vec4 p = particles[tile_list[u_list_offset + i]];
 #else
   vec4 p = particles[i];
 #endif
-  sphere = vec4(0.0);
   rect = ivec4(0, 0, -1, -1);
-  if (!valid_sphere(p)) return false;
-  sphere = vec4(to_view(p.xyz), p.w);
-  if (sphere.z + sphere.w <= u_near) return false;
+  if (!view_sphere(p, sphere)) return false;
   ivec4 r = sphere_pixels(sphere.xyz, sphere.w);
+#ifndef SPLAT_FROM_LIST
+  if (sphere_is_large(sphere, r)) return false;
+#endif
   rect = ivec4(max(r.xy, u_tile.xy), min(r.zw, u_tile.xy + u_tile.zw - 1));
   return rect.x <= rect.z && rect.y <= rect.w;
-}
-
-void set_layers(uint p, uint l0, uint l1) {
-  uint w0 = l0 >> 5u, w1 = l1 >> 5u;
-  for (uint w = w0; w <= w1; ++w) {
-    uint lo = w == w0 ? (l0 & 31u) : 0u;
-    uint hi = w == w1 ? (l1 & 31u) : 31u;
-    atomicOr(bits[bit_word_index(p, w)], bit_range_mask(lo, hi));
-  }
-}
-
-void splat_pixel(vec4 sphere, ivec2 pixel) {
-  float z0, z1;
-  vec3 ray = view_ray(pixel);
-  if (!sphere_chord(ray, sphere.xyz, sphere.w, z0, z1)) return;
-  if (z1 <= u_near || z0 >= u_grid_far) return;
-  uint l0 = layer_index(max(z0, u_near));
-  uint l1 = layer_index(z1);
-  uint p = uint(pixel.x - u_tile.x) + uint(pixel.y - u_tile.y) * uint(u_tile.z);
-  if (u_surface_only != 0u) {
-    // Compress measures a gap between voxel centres: at most the chord plus one layer (a layer
-    // at depth z is at most K_d z thick). The margin keeps float rounding from opening a gap
-    // that would not close.
-    float widest_gap = 2.0 * sphere.w + (exp2(u_log2_step) - 1.0) * z1 * length(ray);
-    if (1.001 * widest_gap < u_gap) {
-      atomicOr(bits[bit_word_index(p, l0 >> 5u)], 1u << (l0 & 31u));
-      atomicOr(bits[bit_word_index(p, l1 >> 5u)], 1u << (l1 & 31u));
-      return;
-    }
-  }
-  set_layers(p, l0, l1);
 }
 
 #ifdef SPLAT_PER_PIXEL
@@ -91,7 +61,7 @@ void main() {
     bool live = i < u_count && load_sphere(i, sphere, rect);
     s_sphere[lane] = sphere;
     s_rect[lane] = rect;
-    s_first[lane + 1u] = live ? uint(rect.z - rect.x + 1) * uint(rect.w - rect.y + 1) : 0u;
+    s_first[lane + 1u] = live ? rect_area(rect) : 0u;
     barrier();
     if (lane == 0u) {
       s_first[0] = 0u;

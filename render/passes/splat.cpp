@@ -7,9 +7,15 @@
 namespace voxspan {
 namespace {
 constexpr GLuint kMaxGroups = 65535;
-}
 
-SplatPass::SplatPass(const gl::ShaderLibrary& shaders) {
+GLuint groups_of_64(std::size_t threads) {
+  return static_cast<GLuint>(std::clamp<std::size_t>((threads + 63) / 64, 1, kMaxGroups));
+}
+}  // namespace
+
+SplatPass::SplatPass(const gl::ShaderLibrary& shaders)
+    : large_items_(shaders.compute("render/passes/splat_large.comp", "#define LARGE_ITEMS 1")),
+      large_splat_(shaders.compute("render/passes/splat_large.comp")) {
   for (int list = 0; list < 2; ++list)
     for (int per_pixel = 0; per_pixel < 2; ++per_pixel) {
       std::string defines;
@@ -19,26 +25,63 @@ SplatPass::SplatPass(const gl::ShaderLibrary& shaders) {
     }
 }
 
-void SplatPass::run(const gl::Buffer& bits, const SplatInput& input, const PerspectiveGrid& grid,
-                    const TileLayout& layout, const TileRect& tile,
-                    const SplatSettings& settings) const {
-  const bool from_list = input.list != nullptr;
-  const std::uint32_t count = from_list ? input.list_count : input.particle_count;
-  if (count == 0) return;
-  const gl::Program& p =
-      programs_[from_list ? 1 : 0][settings.threads == SplatThreads::per_pixel ? 1 : 0];
+void SplatPass::set_uniforms(const gl::Program& p, const PerspectiveGrid& grid,
+                             const TileLayout& layout, const TileRect& tile,
+                             const SplatSettings& settings) const {
   set_grid_uniforms(p, grid);
   p.set("u_chunks", static_cast<unsigned>(layout.column_bytes / 16));
   p.set("u_tile_pixels", static_cast<unsigned>(tile.pixels()));
   p.set("u_tile", glm::ivec4(tile.x0, tile.y0, tile.width, tile.height));
-  p.set("u_count", count);
-  p.set("u_list_offset", input.list_offset);
   p.set("u_gap", float(settings.gap_bridging));
   p.set("u_surface_only", settings.surface_only && settings.gap_bridging > 0 ? 1u : 0u);
+}
+
+void SplatPass::run(const gl::Buffer& bits, const SplatInput& input, const PerspectiveGrid& grid,
+                    const TileLayout& layout, const TileRect& tile, const SplatSettings& settings,
+                    PrefixSumPass& prefix_sum) {
   bits.bind_range(GL_SHADER_STORAGE_BUFFER, 0, 0, layout.column_bytes * tile.pixels());
-  input.particles->bind(GL_SHADER_STORAGE_BUFFER, 1);
-  if (from_list) input.list->bind(GL_SHADER_STORAGE_BUFFER, 2);
-  p.dispatch(static_cast<GLuint>(std::min<std::uint32_t>(kMaxGroups, (count + 63) / 64)));
+  const bool from_list = input.list != nullptr;
+  const std::uint32_t count = from_list ? input.list_count : input.particle_count;
+  if (count != 0) {
+    const gl::Program& p =
+        programs_[from_list ? 1 : 0][settings.threads == SplatThreads::per_pixel ? 1 : 0];
+    set_uniforms(p, grid, layout, tile, settings);
+    p.set("u_count", count);
+    p.set("u_list_offset", input.list_offset);
+    input.particles->bind(GL_SHADER_STORAGE_BUFFER, 1);
+    if (from_list) input.list->bind(GL_SHADER_STORAGE_BUFFER, 2);
+    p.dispatch(groups_of_64(count));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  if (input.large_count != 0) run_large(bits, input, grid, layout, tile, settings, prefix_sum);
+}
+
+void SplatPass::run_large(const gl::Buffer& bits, const SplatInput& input,
+                          const PerspectiveGrid& grid, const TileLayout& layout,
+                          const TileRect& tile, const SplatSettings& settings,
+                          PrefixSumPass& prefix_sum) {
+  const std::uint32_t large = input.large_count;
+  items_.reserve((std::size_t(large) + 1) * 4);
+  const auto bind_all = [&] {
+    bits.bind_range(GL_SHADER_STORAGE_BUFFER, 0, 0, layout.column_bytes * tile.pixels());
+    input.particles->bind(GL_SHADER_STORAGE_BUFFER, 1);
+    input.large_list->bind(GL_SHADER_STORAGE_BUFFER, 2);
+    items_.bind(GL_SHADER_STORAGE_BUFFER, 3);
+  };
+  set_uniforms(large_items_, grid, layout, tile, settings);
+  large_items_.set("u_large", large);
+  bind_all();
+  large_items_.dispatch(groups_of_64(large));
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  prefix_sum.run(items_, large);
+  std::uint32_t total = 0;
+  items_.download(&total, 4, std::size_t(large) * 4);
+  if (total == 0) return;
+  set_uniforms(large_splat_, grid, layout, tile, settings);
+  large_splat_.set("u_large", large);
+  large_splat_.set("u_items", total);
+  bind_all();
+  large_splat_.dispatch(groups_of_64(total));
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

@@ -104,6 +104,16 @@ Particles random_cloud(std::size_t n, glm::dvec3 lo, glm::dvec3 hi, double r0, d
   return out;
 }
 
+Camera look_at(glm::dvec3 eye, glm::dvec3 target, int width, int height, double fov_y_degrees) {
+  Camera c;
+  c.eye = eye;
+  c.target = target;
+  c.fov_y_degrees = fov_y_degrees;
+  c.width = width;
+  c.height = height;
+  return c;
+}
+
 Camera frame_scene(const Particles& particles, glm::dvec3 direction, int width, int height,
                    double fov_y_degrees, double margin) {
   glm::dvec3 lo(1e300), hi(-1e300);

@@ -65,10 +65,7 @@ TEST(VoxelizeAccuracy, DamBreakAtThreeSteps) {
 TEST(VoxelizeAccuracy, TwentyFourLayersCappedAtSeven) {
   // Sheets two spheres thick, 0.2 apart along the view direction, filling the image.
   Case c{test::stacked_layers(24, 24, 2, 0.05, 0.045, 0.2), {}, {}};
-  c.camera.eye = {0.62, 0.58, -1.2};
-  c.camera.target = {0.6, 0.6, 1.0};
-  c.camera.width = 128;
-  c.camera.height = 96;
+  c.camera = test::look_at({0.62, 0.58, -1.2}, {0.6, 0.6, 1.0}, 128, 96);
   c.options.max_spans = 7;
   c.options.gap_bridging = 0.025;
   c.options.grid.alpha_degrees = 1;
