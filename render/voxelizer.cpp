@@ -111,7 +111,7 @@ const GpuSpanImage& Voxelizer::run(const Camera& camera, std::span<const Particl
     }
     {
       auto t = timer.gpu("compress");
-      spans += compress_.run(bits_, layout, tile, cells_, compress, image_, spans, prefix_sum_,
+      spans += compress_.run(bits_, bin_.depth_bounds(), layout, tile, cells_, compress, image_, spans, prefix_sum_,
                              max_binding_);
     }
   }

@@ -40,7 +40,7 @@ struct VoxelizeOptions {
   int scratch_spans = 8;        // spans per pixel the compress pass keeps between its passes
   bool use_cell_states = true;  // skip inner-empty, fill inner-full cells (sec. 4.3)
   Binning binning = Binning::per_tile_lists;
-  SplatThreads splat_threads = SplatThreads::per_pixel;
+  SplatThreads splat_threads = SplatThreads::automatic;
 };
 
 // Throws voxspan::Error naming the option that is out of range.

@@ -3,6 +3,7 @@
 // every tile, sec. 3.1). A small sphere touching several tiles goes into each; large spheres
 // (render/passes/sphere_work.glsl) go to one list of their own, splatted by splat_large.comp.
 //   count (default): tile_counts[t] += small spheres touching tile t; large[0] += large spheres;
+//     the depth bounds of the screen blocks they touch grow (render/passes/depth_bounds.glsl);
 //   BIN_SCATTER: with tile_counts[t] = the first slot of tile t (the exclusive prefix sum of the
 //     counts), writes each small sphere's index into the slots of its tiles and each large
 //     sphere's into the large list (order within a list is arbitrary: atomic OR does not care);
@@ -15,19 +16,21 @@ layout(local_size_x = 256) in;
 
 #include "render/perspective_grid.glsl"
 #include "render/passes/sphere_work.glsl"
+#include "render/passes/depth_bounds.glsl"
 
 layout(std430, binding = 0) readonly buffer Particles { vec4 particles[]; };
 layout(std430, binding = 1) buffer TileCounts { uint tile_counts[]; };
 layout(std430, binding = 2) writeonly buffer TileLists { uint tile_lists[]; };
 layout(std430, binding = 3) buffer Large { uint large[]; };  // count, cursor
 layout(std430, binding = 4) writeonly buffer LargeList { uint large_list[]; };
+layout(std430, binding = 5) buffer DepthBounds { uvec2 depth_bounds[]; };
 
 uniform uint u_count;       // particles
 uniform ivec2 u_tile_size;  // largest tile, pixels
 uniform ivec2 u_tiles;      // tiles across, down
 
 // Sorts sphere i: false when culled; else large, or small with the tiles (tx0, ty0, tx1, ty1
-// inclusive) it touches.
+// inclusive) it touches. The count pass also grows the depth bounds it touches.
 bool sphere_tiles(uint i, out bool is_large, out ivec4 tiles) {
   is_large = false;
   tiles = ivec4(0, 0, -1, -1);
@@ -38,6 +41,20 @@ bool sphere_tiles(uint i, out bool is_large, out ivec4 tiles) {
   if (r.x > r.z || r.y > r.w) return false;
   is_large = sphere_is_large(sphere, r);
   tiles = ivec4(r.xy / u_tile_size, r.zw / u_tile_size);
+#ifndef BIN_SCATTER
+  uvec2 bounds = depth_bounds_bits(max(sphere.z - sphere.w, u_near), min(sphere.z + sphere.w, u_grid_far));
+  ivec4 blocks = is_large ? ivec4(0, 0, -1, -1) : r / kDepthBlock;
+  if (is_large) {
+    atomicMax(depth_bounds[u_depth_block_count].x, bounds.x);
+    atomicMax(depth_bounds[u_depth_block_count].y, bounds.y);
+  }
+  for (int by = blocks.y; by <= blocks.w; ++by)
+    for (int bx = blocks.x; bx <= blocks.z; ++bx) {
+      int b = bx + by * u_depth_blocks_x;
+      atomicMax(depth_bounds[b].x, bounds.x);
+      atomicMax(depth_bounds[b].y, bounds.y);
+    }
+#endif
   return true;
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "render/grid_uniforms.h"
+#include "render/passes/depth_bounds.h"
 
 namespace voxspan {
 namespace {
@@ -36,6 +37,7 @@ const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
     p->set("u_count", static_cast<unsigned>(count));
     p->set("u_tile_size", glm::ivec2(tiles.tile_width, tiles.tile_height));
     p->set("u_tiles", glm::ivec2(tiles.columns, tiles.rows));
+    set_depth_block_uniforms(*p, grid);
   }
   const auto bind_all = [&] {
     particles.bind(GL_SHADER_STORAGE_BUFFER, 0);
@@ -43,11 +45,15 @@ const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
     lists_.bind(GL_SHADER_STORAGE_BUFFER, 2);
     large_.bind(GL_SHADER_STORAGE_BUFFER, 3);
     large_list_.bind(GL_SHADER_STORAGE_BUFFER, 4);
+    depth_bounds_.bind(GL_SHADER_STORAGE_BUFFER, 5);
   };
   counts_.reserve((tile_count + 1) * 4);
   counts_.clear(0, (tile_count + 1) * 4);
   large_.reserve(8);
   large_.clear(0, 8);
+  const std::size_t bounds_bytes = (depth_block_count(grid) + 1) * 8;
+  depth_bounds_.reserve(bounds_bytes);
+  depth_bounds_.clear(0, bounds_bytes);
   lists_.reserve(4);
   large_list_.reserve(4);
   bind_all();

@@ -2,8 +2,9 @@
 // (render/passes/bin.comp): count, prefix sum, scatter, all on the GPU. Each tile then splats
 // only its own list, instead of every particle (the paper's way, sec. 3.1). Large spheres
 // (render/passes/sphere_work.glsl) go to a list of their own for splat_large.comp; with
-// tile_lists off (the paper's re-splat mode) only that list is made.
-// Reads: the particle buffer. Writes: lists(), large_list() and the per-tile offsets.
+// tile_lists off (the paper's re-splat mode) only that list is made. The count pass also gathers
+// the depth range of each 16x16-pixel block (render/passes/depth_bounds.glsl) for compress.
+// Reads: the particle buffer. Writes: lists(), large_list(), depth_bounds(), tile offsets.
 // Cost: two passes over the particles; one small read-back (tiles + 2 uints) to size the lists.
 #pragma once
 
@@ -32,11 +33,12 @@ class BinPass {
                   const TileLayout& tiles, PrefixSumPass& prefix_sum, bool tile_lists);
   const gl::Buffer& lists() const { return lists_; }
   const gl::Buffer& large_list() const { return large_list_; }
+  const gl::Buffer& depth_bounds() const { return depth_bounds_; }
 
  private:
   // [tile lists: 0 = large only, 1 = global atomics, 2 = shared tallies][scatter]
   gl::Program programs_[3][2];
-  gl::Buffer counts_, lists_, large_, large_list_;
+  gl::Buffer counts_, lists_, large_, large_list_, depth_bounds_;
   Bins bins_;
 };
 

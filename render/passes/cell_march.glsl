@@ -28,6 +28,14 @@ uint cell_run_kind(ivec3 cell) {
   return occupancy == 0u ? kRunEmpty : (occupancy == 2u ? kRunFull : kRunNone);
 }
 
+// Whether the point lies in an inner-full cell.
+bool inner_full_at(vec3 p) {
+  if (u_cells_on == 0u) return false;
+  ivec3 c = ivec3(floor((p - u_cells_origin) / u_cells_size));
+  if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, u_cells_dims))) return false;
+  return cell_run_kind(c) == kRunFull;
+}
+
 // Starts the march of the ray eye + z * ray over [z0, z1], clipped to the grid's box.
 CellMarch march_begin(vec3 eye, vec3 ray, float z0, float z1) {
   CellMarch m;

@@ -90,13 +90,16 @@ LayerRun next_layer_run(inout CellMarch m) {
   return LayerRun(kRunNone, 1, 0);
 }
 
-// Scans the column of `pixel`; returns the number of spans found and their total length along
-// the ray in `inside`.
-uint scan_column(ivec2 pixel, out float inside) {
+// Scans chunks [first_chunk, last_chunk] of the column of `pixel` (the depth range that can
+// hold fluid: render/passes/depth_bounds.glsl); returns the number of spans found and their
+// total length along the ray in `inside`.
+uint scan_column(ivec2 pixel, uint first_chunk, uint last_chunk, out float inside) {
   ColumnRuns s = ColumnRuns(ray_scale(pixel), false, false, 0u, 0u, 0u, 0.0);
-  CellMarch march = march_begin(u_eye, world_ray(pixel), u_near, u_grid_far);
+  float z0 = max(u_near, layer_depth(first_chunk * 128u));
+  float z1 = min(u_grid_far, layer_depth((last_chunk + 1u) * 128u));
+  CellMarch march = march_begin(u_eye, world_ray(pixel), z0, z1);
   LayerRun run = next_layer_run(march);
-  for (uint c = 0u; c < u_chunks; ++c) {
+  for (uint c = first_chunk; c <= last_chunk; ++c) {
     int lo = int(c * 128u);
     bool covered = run.kind != kRunNone && run.lo <= lo && run.hi >= lo + 127;
     uvec4 chunk = covered ? (run.kind == kRunFull ? uvec4(0xFFFFFFFFu) : uvec4(0u))
@@ -115,7 +118,8 @@ uint scan_column(ivec2 pixel, out float inside) {
       scan_word(s, bits, uint(wlo));
     }
   }
-  if (s.in_run) s.end = u_chunks * 128u;  // only padding follows the last layer: never taken
+  // A run reaching the end of the range ends there: nothing is set beyond it.
+  if (s.in_run) s.end = (last_chunk + 1u) * 128u;
   if (s.pending) emit_span(s);
   inside = s.inside;
   return s.found;

@@ -14,12 +14,14 @@ layout(local_size_x = 64) in;
 #include "render/passes/bits.glsl"
 #include "render/span_image.glsl"
 #include "render/passes/column_scan.glsl"
+#include "render/passes/depth_bounds.glsl"
 
 layout(std430, binding = 2) readonly buffer Bits { uvec4 bits[]; };
 layout(std430, binding = 3) buffer ScratchSpans { vec2 scratch_spans[]; };  // [k * pixels + p]
 layout(std430, binding = 4) buffer ScratchCounts { uint scratch_counts[]; }; // count, then offset
 layout(std430, binding = 5) buffer ScratchExits { float scratch_last_exit[]; };
 layout(std430, binding = 6) buffer Stats { uint stats[]; };  // capped pixels, spans past caps
+layout(std430, binding = 7) readonly buffer DepthBounds { uvec2 depth_bounds[]; };
 
 uniform ivec4 u_tile;            // x0, y0, width, height
 uniform uint u_cap;              // stored spans per pixel; 0 = no cap
@@ -32,6 +34,24 @@ uint g_offset;       // COMPRESS_WRITE: its first span
 
 uvec4 column_chunk(uint chunk) { return bits[chunk * u_tile_pixels + g_pixel]; }
 
+// The chunks of the pixel's column that can hold fluid: its block's depth bounds, the large
+// spheres', and from the near plane on when the ray starts inside inner-full cells. A layer of
+// margin on each side absorbs float rounding between the bounds and the splat's chords.
+bool column_chunks(ivec2 pixel, out uint first, out uint last) {
+  uvec2 block = depth_bounds[depth_block(pixel)];
+  uvec2 large = depth_bounds[u_depth_block_count];
+  uvec2 b = max(block, large);
+  bool near_full = inner_full_at(u_eye + u_near * world_ray(pixel));
+  first = 0u;
+  last = 0u;
+  if (b.x == 0u && !near_full) return false;
+  float nearest = (near_full || b.x == 0u) ? u_near : uintBitsToFloat(~b.x);
+  float farthest = b.y == 0u ? u_grid_far : uintBitsToFloat(b.y);
+  first = (max(layer_index(nearest), 1u) - 1u) >> 7u;
+  last = min(layer_index(farthest) + 1u, u_layers - 1u) >> 7u;
+  return true;
+}
+
 #ifndef COMPRESS_WRITE
 float g_last_exit;
 
@@ -42,8 +62,9 @@ void on_span(uint index, float entry, float exit) {
 
 void compress_pixel(ivec2 pixel) {
   g_last_exit = 0.0;
-  float inside;
-  uint total = scan_column(pixel, inside);
+  float inside = 0.0;
+  uint first, last;
+  uint total = column_chunks(pixel, first, last) ? scan_column(pixel, first, last, inside) : 0u;
   uint count = u_cap == 0u ? total : min(total, u_cap);
   span_pixels[g_image_pixel].count = count;
   span_pixels[g_image_pixel].total = total;
@@ -74,7 +95,9 @@ void compress_pixel(ivec2 pixel) {
       span_depths[g_offset + count - 1u].y = scratch_last_exit[g_pixel];
   } else {
     float inside;
-    scan_column(pixel, inside);
+    uint first, last;
+    column_chunks(pixel, first, last);
+    scan_column(pixel, first, last, inside);
   }
 }
 #endif

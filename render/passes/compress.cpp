@@ -3,12 +3,14 @@
 #include <algorithm>
 
 #include "render/grid_uniforms.h"
+#include "render/passes/depth_bounds.h"
 
 namespace voxspan {
 namespace {
 constexpr GLuint kMaxGroups = 65535;
 // Bindings of compress.comp (the span image takes 0 and 1).
-constexpr GLuint kBits = 2, kScratchSpans = 3, kScratchCounts = 4, kScratchExits = 5, kStats = 6;
+constexpr GLuint kBits = 2, kScratchSpans = 3, kScratchCounts = 4, kScratchExits = 5, kStats = 6,
+                 kDepthBounds = 7;
 }  // namespace
 
 CompressPass::CompressPass(const gl::ShaderLibrary& shaders)
@@ -36,9 +38,11 @@ void CompressPass::set_uniforms(const gl::Program& p, const TileLayout& layout,
   p.set("u_center_gap_scale", float(1 + image.grid().k_d() / 2));
   p.set("u_cap", settings.max_spans);
   p.set("u_scratch_spans", static_cast<unsigned>(settings.scratch_spans));
+  set_depth_block_uniforms(p, image.grid());
 }
 
-std::uint32_t CompressPass::run(const gl::Buffer& bits, const TileLayout& layout,
+std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_bounds,
+                                const TileLayout& layout,
                                 const TileRect& tile, const CellStateTexture& cells,
                                 const CompressSettings& settings, GpuSpanImage& image,
                                 std::uint32_t span_base, PrefixSumPass& prefix_sum,
@@ -55,6 +59,7 @@ std::uint32_t CompressPass::run(const gl::Buffer& bits, const TileLayout& layout
     scratch_counts_.bind(GL_SHADER_STORAGE_BUFFER, kScratchCounts);
     scratch_exits_.bind(GL_SHADER_STORAGE_BUFFER, kScratchExits);
     stats_.bind(GL_SHADER_STORAGE_BUFFER, kStats);
+    depth_bounds.bind(GL_SHADER_STORAGE_BUFFER, kDepthBounds);
   };
 
   set_uniforms(count_, layout, tile, cells, settings, image);

@@ -38,7 +38,9 @@ class CompressPass {
   // Zeroes the per-frame tallies.
   void begin_frame();
   // Appends the tile's spans to `image` from span number `span_base`; returns how many.
-  std::uint32_t run(const gl::Buffer& bits, const TileLayout& layout, const TileRect& tile,
+  // `depth_bounds`: BinPass::depth_bounds() of this frame.
+  std::uint32_t run(const gl::Buffer& bits, const gl::Buffer& depth_bounds,
+                    const TileLayout& layout, const TileRect& tile,
                     const CellStateTexture& cells, const CompressSettings& settings,
                     GpuSpanImage& image, std::uint32_t span_base, PrefixSumPass& prefix_sum,
                     std::size_t max_binding_bytes);

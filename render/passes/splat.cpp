@@ -1,6 +1,7 @@
 #include "render/passes/splat.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "render/grid_uniforms.h"
 
@@ -23,6 +24,9 @@ SplatPass::SplatPass(const gl::ShaderLibrary& shaders)
       if (per_pixel) defines += "#define SPLAT_PER_PIXEL 1\n";
       programs_[list][per_pixel] = shaders.compute("render/passes/splat.comp", defines);
     }
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (renderer != nullptr && std::strstr(renderer, "llvmpipe") != nullptr)
+    automatic_ = SplatThreads::per_particle;
 }
 
 void SplatPass::set_uniforms(const gl::Program& p, const PerspectiveGrid& grid,
@@ -43,8 +47,9 @@ void SplatPass::run(const gl::Buffer& bits, const SplatInput& input, const Persp
   const bool from_list = input.list != nullptr;
   const std::uint32_t count = from_list ? input.list_count : input.particle_count;
   if (count != 0) {
-    const gl::Program& p =
-        programs_[from_list ? 1 : 0][settings.threads == SplatThreads::per_pixel ? 1 : 0];
+    const SplatThreads threads =
+        settings.threads == SplatThreads::automatic ? automatic_ : settings.threads;
+    const gl::Program& p = programs_[from_list ? 1 : 0][threads == SplatThreads::per_pixel ? 1 : 0];
     set_uniforms(p, grid, layout, tile, settings);
     p.set("u_count", count);
     p.set("u_list_offset", input.list_offset);

@@ -37,6 +37,7 @@ TEST(VoxelizeBadInput, CameraInsideTheFluid) {
   VoxelizeOptions o;
   o.gap_bridging = shape.spacing;
   o.grid.alpha_degrees = 2;
+  o.splat_threads = SplatThreads::per_pixel;
   FrameStats stats;
   const SpanImage gpu = test::voxelize(camera, water, o, {}, &stats);
   // The near plane fell to its floor: a fraction of the far depth, not the eye.
@@ -84,6 +85,7 @@ TEST(VoxelizeBadInput, ParticleBiggerThanTheScreen) {
   VoxelizeOptions o;
   o.grid.alpha_degrees = 2;
   o.tiles.max_height = 16;  // in every tile
+  o.splat_threads = SplatThreads::per_pixel;
   FrameStats stats;
   const SpanImage gpu = test::voxelize(camera, p, o, {}, &stats);
   EXPECT_EQ(stats.count("tiles"), 4);

@@ -33,6 +33,7 @@ Scene dam_break_scene(int width, int height) {
   s.options.grid.alpha_degrees = 4;
   s.options.gap_bridging = 2.5 * shape.spacing;  // above a diameter: surface-only marking is on
   s.options.max_spans = 2;
+  s.options.splat_threads = SplatThreads::per_pixel;  // the other layout is a variant below
   return s;
 }
 
