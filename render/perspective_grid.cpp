@@ -30,15 +30,6 @@ int clamp_ceil(double v, int lo, int hi) {
   return static_cast<int>(std::clamp(std::ceil(v), double(lo), double(hi)));
 }
 
-// Per-particle classification shared by the two passes of fit().
-enum class Seen { invalid, behind, outside, in_frustum };
-
-struct DepthRange {
-  double lo = std::numeric_limits<double>::infinity();
-  double hi = -std::numeric_limits<double>::infinity();
-  CullCounts counts;
-};
-
 }  // namespace
 
 void validate(const GridOptions& o) {
@@ -90,47 +81,28 @@ void PerspectiveGrid::set_depth_range(double near, double far, const GridOptions
   log2_step_ = std::log2(1 + k_d_);
 }
 
-PerspectiveGrid PerspectiveGrid::fit(const Camera& camera, std::span<const ParticleSphere> particles,
-                                     const GridOptions& options, CullCounts* counts) {
-  PerspectiveGrid g = with_frame(camera, options);
-  const auto classify = [&g](const ParticleSphere& p, glm::dvec3& c) {
-    if (!finite_sphere(p)) return Seen::invalid;
-    c = g.view_.to_view(glm::dvec3(p.x, p.y, p.z));
-    if (c.z + p.radius <= 0) return Seen::behind;
-    return g.sphere_pixels(c, p.radius).empty() ? Seen::outside : Seen::in_frustum;
-  };
+// Classifies every particle; spheres in the frustum that end before depth `floor` count as
+// behind, the others set the depth range.
+DepthRange PerspectiveGrid::survey(std::span<const ParticleSphere> particles, double floor) const {
   using Range = tbb::blocked_range<std::size_t>;
-  // Pass 1: the far depth of everything in front of the eye and inside the frustum.
-  const double far = tbb::parallel_reduce(
-      Range(0, particles.size(), 4096), 0.0,
-      [&](const Range& r, double hi) {
-        glm::dvec3 c;
-        for (std::size_t i = r.begin(); i != r.end(); ++i)
-          if (classify(particles[i], c) == Seen::in_frustum)
-            hi = std::max(hi, c.z + particles[i].radius);
-        return hi;
-      },
-      [](double a, double b) { return std::max(a, b); });
-  const double near_floor = std::max(options.min_near, options.min_near_fraction * far);
-  // Pass 2: spheres wholly before the near floor count as behind; the rest set the near depth.
-  const DepthRange range = tbb::parallel_reduce(
+  return tbb::parallel_reduce(
       Range(0, particles.size(), 4096), DepthRange{},
       [&](const Range& r, DepthRange d) {
-        glm::dvec3 c;
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          const double radius = particles[i].radius;
-          switch (classify(particles[i], c)) {
-            case Seen::invalid: ++d.counts.invalid; break;
-            case Seen::behind: ++d.counts.behind; break;
-            case Seen::outside: ++d.counts.outside; break;
-            case Seen::in_frustum:
-              if (c.z + radius <= near_floor) {
-                ++d.counts.behind;
-              } else {
-                ++d.counts.visible;
-                d.lo = std::min(d.lo, c.z - radius);
-                d.hi = std::max(d.hi, c.z + radius);
-              }
+          const ParticleSphere& p = particles[i];
+          if (!finite_sphere(p)) {
+            ++d.counts.invalid;
+            continue;
+          }
+          const glm::dvec3 c = view_.to_view(glm::dvec3(p.x, p.y, p.z));
+          if (c.z + p.radius <= std::max(floor, 0.0)) {
+            ++d.counts.behind;
+          } else if (sphere_pixels(c, p.radius).empty()) {
+            ++d.counts.outside;
+          } else {
+            ++d.counts.visible;
+            d.lo = std::min(d.lo, c.z - p.radius);
+            d.hi = std::max(d.hi, c.z + p.radius);
           }
         }
         return d;
@@ -144,6 +116,16 @@ PerspectiveGrid PerspectiveGrid::fit(const Camera& camera, std::span<const Parti
         a.counts.outside += b.counts.outside;
         return a;
       });
+}
+
+PerspectiveGrid PerspectiveGrid::fit(const Camera& camera, std::span<const ParticleSphere> particles,
+                                     const GridOptions& options, CullCounts* counts) {
+  PerspectiveGrid g = with_frame(camera, options);
+  DepthRange range = g.survey(particles, 0);
+  // The near floor depends on the far depth. Only when some sphere starts before it does a
+  // second pass sort out those that end before it (usually none do: one pass).
+  const double near_floor = std::max(options.min_near, options.min_near_fraction * range.hi);
+  if (range.counts.visible > 0 && range.lo < near_floor) range = g.survey(particles, near_floor);
   if (counts != nullptr) *counts = range.counts;
   if (range.counts.visible > 0) g.set_depth_range(std::max(near_floor, range.lo), range.hi, options);
   return g;

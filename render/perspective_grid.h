@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 
 #include "render/camera.h"
@@ -39,6 +40,13 @@ struct CullCounts {
   std::int64_t invalid = 0;  // NaN or infinite coordinate, or radius not > 0
   std::int64_t behind = 0;   // entirely behind the camera or before the near plane
   std::int64_t outside = 0;  // outside the frustum's sides
+};
+
+// The depth range of the visible spheres, and what was seen.
+struct DepthRange {
+  double lo = std::numeric_limits<double>::infinity();   // nearest depth
+  double hi = -std::numeric_limits<double>::infinity();  // farthest depth
+  CullCounts counts;
 };
 
 // Pixels a sphere may cover, inclusive; empty when x0 > x1 or y0 > y1.
@@ -90,6 +98,7 @@ class PerspectiveGrid {
 
  private:
   static PerspectiveGrid with_frame(const Camera& camera, const GridOptions& options);
+  DepthRange survey(std::span<const ParticleSphere> particles, double floor) const;
   void set_depth_range(double near, double far, const GridOptions& options);
 
   Camera camera_;
