@@ -10,12 +10,13 @@ namespace {
 constexpr GLuint kMaxGroups = 65535;
 // Bindings of compress.comp (the span image takes 0 and 1).
 constexpr GLuint kBits = 2, kScratchSpans = 3, kScratchCounts = 4, kScratchExits = 5, kStats = 6,
-                 kDepthBounds = 7;
+                 kDepthBounds = 7, kRescan = 8;
 }  // namespace
 
 CompressPass::CompressPass(const gl::ShaderLibrary& shaders)
     : count_(shaders.compute("render/passes/compress.comp")),
-      write_(shaders.compute("render/passes/compress.comp", "#define COMPRESS_WRITE 1")),
+      copy_(shaders.compute("render/passes/compress.comp", "#define COMPRESS_COPY 1")),
+      rescan_(shaders.compute("render/passes/compress.comp", "#define COMPRESS_RESCAN 1")),
       stats_(16) {}
 
 void CompressPass::begin_frame() { stats_.clear(); }
@@ -51,6 +52,8 @@ std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_
   scratch_spans_.reserve(pixels * static_cast<std::size_t>(settings.scratch_spans) * 8);
   scratch_counts_.reserve((pixels + 1) * 4);
   scratch_exits_.reserve(pixels * 4);
+  rescan_list_.reserve((pixels + 1) * 4);
+  rescan_list_.clear(0, 4);
   const auto groups = static_cast<GLuint>(std::clamp<std::size_t>((pixels + 63) / 64, 1, kMaxGroups));
   const auto bind_all = [&] {
     image.bind(0, 1);
@@ -60,6 +63,7 @@ std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_
     scratch_exits_.bind(GL_SHADER_STORAGE_BUFFER, kScratchExits);
     stats_.bind(GL_SHADER_STORAGE_BUFFER, kStats);
     depth_bounds.bind(GL_SHADER_STORAGE_BUFFER, kDepthBounds);
+    rescan_list_.bind(GL_SHADER_STORAGE_BUFFER, kRescan);
   };
 
   set_uniforms(count_, layout, tile, cells, settings, image);
@@ -74,10 +78,19 @@ std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_
   image.reserve_spans(std::size_t(span_base) + total, max_binding_bytes);
   image.set_span_count(std::size_t(span_base) + total);
 
-  set_uniforms(write_, layout, tile, cells, settings, image);
-  write_.set("u_span_base", span_base);
+  set_uniforms(copy_, layout, tile, cells, settings, image);
+  copy_.set("u_span_base", span_base);
   bind_all();
-  write_.dispatch(groups);
+  copy_.dispatch(groups);
+  std::uint32_t rescans = 0;
+  rescan_list_.download(&rescans, 4);
+  if (rescans != 0) {
+    set_uniforms(rescan_, layout, tile, cells, settings, image);
+    rescan_.set("u_span_base", span_base);
+    rescan_.set("u_rescan_count", rescans);
+    bind_all();
+    rescan_.dispatch(static_cast<GLuint>(std::clamp<std::size_t>((rescans + 63) / 64, 1, kMaxGroups)));
+  }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   return total;
 }

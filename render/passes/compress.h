@@ -1,7 +1,7 @@
 // render/passes/compress.h - compresses one tile's voxel columns into the span image
 // (render/passes/compress.comp; paper 001, sec. 3.1, 3.2, 4.3, 4.4): count pass, prefix sum of
-// the per-pixel counts, one read-back of the tile's span total to size the span buffer, write
-// pass. One thread per column; gaps shorter than g close; inner-empty cells are skipped and
+// the per-pixel counts, one read-back of the tile's span total to size the span buffer, copy
+// pass, and a re-scan of the few columns with more spans than the scratch holds. One thread per column; gaps shorter than g close; inner-empty cells are skipped and
 // inner-full cells count as inside when cell states are on.
 // Reads: the tile's bits, the cell states. Writes: the tile's pixel records and spans in the
 // GpuSpanImage; per-frame tallies of capped pixels.
@@ -51,9 +51,8 @@ class CompressPass {
                     const CellStateTexture& cells, const CompressSettings& settings,
                     const GpuSpanImage& image) const;
 
-  gl::Program count_;
-  gl::Program write_;
-  gl::Buffer scratch_spans_, scratch_counts_, scratch_exits_, stats_;
+  gl::Program count_, copy_, rescan_;
+  gl::Buffer scratch_spans_, scratch_counts_, scratch_exits_, stats_, rescan_list_;
 };
 
 }  // namespace voxspan

@@ -6,9 +6,9 @@
 
 namespace voxspan {
 namespace {
-constexpr std::size_t kBlock = 1024;
+constexpr std::size_t kBlock = 4096;  // values per work group (prefix_sum.comp)
 constexpr GLuint kMaxGroups = 65535;
-constexpr std::size_t kMaxLevels = 4;  // 1024^4 values: more than a uint can count
+constexpr std::size_t kMaxLevels = 3;  // 4096^3 values: more than a uint can count
 constexpr GLbitfield kBarriers = GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
 }  // namespace
 

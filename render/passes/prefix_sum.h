@@ -2,8 +2,8 @@
 // grand total written after the last value. Used to turn per-tile particle counts into list
 // offsets (binning) and per-pixel span counts into span offsets (compress).
 // Reads and writes: values[0, count] of the buffer (count + 1 uints). Cost: about two reads and
-// two writes per value; levels of 1024-value blocks (a million values take three dispatches
-// down and two up). Scratch for the block totals is kept from call to call.
+// two writes per value; levels of 4096-value blocks (a million values take two dispatches
+// down and one up). Scratch for the block totals is kept from call to call.
 #pragma once
 
 #include <cstddef>
