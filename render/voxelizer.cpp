@@ -40,7 +40,8 @@ void validate(const VoxelizeOptions& o) {
 }
 
 Voxelizer::Voxelizer(const gl::ShaderLibrary& shaders)
-    : clear_(shaders), prefix_sum_(shaders), bin_(shaders), splat_(shaders), compress_(shaders) {
+    : clear_(shaders), clear_columns_(shaders), prefix_sum_(shaders), bin_(shaders),
+      splat_(shaders), compress_(shaders) {
   GLint64 block = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
   max_binding_ = std::min<std::size_t>(kBindingCap, static_cast<std::size_t>(std::max<GLint64>(block, 0)));
@@ -96,8 +97,7 @@ const GpuSpanImage& Voxelizer::run(const Camera& camera, std::span<const Particl
     voxels += std::int64_t(tile.pixels()) * grid.layers();
     {
       auto t = timer.gpu("clear");
-      clear_.run(bits_, 0, layout.column_bytes * static_cast<std::size_t>(tile.pixels()));
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      clear_columns_.run(bits_, bin_.depth_bounds(), grid, layout, tile, cells_);
     }
     {
       auto t = timer.gpu("splat");

@@ -3,7 +3,7 @@
 //   frame (CPU): fit the perspective grid to the visible particles, count what is culled;
 //   upload: the particles (zero-copy layout) and the cell states;
 //   bin: particles into the tiles they touch, once (or not at all: Binning::resplat_all);
-//   per tile: clear the bits, splat, compress into the span image.
+//   per tile: clear the bits that can hold fluid, splat, compress into the span image.
 // Every pass is timed through the caller's gl::PassTimer and reports its counts into FrameStats.
 #pragma once
 
@@ -17,6 +17,7 @@
 #include "render/gpu_span_image.h"
 #include "render/passes/bin.h"
 #include "render/passes/clear.h"
+#include "render/passes/clear_columns.h"
 #include "render/passes/compress.h"
 #include "render/passes/prefix_sum.h"
 #include "render/passes/splat.h"
@@ -64,7 +65,8 @@ class Voxelizer {
 
  private:
   std::size_t max_binding_ = 0;
-  ClearPass clear_;
+  ClearPass clear_;  // the span image's pixel records
+  ClearColumnsPass clear_columns_;
   PrefixSumPass prefix_sum_;
   BinPass bin_;
   SplatPass splat_;

@@ -19,14 +19,13 @@ layout(local_size_x = 64) in;
 #include "render/passes/bits.glsl"
 #include "render/span_image.glsl"
 #include "render/passes/column_scan.glsl"
-#include "render/passes/depth_bounds.glsl"
+#include "render/passes/column_range.glsl"
 
 layout(std430, binding = 2) readonly buffer Bits { uvec4 bits[]; };
 layout(std430, binding = 3) buffer ScratchSpans { vec2 scratch_spans[]; };  // [k * pixels + p]
 layout(std430, binding = 4) buffer ScratchCounts { uint scratch_counts[]; }; // count, then offset
 layout(std430, binding = 5) buffer ScratchExits { float scratch_last_exit[]; };
 layout(std430, binding = 6) buffer Stats { uint stats[]; };  // capped pixels, spans past caps
-layout(std430, binding = 7) readonly buffer DepthBounds { uvec2 depth_bounds[]; };
 layout(std430, binding = 8) buffer Rescan { uint rescan[]; };  // count, then tile pixels
 
 uniform ivec4 u_tile;            // x0, y0, width, height
@@ -40,24 +39,6 @@ uint g_image_pixel;  // its index in the span image
 uint g_offset;       // copy, rescan: its first span
 
 uvec4 column_chunk(uint chunk) { return bits[chunk * u_tile_pixels + g_pixel]; }
-
-// The chunks of the pixel's column that can hold fluid: its block's depth bounds, the large
-// spheres', and from the near plane on when the ray starts inside inner-full cells. A layer of
-// margin on each side absorbs float rounding between the bounds and the splat's chords.
-bool column_chunks(ivec2 pixel, out uint first, out uint last) {
-  uvec2 block = depth_bounds[depth_block(pixel)];
-  uvec2 large = depth_bounds[u_depth_block_count];
-  uvec2 b = max(block, large);
-  bool near_full = inner_full_at(u_eye + u_near * world_ray(pixel));
-  first = 0u;
-  last = 0u;
-  if (b.x == 0u && !near_full) return false;
-  float nearest = (near_full || b.x == 0u) ? u_near : uintBitsToFloat(~b.x);
-  float farthest = b.y == 0u ? u_grid_far : uintBitsToFloat(b.y);
-  first = (max(layer_index(nearest), 1u) - 1u) >> 7u;
-  last = min(layer_index(farthest) + 1u, u_layers - 1u) >> 7u;
-  return true;
-}
 
 #if !defined(COMPRESS_COPY) && !defined(COMPRESS_RESCAN)
 float g_last_exit;
