@@ -18,6 +18,10 @@ bool finite_sphere(const ParticleSphere& p) {
          std::isfinite(p.radius) && p.radius > 0;
 }
 
+// Footprints reach this far (pixels) past the exact silhouette, so that the GPU's float
+// evaluation of the same rule stays conservative.
+constexpr double kPixelMargin = 0.01;
+
 // Continuous pixel coordinate (centre of pixel k is at k) of an image-plane slope s = x / z.
 double pixel_coord(double slope, double tan_half, int size) {
   return (slope / tan_half + 1.0) * 0.5 * size - 0.5;
@@ -151,20 +155,30 @@ PixelRect PerspectiveGrid::sphere_pixels(glm::dvec3 c, double r) const {
   if ((std::abs(c.x) - v.tan_half_x * c.z) / nx >= r) return {};
   if ((std::abs(c.y) - v.tan_half_y * c.z) / ny >= r) return {};
   if (c.z - r <= 0) return {0, 0, v.width - 1, v.height - 1};
-  // The sphere lies in the box c +- r; x / z over the box is extreme at its corners.
-  const double z0 = c.z - r, z1 = c.z + r;
-  const double sx0 = std::min((c.x - r) / z0, (c.x - r) / z1);
-  const double sx1 = std::max((c.x + r) / z0, (c.x + r) / z1);
-  const double sy0 = std::min((c.y - r) / z0, (c.y - r) / z1);
-  const double sy1 = std::max((c.y + r) / z0, (c.y + r) / z1);
+  // Exact slopes x / z (and y / z) of the sphere's silhouette: the tangents from the eye to the
+  // disk the sphere projects to in the xz (yz) plane.
+  const auto tangents = [&](double a, double& lo, double& hi) {
+    const double t = a / c.z;
+    const double u = r / std::sqrt(a * a + c.z * c.z - r * r);
+    lo = (t - u) / (1 + t * u);
+    hi = (t + u) / (1 - t * u);
+  };
+  double sx0, sx1, sy0, sy1;
+  tangents(c.x, sx0, sx1);
+  tangents(c.y, sy0, sy1);
   const double fx0 = pixel_coord(sx0, v.tan_half_x, v.width);
   const double fx1 = pixel_coord(sx1, v.tan_half_x, v.width);
   // Rows grow downwards: the top of the sphere (largest y) has the smallest row.
   const double fy0 = pixel_coord(-sy1, v.tan_half_y, v.height);
   const double fy1 = pixel_coord(-sy0, v.tan_half_y, v.height);
-  if (fx1 < -1 || fx0 > v.width || fy1 < -1 || fy0 > v.height) return {};
-  PixelRect rect{clamp_floor(fx0, 0, v.width - 1), clamp_floor(fy0, 0, v.height - 1),
-                 clamp_ceil(fx1, 0, v.width - 1), clamp_ceil(fy1, 0, v.height - 1)};
+  if (fx1 < -kPixelMargin || fx0 > v.width - 1 + kPixelMargin || fy1 < -kPixelMargin ||
+      fy0 > v.height - 1 + kPixelMargin)
+    return {};
+  // The pixels whose centres lie inside, with a margin for the GPU's float rounding.
+  PixelRect rect{clamp_ceil(fx0 - kPixelMargin, 0, v.width - 1),
+                 clamp_ceil(fy0 - kPixelMargin, 0, v.height - 1),
+                 clamp_floor(fx1 + kPixelMargin, 0, v.width - 1),
+                 clamp_floor(fy1 + kPixelMargin, 0, v.height - 1)};
   return rect;
 }
 

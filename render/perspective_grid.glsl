@@ -71,8 +71,8 @@ float pixel_coord(float slope, float tan_half, int size) {
   return (slope / tan_half + 1.0) * 0.5 * float(size) - 0.5;
 }
 
-// Conservative pixel rectangle (x0, y0, x1, y1 inclusive) of a view-space sphere: every pixel
-// whose centre ray meets it is inside. Empty (x0 > x1) when outside the frustum's sides or
+// Pixel rectangle (x0, y0, x1, y1 inclusive) of a view-space sphere: the pixels whose centres
+// lie within its silhouette's bounds (plus 0.01 pixel): every pixel whose centre ray meets it. Empty (x0 > x1) when outside the frustum's sides or
 // behind the eye; the whole image when the sphere reaches the eye's plane. Same rule as
 // PerspectiveGrid::sphere_pixels.
 ivec4 sphere_pixels(vec3 c, float r) {
@@ -83,14 +83,17 @@ ivec4 sphere_pixels(vec3 c, float r) {
   if ((abs(c.y) - u_tan_half.y * c.z) / n.y >= r) return none;
   ivec2 last = u_image - 1;
   if (c.z - r <= 0.0) return ivec4(0, 0, last);
-  float z0 = c.z - r, z1 = c.z + r;
-  float sx0 = min((c.x - r) / z0, (c.x - r) / z1), sx1 = max((c.x + r) / z0, (c.x + r) / z1);
-  float sy0 = min((c.y - r) / z0, (c.y - r) / z1), sy1 = max((c.y + r) / z0, (c.y + r) / z1);
-  float fx0 = pixel_coord(sx0, u_tan_half.x, u_image.x);
-  float fx1 = pixel_coord(sx1, u_tan_half.x, u_image.x);
-  float fy0 = pixel_coord(-sy1, u_tan_half.y, u_image.y);
-  float fy1 = pixel_coord(-sy0, u_tan_half.y, u_image.y);
-  if (fx1 < -1.0 || fx0 > float(u_image.x) || fy1 < -1.0 || fy0 > float(u_image.y)) return none;
-  vec4 f = vec4(floor(fx0), floor(fy0), ceil(fx1), ceil(fy1));
+  // Exact silhouette slopes: tangents from the eye to the sphere's disk in the xz (yz) plane.
+  vec2 t = c.xy / c.z;
+  vec2 u = r / sqrt(c.xy * c.xy + c.z * c.z - r * r);
+  vec2 s0 = (t - u) / (1.0 + t * u), s1 = (t + u) / (1.0 - t * u);
+  float fx0 = pixel_coord(s0.x, u_tan_half.x, u_image.x);
+  float fx1 = pixel_coord(s1.x, u_tan_half.x, u_image.x);
+  float fy0 = pixel_coord(-s1.y, u_tan_half.y, u_image.y);
+  float fy1 = pixel_coord(-s0.y, u_tan_half.y, u_image.y);
+  const float margin = 0.01;  // past the silhouette, for float rounding (as on the CPU)
+  if (fx1 < -margin || fx0 > float(last.x) + margin || fy1 < -margin || fy0 > float(last.y) + margin)
+    return none;
+  vec4 f = vec4(ceil(fx0 - margin), ceil(fy0 - margin), floor(fx1 + margin), floor(fy1 + margin));
   return ivec4(clamp(f, vec4(0.0), vec4(vec2(last), vec2(last))));
 }

@@ -91,7 +91,8 @@ class PerspectiveGrid {
   // Thickness of the layer that holds `depth` (clamped to the grid): d_{i+1} - d_i.
   double layer_thickness(double depth) const;
 
-  // Conservative pixel bounds of a sphere given in view space: every pixel whose centre ray
+  // Pixel bounds of a sphere given in view space: the pixels whose centres lie within the
+  // bounds of its silhouette (exact tangents, plus 0.01 pixel), so every pixel whose centre ray
   // meets the sphere is inside. Empty when the sphere is outside the frustum's sides or behind
   // the eye; the whole image when the sphere reaches the eye's plane.
   PixelRect sphere_pixels(glm::dvec3 view_center, double radius) const;

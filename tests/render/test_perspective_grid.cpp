@@ -96,15 +96,16 @@ TEST(PerspectiveGrid, NothingVisibleGivesAnEmptyGrid) {
   EXPECT_EQ(counts.behind, 1);
 }
 
-TEST(PerspectiveGrid, SpherePixelsHoldEveryPixelWhoseRayHits) {
+TEST(PerspectiveGrid, SpherePixelsHoldEveryPixelWhoseRayHitsAndLittleMore) {
   const PerspectiveGrid g = PerspectiveGrid::over(camera(64, 48), 0.5, 20, GridOptions{});
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
-  int tested = 0;
+  int tested = 0, tight = 0;
   for (int n = 0; n < 400; ++n) {
     const glm::dvec3 c(3 * u(rng), 2 * u(rng), 3 + 2.9 * u(rng));
     const double r = 0.05 + 1.5 * (u(rng) + 1);
     const PixelRect rect = g.sphere_pixels(c, r);
+    PixelRect hits{64, 48, -1, -1};
     for (int y = 0; y < 48; ++y)
       for (int x = 0; x < 64; ++x) {
         const glm::dvec3 d = g.view().view_ray(x, y);
@@ -112,11 +113,23 @@ TEST(PerspectiveGrid, SpherePixelsHoldEveryPixelWhoseRayHits) {
         const glm::dvec3 perp = c - zc * d;
         if (glm::dot(perp, perp) >= r * r || zc + r <= 0) continue;
         ++tested;
+        hits = {std::min(hits.x0, x), std::min(hits.y0, y), std::max(hits.x1, x), std::max(hits.y1, y)};
         ASSERT_TRUE(x >= rect.x0 && x <= rect.x1 && y >= rect.y0 && y <= rect.y1)
             << "sphere " << c.x << "," << c.y << "," << c.z << " r " << r << " pixel " << x << "," << y;
       }
+    // Tight: the silhouette's bounds hold at most one more column or row of pixel centres
+    // than the pixels hit, for spheres wholly on screen (the others' extreme points may lie
+    // off it; spheres reaching the eye's plane get the whole image).
+    if (hits.empty() || c.z - r <= 0 || rect.x0 == 0 || rect.y0 == 0 || rect.x1 == 63 || rect.y1 == 47)
+      continue;
+    ++tight;
+    EXPECT_GE(rect.x0, hits.x0 - 1);
+    EXPECT_LE(rect.x1, hits.x1 + 1);
+    EXPECT_GE(rect.y0, hits.y0 - 1);
+    EXPECT_LE(rect.y1, hits.y1 + 1);
   }
   EXPECT_GT(tested, 10000);
+  EXPECT_GT(tight, 50);
 }
 
 TEST(Camera, BadCamerasAreErrorsNamingTheField) {
