@@ -82,7 +82,7 @@ const GpuSpanImage& Voxelizer::run(const Camera& camera, std::span<const Particl
   {
     auto t = timer.gpu("bin");
     bins = &bin_.run(particles_, count, grid, layout, prefix_sum_,
-                     options.binning == Binning::per_tile_lists);
+                     options.binning == Binning::per_tile_lists, options.bin_tallies);
     if (!bins->offsets.empty()) stats.set_count("bin.entries", bins->offsets.back());
     stats.set_count("bin.large", bins->large);
   }

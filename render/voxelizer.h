@@ -42,6 +42,7 @@ struct VoxelizeOptions {
   bool use_cell_states = true;  // skip inner-empty, fill inner-full cells (sec. 4.3)
   Binning binning = Binning::per_tile_lists;
   SplatThreads splat_threads = SplatThreads::automatic;
+  BinTallies bin_tallies = BinTallies::automatic;
 };
 
 // Throws voxspan::Error naming the option that is out of range.

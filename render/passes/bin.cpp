@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "render/gl/info.h"
 #include "render/grid_uniforms.h"
 #include "render/passes/depth_bounds.h"
 
@@ -15,7 +16,8 @@ constexpr GLbitfield kBarriers = GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDAT
 
 }  // namespace
 
-BinPass::BinPass(const gl::ShaderLibrary& shaders) {
+BinPass::BinPass(const gl::ShaderLibrary& shaders)
+    : automatic_(gl::software_renderer() ? BinTallies::global : BinTallies::shared) {
   const std::string variant[3] = {"#define BIN_LARGE_ONLY 1\n", "",
                                   "#define BIN_SHARED_TILES " + std::to_string(kSharedTiles) + "\n"};
   for (int v = 0; v < 3; ++v)
@@ -26,9 +28,11 @@ BinPass::BinPass(const gl::ShaderLibrary& shaders) {
 
 const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
                          const PerspectiveGrid& grid, const TileLayout& tiles,
-                         PrefixSumPass& prefix_sum, bool tile_lists) {
+                         PrefixSumPass& prefix_sum, bool tile_lists, BinTallies tallies) {
   const std::size_t tile_count = static_cast<std::size_t>(tiles.count());
-  const int variant = !tile_lists ? 0 : (tile_count <= std::size_t(kSharedTiles) ? 2 : 1);
+  if (tallies == BinTallies::automatic) tallies = automatic_;
+  const bool shared = tallies == BinTallies::shared && tile_count <= std::size_t(kSharedTiles);
+  const int variant = !tile_lists ? 0 : (shared ? 2 : 1);
   const gl::Program& count_pass = programs_[variant][0];
   const gl::Program& scatter_pass = programs_[variant][1];
   const auto groups = static_cast<GLuint>(std::clamp<std::size_t>((count + 255) / 256, 1, kMaxGroups));

@@ -6,6 +6,7 @@
 // the depth range of each 16x16-pixel block (render/passes/depth_bounds.glsl) for compress.
 // Reads: the particle buffer. Writes: lists(), large_list(), depth_bounds(), tile offsets.
 // Cost: two passes over the particles; one small read-back (tiles + 2 uints) to size the lists.
+// Tallies go through shared memory on GPUs and straight to global atomics on llvmpipe.
 #pragma once
 
 #include <cstddef>
@@ -20,6 +21,13 @@
 
 namespace voxspan {
 
+// Where the binning tallies (sphere, tile) pairs before the global counters.
+enum class BinTallies {
+  automatic,  // shared on GPUs, global on llvmpipe (twice as fast there: its barriers are slow)
+  shared,     // per work group in shared memory, one global atomic per (group, tile)
+  global,     // one global atomic per (sphere, tile)
+};
+
 struct Bins {
   // Tile t owns lists()[offsets[t], offsets[t + 1]); empty without tile lists.
   std::vector<std::uint32_t> offsets;
@@ -30,7 +38,8 @@ class BinPass {
  public:
   explicit BinPass(const gl::ShaderLibrary& shaders);
   const Bins& run(const gl::Buffer& particles, std::size_t count, const PerspectiveGrid& grid,
-                  const TileLayout& tiles, PrefixSumPass& prefix_sum, bool tile_lists);
+                  const TileLayout& tiles, PrefixSumPass& prefix_sum, bool tile_lists,
+                  BinTallies tallies = BinTallies::automatic);
   const gl::Buffer& lists() const { return lists_; }
   const gl::Buffer& large_list() const { return large_list_; }
   const gl::Buffer& depth_bounds() const { return depth_bounds_; }
@@ -39,6 +48,7 @@ class BinPass {
   // [tile lists: 0 = large only, 1 = global atomics, 2 = shared tallies][scatter]
   gl::Program programs_[3][2];
   gl::Buffer counts_, lists_, large_, large_list_, depth_bounds_;
+  BinTallies automatic_ = BinTallies::shared;
   Bins bins_;
 };
 

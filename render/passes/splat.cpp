@@ -1,8 +1,8 @@
 #include "render/passes/splat.h"
 
 #include <algorithm>
-#include <cstring>
 
+#include "render/gl/info.h"
 #include "render/grid_uniforms.h"
 
 namespace voxspan {
@@ -24,9 +24,7 @@ SplatPass::SplatPass(const gl::ShaderLibrary& shaders)
       if (per_pixel) defines += "#define SPLAT_PER_PIXEL 1\n";
       programs_[list][per_pixel] = shaders.compute("render/passes/splat.comp", defines);
     }
-  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  if (renderer != nullptr && std::strstr(renderer, "llvmpipe") != nullptr)
-    automatic_ = SplatThreads::per_particle;
+  if (gl::software_renderer()) automatic_ = SplatThreads::per_particle;
 }
 
 void SplatPass::set_uniforms(const gl::Program& p, const PerspectiveGrid& grid,

@@ -1,7 +1,7 @@
 // The span image does not depend on how the work is cut up: the same spans, bit for bit,
 // whatever the tile size (bands, 2D tiles, more tiles than the binning's shared tallies hold),
-// the order of the particles, the binning (per-tile lists or the paper's re-splat of all
-// particles), the splat's threads (per pixel or per particle), surface-only or whole-chord
+// the order of the particles, the binning (per-tile lists, tallied in shared memory or not, or
+// the paper's re-splat of all particles), the splat's threads (per pixel or per particle), surface-only or whole-chord
 // marking under gap bridging, and the compress scratch size (copy or re-scan).
 #include <algorithm>
 #include <random>
@@ -72,6 +72,14 @@ TEST(VoxelizeInvariance, SameSpansWhateverTilesOrderBinningThreadsAndMarking) {
   o = s.options;
   o.splat_threads = SplatThreads::per_particle;
   expect_identical(base, test::voxelize(s.camera, shuffled, o), "one thread per particle");
+
+  for (BinTallies tallies : {BinTallies::shared, BinTallies::global}) {
+    o = s.options;
+    o.tiles.max_width = 37;
+    o.bin_tallies = tallies;
+    expect_identical(base, test::voxelize(s.camera, s.particles, o),
+                     tallies == BinTallies::shared ? "shared tallies" : "global tallies");
+  }
 
   o = s.options;
   o.surface_splat = false;
