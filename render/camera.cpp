@@ -35,6 +35,8 @@ ViewFrame::ViewFrame(const Camera& c) : eye(c.eye), width(c.width), height(c.hei
   up = glm::cross(right, forward);
   tan_half_y = std::tan(glm::radians(c.fov_y_degrees) / 2);
   tan_half_x = tan_half_y * c.width / c.height;
+  side_scale_x = 1 / std::sqrt(1 + tan_half_x * tan_half_x);
+  side_scale_y = 1 / std::sqrt(1 + tan_half_y * tan_half_y);
 }
 
 }  // namespace voxspan

@@ -3,6 +3,8 @@
 // are written in); its ray passes through the pixel's centre.
 #pragma once
 
+#include <cmath>
+
 #include <glm/glm.hpp>
 
 namespace voxspan {
@@ -26,6 +28,7 @@ void validate(const Camera& camera);
 struct ViewFrame {
   glm::dvec3 eye{0}, right{1, 0, 0}, up{0, 1, 0}, forward{0, 0, -1};
   double tan_half_x = 1, tan_half_y = 1;  // image-plane half extents at depth 1
+  double side_scale_x = 1, side_scale_y = 1;  // 1 / |normal| of the side planes x, y = +-tan z
   int width = 1, height = 1;
 
   explicit ViewFrame(const Camera& camera);
@@ -46,6 +49,12 @@ struct ViewFrame {
   glm::dvec3 world_ray(int x, int y) const {
     const glm::dvec3 v = view_ray(x, y);
     return v.x * right + v.y * up + forward;
+  }
+  // Whether a view-space sphere reaches into the view pyramid (in front of the eye, inside the
+  // four side planes). Spheres passing it may still miss every pixel centre.
+  bool meets_pyramid(glm::dvec3 c, double r) const {
+    return c.z + r > 0 && (std::abs(c.x) - tan_half_x * c.z) * side_scale_x < r &&
+           (std::abs(c.y) - tan_half_y * c.z) * side_scale_y < r;
   }
   // World length of the ray per unit of depth: a depth interval dz is dz * ray_scale long.
   double ray_scale(int x, int y) const { return glm::length(view_ray(x, y)); }

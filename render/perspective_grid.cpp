@@ -101,7 +101,7 @@ DepthRange PerspectiveGrid::survey(std::span<const ParticleSphere> particles, do
           const glm::dvec3 c = view_.to_view(glm::dvec3(p.x, p.y, p.z));
           if (c.z + p.radius <= std::max(floor, 0.0)) {
             ++d.counts.behind;
-          } else if (sphere_pixels(c, p.radius).empty()) {
+          } else if (!view_.meets_pyramid(c, p.radius)) {
             ++d.counts.outside;
           } else {
             ++d.counts.visible;
@@ -148,12 +148,7 @@ double PerspectiveGrid::layer_thickness(double depth) const {
 
 PixelRect PerspectiveGrid::sphere_pixels(glm::dvec3 c, double r) const {
   const ViewFrame& v = view_;
-  if (c.z + r <= 0) return {};
-  // Outside one of the four side planes of the view pyramid (x = +-tan_x z, y = +-tan_y z).
-  const double nx = std::sqrt(1 + v.tan_half_x * v.tan_half_x);
-  const double ny = std::sqrt(1 + v.tan_half_y * v.tan_half_y);
-  if ((std::abs(c.x) - v.tan_half_x * c.z) / nx >= r) return {};
-  if ((std::abs(c.y) - v.tan_half_y * c.z) / ny >= r) return {};
+  if (!v.meets_pyramid(c, r)) return {};
   if (c.z - r <= 0) return {0, 0, v.width - 1, v.height - 1};
   // Exact slopes x / z (and y / z) of the sphere's silhouette: the tangents from the eye to the
   // disk the sphere projects to in the xz (yz) plane.

@@ -39,7 +39,7 @@ struct CullCounts {
   std::int64_t visible = 0;
   std::int64_t invalid = 0;  // NaN or infinite coordinate, or radius not > 0
   std::int64_t behind = 0;   // entirely behind the camera or before the near plane
-  std::int64_t outside = 0;  // outside the frustum's sides
+  std::int64_t outside = 0;  // outside the view pyramid's four side planes
 };
 
 // The depth range of the visible spheres, and what was seen.
