@@ -86,7 +86,7 @@ const GpuSpanImage& Voxelizer::run(const Camera& camera, std::span<const Particl
     if (!bins->offsets.empty()) stats.set_count("bin.entries", bins->offsets.back());
     stats.set_count("bin.large", bins->large);
   }
-  bits_.reserve(layout.tile_bytes);
+  bits_.fit(layout.tile_bytes);
   compress_.begin_frame();
   const SplatSettings splat{options.gap_bridging, options.surface_splat, options.splat_threads};
   const CompressSettings compress{options.gap_bridging, options.max_spans, options.scratch_spans};

@@ -90,6 +90,15 @@ bool Buffer::reserve(std::size_t bytes) {
   return true;
 }
 
+bool Buffer::fit(std::size_t bytes) {
+  if (handle_.get() != 0 && size_ / 2 > bytes) {
+    *this = Buffer();  // release first: the point is to hold less
+    *this = Buffer(bytes);
+    return true;
+  }
+  return reserve(bytes);
+}
+
 void Buffer::upload(const void* data, std::size_t bytes, std::size_t offset) {
   if (bytes == 0) return;
   if (offset + bytes > size_)

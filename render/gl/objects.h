@@ -88,6 +88,9 @@ class Buffer {
   // Ensures at least `bytes` of storage (contents are lost when it grows). Returns true if it
   // reallocated.
   bool reserve(std::size_t bytes);
+  // reserve(), and also reallocates to exactly `bytes` when the capacity is more than twice
+  // that, so a buffer sized by a memory budget gives memory back when the budget shrinks.
+  bool fit(std::size_t bytes);
   void upload(const void* data, std::size_t bytes, std::size_t offset = 0);
   void download(void* out, std::size_t bytes, std::size_t offset = 0) const;
   // Zero-fills [offset, offset+bytes) with glClearNamedBufferSubData: fine for small buffers;

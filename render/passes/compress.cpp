@@ -49,10 +49,12 @@ std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_
                                 std::uint32_t span_base, PrefixSumPass& prefix_sum,
                                 std::size_t max_binding_bytes) {
   const auto pixels = static_cast<std::size_t>(tile.pixels());
-  scratch_spans_.reserve(pixels * static_cast<std::size_t>(settings.scratch_spans) * 8);
-  scratch_counts_.reserve((pixels + 1) * 4);
-  scratch_exits_.reserve(pixels * 4);
-  rescan_list_.reserve((pixels + 1) * 4);
+  // Sized for the largest tile, so the frame's last, smaller tile reallocates nothing.
+  const auto most = static_cast<std::size_t>(layout.tile_width) * layout.tile_height;
+  scratch_spans_.fit(most * static_cast<std::size_t>(settings.scratch_spans) * 8);
+  scratch_counts_.fit((most + 1) * 4);
+  scratch_exits_.fit(most * 4);
+  rescan_list_.fit((most + 1) * 4);
   rescan_list_.clear(0, 4);
   const auto groups = static_cast<GLuint>(std::clamp<std::size_t>((pixels + 63) / 64, 1, kMaxGroups));
   const auto bind_all = [&] {
