@@ -63,8 +63,13 @@ void SplatPass::run_large(const gl::Buffer& bits, const SplatInput& input,
                           const PerspectiveGrid& grid, const TileLayout& layout,
                           const TileRect& tile, const SplatSettings& settings,
                           PrefixSumPass& prefix_sum) {
-  const std::uint32_t large = input.large_count;
-  items_.reserve((std::size_t(large) + 1) * 4);
+  // A batch's items (pixels in the tile x blocks of 32 words) must add up to less than 2^32.
+  const std::size_t blocks = (std::size_t(grid.words_per_column()) + 2 + 31) / 32;
+  const std::size_t batch = std::clamp<std::size_t>(
+      (std::size_t(1) << 32) / (std::size_t(tile.pixels()) * blocks + 1), 1, 1 << 16);
+  // Items per dispatch: at most 8 per thread of 65535 groups of 64, so loops stay short.
+  constexpr std::size_t kItemsPerDispatch = std::size_t(kMaxGroups) * 64 * 8;
+  items_.reserve((batch + 1) * 4);
   const auto bind_all = [&] {
     bits.bind_range(GL_SHADER_STORAGE_BUFFER, 0, 0, layout.column_bytes * tile.pixels());
     input.particles->bind(GL_SHADER_STORAGE_BUFFER, 1);
@@ -72,20 +77,28 @@ void SplatPass::run_large(const gl::Buffer& bits, const SplatInput& input,
     items_.bind(GL_SHADER_STORAGE_BUFFER, 3);
   };
   set_uniforms(large_items_, grid, layout, tile, settings);
-  large_items_.set("u_large", large);
-  bind_all();
-  large_items_.dispatch(groups_of_64(large));
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  prefix_sum.run(items_, large);
-  std::uint32_t total = 0;
-  items_.download(&total, 4, std::size_t(large) * 4);
-  if (total == 0) return;
   set_uniforms(large_splat_, grid, layout, tile, settings);
-  large_splat_.set("u_large", large);
-  large_splat_.set("u_items", total);
-  bind_all();
-  large_splat_.dispatch(groups_of_64(total));
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  for (std::size_t first = 0; first < input.large_count; first += batch) {
+    const auto large = static_cast<std::uint32_t>(std::min<std::size_t>(batch, input.large_count - first));
+    for (const gl::Program* p : {&large_items_, &large_splat_}) {
+      p->set("u_large_first", static_cast<unsigned>(first));
+      p->set("u_large", large);
+    }
+    bind_all();
+    large_items_.dispatch(groups_of_64(large));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    prefix_sum.run(items_, large);
+    std::uint32_t total = 0;
+    items_.download(&total, 4, std::size_t(large) * 4);
+    for (std::size_t item = 0; item < total; item += kItemsPerDispatch) {
+      const auto items = static_cast<std::uint32_t>(std::min<std::size_t>(kItemsPerDispatch, total - item));
+      large_splat_.set("u_item_first", static_cast<unsigned>(item));
+      large_splat_.set("u_items", items);
+      bind_all();
+      large_splat_.dispatch(groups_of_64(items));
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
 }
 
 }  // namespace voxspan

@@ -8,7 +8,8 @@
 //     marks its words with atomicOr, as splat.comp would.
 // Reads: particles, the large list (from BinPass). Writes: items, or the tile's bits.
 // Cost: one ray-sphere test and up to kLargeBlockWords atomics per item; log2(large spheres)
-// reads to find the sphere.
+// reads to find the sphere. The C++ side cuts the large list into batches whose items a uint
+// counts, and the items into dispatches of at most 8 per thread.
 layout(local_size_x = 64) in;
 
 #include "render/perspective_grid.glsl"
@@ -20,14 +21,16 @@ layout(std430, binding = 1) readonly buffer Particles { vec4 particles[]; };
 layout(std430, binding = 2) readonly buffer LargeList { uint large_list[]; };
 layout(std430, binding = 3) buffer Items { uint items[]; };  // per sphere; then its first item
 
-uniform uint u_large;  // large spheres
-uniform uint u_items;  // items in this tile (default pass)
+uniform uint u_large_first;  // first large sphere of this batch in the large list
+uniform uint u_large;        // large spheres in this batch
+uniform uint u_item_first;   // default pass: first item of this dispatch
+uniform uint u_items;        // default pass: items in this dispatch
 
 // The large sphere j in view space, its pixels in the tile and its word blocks.
 bool large_sphere(uint j, out vec4 sphere, out ivec4 rect, out uint blocks) {
   rect = ivec4(0, 0, -1, -1);
   blocks = 0u;
-  if (!view_sphere(particles[large_list[j]], sphere)) return false;
+  if (!view_sphere(particles[large_list[u_large_first + j]], sphere)) return false;
   ivec4 r = sphere_pixels(sphere.xyz, sphere.w);
   rect = ivec4(max(r.xy, u_tile.xy), min(r.zw, u_tile.xy + u_tile.zw - 1));
   blocks = large_sphere_blocks(sphere);
@@ -45,7 +48,8 @@ void main() {
 }
 #else
 void main() {
-  for (uint t = gl_GlobalInvocationID.x; t < u_items; t += gl_NumWorkGroups.x * 64u) {
+  for (uint i = gl_GlobalInvocationID.x; i < u_items; i += gl_NumWorkGroups.x * 64u) {
+    uint t = u_item_first + i;
     // The sphere j with items[j] <= t < items[j + 1] (items holds u_large + 1 offsets).
     uint lo = 0u, hi = u_large;
     while (hi - lo > 1u) {
