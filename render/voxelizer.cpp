@@ -58,12 +58,15 @@ const GpuSpanImage& Voxelizer::run(const Camera& camera, std::span<const Particl
     grid = PerspectiveGrid::fit(camera, particles, options.grid, &culled);
   }
   report_frame(grid, culled, particles.size(), stats);
-  image_.reset(grid, clear_);
-  if (grid.empty()) {
-    stats.set_count("tiles", 0);
-    stats.set_count("spans.stored", 0);
-    return image_;
+  // Every count is reported every frame, zero or not, so each step's record has the same keys.
+  for (const char* name : {"tiles", "bin.entries", "bin.large", "voxels", "spans.stored",
+                           "spans.found", "pixels.capped"})
+    stats.set_count(name, 0);
+  {
+    auto t = timer.gpu("clear");
+    image_.reset(grid, clear_);
   }
+  if (grid.empty()) return image_;
   const TileLayout layout = plan_tiles(grid.width(), grid.height(), grid.layers(),
                                        options.scratch_spans, options.tiles, max_binding_);
   stats.set_count("tiles", layout.count());
@@ -111,8 +114,8 @@ const GpuSpanImage& Voxelizer::run(const Camera& camera, std::span<const Particl
     }
     {
       auto t = timer.gpu("compress");
-      spans += compress_.run(bits_, bin_.depth_bounds(), layout, tile, cells_, compress, image_, spans, prefix_sum_,
-                             max_binding_);
+      spans += compress_.run(bits_, bin_.depth_bounds(), layout, tile, cells_, compress, image_,
+                             spans, prefix_sum_, max_binding_);
     }
   }
   const CompressTallies tallies = compress_.tallies();
