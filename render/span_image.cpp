@@ -1,6 +1,16 @@
 #include "render/span_image.h"
 
+#include <algorithm>
+
 namespace voxspan {
+
+double SpanImage::capped_gap_length(int x, int y) const {
+  const PixelSpans& p = pixel(x, y);
+  if (p.total <= p.count) return 0;
+  double stored = 0;
+  for (const Span& s : spans_at(x, y)) stored += double(s.exit) - double(s.entry);
+  return std::max(0.0, stored * grid.view().ray_scale(x, y) - double(p.inside));
+}
 
 std::int64_t SpanImage::capped_pixels() const {
   std::int64_t n = 0;

@@ -32,3 +32,13 @@ layout(std430, binding = SPAN_DEPTHS_BINDING) SPAN_IMAGE_ACCESS buffer SpanDepth
 };
 
 uint span_pixel_index(ivec2 pixel) { return uint(pixel.x) + uint(pixel.y) * uint(u_image.x); }
+
+// Empty length (along the ray, world units) inside the extended last span of a capped pixel
+// (sec. 3.1): stored span lengths minus `inside`; 0 when the pixel was not capped.
+float span_capped_gap_length(ivec2 pixel) {
+  PixelSpans p = span_pixels[span_pixel_index(pixel)];
+  if (p.total <= p.count) return 0.0;
+  float stored = 0.0;
+  for (uint k = 0u; k < p.count; ++k) stored += span_depths[p.offset + k].y - span_depths[p.offset + k].x;
+  return max(0.0, stored * ray_scale(pixel) - p.inside);
+}

@@ -50,6 +50,10 @@ struct SpanImage {
     const PixelSpans& p = pixel(x, y);
     return {spans.data() + p.offset, p.count};
   }
+  // Empty length (along the ray, world units) inside the pixel's extended last span: the gaps
+  // between the spans folded into it past the cap (sec. 3.1); 0 for pixels not capped.
+  // Derived as stored span lengths minus `inside`, clamped at 0 against float rounding.
+  double capped_gap_length(int x, int y) const;
   // Pixels whose spans were capped, and all spans found (stored or not).
   std::int64_t capped_pixels() const;
   std::int64_t total_spans() const;

@@ -2,11 +2,6 @@
 
 #include "render/gl/pass_timer.h"
 
-namespace voxspan {
-// These tests embed no shaders of their own: the render shaders are all they use.
-std::span<const EmbeddedFile> embedded::test_shaders() { return {}; }
-}  // namespace voxspan
-
 namespace voxspan::test {
 
 Voxelizer& voxelizer() {

@@ -68,6 +68,8 @@ TEST(Reference, CapExtendsTheLastSpanAndKeepsInsideExact) {
   EXPECT_FLOAT_EQ(s[0].exit, 4.0f);
   EXPECT_FLOAT_EQ(s[1].entry, 5.0f);
   EXPECT_FLOAT_EQ(s[1].exit, 16.0f);
+  // The extended span 5..16 holds the gaps 7..8, 10..11 and 13..14.
+  EXPECT_NEAR(image.capped_gap_length(1, 0), 3.0, 1e-5);
   EXPECT_EQ(image.capped_pixels(), 3);  // the narrow view puts all three pixels in the spheres
   EXPECT_EQ(image.total_spans(), 15);
 }

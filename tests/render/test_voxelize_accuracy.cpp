@@ -3,6 +3,7 @@
 // checkerboard, random clouds with mixed radii. Bounds (in local layer thicknesses): span
 // counts equal on >= 99.5 % of hit pixels, boundaries within one layer for >= 99.5 %, inside
 // length per pixel within one layer per boundary, and summed over the image within 1 %.
+#include "render/grid_uniforms.h"
 #include "render/reference/exact_spans.h"
 #include "render_fixture.h"
 #include "scenes.h"
@@ -76,6 +77,25 @@ TEST(VoxelizeAccuracy, TwentyFourLayersCappedAtSeven) {
   EXPECT_EQ(centre.count, 7u);
   EXPECT_EQ(centre.total, 24u);
   EXPECT_GT(gpu.capped_pixels(), gpu.width() * gpu.height() / 5);
+
+  // Later passes read the same image on the GPU (render/span_image.glsl): the capped gap
+  // length there agrees with the CPU's, and stored lengths minus the gap give `inside`.
+  const GpuSpanImage& image = test::voxelizer().image();
+  gl::Buffer probe(std::size_t(gpu.width()) * gpu.height() * 8);
+  gl::Program program = test::shaders().compute("tests/render/span_image_probe.comp");
+  set_grid_uniforms(program, image.grid());
+  image.bind(0, 1);
+  probe.bind(GL_SHADER_STORAGE_BUFFER, 2);
+  program.dispatch(static_cast<GLuint>((gpu.width() * gpu.height() + 63) / 64));
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  const auto got = probe.read<glm::vec2>(std::size_t(gpu.width()) * gpu.height());
+  for (int y = 0; y < gpu.height(); ++y)
+    for (int x = 0; x < gpu.width(); ++x) {
+      const glm::vec2 g = got[std::size_t(x) + std::size_t(y) * gpu.width()];
+      const double cpu = gpu.capped_gap_length(x, y);
+      ASSERT_NEAR(g.x, cpu, 1e-4 * (1 + cpu)) << x << "," << y;
+      ASSERT_NEAR(g.y - g.x, gpu.pixel(x, y).inside, 1e-4 * (1 + g.y)) << x << "," << y;
+    }
 }
 
 TEST(VoxelizeAccuracy, Checkerboard) {
