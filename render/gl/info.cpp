@@ -26,6 +26,13 @@ glm::ivec3 gl_indexed_ivec3(GLenum name) {
 
 }  // namespace
 
+bool software_renderer() {
+  const std::string renderer = gl_string(GL_RENDERER);
+  for (const char* name : {"llvmpipe", "softpipe", "swrast"})
+    if (renderer.find(name) != std::string::npos) return true;
+  return false;
+}
+
 Info query_info(const Context& context) {
   Info info;
   info.platform = platform_name(context.platform());

@@ -33,4 +33,9 @@ struct Info {
 // Queries the context, which must be current.
 Info query_info(const Context& context);
 
+// Whether the current context renders on the CPU (Mesa's llvmpipe, softpipe or swrast). Passes
+// pick their CPU-friendly variants there: llvmpipe runs work-group barriers and shared-memory
+// atomics slowly, and plain global atomics and long per-thread loops fast.
+bool software_renderer();
+
 }  // namespace voxspan::gl

@@ -1,5 +1,7 @@
 #include "render/gl/objects.h"
 
+#include <atomic>
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include "voxspan/error.h"
@@ -24,7 +26,43 @@ const char* gl_error_name(GLenum e) {
   }
 }
 
+std::atomic<std::int64_t> g_memory_current{0};
+std::atomic<std::int64_t> g_memory_peak{0};
+
+// Bytes per texel of the formats we allocate; 4 for anything else (an estimate, for stats).
+std::int64_t texel_bytes(GLenum internal_format) {
+  switch (internal_format) {
+    case GL_R8UI: case GL_R8: return 1;
+    case GL_R16UI: case GL_R16F: case GL_RG8: return 2;
+    case GL_RGBA16F: case GL_RG32F: case GL_RG32UI: return 8;
+    case GL_RGBA32F: case GL_RGBA32UI: return 16;
+    default: return 4;
+  }
+}
+
 }  // namespace
+
+MemoryUsage memory_usage() { return {g_memory_current.load(), g_memory_peak.load()}; }
+
+void reset_memory_peak() { g_memory_peak.store(g_memory_current.load()); }
+
+MemoryTicket::MemoryTicket(std::int64_t bytes) : bytes_(bytes) {
+  const std::int64_t now = g_memory_current.fetch_add(bytes) + bytes;
+  std::int64_t peak = g_memory_peak.load();
+  while (now > peak && !g_memory_peak.compare_exchange_weak(peak, now)) {
+  }
+}
+
+MemoryTicket::~MemoryTicket() { g_memory_current.fetch_sub(bytes_); }
+
+MemoryTicket& MemoryTicket::operator=(MemoryTicket&& o) noexcept {
+  if (this != &o) {
+    g_memory_current.fetch_sub(bytes_);
+    bytes_ = o.bytes_;
+    o.bytes_ = 0;
+  }
+  return *this;
+}
 
 void check_error(std::string_view what) {
   GLenum e = glGetError();
@@ -41,6 +79,7 @@ Buffer::Buffer(std::size_t bytes, const void* data) : handle_(create_buffer()), 
   glNamedBufferStorage(id(), static_cast<GLsizeiptr>(bytes == 0 ? 4 : bytes), data,
                        GL_DYNAMIC_STORAGE_BIT);
   check_error("allocating a GL buffer of " + std::to_string(bytes) + " bytes");
+  ticket_ = MemoryTicket(static_cast<std::int64_t>(bytes == 0 ? 4 : bytes));
 }
 
 bool Buffer::reserve(std::size_t bytes) {
@@ -49,6 +88,15 @@ bool Buffer::reserve(std::size_t bytes) {
   std::size_t grown = size_ + size_ / 2;
   *this = Buffer(bytes > grown ? bytes : grown);
   return true;
+}
+
+bool Buffer::fit(std::size_t bytes) {
+  if (handle_.get() != 0 && size_ / 2 > bytes) {
+    *this = Buffer();  // release first: the point is to hold less
+    *this = Buffer(bytes);
+    return true;
+  }
+  return reserve(bytes);
 }
 
 void Buffer::upload(const void* data, std::size_t bytes, std::size_t offset) {
@@ -74,6 +122,17 @@ void Buffer::clear(std::size_t offset, std::size_t bytes) {
   glClearNamedBufferSubData(id(), GL_R32UI, static_cast<GLintptr>(offset),
                             static_cast<GLsizeiptr>(bytes), GL_RED_INTEGER, GL_UNSIGNED_INT,
                             nullptr);
+}
+
+void Buffer::copy_from(const Buffer& from, std::size_t bytes, std::size_t from_offset,
+                       std::size_t offset) {
+  if (bytes == 0) return;
+  if (from_offset + bytes > from.size() || offset + bytes > size_)
+    throw make_error("Buffer::copy_from: ", bytes, " bytes from ", from_offset, " of a ",
+                     from.size(), "-byte buffer to ", offset, " of a ", size_,
+                     "-byte buffer is out of range");
+  glCopyNamedBufferSubData(from.id(), id(), static_cast<GLintptr>(from_offset),
+                           static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes));
 }
 
 void Buffer::bind(GLenum target, GLuint index) const { glBindBufferBase(target, index, id()); }
@@ -146,6 +205,9 @@ void Program::set(const char* n, glm::ivec2 v) const {
 void Program::set(const char* n, glm::ivec3 v) const {
   glProgramUniform3iv(id(), uniform(n), 1, glm::value_ptr(v));
 }
+void Program::set(const char* n, glm::ivec4 v) const {
+  glProgramUniform4iv(id(), uniform(n), 1, glm::value_ptr(v));
+}
 void Program::set(const char* n, glm::uvec2 v) const {
   glProgramUniform2uiv(id(), uniform(n), 1, glm::value_ptr(v));
 }
@@ -173,6 +235,7 @@ Texture3D::Texture3D(GLenum internal_format, glm::ivec3 size) : size_(size) {
   glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   check_error("allocating a 3D texture");
+  ticket_ = MemoryTicket(texel_bytes(internal_format) * size.x * size.y * size.z);
 }
 
 void Texture3D::upload(GLenum format, GLenum type, const void* data) {

@@ -1,6 +1,8 @@
 // render/gl/objects.h - small RAII owners of GL objects: Buffer, Program, Texture3D,
 // TimerQuery. Each owns one GL name, is move-only, and uses direct state access (GL 4.5),
 // so no binding leaks between passes. Call only with a current context.
+// Buffers and textures count their bytes in one process-wide tally (memory_usage()), so the
+// per-step stats can report the GPU memory allocated now and at its peak.
 #pragma once
 
 #include <epoxy/gl.h>
@@ -49,6 +51,30 @@ struct DeleteProgram { void operator()(GLuint id) const { glDeleteProgram(id); }
 struct DeleteTexture { void operator()(GLuint id) const { glDeleteTextures(1, &id); } };
 struct DeleteQuery { void operator()(GLuint id) const { glDeleteQueries(1, &id); } };
 
+// Bytes held by live Buffers and Texture3Ds (all contexts of the process), and the most held at
+// once since the last reset_memory_peak().
+struct MemoryUsage {
+  std::int64_t current_bytes = 0;
+  std::int64_t peak_bytes = 0;
+};
+MemoryUsage memory_usage();
+void reset_memory_peak();
+
+// Move-only share of the tally: adds its bytes when made, removes them when destroyed.
+class MemoryTicket {
+ public:
+  MemoryTicket() = default;
+  explicit MemoryTicket(std::int64_t bytes);
+  ~MemoryTicket();
+  MemoryTicket(MemoryTicket&& o) noexcept : bytes_(o.bytes_) { o.bytes_ = 0; }
+  MemoryTicket& operator=(MemoryTicket&& o) noexcept;
+  MemoryTicket(const MemoryTicket&) = delete;
+  MemoryTicket& operator=(const MemoryTicket&) = delete;
+
+ private:
+  std::int64_t bytes_ = 0;
+};
+
 // An immutable-storage buffer. Growing means a new buffer: reserve() reallocates only when the
 // request exceeds the capacity, so steady-state steps allocate nothing.
 class Buffer {
@@ -62,6 +88,9 @@ class Buffer {
   // Ensures at least `bytes` of storage (contents are lost when it grows). Returns true if it
   // reallocated.
   bool reserve(std::size_t bytes);
+  // reserve(), and also reallocates to exactly `bytes` when the capacity is more than twice
+  // that, so a buffer sized by a memory budget gives memory back when the budget shrinks.
+  bool fit(std::size_t bytes);
   void upload(const void* data, std::size_t bytes, std::size_t offset = 0);
   void download(void* out, std::size_t bytes, std::size_t offset = 0) const;
   // Zero-fills [offset, offset+bytes) with glClearNamedBufferSubData: fine for small buffers;
@@ -75,6 +104,10 @@ class Buffer {
     return out;
   }
 
+  // Copies `bytes` from `from` at `from_offset` to this buffer at `offset`, on the GPU.
+  void copy_from(const Buffer& from, std::size_t bytes, std::size_t from_offset = 0,
+                 std::size_t offset = 0);
+
   // Binds the whole buffer (or a range) to an indexed target (GL_SHADER_STORAGE_BUFFER...).
   // NVIDIA breaks on single bindings of 2 GiB or more (GPU-NOTES): bind ranges below that.
   void bind(GLenum target, GLuint index) const;
@@ -83,6 +116,7 @@ class Buffer {
  private:
   Handle<DeleteBuffer> handle_;
   std::size_t size_ = 0;
+  MemoryTicket ticket_;
 };
 
 // A linked compute program. Uniforms are set by name with direct state access.
@@ -109,6 +143,7 @@ class Program {
   void set(const char* name, glm::vec4 v) const;
   void set(const char* name, glm::ivec2 v) const;
   void set(const char* name, glm::ivec3 v) const;
+  void set(const char* name, glm::ivec4 v) const;
   void set(const char* name, glm::uvec2 v) const;
   void set(const char* name, glm::uvec3 v) const;
   void set(const char* name, const glm::mat4& v) const;
@@ -135,6 +170,7 @@ class Texture3D {
  private:
   Handle<DeleteTexture> handle_;
   glm::ivec3 size_{0};
+  MemoryTicket ticket_;
 };
 
 // A GL_TIME_ELAPSED query. Only meaningful where Context::has_gpu_timers() is true.

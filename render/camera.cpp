@@ -1,0 +1,42 @@
+#include "render/camera.h"
+
+#include <cmath>
+
+#include "voxspan/error.h"
+
+namespace voxspan {
+namespace {
+
+bool finite(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+}  // namespace
+
+void validate(const Camera& c) {
+  if (!finite(c.eye)) throw make_error("camera eye is not finite");
+  if (!finite(c.target)) throw make_error("camera target is not finite");
+  if (!finite(c.up)) throw make_error("camera up is not finite");
+  const glm::dvec3 view = c.target - c.eye;
+  const double distance = glm::length(view);
+  if (!(distance > 0)) throw make_error("camera eye equals its target: no view direction");
+  if (!(glm::length(c.up) > 0)) throw make_error("camera up is the zero vector");
+  if (glm::length(glm::cross(view / distance, glm::normalize(c.up))) < 1e-9)
+    throw make_error("camera up is parallel to the view direction (target - eye)");
+  if (!(c.fov_y_degrees > 0 && c.fov_y_degrees < 180))
+    throw make_error("camera fov_y_degrees = ", c.fov_y_degrees, " is outside (0, 180)");
+  constexpr int kMaxSide = 16384;
+  if (c.width < 1 || c.width > kMaxSide || c.height < 1 || c.height > kMaxSide)
+    throw make_error("camera image size ", c.width, "x", c.height, " is outside 1..", kMaxSide);
+}
+
+ViewFrame::ViewFrame(const Camera& c) : eye(c.eye), width(c.width), height(c.height) {
+  validate(c);
+  forward = glm::normalize(c.target - c.eye);
+  right = glm::normalize(glm::cross(forward, c.up));
+  up = glm::cross(right, forward);
+  tan_half_y = std::tan(glm::radians(c.fov_y_degrees) / 2);
+  tan_half_x = tan_half_y * c.width / c.height;
+  side_scale_x = 1 / std::sqrt(1 + tan_half_x * tan_half_x);
+  side_scale_y = 1 / std::sqrt(1 + tan_half_y * tan_half_y);
+}
+
+}  // namespace voxspan

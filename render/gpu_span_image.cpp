@@ -1,0 +1,46 @@
+#include "render/gpu_span_image.h"
+
+#include <algorithm>
+
+#include "voxspan/error.h"
+
+namespace voxspan {
+
+void GpuSpanImage::bind(GLuint pixels_binding, GLuint spans_binding) const {
+  pixels_.bind(GL_SHADER_STORAGE_BUFFER, pixels_binding);
+  spans_.bind(GL_SHADER_STORAGE_BUFFER, spans_binding);
+}
+
+SpanImage GpuSpanImage::download() const {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  SpanImage image;
+  image.grid = grid_;
+  image.pixels = pixels_.read<PixelSpans>(static_cast<std::size_t>(width()) * height());
+  image.spans = spans_.read<Span>(span_count_);
+  return image;
+}
+
+void GpuSpanImage::reset(const PerspectiveGrid& grid, const ClearPass& clear) {
+  grid_ = grid;
+  span_count_ = 0;
+  const std::size_t bytes = static_cast<std::size_t>(width()) * height() * sizeof(PixelSpans);
+  pixels_.reserve(bytes);
+  clear.run(pixels_, 0, bytes);
+  if (spans_.id() == 0) spans_ = gl::Buffer(sizeof(Span) * 1024);
+}
+
+void GpuSpanImage::reserve_spans(std::size_t spans, std::size_t max_binding_bytes) {
+  const std::size_t bytes = spans * sizeof(Span);
+  if (bytes <= spans_.size()) return;
+  if (bytes > max_binding_bytes)
+    throw make_error("the span image needs ", spans, " spans (", bytes,
+                     " bytes), more than one GL binding holds (", max_binding_bytes,
+                     "); set a span cap (max_spans) or coarsen the view");
+  // Grow by half again so a slowly more complex scene does not copy every step.
+  gl::Buffer grown(std::min(max_binding_bytes, std::max(bytes, spans_.size() + spans_.size() / 2)));
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // spans written by shaders are copied
+  grown.copy_from(spans_, span_count_ * sizeof(Span));
+  spans_ = std::move(grown);
+}
+
+}  // namespace voxspan

@@ -1,0 +1,100 @@
+#include "render/passes/compress.h"
+
+#include <algorithm>
+
+#include "render/grid_uniforms.h"
+#include "render/passes/depth_bounds.h"
+
+namespace voxspan {
+namespace {
+constexpr GLuint kMaxGroups = 65535;
+// Bindings of compress.comp (the span image takes 0 and 1).
+constexpr GLuint kBits = 2, kScratchSpans = 3, kScratchCounts = 4, kScratchExits = 5, kStats = 6,
+                 kDepthBounds = 7, kRescan = 8;
+}  // namespace
+
+CompressPass::CompressPass(const gl::ShaderLibrary& shaders)
+    : count_(shaders.compute("render/passes/compress.comp")),
+      copy_(shaders.compute("render/passes/compress.comp", "#define COMPRESS_COPY 1")),
+      rescan_(shaders.compute("render/passes/compress.comp", "#define COMPRESS_RESCAN 1")),
+      stats_(16) {}
+
+void CompressPass::begin_frame() { stats_.clear(); }
+
+CompressTallies CompressPass::tallies() const {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  const auto t = stats_.read<std::uint32_t>(2);
+  return {t[0], t[1]};
+}
+
+void CompressPass::set_uniforms(const gl::Program& p, const TileLayout& layout,
+                                const TileRect& tile, const CellStateTexture& cells,
+                                const CompressSettings& settings, const GpuSpanImage& image) const {
+  set_grid_uniforms(p, image.grid());
+  cells.bind(p);
+  p.set("u_chunks", static_cast<unsigned>(layout.column_bytes / 16));
+  p.set("u_tile_pixels", static_cast<unsigned>(tile.pixels()));
+  p.set("u_tile", glm::ivec4(tile.x0, tile.y0, tile.width, tile.height));
+  p.set("u_gap", float(settings.gap_bridging));
+  p.set("u_center_gap_scale", float(1 + image.grid().k_d() / 2));
+  p.set("u_cap", settings.max_spans);
+  p.set("u_scratch_spans", static_cast<unsigned>(settings.scratch_spans));
+  set_depth_block_uniforms(p, image.grid());
+}
+
+std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_bounds,
+                                const TileLayout& layout,
+                                const TileRect& tile, const CellStateTexture& cells,
+                                const CompressSettings& settings, GpuSpanImage& image,
+                                std::uint32_t span_base, PrefixSumPass& prefix_sum,
+                                std::size_t max_binding_bytes) {
+  const auto pixels = static_cast<std::size_t>(tile.pixels());
+  // Sized for the largest tile, so the frame's last, smaller tile reallocates nothing.
+  const auto most = static_cast<std::size_t>(layout.tile_width) * layout.tile_height;
+  scratch_spans_.fit(most * static_cast<std::size_t>(settings.scratch_spans) * 8);
+  scratch_counts_.fit((most + 1) * 4);
+  scratch_exits_.fit(most * 4);
+  rescan_list_.fit((most + 1) * 4);
+  rescan_list_.clear(0, 4);
+  const auto groups = static_cast<GLuint>(std::clamp<std::size_t>((pixels + 63) / 64, 1, kMaxGroups));
+  const auto bind_all = [&] {
+    image.bind(0, 1);
+    bits.bind_range(GL_SHADER_STORAGE_BUFFER, kBits, 0, layout.column_bytes * pixels);
+    scratch_spans_.bind(GL_SHADER_STORAGE_BUFFER, kScratchSpans);
+    scratch_counts_.bind(GL_SHADER_STORAGE_BUFFER, kScratchCounts);
+    scratch_exits_.bind(GL_SHADER_STORAGE_BUFFER, kScratchExits);
+    stats_.bind(GL_SHADER_STORAGE_BUFFER, kStats);
+    depth_bounds.bind(GL_SHADER_STORAGE_BUFFER, kDepthBounds);
+    rescan_list_.bind(GL_SHADER_STORAGE_BUFFER, kRescan);
+  };
+
+  set_uniforms(count_, layout, tile, cells, settings, image);
+  bind_all();
+  count_.dispatch(groups);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+  prefix_sum.run(scratch_counts_, pixels);
+  std::uint32_t total = 0;
+  scratch_counts_.download(&total, 4, pixels * 4);
+  image.set_span_count(span_base);
+  image.reserve_spans(std::size_t(span_base) + total, max_binding_bytes);
+  image.set_span_count(std::size_t(span_base) + total);
+
+  set_uniforms(copy_, layout, tile, cells, settings, image);
+  copy_.set("u_span_base", span_base);
+  bind_all();
+  copy_.dispatch(groups);
+  std::uint32_t rescans = 0;
+  rescan_list_.download(&rescans, 4);
+  if (rescans != 0) {
+    set_uniforms(rescan_, layout, tile, cells, settings, image);
+    rescan_.set("u_span_base", span_base);
+    rescan_.set("u_rescan_count", rescans);
+    bind_all();
+    rescan_.dispatch(static_cast<GLuint>(std::clamp<std::size_t>((rescans + 63) / 64, 1, kMaxGroups)));
+  }
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  return total;
+}
+
+}  // namespace voxspan

@@ -1,0 +1,81 @@
+// render/voxelizer.h - the voxelization stage of paper 001 (sec. 3.1, 3.2, 4.1-4.4) from
+// boundary particles and cell states to the span image, on the GPU, tile by tile:
+//   frame (CPU): fit the perspective grid to the visible particles, count what is culled;
+//   upload: the particles (zero-copy layout) and the cell states;
+//   bin: particles into the tiles they touch, once (or not at all: Binning::resplat_all);
+//   per tile: clear the bits that can hold fluid, splat, compress into the span image.
+// Every pass is timed through the caller's gl::PassTimer and reports its counts into FrameStats.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "render/cell_state_texture.h"
+#include "render/frame_stats.h"
+#include "render/gl/pass_timer.h"
+#include "render/gl/shader_library.h"
+#include "render/gpu_span_image.h"
+#include "render/passes/bin.h"
+#include "render/passes/clear.h"
+#include "render/passes/clear_columns.h"
+#include "render/passes/compress.h"
+#include "render/passes/prefix_sum.h"
+#include "render/passes/splat.h"
+#include "render/perspective_grid.h"
+#include "render/tiling.h"
+#include "voxspan/cell_states.h"
+
+namespace voxspan {
+
+enum class Binning {
+  per_tile_lists,  // bin once per frame; each tile splats only its own particles
+  resplat_all,     // the paper's way: every particle is splatted for every tile
+};
+
+struct VoxelizeOptions {
+  GridOptions grid;
+  TileOptions tiles;
+  double gap_bridging = 0;      // g: gaps shorter than this along the ray close (world units)
+  bool surface_splat = true;    // with g > 0, mark only entry/exit voxels where 2 r < g
+  std::uint32_t max_spans = 0;  // cap on stored spans per pixel (sec. 3.1); 0 = no cap
+  int scratch_spans = 8;        // spans per pixel the compress pass keeps between its passes
+  bool use_cell_states = true;  // skip inner-empty, fill inner-full cells (sec. 4.3)
+  Binning binning = Binning::per_tile_lists;
+  SplatThreads splat_threads = SplatThreads::automatic;
+  BinTallies bin_tallies = BinTallies::automatic;
+};
+
+// Throws voxspan::Error naming the option that is out of range.
+void validate(const VoxelizeOptions& options);
+
+class Voxelizer {
+ public:
+  // Needs a current GL context; compiles the passes.
+  explicit Voxelizer(const gl::ShaderLibrary& shaders);
+
+  // Voxelizes one frame. The result stays valid until the next run(). Throws voxspan::Error on
+  // bad options or a budget too small for one tile row; bad particles (NaN, radius <= 0) are
+  // counted and skipped, never an error.
+  const GpuSpanImage& run(const Camera& camera, std::span<const ParticleSphere> particles,
+                          const CellStatesView& cells, const VoxelizeOptions& options,
+                          gl::PassTimer& timer, FrameStats& stats);
+
+  const GpuSpanImage& image() const { return image_; }
+  // Largest bytes one shader-storage binding may hold here: min(GL limit, 1 GiB).
+  std::size_t max_binding_bytes() const { return max_binding_; }
+
+ private:
+  std::size_t max_binding_ = 0;
+  ClearPass clear_;  // the span image's pixel records
+  ClearColumnsPass clear_columns_;
+  PrefixSumPass prefix_sum_;
+  BinPass bin_;
+  SplatPass splat_;
+  CompressPass compress_;
+  CellStateTexture cells_;
+  gl::Buffer particles_;
+  gl::Buffer bits_;
+  GpuSpanImage image_;
+};
+
+}  // namespace voxspan

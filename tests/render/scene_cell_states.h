@@ -1,0 +1,34 @@
+// A TEST UTILITY standing in for the solver-side classification (sim_adapter) until it is
+// merged: counts particle centres per cell of a uniform grid, calls a cell empty (0), full
+// (>= full_count) or partial, inner when it and its 26 neighbours are all empty or all full
+// (outside the grid is empty air), and keeps the particles of non-inner cells as the boundary
+// particles (paper 001, sec. 3.1, 5).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "voxspan/cell_states.h"
+
+namespace voxspan::test {
+
+struct TestCells {
+  std::vector<std::uint8_t> states;
+  CellStatesView view;                   // points into `states`
+  std::vector<ParticleSphere> boundary;  // particles of non-inner cells
+  std::int64_t inner_full_cells = 0, inner_empty_cells = 0;
+
+  TestCells() = default;
+  TestCells(const TestCells&) = delete;  // view points into states
+  TestCells& operator=(const TestCells&) = delete;
+  TestCells(TestCells&&) = default;
+  TestCells& operator=(TestCells&&) = default;
+};
+
+// Cells of side cell_size on a lattice aligned with the origin (so a particle lattice with
+// spacing cell_size / 2 from the origin puts 8 particles in each full cell), covering the
+// particles with one cell of margin.
+TestCells classify_for_test(const std::vector<ParticleSphere>& particles, double cell_size,
+                            int full_count);
+
+}  // namespace voxspan::test

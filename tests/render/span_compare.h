@@ -1,0 +1,42 @@
+// Accuracy of a span image against another (the GPU's against the exact reference), in units
+// of the local layer thickness, as the voxelization issue states its bounds:
+//   - span counts: equal on the pixels that either side hits;
+//   - boundaries: on pixels with equal counts, each entry and exit within `layers` local layer
+//     thicknesses (the thickness of the layer holding the reference's depth);
+//   - inside length per pixel: within one layer thickness (along the ray) per span boundary;
+//   - inside length summed over the image.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "render/span_image.h"
+
+namespace voxspan::test {
+
+struct SpanComparison {
+  std::int64_t pixels_hit = 0;          // either side has a span
+  std::int64_t pixels_count_equal = 0;  // of those, same stored and found counts
+  std::int64_t boundaries = 0;          // compared (pixels with equal counts)
+  std::int64_t boundaries_within = 0;
+  std::int64_t pixels_inside_within = 0;  // of pixels_hit
+  double worst_boundary_layers = 0;       // largest boundary error, in layer thicknesses
+  double inside_sum_test = 0, inside_sum_reference = 0;
+
+  double count_match() const { return pixels_hit ? double(pixels_count_equal) / pixels_hit : 1; }
+  double boundary_match() const { return boundaries ? double(boundaries_within) / boundaries : 1; }
+  double inside_match() const { return pixels_hit ? double(pixels_inside_within) / pixels_hit : 1; }
+  double inside_sum_error() const;  // relative
+  std::string summary() const;
+};
+
+SpanComparison compare_spans(const SpanImage& test, const SpanImage& reference,
+                             double layers = 1.0);
+
+// The first `most` pixels whose span counts differ, with both lists, for failure messages.
+std::string describe_mismatches(const SpanImage& test, const SpanImage& reference, int most);
+
+// True when both images hold exactly the same records and spans (bit for bit).
+bool identical(const SpanImage& a, const SpanImage& b);
+
+}  // namespace voxspan::test
