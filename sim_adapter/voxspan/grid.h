@@ -90,22 +90,32 @@ class GridView {
   static GridView offsets(const GridGeometry& g, const I* offsets) {
     return begin_end(g, offsets, offsets + 1);
   }
+  static GridView offsets(const GridGeometry& g, IndexArray offsets) {
+    IndexArray end{static_cast<const char*>(offsets.data) + offsets.element_size(), offsets.type};
+    return begin_end(g, offsets, end);
+  }
   // Compact grid, two arrays: cell c holds sorted positions [begin[c], end[c]). Empty cells
   // need begin == end (any value).
   template <class I>
   static GridView begin_end(const GridGeometry& g, const I* begin, const I* end) {
+    return begin_end(g, IndexArray::of(begin), IndexArray::of(end));
+  }
+  static GridView begin_end(const GridGeometry& g, IndexArray begin, IndexArray end) {
     GridView v = geometry_only(g);
     v.layout_ = Layout::cell_ranges;
-    v.begin_ = IndexArray::of(begin);
-    v.end_ = IndexArray::of(end);
+    v.begin_ = begin;
+    v.end_ = end;
     return v;
   }
   // Per-particle cell index: particle i lies in cell cell_of[i]; particles in any order.
   template <class I>
   static GridView cell_index(const GridGeometry& g, const I* cell_of) {
+    return cell_index(g, IndexArray::of(cell_of));
+  }
+  static GridView cell_index(const GridGeometry& g, IndexArray cell_of) {
     GridView v = geometry_only(g);
     v.layout_ = Layout::cell_index;
-    v.cell_of_ = IndexArray::of(cell_of);
+    v.cell_of_ = cell_of;
     return v;
   }
 
@@ -113,7 +123,10 @@ class GridView {
   // particles are stored in cell order, k itself).
   template <class I>
   GridView& with_order(const I* order) {
-    order_ = IndexArray::of(order);
+    return with_order(IndexArray::of(order));
+  }
+  GridView& with_order(IndexArray order) {
+    order_ = order;
     return *this;
   }
   // 1 when every index (begin, end, order, cell index) counts from 1, as in Fortran.

@@ -102,6 +102,10 @@ class ParticleView {
     radii_ = StridedScalars::of(r, stride_bytes);
     return *this;
   }
+  ParticleView& with_radii(StridedScalars r) {
+    radii_ = r;
+    return *this;
+  }
 
   // Named attributes. Past kMaxAttributes the view remembers the overflow and the step that
   // uses it fails with a message naming the attribute (the builder itself never throws).
