@@ -113,8 +113,10 @@ int full_count_for(const ClassifyOptions& options, double cell_size) {
   if (!(options.particle_spacing > 0) || !(cell_size > 0))
     throw make_error("the full count is unknown: set full_count or particle_spacing (got "
                      "particle_spacing ", options.particle_spacing, ", cell size ", cell_size, ")");
-  const double ratio = cell_size / options.particle_spacing;
-  const double count = options.full_fraction * ratio * ratio * ratio;
+  // A cell inside the fluid at rest holds at least floor(cell / spacing) lattice planes per
+  // axis, whatever the lattice's offset: that many cubed is the count of a filled cell.
+  const double planes = std::floor(cell_size / options.particle_spacing * (1 + 1e-9));
+  const double count = options.full_fraction * planes * planes * planes;
   return static_cast<int>(std::max(1.0, std::min(std::round(count), 1e9)));
 }
 

@@ -29,8 +29,9 @@ struct ClassifyOptions {
   // The solver's particle spacing at rest density (world units). Gives the full count, the
   // cell size of a grid the adapter builds, and the radius when the view has none.
   double particle_spacing = 0;
-  // Particles that make a cell full. 0: round(full_fraction * (cell_size / spacing)^3), the
-  // count of a cell filled at rest density.
+  // Particles that make a cell full. 0: the count of a cell filled at rest density, the
+  // fewest a cell inside a cubic rest lattice holds whatever its offset,
+  // round(full_fraction * floor(cell_size / spacing)^3).
   int full_count = 0;
   double full_fraction = 1.0;
   // Cell size of the grid built when the solver gives none (GridView::none()); 0: 2 * spacing.
