@@ -204,7 +204,7 @@ namespace {
 
 // cell_of[i] = place(i, x, y, z, tallies) for the finite particles, kNoCell for the others.
 template <class T, class Place>
-Tallies assign_cells(const detail::Positions<T>& pos, std::size_t n,
+Tallies assign_cells(const detail::Positions<T>& positions, std::size_t n,
                      std::vector<std::uint32_t>& cell_of, Place&& place) {
   cell_of.resize(n);
   tbb::combinable<Tallies> tallies;
@@ -212,6 +212,7 @@ Tallies assign_cells(const detail::Positions<T>& pos, std::size_t n,
                     [&](const tbb::blocked_range<std::size_t>& r) {
     Tallies& t = tallies.local();
     T x, y, z;
+    const detail::Positions<T> pos = positions;  // a local copy stays in registers
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       if (!pos.load(i, x, y, z)) {  // a NaN particle has no cell, whatever the solver says
         ++t.nonfinite;
@@ -258,7 +259,7 @@ Tallies Classifier::Work::cells_from_index(const detail::Positions<T>& pos, std:
 }
 
 template <class T>
-Tallies Classifier::Work::count(const detail::Positions<T>& pos, const ParticleView& view,
+Tallies Classifier::Work::count(const detail::Positions<T>& positions, const ParticleView& view,
                                 const CellRanges& ranges, const ClassifyOptions& options,
                                 const detail::Radii& radii) {
   const GridGeometry& g = result.geometry;
@@ -270,12 +271,16 @@ Tallies Classifier::Work::count(const detail::Positions<T>& pos, const ParticleV
   emit.resize(cells);
   if (check_once) seen.assign(n, 0);
 
+  // The common case: particles stored in cell order, one radius, no validation: per particle
+  // only the finiteness test.
+  const bool fast = !ranges.order.present() && !check_cells && !check_once && !radii.varies();
   detail::FirstError error;
   tbb::combinable<Tallies> tallies;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, kCellGrain),
                     [&](const tbb::blocked_range<std::size_t>& r) {
     Tallies& t = tallies.local();
     T x, y, z;
+    const detail::Positions<T> pos = positions;  // a local copy stays in registers
     for (std::size_t c = r.begin(); c != r.end(); ++c) {
       counts[c] = emit[c] = 0;
       const std::int64_t b = ranges.begin[c] - ranges.base, e = ranges.end[c] - ranges.base;
@@ -287,6 +292,19 @@ Tallies Classifier::Work::count(const detail::Positions<T>& pos, const ParticleV
       }
       t.entries += std::size_t(e - b);
       std::uint32_t valid = 0, emitted = 0;
+      if (fast) {
+        for (std::int64_t k = b; k < e; ++k) {
+          if (!pos.load(std::size_t(k), x, y, z)) {
+            ++t.nonfinite;
+            continue;
+          }
+          ++valid;
+          emitted += options.include_ghosts || std::size_t(k) < owned ? 1 : 0;
+        }
+        counts[c] = valid;
+        emit[c] = emitted;
+        continue;
+      }
       for (std::int64_t k = b; k < e; ++k) {
         const std::int64_t idx = particle_at(ranges, k);
         if (idx < 0 || idx >= n64) {
@@ -324,7 +342,7 @@ Tallies Classifier::Work::count(const detail::Positions<T>& pos, const ParticleV
 }
 
 template <class T>
-void Classifier::Work::compact(const detail::Positions<T>& pos, const ParticleView& view,
+void Classifier::Work::compact(const detail::Positions<T>& positions, const ParticleView& view,
                                const CellRanges& ranges, const ClassifyOptions& options,
                                const detail::Radii& radii,
                                const std::vector<AttributeView>& attributes) {
@@ -348,6 +366,7 @@ void Classifier::Work::compact(const detail::Positions<T>& pos, const ParticleVi
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, kCellGrain),
                     [&](const tbb::blocked_range<std::size_t>& r) {
     T x, y, z;
+    const detail::Positions<T> pos = positions;  // a local copy stays in registers
     for (std::size_t c = r.begin(); c != r.end(); ++c) {
       if (emit[c] == 0) continue;
       std::size_t out = emit_offsets[c];
