@@ -124,6 +124,19 @@ TEST(ClassifyLattice, ExplicitFullCountWins) {
   EXPECT_EQ(c.counts.boundary, pts.size());
 }
 
+TEST(ClassifyCells, FullCountFromSpacing) {
+  ClassifyOptions o;
+  o.particle_spacing = 1.0;
+  EXPECT_EQ(full_count_for(o, 2.0), 8);
+  // Cells of 2.4 spacings hold 2 or 3 lattice planes per axis: at least 8 particles.
+  EXPECT_EQ(full_count_for(o, 2.4), 8);
+  EXPECT_EQ(full_count_for(o, 3.0), 27);
+  o.full_fraction = 0.5;
+  EXPECT_EQ(full_count_for(o, 2.0), 4);
+  o.full_count = 5;
+  EXPECT_EQ(full_count_for(o, 2.0), 5);
+}
+
 TEST(ClassifyCells, FromCounts) {
   GridGeometry g = test::cube_grid(1.0, 3);
   std::vector<std::uint32_t> counts(27, 5);
