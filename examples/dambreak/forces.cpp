@@ -1,8 +1,8 @@
 // The pair loops of the WCSPH step, parallel over the cells of the neighbour grid: each
 // fluid cell gathers from the 9 particle ranges covering its 27 neighbour cells, in the fluid
 // and in the wall grid. Gather form (no writes to neighbours), so no atomics.
-//   * fluid pressure: Tait, p = B ((rho/rho0)^7 - 1), clamped at 0 (a free surface under
-//     tension clumps and explodes: the tensile instability), stored as p / rho^2;
+//   * fluid pressure: Tait, p = B ((rho/rho0)^7 - 1), clamped at 0 (Config::tension_free),
+//     stored as p / rho^2;
 //   * wall pressure (Adami, Hu & Adams 2012, eq. 27): p_w = (sum_f p_f W_wf + g . sum_f rho_f
 //     (x_w - x_f) W_wf) / sum_f W_wf, clamped at 0 so walls never pull fluid; rho_w from Tait;
 //   * momentum: dv_i/dt = -sum_j m (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) grad W_ij + g, with
@@ -42,7 +42,7 @@ void DamBreak::compute_fluid_pressure() {
   f.volume.resize(f.size());
   const float m = mass_;
   const float inv_rho0 = float(1 / config_.rest_density), b = float(b_);
-  const float p_min = config_.clamp_negative_pressure ? 0.0f : -std::numeric_limits<float>::max();
+  const float p_min = config_.tension_free ? 0.0f : -std::numeric_limits<float>::max();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, f.size(), 1 << 12),
                     [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {

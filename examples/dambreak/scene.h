@@ -28,7 +28,10 @@ struct Config {
   double delta = 0.1;             // density diffusion (delta-SPH, Molteni & Colagrossi 2009)
   double cfl = 0.25;              // dt = cfl * h / (c0 + max |v|)
   bool wall_viscosity = true;     // artificial viscosity against the walls too (wall friction)
-  bool clamp_negative_pressure = true;  // p >= 0: no tensile instability at the free surface
+  // The liquid sustains no tension: p >= 0 and rho >= rho0. Without it a free surface under
+  // tension clumps and explodes (tensile instability), and spray that separates keeps a low
+  // continuity density, falls back without pressure and collapses onto the fluid.
+  bool tension_free = true;
 };
 
 // Lattice counts and spacing derived from a Config.

@@ -121,11 +121,13 @@ void DamBreak::compute_rates() {
 
 void DamBreak::kick(float half_dt) {
   Fluid& f = fluid_;
+  // Tension-free liquid: a particle that separates (spray) is a drop at rest density.
+  const float rho_min = config_.tension_free ? float(config_.rest_density) : 0.0f;
   parallel_over(f.size(), [&](std::size_t i) {
     f.vx[i] += half_dt * f.ax[i];
     f.vy[i] += half_dt * f.ay[i];
     f.vz[i] += half_dt * f.az[i];
-    f.rho[i] += half_dt * f.drho[i];
+    f.rho[i] = std::max(f.rho[i] + half_dt * f.drho[i], rho_min);
   });
 }
 

@@ -1,6 +1,6 @@
 // sph.h - a weakly compressible SPH solver (WCSPH) for the dam break:
-//   * Tait equation of state p = B ((rho / rho0)^7 - 1), B = c0^2 rho0 / 7 (Monaghan 1994),
-//     negative pressures clamped to 0 (Config::clamp_negative_pressure);
+//   * Tait equation of state p = B ((rho / rho0)^7 - 1), B = c0^2 rho0 / 7 (Monaghan 1994);
+//     the liquid sustains no tension: p >= 0 and rho >= rho0 (Config::tension_free);
 //   * density by the continuity equation with delta-SPH diffusion (Molteni & Colagrossi 2009);
 //   * momentum with the symmetric pressure term and Monaghan's artificial viscosity, against
 //     the walls too (their friction; Config::wall_viscosity);

@@ -25,7 +25,8 @@ struct FrontSample {
 // Martin & Moyce (1952), Fig. 3, a = 2.25 in, n^2 = 2: the points with T <= 2.
 constexpr FrontSample kMartinMoyce[] = {{0.832, 1.217}, {1.219, 1.474}, {1.997, 2.292}};
 
-// "After the first collapse": the column has fallen and the surge runs along the floor.
+// "After the first collapse": the column has fallen and the surge runs along the floor. The
+// solver's liquid carries no tension (rho >= rho0, see scene.h), so the error is compression.
 constexpr double kCollapsed = 1.0;
 
 struct Run {
