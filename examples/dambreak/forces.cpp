@@ -23,18 +23,6 @@
 #include "sph.h"
 
 namespace dambreak {
-namespace {
-
-template <class F>
-void for_each_cell(std::size_t cells, F&& f) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, 64),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-    std::array<Range, 9> ranges;
-    for (std::size_t c = r.begin(); c != r.end(); ++c) f(c, ranges);
-  });
-}
-
-}  // namespace
 
 void DamBreak::compute_fluid_pressure() {
   Fluid& f = fluid_;
@@ -49,38 +37,6 @@ void DamBreak::compute_fluid_pressure() {
       const float s = f.rho[i] * inv_rho0, s2 = s * s, s4 = s2 * s2;
       f.p_over_rho2[i] = std::max(p_min, b * (s4 * s2 * s - 1)) / (f.rho[i] * f.rho[i]);
       f.volume[i] = m / f.rho[i];
-    }
-  });
-}
-
-void DamBreak::extrapolate_wall_pressure() {
-  const Fluid& f = fluid_;
-  Walls& w = walls_;
-  const float support2 = kernel_.support() * kernel_.support();
-  const float g = float(config_.gravity), rho0 = float(config_.rest_density), b = float(b_);
-  for_each_cell(wall_grid_.shape().cell_count(), [&](std::size_t c, std::array<Range, 9>& ranges) {
-    const Range own = wall_grid_.cell(c);
-    if (own.begin == own.end) return;
-    const int nr = fluid_grid_.neighbour_ranges(c, ranges);
-    for (std::uint32_t i = own.begin; i < own.end; ++i) {
-      float sum_w = 0, sum_pw = 0, sum_hydro = 0;
-      for (int k = 0; k < nr; ++k) {
-        const Range rg = ranges[std::size_t(k)];
-#pragma omp simd reduction(+ : sum_w, sum_pw, sum_hydro)
-        for (std::uint32_t j = rg.begin; j < rg.end; ++j) {
-          const float dx = w.x[i] - f.x[j], dy = w.y[i] - f.y[j], dz = w.z[i] - f.z[j];
-          const float r2 = dx * dx + dy * dy + dz * dz;
-          const float wk = r2 < support2 ? kernel_.w(std::sqrt(r2)) : 0.0f;
-          const float p = f.p_over_rho2[j] * f.rho[j] * f.rho[j];
-          sum_w += wk;
-          sum_pw += p * wk;
-          sum_hydro += f.rho[j] * (-g * dz) * wk;  // g . (x_w - x_f), gravity along -z
-        }
-      }
-      float p = sum_w > 0 ? (sum_pw + sum_hydro) / sum_w : 0;
-      if (p < 0) p = 0;
-      const float rho = rho0 * std::pow(1 + p / b, 1.0f / 7);
-      w.p_over_rho2[i] = p / (rho * rho);
     }
   });
 }
@@ -120,11 +76,12 @@ struct Box {
   }
 };
 
-Box bounds(const Fluid& f, Range own) {
-  Box b{{f.x[own.begin], f.y[own.begin], f.z[own.begin]},
-        {f.x[own.begin], f.y[own.begin], f.z[own.begin]}};
+// The bounding box of the particles of one cell (x, y, z of the fluid or of the walls).
+Box bounds(const std::vector<float>& x, const std::vector<float>& y, const std::vector<float>& z,
+           Range own) {
+  Box b{{x[own.begin], y[own.begin], z[own.begin]}, {x[own.begin], y[own.begin], z[own.begin]}};
   for (std::uint32_t i = own.begin + 1; i < own.end; ++i) {
-    const float p[3] = {f.x[i], f.y[i], f.z[i]};
+    const float p[3] = {x[i], y[i], z[i]};
     for (int a = 0; a < 3; ++a) {
       b.lo[a] = std::min(b.lo[a], p[a]);
       b.hi[a] = std::max(b.hi[a], p[a]);
@@ -228,7 +185,52 @@ void cell_rates(const ForceTerms& t, Fluid& f, Range own, const Candidates& fc,
   }
 }
 
+// Adami et al. (2012) eq. 27 for the wall particles of one cell, from the fluid candidates.
+__attribute__((target_clones("avx2", "default")))
+void cell_wall_pressure(const CubicSpline& kernel_ref, float support2, float g, float rho0,
+                        float b, Walls& w, Range own, const Candidates& fc) {
+  const CubicSpline kernel = kernel_ref;
+  const float* __restrict cx = fc.x.data();
+  const float* __restrict cy = fc.y.data();
+  const float* __restrict cz = fc.z.data();
+  const float* __restrict crho = fc.rho.data();
+  const float* __restrict cp = fc.p_over_rho2.data();
+  for (std::uint32_t i = own.begin; i < own.end; ++i) {
+    const float xi = w.x[i], yi = w.y[i], zi = w.z[i];
+    float sum_w = 0, sum_pw = 0, sum_hydro = 0;
+#pragma omp simd reduction(+ : sum_w, sum_pw, sum_hydro)
+    for (std::size_t j = 0; j < fc.n; ++j) {
+      const float dx = xi - cx[j], dy = yi - cy[j], dz = zi - cz[j];
+      const float r2 = dx * dx + dy * dy + dz * dz;
+      const float wk = r2 < support2 ? kernel.w(std::sqrt(r2)) : 0.0f;
+      sum_w += wk;
+      sum_pw += cp[j] * crho[j] * crho[j] * wk;
+      sum_hydro += crho[j] * (-g * dz) * wk;  // g . (x_w - x_f), gravity along -z
+    }
+    const float p = sum_w > 0 ? std::max((sum_pw + sum_hydro) / sum_w, 0.0f) : 0.0f;
+    const float rho = rho0 * std::pow(1 + p / b, 1.0f / 7);
+    w.p_over_rho2[i] = p / (rho * rho);
+  }
+}
+
 }  // namespace
+
+void DamBreak::extrapolate_wall_pressure() {
+  const float support2 = kernel_.support() * kernel_.support();
+  const float g = float(config_.gravity), rho0 = float(config_.rest_density), b = float(b_);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, wall_grid_.shape().cell_count(), 64),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+    std::array<Range, 9> ranges;
+    Candidates fluid;
+    for (std::size_t c = r.begin(); c != r.end(); ++c) {
+      const Range own = wall_grid_.cell(c);
+      if (own.begin == own.end) continue;
+      const Box box = bounds(walls_.x, walls_.y, walls_.z, own);
+      gather_fluid(fluid_, ranges, fluid_grid_.neighbour_ranges(c, ranges), box, support2, fluid);
+      cell_wall_pressure(kernel_, support2, g, rho0, b, walls_, own, fluid);
+    }
+  });
+}
 
 void DamBreak::compute_forces() {
   Fluid& f = fluid_;
@@ -254,7 +256,7 @@ void DamBreak::compute_forces() {
     for (std::size_t c = r.begin(); c != r.end(); ++c) {
       const Range own = fluid_grid_.cell(c);
       if (own.begin == own.end) continue;
-      const Box box = bounds(f, own);
+      const Box box = bounds(f.x, f.y, f.z, own);
       gather_fluid(f, ranges, fluid_grid_.neighbour_ranges(c, ranges), box, terms.support2, fluid);
       gather_walls(walls_, wall_ranges, wall_grid_.neighbour_ranges(c, wall_ranges), box,
                    terms.support2, walls);
