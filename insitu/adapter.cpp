@@ -74,6 +74,7 @@ struct Adapter::Impl {
   std::shared_ptr<Pipeline> pipeline;
   StepStats stats;
   std::int64_t steps_seen = 0, render_steps = 0, failed_steps = 0;
+  double seconds_in_situ = 0;
 
   void render(std::int64_t step, double time, const ParticleView& particles,
               const GridView& grid);
@@ -111,7 +112,9 @@ Adapter::Adapter(AdapterOptions options) : impl_(std::make_unique<Impl>()) {
   check_options(options);
   impl_->options = std::move(options);
 }
-Adapter::~Adapter() = default;
+Adapter::~Adapter() {
+  if (impl_) finish();
+}
 Adapter::Adapter(Adapter&&) noexcept = default;
 Adapter& Adapter::operator=(Adapter&&) noexcept = default;
 
@@ -156,6 +159,7 @@ Status Adapter::execute(std::int64_t step, double time, const ParticleView& part
     fail(s.status, StatusCode::internal_error, "unknown exception");
   }
   s.seconds_total = seconds_since(t0);
+  m.seconds_in_situ += s.seconds_total;
   if (!s.status.ok()) {
     ++m.failed_steps;
     log_quietly(LogLevel::error, "step ", step, ": ", s.status.message);
@@ -166,6 +170,36 @@ Status Adapter::execute(std::int64_t step, double time, const ParticleView& part
     return Status{s.status.code, {}};
   }
 }
+
+Status Adapter::execute_last(std::int64_t step, double time, const ParticleView& particles,
+                             const GridView& grid) noexcept {
+  if (impl_->pipeline) {
+    try {
+      impl_->pipeline->mark_last_step(step);
+    } catch (...) {
+      log_quietly(LogLevel::error, "step ", step, ": the pipeline could not mark the last step");
+    }
+  }
+  return execute(step, time, particles, grid);
+}
+
+void Adapter::finish() noexcept {
+  if (!impl_->pipeline) return;
+  try {
+    impl_->pipeline->finish();
+  } catch (const std::exception& e) {
+    log_quietly(LogLevel::error, "finishing the pipeline: ", e.what());
+  } catch (...) {
+    log_quietly(LogLevel::error, "finishing the pipeline: unknown exception");
+  }
+}
+
+std::string Adapter::summary() const {
+  return impl_->pipeline ? impl_->pipeline->summary() : std::string();
+}
+
+std::shared_ptr<Pipeline> Adapter::pipeline() const { return impl_->pipeline; }
+double Adapter::seconds_in_situ() const { return impl_->seconds_in_situ; }
 
 const StepStats& Adapter::last_stats() const { return impl_->stats; }
 const Classification& Adapter::last_classification() const { return impl_->classifier.result(); }

@@ -16,7 +16,7 @@ bool is_power_of_ten(std::uint64_t n) {
 }  // namespace
 
 BackgroundWriter::BackgroundWriter(std::size_t queue_size, QueuePolicy policy)
-    : capacity_(queue_size == 0 ? 1 : queue_size), policy_(policy) {
+    : capacity_(queue_size == 0 ? 1 : queue_size), policy_(policy), ring_(capacity_) {
   thread_ = std::thread([this] { run(); });
 }
 
@@ -39,7 +39,7 @@ BackgroundWriter::~BackgroundWriter() {
 
 bool BackgroundWriter::submit(std::string label, Job job) {
   std::unique_lock lock(mutex_);
-  if (queue_.size() >= capacity_) {
+  if (queued_ >= capacity_) {
     if (policy_ == QueuePolicy::drop) {
       std::uint64_t dropped = ++stats_.dropped;
       lock.unlock();
@@ -49,11 +49,14 @@ bool BackgroundWriter::submit(std::string label, Job job) {
       return false;
     }
     ++stats_.waits;
-    space_ready_.wait(lock, [&] { return queue_.size() < capacity_; });
+    space_ready_.wait(lock, [&] { return queued_ < capacity_; });
   }
-  queue_.push_back(Entry{std::move(label), std::move(job)});
+  Entry& slot = ring_[(head_ + queued_) % capacity_];
+  slot.label = std::move(label);
+  slot.job = std::move(job);
+  ++queued_;
   ++stats_.submitted;
-  stats_.max_queued = std::max(stats_.max_queued, queue_.size());
+  stats_.max_queued = std::max(stats_.max_queued, queued_);
   lock.unlock();
   work_ready_.notify_one();
   return true;
@@ -61,7 +64,7 @@ bool BackgroundWriter::submit(std::string label, Job job) {
 
 void BackgroundWriter::drain() {
   std::unique_lock lock(mutex_);
-  idle_.wait(lock, [&] { return queue_.empty() && !busy_; });
+  idle_.wait(lock, [&] { return queued_ == 0 && !busy_; });
 }
 
 WriterStats BackgroundWriter::stats() const {
@@ -71,7 +74,7 @@ WriterStats BackgroundWriter::stats() const {
 
 std::size_t BackgroundWriter::queued() const {
   std::lock_guard lock(mutex_);
-  return queue_.size();
+  return queued_;
 }
 
 void BackgroundWriter::record_failure(const std::string& label, const std::string& message,
@@ -92,10 +95,13 @@ void BackgroundWriter::run() {
     Entry entry;
     {
       std::unique_lock lock(mutex_);
-      work_ready_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
-      if (queue_.empty()) return;  // stopping, and drained
-      entry = std::move(queue_.front());
-      queue_.pop_front();
+      work_ready_.wait(lock, [&] { return stopping_ || queued_ > 0; });
+      if (queued_ == 0) return;  // stopping, and drained
+      entry.label.swap(ring_[head_].label);  // swaps keep both strings' storage alive
+      entry.job = std::move(ring_[head_].job);
+      ring_[head_].job = nullptr;
+      head_ = (head_ + 1) % capacity_;
+      --queued_;
       busy_ = true;
     }
     space_ready_.notify_one();
@@ -123,7 +129,7 @@ void BackgroundWriter::run() {
     } else {
       record_failure(entry.label, message, kind);
     }
-    entry = Entry{};  // free the job's data before reporting idle
+    entry.job = nullptr;  // free the job's data before reporting idle
     {
       std::lock_guard lock(mutex_);
       busy_ = false;

@@ -9,16 +9,19 @@
 // writes still squeeze in between; the summary comes when the writer closes. Nothing a job
 // throws reaches the solver.
 // drain() waits until every submitted job is done; the destructor drains, then stops.
+// The queue is a ring of queue_size slots made once: submitting allocates nothing beyond what
+// the caller's label and job hold (a job whose captures fit std::function's small buffer,
+// e.g. two pointers, holds nothing on the heap).
 #pragma once
 
 #include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <functional>
 #include <mutex>
 #include <set>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "insitu/config.h"
 
@@ -66,7 +69,9 @@ class BackgroundWriter {
   std::condition_variable work_ready_;   // writer thread waits for jobs
   std::condition_variable space_ready_;  // submitters wait for room (policy wait)
   std::condition_variable idle_;         // drain waits for the end of work
-  std::deque<Entry> queue_;
+  std::vector<Entry> ring_;  // capacity_ slots; queued jobs are [head_, head_ + queued_)
+  std::size_t head_ = 0;
+  std::size_t queued_ = 0;
   bool busy_ = false;
   bool stopping_ = false;
   std::set<int> reported_;  // error kinds already logged (errno; 0 for anything else)

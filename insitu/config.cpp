@@ -54,7 +54,7 @@ void read_trigger(MapReader& parent, std::string_view key, TriggerSpec& out) {
 void read_camera(MapReader& view, CameraConfig& c) {
   if (!view.has("camera")) return;
   MapReader r(view.checker(), view.find("camera"), view.path("camera"),
-              {"auto", "eye", "target", "up", "fov", "direction", "margin"});
+              {"auto", "eye", "target", "up", "fov", "direction", "margin", "framing"});
   bool has_eye = r.get_vec3("eye", c.eye);
   bool has_target = r.get_vec3("target", c.target);
   c.automatic = !(r.has("eye") || r.has("target"));
@@ -63,6 +63,8 @@ void read_camera(MapReader& view, CameraConfig& c) {
   r.get_double("fov", c.fov_degrees, 0, 179, true);
   r.get_vec3("direction", c.direction);
   r.get_double("margin", c.margin, 0, 100, true);
+  r.get_enum("framing", c.framing,
+             {{"grow", Framing::grow}, {"each_step", Framing::each_step}, {"first", Framing::first}});
 
   Checker& ch = r.checker();
   if (length(c.up) == 0) ch.error(r.find("up"), r.path("up"), "must not be zero");
@@ -76,9 +78,10 @@ void read_camera(MapReader& view, CameraConfig& c) {
     else if (length(c.up) > 0 && parallel(c.direction, c.up))
       ch.error(r.find("direction"), r.path("direction"), "must not be parallel to camera.up");
   } else {
-    if (r.has("direction"))
-      ch.error(r.find("direction"), r.path("direction"),
-               "is for automatic framing; a camera with eye and target looks at the target");
+    for (const char* key : {"direction", "margin", "framing"})
+      if (r.has(key))
+        ch.error(r.find(key), r.path(key),
+                 "is for automatic framing; a camera with eye and target looks at the target");
     if (!r.has("eye") || !r.has("target")) {
       ch.error(r.node(), view.path("camera"), "a manual camera needs both eye and target");
     } else if (has_eye && has_target) {
@@ -184,9 +187,10 @@ void read_outputs(MapReader& top, Config& c) {
   {
     VdbOutputConfig& v = c.outputs.vdb;
     MapReader r(top.checker(), outs.find("vdb"), "outputs.vdb",
-                {"enabled", "folder", "trigger", "voxel_size", "half_width", "closing",
+                {"enabled", "folder", "trigger", "radius", "voxel_size", "half_width", "closing",
                  "fill_inner", "cell_states", "attributes"});
     read_output_common(r, v, c.trigger, false);
+    r.get_auto_double("radius", v.radius, 0, kInf, true);
     r.get_auto_double("voxel_size", v.voxel_size, 0, kInf, true);
     r.get_int("half_width", v.half_width, 1, 64);
     r.get_auto_double("closing", v.closing, 0, kInf);
@@ -300,7 +304,10 @@ void emit_view(YAML::Emitter& e, const ViewConfig& v) {
   emit_vec3(e, "up", v.camera.up);
   e << YAML::Key << "fov" << YAML::Value << v.camera.fov_degrees;
   if (v.camera.automatic) emit_vec3(e, "direction", v.camera.direction);
-  e << YAML::Key << "margin" << YAML::Value << v.camera.margin;
+  if (v.camera.automatic) {
+    e << YAML::Key << "margin" << YAML::Value << v.camera.margin;
+    e << YAML::Key << "framing" << YAML::Value << framing_name(v.camera.framing);
+  }
   e << YAML::EndMap;
   e << YAML::Key << "alpha" << YAML::Value << v.alpha_degrees;
   emit_auto(e, "gap", v.gap);
@@ -336,6 +343,15 @@ const char* gl_platform_name(GlPlatformChoice platform) {
 
 const char* queue_policy_name(QueuePolicy policy) {
   return policy == QueuePolicy::wait ? "wait" : "drop";
+}
+
+const char* framing_name(Framing framing) {
+  switch (framing) {
+    case Framing::grow: return "grow";
+    case Framing::each_step: return "each_step";
+    case Framing::first: return "first";
+  }
+  return "?";
 }
 
 std::vector<ViewConfig> default_views() {
@@ -401,6 +417,7 @@ std::string to_yaml(const Config& c) {
   const VdbOutputConfig& vdb = c.outputs.vdb;
   e << YAML::Key << "vdb" << YAML::Value << YAML::BeginMap;
   emit_common(e, vdb);
+  emit_auto(e, "radius", vdb.radius);
   emit_auto(e, "voxel_size", vdb.voxel_size);
   e << YAML::Key << "half_width" << YAML::Value << vdb.half_width;
   emit_auto(e, "closing", vdb.closing);

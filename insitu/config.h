@@ -24,14 +24,19 @@ using Vec3d = std::array<double, 3>;
 enum class ShadingMode { opaque, translucent, refractive };
 enum class GlPlatformChoice { automatic, nvidia, device, surfaceless };
 enum class QueuePolicy { wait, drop };
+// Automatic framing follows the fluid's bounds: grown over every render step so far (the
+// camera only ever backs away: a steady video), refitted every step, or fixed at the first.
+enum class Framing { grow, each_step, first };
 
 const char* shading_mode_name(ShadingMode mode);
 const char* gl_platform_name(GlPlatformChoice platform);
 const char* queue_policy_name(QueuePolicy policy);
+const char* framing_name(Framing framing);
 
 struct CameraConfig {
-  // Automatic framing: look along `direction` at the bounds of the particles, from the
-  // distance at which their bounding sphere times `margin` fills the field of view.
+  // Automatic framing: look along `direction` at the box of the particles (the boundary
+  // particles' spheres, which enclose the fluid), from the distance at which the box, grown
+  // by `margin` about its centre, just fits the view; `framing` says which box.
   // Manual: from `eye` at `target`.
   bool automatic = true;
   Vec3d eye{0, 0, 0};
@@ -40,6 +45,7 @@ struct CameraConfig {
   double fov_degrees = 40;  // vertical
   Vec3d direction{-1, 2, -0.8};
   double margin = 1.05;
+  Framing framing = Framing::grow;
   bool operator==(const CameraConfig&) const = default;
 };
 
@@ -99,7 +105,11 @@ struct StatsOutputConfig : OutputCommon {
 
 struct VdbOutputConfig : OutputCommon {
   VdbOutputConfig() : OutputCommon{false, "snapshots", {100, 0, false, true}} {}
-  std::optional<double> voxel_size;  // world units; nullopt = half the smallest radius
+  // Sphere radius of every particle in the level set (world units); nullopt = half the
+  // particle spacing, so that the level set holds the particles' own volume (each particle
+  // stands for a cube of one spacing), or the render radius when the spacing is unknown.
+  std::optional<double> radius;
+  std::optional<double> voxel_size;  // world units; nullopt = the radius
   int half_width = 3;                // narrow band, voxels on each side
   std::optional<double> closing;     // gap closing distance; nullopt = the particle radius
   bool fill_inner = true;            // inner-full cells filled: the file holds the whole fluid

@@ -7,8 +7,8 @@
 
 namespace voxspan {
 
-void check_attributes(std::span<const AttributeView> attributes, std::size_t count) {
-  for (const AttributeView& a : attributes) {
+void check_attributes(std::span<const AttributeSpan> attributes, std::size_t count) {
+  for (const AttributeSpan& a : attributes) {
     if (a.components != 1 && a.components != 3)
       throw make_error("attribute \"", a.name, "\" has ", a.components,
                        " components (1 or 3 are supported)");
@@ -30,8 +30,8 @@ const NamedAttribute* ParticleData::attribute(std::string_view name) const {
   return nullptr;
 }
 
-std::vector<AttributeView> ParticleData::attribute_views() const {
-  std::vector<AttributeView> views;
+std::vector<AttributeSpan> ParticleData::attribute_views() const {
+  std::vector<AttributeSpan> views;
   views.reserve(attributes.size());
   for (const NamedAttribute& a : attributes) views.push_back(a.view());
   return views;

@@ -18,7 +18,9 @@
 
 namespace voxspan {
 
-struct AttributeView {
+// A float attribute as the file writers take it (named so as not to clash with the solver-side
+// voxspan::AttributeView of voxspan/particles.h, a strided view of the solver's own arrays).
+struct AttributeSpan {
   std::string_view name;
   int components = 1;  // 1 or 3
   std::span<const float> values;
@@ -29,12 +31,12 @@ struct NamedAttribute {
   std::string name;
   int components = 1;
   std::vector<float> values;
-  AttributeView view() const { return {name, components, values}; }
+  AttributeSpan view() const { return {name, components, values}; }
 };
 
 // Throws voxspan::Error naming the attribute unless every attribute has 1 or 3 components and
 // exactly `count` tuples.
-void check_attributes(std::span<const AttributeView> attributes, std::size_t count);
+void check_attributes(std::span<const AttributeSpan> attributes, std::size_t count);
 
 struct CellStatesData {
   std::array<double, 3> origin{0, 0, 0};
@@ -55,7 +57,7 @@ struct ParticleData {
 
   std::size_t size() const { return positions.size(); }
   const NamedAttribute* attribute(std::string_view name) const;
-  std::vector<AttributeView> attribute_views() const;
+  std::vector<AttributeSpan> attribute_views() const;
   // Packed spheres for the renderer; default_radius where the file has none.
   std::vector<ParticleSphere> spheres(float default_radius) const;
 };

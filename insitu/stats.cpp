@@ -52,7 +52,11 @@ void append_number(std::string& out, double v) {
   out += buf;
 }
 
-void append_number(std::string& out, std::int64_t v) { out += std::to_string(v); }
+void append_number(std::string& out, std::int64_t v) {
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "%lld", static_cast<long long>(v));
+  out += buf;
+}
 
 template <class T>
 void append_object(std::string& out, std::string_view key,
@@ -105,6 +109,11 @@ void StatsSection::clear() {
   counters.clear();
 }
 
+void StatsSection::zero() {
+  for (auto& entry : timings_ms) entry.second = 0;
+  for (auto& entry : counters) entry.second = 0;
+}
+
 StatsSection& StatsRecord::view(std::string_view name) {
   if (StatsSection* s = find_named(views, name)) return *s;
   views.emplace_back(std::string(name), StatsSection{});
@@ -126,9 +135,22 @@ void StatsRecord::clear() {
   memory_mib.clear();
 }
 
+void StatsRecord::zero() {
+  step = 0;
+  time = 0;
+  totals.zero();
+  for (auto& entry : views) entry.second.zero();
+  for (auto& entry : memory_mib) entry.second = 0;
+}
+
 std::string to_json_line(const StatsRecord& r) {
   std::string out;
   out.reserve(256);
+  append_json_line(r, out);
+  return out;
+}
+
+void append_json_line(const StatsRecord& r, std::string& out) {
   out += "{\"step\":";
   append_number(out, r.step);
   out += ",\"time\":";
@@ -148,7 +170,6 @@ std::string to_json_line(const StatsRecord& r) {
     out += '}';
   }
   out += "}}\n";
-  return out;
 }
 
 }  // namespace voxspan

@@ -28,6 +28,8 @@ struct StatsSection {
   double time(std::string_view name) const;          // 0 when absent
   std::int64_t count(std::string_view name) const;   // 0 when absent
   void clear();
+  // Every value to 0, the names kept: a record refilled each step allocates nothing.
+  void zero();
   bool empty() const { return timings_ms.empty() && counters.empty(); }
 };
 
@@ -41,9 +43,12 @@ struct StatsRecord {
   StatsSection& view(std::string_view name);  // created on first use
   void set_memory(std::string_view name, double mib);
   void clear();  // keeps the names' storage
+  void zero();   // every value to 0, every name kept (sections and memory entries)
 };
 
 std::string to_json_line(const StatsRecord& record);  // one line, '\n' included
+// The same line appended to `out` (whose capacity a caller can reuse from step to step).
+void append_json_line(const StatsRecord& record, std::string& out);
 
 // Adds the wall time of its scope to a section: { ScopedTiming t(stats.totals, "classify"); }
 class ScopedTiming {

@@ -105,7 +105,7 @@ void erode_and_narrow(vdb::FloatGrid& sdf, float distance, float band) {
   vdb::tools::pruneLevelSet(sdf.tree());
 }
 
-vdb::GridBase::Ptr attribute_grid(const IndexGrid& closest, const AttributeView& a) {
+vdb::GridBase::Ptr attribute_grid(const IndexGrid& closest, const AttributeSpan& a) {
   auto fill = [&](auto grid, auto value_of) {
     grid->setTransform(closest.transform().copy());
     grid->setName(std::string(a.name));
@@ -216,7 +216,7 @@ VdbSnapshotReport write_vdb_snapshot(const std::filesystem::path& path,
 
   stage.emplace(report.timings, "vdb_attributes");
   vdb::GridCPtrVec grids{fluid};
-  for (const AttributeView& a : input.attributes)
+  for (const AttributeSpan& a : input.attributes)
     if (closest) grids.push_back(attribute_grid(*closest, a));
   if (settings.cell_states && have_cells) grids.push_back(cell_state_grid(input.cells));
 

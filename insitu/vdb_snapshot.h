@@ -44,7 +44,7 @@ struct VdbSnapshotSettings {
 struct VdbSnapshotInput {
   std::span<const ParticleSphere> particles;  // the boundary particles
   CellStatesView cells;                       // may be empty: no fill, no cell-state grid
-  std::span<const AttributeView> attributes;  // one tuple per boundary particle
+  std::span<const AttributeSpan> attributes;  // one tuple per boundary particle
   std::int64_t step = 0;
   double time = 0;
 };

@@ -50,7 +50,7 @@ std::string xml_escape(const std::string& s) {
 }  // namespace
 
 std::string vtp_document(std::span<const ParticleSphere> particles,
-                         std::span<const AttributeView> attributes) {
+                         std::span<const AttributeSpan> attributes) {
   check_attributes(attributes, particles.size());
   const vtkIdType n = static_cast<vtkIdType>(particles.size());
   vtkNew<vtkPoints> points;
@@ -77,7 +77,7 @@ std::string vtp_document(std::span<const ParticleSphere> particles,
   poly->SetPoints(points);
   poly->SetVerts(vertices);
   poly->GetPointData()->AddArray(radius);
-  for (const AttributeView& a : attributes) {
+  for (const AttributeSpan& a : attributes) {
     vtkNew<vtkFloatArray> array;
     array->SetName(std::string(a.name).c_str());
     array->SetNumberOfComponents(a.components);
@@ -109,7 +109,7 @@ std::string vti_document(const CellStatesView& cells) {
 }
 
 void write_vtp(const std::filesystem::path& path, std::span<const ParticleSphere> particles,
-               std::span<const AttributeView> attributes, bool sync) {
+               std::span<const AttributeSpan> attributes, bool sync) {
   write_file_atomically(path, vtp_document(particles, attributes), sync);
 }
 

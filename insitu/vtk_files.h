@@ -17,11 +17,11 @@
 namespace voxspan {
 
 std::string vtp_document(std::span<const ParticleSphere> particles,
-                         std::span<const AttributeView> attributes);
+                         std::span<const AttributeSpan> attributes);
 std::string vti_document(const CellStatesView& cells);
 
 void write_vtp(const std::filesystem::path& path, std::span<const ParticleSphere> particles,
-               std::span<const AttributeView> attributes, bool sync = true);
+               std::span<const AttributeSpan> attributes, bool sync = true);
 void write_vti(const std::filesystem::path& path, const CellStatesView& cells, bool sync = true);
 
 // A .pvd collection. add() appends (time, file) and rewrites the .pvd; file is relative to the

@@ -133,7 +133,7 @@ void bench_vdb(const std::filesystem::path& folder, int side) {
   const double dx = 0.01;
   voxspan::test::LatticeScene scene = voxspan::test::make_lattice_block(side, dx, float(dx / 2));
   std::vector<float> pressure(scene.boundary.size(), 1.f);
-  std::vector<voxspan::AttributeView> attributes = {{"pressure", 1, pressure}};
+  std::vector<voxspan::AttributeSpan> attributes = {{"pressure", 1, pressure}};
   auto t0 = Clock::now();
   voxspan::VdbSnapshotReport r = voxspan::write_vdb_snapshot(
       folder / "snap.vdb", {scene.boundary, scene.cells(), attributes, 0, 0}, {});

@@ -1,9 +1,10 @@
 // dambreak - a WCSPH dam break (sph.h) that calls the in-situ adapter every step, as a real
 // solver would: its fluid arrays (SoA, cell order) and its compact neighbour grid go to the
-// adapter as views, without a copy.
+// adapter as views, without a copy. With --config the in-situ runtime renders and writes what
+// the YAML file asks (docs/runtime.md); without it the adapter only classifies.
 //
-//   dambreak [--particles N] [--steps S | --until T] [--render-every K] [--threads P]
-//            [--progress-every K] [--depth-particles D] [--validate] [--no-render]
+//   dambreak [--config FILE] [--particles N] [--steps S | --until T] [--render-every K]
+//            [--threads P] [--progress-every K] [--depth-particles D] [--validate] [--no-render]
 #include <tbb/global_control.h>
 
 #include <chrono>
@@ -22,6 +23,7 @@ namespace {
 
 struct Options {
   dambreak::Config config;
+  std::string insitu_config;  // YAML file of the in-situ runtime; empty: classification only
   long steps = 1000;
   double until = 0;  // non-dimensional end time; 0: use steps
   long render_every = 10;
@@ -33,6 +35,8 @@ struct Options {
 void usage() {
   std::puts(
       "usage: dambreak [options]\n"
+      "  --config FILE        in-situ runtime config (YAML: views, triggers, outputs); its\n"
+      "                       triggers replace --render-every\n"
       "  --particles N        fluid particles (10000 to several million; default 100000)\n"
       "  --steps S            time steps to run (default 1000)\n"
       "  --until T            run until Martin & Moyce's T = t sqrt(2g/a) instead\n"
@@ -65,7 +69,8 @@ bool parse(int argc, char** argv, Options& o) {
       }
       return v;
     };
-    if (a == "--particles") o.config.particles = std::size_t(number("--particles", 8, 1e9));
+    if (a == "--config") o.insitu_config = value("--config");
+    else if (a == "--particles") o.config.particles = std::size_t(number("--particles", 8, 1e9));
     else if (a == "--steps") o.steps = long(number("--steps", 0, 1e12));
     else if (a == "--until") o.until = number("--until", 0, 1e6);
     else if (a == "--render-every") o.render_every = long(number("--render-every", 1, 1e12));
@@ -120,9 +125,12 @@ int main(int argc, char** argv) {
   ao.classify.attributes = {"velocity", "density"};
   std::unique_ptr<voxspan::Adapter> adapter;
   try {
-    adapter = std::make_unique<voxspan::Adapter>(ao);
+    adapter = o.insitu_config.empty()
+                  ? std::make_unique<voxspan::Adapter>(ao)
+                  : std::make_unique<voxspan::Adapter>(
+                        voxspan::Adapter::from_config_file(o.insitu_config, ao));
   } catch (const voxspan::Error& e) {
-    std::fprintf(stderr, "dambreak: adapter: %s\n", e.what());
+    std::fprintf(stderr, "dambreak: %s\n", e.what());
     return 1;
   }
 
@@ -133,6 +141,7 @@ int main(int argc, char** argv) {
   for (long step = 1;; ++step) {
     if (o.until > 0 ? sim.nondimensional_time() >= o.until : step > o.steps) break;
     sim.step();
+    const bool final_step = o.until > 0 ? sim.nondimensional_time() >= o.until : step == o.steps;
 
     const dambreak::Fluid& f = sim.fluid();
     const auto particles = voxspan::ParticleView::soa(f.x.data(), f.y.data(), f.z.data(), f.size())
@@ -141,7 +150,9 @@ int main(int argc, char** argv) {
     const auto grid = voxspan::GridView::offsets(adapter_geometry(sim.fluid_grid().shape()),
                                                  sim.fluid_grid().offsets().data());
     const auto ta = Clock::now();
-    if (!adapter->execute(step, sim.time(), particles, grid).ok()) ++failed;
+    const voxspan::Status status = final_step ? adapter->execute_last(step, sim.time(), particles, grid)
+                                              : adapter->execute(step, sim.time(), particles, grid);
+    if (!status.ok()) ++failed;
     adapter_seconds += std::chrono::duration<double>(Clock::now() - ta).count();
 
     if (o.progress_every > 0 && step % o.progress_every == 0) {
@@ -150,11 +161,11 @@ int main(int argc, char** argv) {
       const dambreak::Diagnostics d = sim.diagnostics();
       const voxspan::StepStats& st = adapter->last_stats();
       std::printf("step %6ld  t %.4f s  T %.3f  dt %.3g s  front x/a %.3f  max|drho|/rho0 %.2f%%  "
-                  "%.3g particles/s  boundary %zu of %zu\n",
+                  "%.3g particles/s  boundary %zu of %zu  in situ %.1f s (%lld render steps)\n",
                   step, sim.time(), sim.nondimensional_time(), sim.dt(),
                   d.front / o.config.column_width, 100 * d.max_density_error,
                   double(f.size()) * double(step - last_step) / wall, st.counts.boundary,
-                  st.counts.particles);
+                  st.counts.particles, adapter_seconds, static_cast<long long>(adapter->render_steps()));
       std::fflush(stdout);
       if (d.nonfinite > 0) {
         std::fprintf(stderr, "dambreak: %zu particles became NaN at step %ld\n", d.nonfinite, step);
@@ -164,12 +175,22 @@ int main(int argc, char** argv) {
       last_step = step;
     }
   }
+  const auto t_finish = Clock::now();
+  adapter->finish();  // the files still being written
+  const double finish_seconds = std::chrono::duration<double>(Clock::now() - t_finish).count();
   const double total = std::chrono::duration<double>(Clock::now() - t0).count();
+  const double solver = total - adapter_seconds - finish_seconds;
   const long steps = long(sim.steps());
   std::printf("dambreak: %ld steps to t %.4f s (T %.3f) in %.2f s: %.3g particle-steps/s; "
               "adapter %.2f s (%ld render steps, %ld failed)\n",
               steps, sim.time(), sim.nondimensional_time(), total,
-              steps > 0 ? double(sim.fluid().size()) * double(steps) / total : 0.0, adapter_seconds,
-              long(adapter->render_steps()), failed);
+              steps > 0 ? double(sim.fluid().size()) * double(steps) / solver : 0.0,
+              adapter_seconds, long(adapter->render_steps()), failed);
+  std::printf("time: solver %.1f s, in situ %.1f s on the solver's thread (%.1f %% of the "
+              "solver's time) + %.1f s waiting for the last files\n",
+              solver, adapter_seconds, solver > 0 ? 100 * adapter_seconds / solver : 0.0,
+              finish_seconds);
+  if (const std::string summary = adapter->summary(); !summary.empty())
+    std::printf("in situ: %s\n", summary.c_str());
   return failed > 0 ? 1 : 0;
 }

@@ -9,6 +9,13 @@
 //     adapter.execute(step, time, ParticleView::soa(x, y, z, n), GridView::offsets(g, offsets));
 //   }
 //
+// Or with the in-situ runtime behind it, configured by a YAML file (docs/runtime.md): views,
+// triggers, PNG frames, stats, OpenVDB and VTK snapshots:
+//
+//   voxspan::Adapter adapter = voxspan::Adapter::from_config_file("insitu.yaml", options);
+//   for (step...) adapter.execute(step, time, particles, grid);   // last: execute_last(...)
+//   adapter.finish();                                               // waits for the files
+//
 // execute() never throws into the solver and costs nothing on a step that is not a render
 // step (no allocation, no pass over the particles). On a render step it classifies the cells,
 // compacts the boundary particles (voxspan/classify.h) and hands them, with the cell states
@@ -78,12 +85,30 @@ class Pipeline {
   // A render step's data. Exceptions are caught and reported as pipeline_failed; a returned
   // error status is passed on as it is.
   virtual Status process(const StepData& data, const StepStats& stats) = 0;
+  // The solver says `step` is its last (Adapter::execute_last), before asking wants_step for
+  // it: triggers with `last` fire on it.
+  virtual void mark_last_step(std::int64_t /*step*/) {}
+  // Completes what is pending (files still being written). Called by Adapter::finish() and
+  // when the adapter goes; a second call does nothing.
+  virtual void finish() {}
+  // What the pipeline did, in a line for the solver's terminal (frames, files, time).
+  virtual std::string summary() const { return {}; }
 };
 
 class Adapter {
  public:
   // Throws voxspan::Error naming the bad option (e.g. no spacing and no full count).
   explicit Adapter(AdapterOptions options);
+  // An adapter with the in-situ runtime behind it, configured by a YAML file (docs/runtime.md).
+  // The config's triggers decide the render steps (options.render_every is set to 1); its
+  // classification section overrides the options it sets; the attributes its snapshots ask
+  // for are added to options.classify.attributes. Everything that can fail before step 1
+  // throws voxspan::Error here, naming the problem: an unknown key or bad value (with the file
+  // and line), an output folder that cannot be written, no usable GL platform, a pass that
+  // does not compile.
+  static Adapter from_config_file(const std::string& path, AdapterOptions options);
+  static Adapter from_config_text(const std::string& yaml, AdapterOptions options,
+                                  const std::string& source_name = "<config>");
   ~Adapter();
   Adapter(const Adapter&) = delete;
   Adapter& operator=(const Adapter&) = delete;
@@ -96,6 +121,17 @@ class Adapter {
   // are logged (voxspan/log.h) and returned.
   Status execute(std::int64_t step, double time, const ParticleView& particles,
                  const GridView& grid = GridView()) noexcept;
+
+  // execute() for the solver's last step: the triggers with `last: true` fire on it.
+  Status execute_last(std::int64_t step, double time, const ParticleView& particles,
+                      const GridView& grid = GridView()) noexcept;
+  // Waits for the pipeline's pending work (files being written); the destructor does it too.
+  void finish() noexcept;
+  // The pipeline's summary line (empty without a pipeline).
+  std::string summary() const;
+  std::shared_ptr<Pipeline> pipeline() const;
+  // Wall time of all render steps (classification, compaction and the pipeline), seconds.
+  double seconds_in_situ() const;
 
   // Whether execute(step, time, ...) would do any work.
   bool is_render_step(std::int64_t step, double time) const noexcept;

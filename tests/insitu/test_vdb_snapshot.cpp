@@ -53,7 +53,7 @@ TEST_F(VdbSnapshot, LevelSetHoldsTheWholeFluidFromItsBoundaryParticles) {
     pressure[i] = scene.boundary[i].z * 1000.f;
     velocity[3 * i] = 1, velocity[3 * i + 2] = scene.boundary[i].x;
   }
-  std::vector<AttributeView> attributes = {{"pressure", 1, pressure}, {"velocity", 3, velocity}};
+  std::vector<AttributeSpan> attributes = {{"pressure", 1, pressure}, {"velocity", 3, velocity}};
   VdbSnapshotInput input{scene.boundary, scene.cells(), attributes, 40, 0.125};
   VdbSnapshotReport report = write_vdb_snapshot(dir / "snap.vdb", input, VdbSnapshotSettings{});
   EXPECT_FLOAT_EQ(float(report.voxel_size), float(kDx / 2));  // the radius
@@ -177,7 +177,7 @@ TEST_F(VdbSnapshot, BadParticlesAreCountedAndEmptyInputStillWritesAFile) {
 
 TEST_F(VdbSnapshot, InspectorListsGridsAndRendersTheLevelSet) {
   std::vector<float> density(scene.boundary.size(), 1000.f);
-  std::vector<AttributeView> attributes = {{"density", 1, density}};
+  std::vector<AttributeSpan> attributes = {{"density", 1, density}};
   write_vdb_snapshot(dir / "i.vdb", {scene.boundary, scene.cells(), attributes, 7, 0.5}, {});
   VdbFileSummary s = inspect_vdb(dir / "i.vdb");
   ASSERT_EQ(s.grids.size(), 3u);

@@ -24,7 +24,7 @@ TEST(VtkFiles, ParticlesOpenWithVtkWithRadiusAndAttributes) {
   std::vector<ParticleSphere> p = {{0, 0, 0, 0.5f}, {1, 2, 3, 0.25f}, {-1, 0.5f, 2, 1}};
   std::vector<float> pressure = {10, 20, 30};
   std::vector<float> velocity = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-  std::vector<AttributeView> attributes = {{"pressure", 1, pressure}, {"velocity", 3, velocity}};
+  std::vector<AttributeSpan> attributes = {{"pressure", 1, pressure}, {"velocity", 3, velocity}};
   write_vtp(dir / "p.vtp", p, attributes);
   EXPECT_EQ(test::count_temp_files(dir.path()), 0u);
 
@@ -60,7 +60,7 @@ TEST(VtkFiles, ParticlesOpenWithVtkWithRadiusAndAttributes) {
 TEST(VtkFiles, MismatchedAttributesAreRefused) {
   std::vector<ParticleSphere> p(2);
   std::vector<float> few = {1};
-  std::vector<AttributeView> attributes = {{"density", 1, few}};
+  std::vector<AttributeSpan> attributes = {{"density", 1, few}};
   try {
     vtp_document(p, attributes);
     FAIL();
