@@ -69,6 +69,21 @@ void require(const void* p, const char* what) {
   if (!p) throw voxspan::make_error(what, " is NULL");
 }
 
+voxspan::AdapterOptions adapter_options(const voxspan_adapter_options* o) {
+  require(o, "options");
+  voxspan::AdapterOptions options;
+  options.render_every = o->render_every;
+  voxspan::ClassifyOptions& c = options.classify;
+  c.particle_spacing = o->particle_spacing;
+  c.full_count = o->full_count;
+  c.full_fraction = o->full_fraction;
+  c.radius = o->particle_radius;
+  c.cell_size = o->cell_size;
+  c.validate = o->validate != 0;
+  c.include_ghosts = o->include_ghosts != 0;
+  return options;
+}
+
 voxspan::ScalarType scalar_type(int type) {
   if (type == VOXSPAN_FLOAT32) return voxspan::ScalarType::float32;
   if (type == VOXSPAN_FLOAT64) return voxspan::ScalarType::float64;
@@ -123,6 +138,19 @@ voxspan_particles::Attribute& attribute_slot(voxspan_particles* p, const char* n
   return p->attributes.back();
 }
 
+int execute_step(const char* function, voxspan_adapter* a, int64_t step, double time,
+                 const voxspan_particles* particles, const voxspan_grid* grid, bool last) {
+  return guarded(function, [&] {
+    require(a, "adapter");
+    require(particles, "particles");
+    const voxspan::ParticleView view = particles->build();
+    const voxspan::GridView g = grid ? grid->view : voxspan::GridView();
+    const voxspan::Status s = last ? a->adapter->execute_last(step, time, view, g)
+                                   : a->adapter->execute(step, time, view, g);
+    return s.ok() ? VOXSPAN_OK : fail(static_cast<int>(s.code), s.message);
+  });
+}
+
 }  // namespace
 
 extern "C" {
@@ -148,22 +176,51 @@ void voxspan_adapter_options_init(voxspan_adapter_options* o) {
 voxspan_adapter* voxspan_adapter_create(const voxspan_adapter_options* o) {
   voxspan_adapter* result = nullptr;
   guarded("voxspan_adapter_create", [&] {
-    require(o, "options");
     auto a = std::make_unique<voxspan_adapter>();
-    a->options.render_every = o->render_every;
-    voxspan::ClassifyOptions& c = a->options.classify;
-    c.particle_spacing = o->particle_spacing;
-    c.full_count = o->full_count;
-    c.full_fraction = o->full_fraction;
-    c.radius = o->particle_radius;
-    c.cell_size = o->cell_size;
-    c.validate = o->validate != 0;
-    c.include_ghosts = o->include_ghosts != 0;
+    a->options = adapter_options(o);
     a->adapter = std::make_unique<voxspan::Adapter>(a->options);
     result = a.release();
     return VOXSPAN_OK;
   });
   return result;
+}
+
+voxspan_adapter* voxspan_adapter_create_from_config(const voxspan_adapter_options* o,
+                                                    const char* config_path) {
+  voxspan_adapter* result = nullptr;
+  guarded("voxspan_adapter_create_from_config", [&] {
+    require(config_path, "config path");
+    auto a = std::make_unique<voxspan_adapter>();
+    a->adapter = std::make_unique<voxspan::Adapter>(
+        voxspan::Adapter::from_config_file(config_path, adapter_options(o)));
+    a->options = a->adapter->options();
+    result = a.release();
+    return VOXSPAN_OK;
+  });
+  return result;
+}
+
+int voxspan_adapter_finish(voxspan_adapter* a) {
+  return guarded("voxspan_adapter_finish", [&] {
+    require(a, "adapter");
+    a->adapter->finish();
+    return VOXSPAN_OK;
+  });
+}
+
+size_t voxspan_adapter_summary(const voxspan_adapter* a, char* buffer, size_t size) {
+  std::string summary;
+  try {
+    if (a) summary = a->adapter->summary();
+  } catch (...) {
+    summary.clear();
+  }
+  if (buffer && size > 0) {
+    const size_t n = summary.size() < size - 1 ? summary.size() : size - 1;
+    summary.copy(buffer, n);
+    buffer[n] = '\0';
+  }
+  return summary.size();
 }
 
 void voxspan_adapter_destroy(voxspan_adapter* adapter) { delete adapter; }
@@ -175,6 +232,7 @@ int voxspan_adapter_add_attribute(voxspan_adapter* a, const char* name) {
     voxspan::AdapterOptions options = a->options;
     options.classify.attributes.push_back(name);
     auto replacement = std::make_unique<voxspan::Adapter>(options);  // checks the name
+    replacement->set_pipeline(a->adapter->pipeline());               // the runtime stays
     a->options = std::move(options);
     a->adapter = std::move(replacement);
     return VOXSPAN_OK;
@@ -183,13 +241,12 @@ int voxspan_adapter_add_attribute(voxspan_adapter* a, const char* name) {
 
 int voxspan_adapter_execute(voxspan_adapter* a, int64_t step, double time,
                             const voxspan_particles* particles, const voxspan_grid* grid) {
-  return guarded("voxspan_adapter_execute", [&] {
-    require(a, "adapter");
-    require(particles, "particles");
-    const voxspan::Status s =
-        a->adapter->execute(step, time, particles->build(), grid ? grid->view : voxspan::GridView());
-    return s.ok() ? VOXSPAN_OK : fail(static_cast<int>(s.code), s.message);
-  });
+  return execute_step("voxspan_adapter_execute", a, step, time, particles, grid, false);
+}
+
+int voxspan_adapter_execute_last(voxspan_adapter* a, int64_t step, double time,
+                                 const voxspan_particles* particles, const voxspan_grid* grid) {
+  return execute_step("voxspan_adapter_execute_last", a, step, time, particles, grid, true);
 }
 
 int voxspan_adapter_is_render_step(const voxspan_adapter* a, int64_t step, double time) {

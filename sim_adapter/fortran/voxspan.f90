@@ -70,6 +70,29 @@ module voxspan
       type(c_ptr) :: adapter
     end function
 
+    ! The in-situ runtime, configured by a YAML file; config_path is a NUL-terminated string:
+    ! voxspan_adapter_create_from_config(opt, "insitu.yaml" // c_null_char).
+    function voxspan_adapter_create_from_config(options, config_path) bind(C) result(adapter)
+      import :: voxspan_adapter_options, c_ptr, c_char
+      type(voxspan_adapter_options), intent(in) :: options
+      character(kind=c_char), dimension(*), intent(in) :: config_path
+      type(c_ptr) :: adapter
+    end function
+
+    function voxspan_adapter_execute_last(adapter, step, time, particles, grid) bind(C) result(rc)
+      import :: c_ptr, c_int64_t, c_double, c_int
+      type(c_ptr), value :: adapter, particles, grid
+      integer(c_int64_t), value :: step
+      real(c_double), value :: time
+      integer(c_int) :: rc
+    end function
+
+    function voxspan_adapter_finish(adapter) bind(C) result(rc)
+      import :: c_ptr, c_int
+      type(c_ptr), value :: adapter
+      integer(c_int) :: rc
+    end function
+
     subroutine voxspan_adapter_destroy(adapter) bind(C)
       import :: c_ptr
       type(c_ptr), value :: adapter

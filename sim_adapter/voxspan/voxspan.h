@@ -16,6 +16,11 @@
  *     voxspan_grid_set_offsets(g, origin, cell_size, dims, VOXSPAN_INT32, offsets);
  *     voxspan_adapter_execute(a, step, time, p, g);            (g may be NULL: no grid)
  *
+ * With the in-situ runtime (rendering and files as a YAML config says, docs/runtime.md):
+ *   voxspan_adapter* a = voxspan_adapter_create_from_config(&o, "insitu.yaml");
+ *   ... voxspan_adapter_execute(...) every step, voxspan_adapter_execute_last(...) on the last;
+ *   voxspan_adapter_finish(a);                                  (waits for the files)
+ *
  * Fortran: every function takes plain values or pointers (bind(C) interfaces with c_ptr,
  * c_int, c_int64_t, c_size_t, c_double); the options and stats structs hold only those types.
  * Pointers handed to the particle and grid handles are not copied: they must stay valid until
@@ -84,12 +89,26 @@ typedef struct voxspan_grid voxspan_grid;
 void voxspan_adapter_options_init(voxspan_adapter_options* options);
 /* NULL when the options are invalid (message in voxspan_last_error()). */
 voxspan_adapter* voxspan_adapter_create(const voxspan_adapter_options* options);
+/* An adapter with the in-situ runtime behind it, configured by the YAML file at config_path:
+ * its triggers decide the render steps (options->render_every is ignored). NULL when the
+ * config, an output folder, the GL platform or the renderer cannot work; the message (naming
+ * the key and line of a bad config) is in voxspan_last_error(). */
+voxspan_adapter* voxspan_adapter_create_from_config(const voxspan_adapter_options* options,
+                                                    const char* config_path);
+/* Waits for pending outputs (files being written); destroy does it too. */
+int voxspan_adapter_finish(voxspan_adapter* adapter);
+/* Copies the pipeline's summary line into buffer (NUL-terminated, cut to size); returns its
+ * full length ("" without a pipeline). */
+size_t voxspan_adapter_summary(const voxspan_adapter* adapter, char* buffer, size_t size);
 void voxspan_adapter_destroy(voxspan_adapter* adapter);
 /* Compacts the named particle attribute beside the boundary particles. */
 int voxspan_adapter_add_attribute(voxspan_adapter* adapter, const char* name);
 /* The per-step call; grid may be NULL (the adapter sorts the particles itself). */
 int voxspan_adapter_execute(voxspan_adapter* adapter, int64_t step, double time,
                             const voxspan_particles* particles, const voxspan_grid* grid);
+/* The solver's last step: as execute, and the triggers with `last` fire on it. */
+int voxspan_adapter_execute_last(voxspan_adapter* adapter, int64_t step, double time,
+                                 const voxspan_particles* particles, const voxspan_grid* grid);
 int voxspan_adapter_is_render_step(const voxspan_adapter* adapter, int64_t step, double time);
 int voxspan_adapter_stats(const voxspan_adapter* adapter, voxspan_step_stats* stats);
 /* The latest render step's boundary particles: packed x, y, z, radius floats; returns the

@@ -1,0 +1,235 @@
+// Bad input at the integration level, through the shared library: what a user gets wrong at
+// start-up is one clear error before step 1; what goes wrong mid-run (a full disk, a writer
+// that cannot keep up) never stops the solver, is reported once, and leaves no partial file
+// under a final name. The runs that fill a disk happen in a child process (a private tmpfs, or
+// a file-size limit), which also makes its own GL context.
+#include <gtest/gtest.h>
+#include <sched.h>
+#include <signal.h>
+#include <sys/mount.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+
+#include "child_process.h"
+#include "dambreak_run.h"
+#include "log_capture.h"
+#include "output_files.h"
+#include "temp_folder.h"
+#include "voxspan/adapter.h"
+#include "voxspan/error.h"
+#include "voxspan/voxspan.h"
+
+namespace voxspan {
+namespace {
+
+std::string start_error(const std::string& yaml) {
+  dambreak::DamBreak sim(test::small_dambreak());
+  try {
+    Adapter adapter = Adapter::from_config_text(yaml, test::solver_options(sim), "run.yaml");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(StartUp, UnknownConfigKeyIsNamedWithItsLine) {
+  const std::string e = start_error("output_folder: /tmp\nviews:\n  - name: front\n    shadng: opaque\n");
+  EXPECT_NE(e.find("run.yaml:4:5: views[0].shadng: unknown key (did you mean 'shading'?)"),
+            std::string::npos) << e;
+}
+
+TEST(StartUp, UnknownConfigKeyThroughTheCApi) {
+  test::TempFolder dir;
+  const std::filesystem::path file = dir / "insitu.yaml";
+  std::ofstream(file) << "trigger: {every_steps: 10}\nwriter:\n  queue_sise: 4\n";
+  voxspan_adapter_options o;
+  voxspan_adapter_options_init(&o);
+  o.particle_spacing = 0.01;
+  voxspan_adapter* a = voxspan_adapter_create_from_config(&o, file.c_str());
+  EXPECT_EQ(a, nullptr);
+  const std::string e = voxspan_last_error();
+  EXPECT_NE(e.find(file.string() + ":3:3: writer.queue_sise: unknown key (did you mean "
+                   "'queue_size'?)"), std::string::npos) << e;
+  voxspan_adapter_destroy(a);
+}
+
+TEST(StartUp, OutputFolderThatCannotBeWrittenFailsBeforeStepOne) {
+  test::TempFolder dir;
+  std::ofstream(dir / "a-file") << "x";
+  // A folder under a regular file, and a folder in /proc: neither can exist (root included).
+  std::string e = start_error("output_folder: " + (dir / "a-file").string() + "/run\n");
+  EXPECT_NE(e.find("cannot use outputs.png folder " + (dir / "a-file").string() + "/run/frames"),
+            std::string::npos) << e;
+  e = start_error("outputs:\n  vdb: {enabled: true, folder: /proc/voxspan-snapshots}\n"
+                  "output_folder: " + (dir / "ok").string() + "\n");
+  EXPECT_NE(e.find("cannot use outputs.vdb folder /proc/voxspan-snapshots"), std::string::npos) << e;
+}
+
+// --- a disk that fills mid-run ----------------------------------------------------------
+
+std::map<std::string, std::string> parse_report(const std::string& text) {
+  std::map<std::string, std::string> m;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    const auto eq = line.find('=');
+    if (eq != std::string::npos) m[line.substr(0, eq)] = line.substr(eq + 1);
+  }
+  return m;
+}
+
+// In the child: 30 steps with frames every 5 steps, snapshots every 10 (about 650 KiB each at
+// this size: the 1 MiB tmpfs takes the first and is full at the second), then what the folder
+// holds: files under final names that are incomplete, temporaries, error messages.
+std::string run_and_inspect(const std::filesystem::path& folder) {
+  test::LogCapture log;
+  dambreak::DamBreak sim(test::small_dambreak());
+  const std::string yaml = "output_folder: " + folder.string() + R"(
+trigger: {every_steps: 5, last: true}
+views:
+  - {name: a, width: 200, height: 120}
+  - {name: b, width: 200, height: 120, camera: {direction: [1, 1, -0.5]}}
+outputs:
+  vdb: {enabled: true, trigger: {every_steps: 10}, attributes: [velocity, density]}
+  vtk: {enabled: true, trigger: {every_steps: 10}}
+)";
+  std::ostringstream r;
+  {
+    Adapter adapter = Adapter::from_config_text(yaml, test::solver_options(sim), "disk.yaml");
+    const test::RunResult run = test::run_dambreak(sim, adapter, 30);
+    r << "steps=" << run.steps << "\nfailed=" << run.failed << "\n";
+    r << "summary=" << adapter.summary() << "\n";
+  }
+  std::size_t write_errors = 0;
+  for (const std::string& m : log.at(LogLevel::error)) write_errors += m.find("not written") != std::string::npos;
+  r << "write_errors=" << write_errors << "\n";
+  const auto errors = log.at(LogLevel::error);
+  r << "first_error=" << (errors.empty() ? "" : errors[0]) << "\n";
+  r << "temporaries=" << test::temporaries_under(folder).size() << "\n";
+  std::size_t finals = 0, broken = 0;
+  for (const std::string& name : test::files_in(folder / "frames")) {
+    ++finals;
+    broken += !test::read_png_file(folder / "frames" / name).ok;
+  }
+  for (const std::string& name : test::files_in(folder / "snapshots")) {
+    ++finals;
+    broken += !test::read_vdb(folder / "snapshots" / name).ok;
+  }
+  for (const std::string& name : test::files_in(folder / "vtk")) {
+    ++finals;
+    if (name.ends_with(".vtp")) broken += !test::read_vtp(folder / "vtk" / name).ok;
+    if (name.ends_with(".vti")) broken += !test::read_vti(folder / "vtk" / name).ok;
+  }
+  bool complete = false;
+  for (const std::string& line : test::read_lines(folder / "stats.jsonl", &complete))
+    broken += line.rfind("{\"step\":", 0) != 0 || line.back() != '}';
+  broken += !complete;
+  r << "finals=" << finals << "\nbroken=" << broken << "\n";
+  return r.str();
+}
+
+void expect_run_went_on(const std::map<std::string, std::string>& r, const std::string& why) {
+  std::printf("%s\n%s\n", r.at("summary").c_str(), r.at("first_error").c_str());
+  EXPECT_EQ(r.at("steps"), "30");   // the solver never stopped
+  EXPECT_EQ(r.at("failed"), "0");   // writes are the writer's: no step failed for them
+  EXPECT_EQ(r.at("write_errors"), "1") << r.at("first_error");  // reported once
+  EXPECT_NE(r.at("first_error").find(why), std::string::npos) << r.at("first_error");
+  EXPECT_NE(r.at("summary").find("files failed"), std::string::npos) << r.at("summary");
+  EXPECT_EQ(r.at("temporaries"), "0");
+  EXPECT_EQ(r.at("broken"), "0");  // no partial file under a final name
+  EXPECT_GT(std::stoi(r.at("finals")), 0);  // the disk took some files before it filled
+}
+
+TEST(MidRun, DiskFillsUp) {
+  test::TempFolder dir;
+  const std::filesystem::path mount_point = dir / "small";
+  std::filesystem::create_directories(mount_point);
+  const std::string report = test::run_in_child([&]() -> std::string {
+    const bool root = ::geteuid() == 0;
+    const uid_t uid = ::geteuid();
+    const gid_t gid = ::getegid();
+    if (::unshare(root ? CLONE_NEWNS : (CLONE_NEWUSER | CLONE_NEWNS)) != 0) return "skip=unshare\n";
+    if (!root) {
+      std::ofstream("/proc/self/setgroups") << "deny";
+      std::ofstream("/proc/self/uid_map") << "0 " << uid << " 1";
+      std::ofstream("/proc/self/gid_map") << "0 " << gid << " 1";
+    }
+    if (::mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0) return "skip=private\n";
+    if (::mount("tmpfs", mount_point.c_str(), "tmpfs", 0, "size=1m") != 0) return "skip=mount\n";
+    return run_and_inspect(mount_point);
+  });
+  const auto r = parse_report(report);
+  if (r.count("skip")) GTEST_SKIP() << "no tmpfs mount in a namespace here (" << r.at("skip") << ")";
+  ASSERT_TRUE(r.count("steps")) << report;
+  expect_run_went_on(r, "No space left on device");
+}
+
+TEST(MidRun, FileSizeLimitFailsTheLargeFiles) {
+  test::TempFolder dir;
+  const std::string report = test::run_in_child([&]() -> std::string {
+    ::signal(SIGXFSZ, SIG_IGN);  // write(2) returns EFBIG instead of killing the process
+    const struct rlimit limit {48 << 10, 48 << 10};
+    if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) return "skip=setrlimit\n";
+    return run_and_inspect(dir.path());
+  });
+  const auto r = parse_report(report);
+  ASSERT_FALSE(r.count("skip")) << report;
+  ASSERT_TRUE(r.count("steps")) << report;
+  expect_run_went_on(r, "File too large");
+}
+
+// --- a writer queue that overflows ------------------------------------------------------
+
+std::int64_t number_before(const std::string& text, const std::string& what) {
+  std::smatch m;
+  return std::regex_search(text, m, std::regex("([0-9]+) " + what)) ? std::stoll(m[1]) : -1;
+}
+
+TEST(MidRun, WriterQueueOverflowDropsCountsAndWarns) {
+  test::TempFolder dir;
+  test::LogCapture log;
+  dambreak::DamBreak sim(test::small_dambreak());
+  // Five files a step (two frames, a snapshot, VTK files, a stats line) into a queue of one,
+  // each synced to disk: the writer cannot keep up, and `drop` must not make the solver wait.
+  const std::string yaml = "output_folder: " + dir.path().string() + R"(
+trigger: {every_steps: 1}
+views:
+  - {name: a, width: 96, height: 64}
+  - {name: b, width: 96, height: 64, shading: opaque}
+outputs:
+  vdb: {enabled: true, trigger: {every_steps: 1}}
+  vtk: {enabled: true, trigger: {every_steps: 1}}
+writer: {queue_size: 1, when_full: drop, fsync: true}
+)";
+  const int steps = 12;
+  std::string summary;
+  {
+    Adapter adapter = Adapter::from_config_text(yaml, test::solver_options(sim), "drop.yaml");
+    const test::RunResult run = test::run_dambreak(sim, adapter, steps);
+    EXPECT_EQ(run.steps, steps);
+    EXPECT_EQ(run.failed, 0) << run.first_failure;
+    summary = adapter.summary();
+  }
+  const std::int64_t dropped = number_before(summary, "files dropped");
+  ASSERT_GT(dropped, 0) << summary;
+  // Every file is either written or counted as dropped: 5 a step.
+  const std::int64_t written = number_before(summary, "PNG") + number_before(summary, "VDB") +
+                               number_before(summary, "VTK sets") +
+                               number_before(summary, "stats lines");
+  EXPECT_EQ(written + dropped, 5 * steps) << summary;
+  bool warned = false;
+  for (const std::string& m : log.at(LogLevel::warning))
+    warned = warned || m.find("writer queue full (1 jobs): dropped") != std::string::npos;
+  EXPECT_TRUE(warned) << log.all();
+  EXPECT_TRUE(test::temporaries_under(dir.path()).empty());
+  for (const std::string& name : test::files_in(dir / "frames"))
+    EXPECT_TRUE(test::read_png_file(dir / "frames" / name).ok) << name;
+}
+
+}  // namespace
+}  // namespace voxspan
