@@ -125,6 +125,7 @@ struct InsituPipeline::Impl {
         renderer.render(v.settings, camera, v.framing.box(), data.boundary, data.cells, timer,
                         v.stats, image);
         timer.collect(v.stats);
+        for (const FrameStats::Pass& pass : v.stats.passes) totals.passes.add_time(pass.name, pass.ms);
         ++totals.frames;
       } catch (const std::exception& e) {
         timer.collect(v.stats);  // closes the scopes of the failed frame

@@ -20,6 +20,7 @@
 #include <string>
 
 #include "insitu/config.h"
+#include "insitu/stats.h"
 #include "insitu/step_outputs.h"
 #include "voxspan/adapter.h"
 
@@ -34,6 +35,7 @@ struct PipelineTotals {
   double seconds_render = 0;   // solver's thread: framing, rendering, read-back
   double seconds_outputs = 0;  // solver's thread: copies into job slots, submits (and waits)
   double seconds_process = 0;  // solver's thread: all of process()
+  StatsSection passes;         // milliseconds per pass, summed over all views and steps
   OutputCounts written;        // files complete on disk
   WriterStats writer;
 };
