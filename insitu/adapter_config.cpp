@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <memory>
 
-#include "insitu/config.h"
+#include "insitu/adapter_config.h"
+
 #include "insitu/insitu_pipeline.h"
-#include "voxspan/adapter.h"
 
 namespace voxspan {
 namespace {
@@ -17,7 +17,9 @@ void add_attributes(std::vector<std::string>& to, const OutputCommon& output,
     if (std::find(to.begin(), to.end(), n) == to.end()) to.push_back(n);
 }
 
-Adapter with_pipeline(const Config& config, AdapterOptions options) {
+}  // namespace
+
+AdapterOptions adapter_options_for(const Config& config, AdapterOptions options) {
   options.render_every = 1;  // the config's triggers decide
   ClassifyOptions& c = options.classify;
   if (config.classification.particle_spacing) c.particle_spacing = *config.classification.particle_spacing;
@@ -25,20 +27,23 @@ Adapter with_pipeline(const Config& config, AdapterOptions options) {
   c.validate = c.validate || config.classification.validate_grid;
   add_attributes(c.attributes, config.outputs.vdb, config.outputs.vdb.attributes);
   add_attributes(c.attributes, config.outputs.vtk, config.outputs.vtk.attributes);
-  Adapter adapter(options);  // checks the options before the (slower) GL start-up
-  adapter.set_pipeline(std::make_shared<InsituPipeline>(config, c.particle_spacing));
+  return options;
+}
+
+Adapter make_insitu_adapter(const Config& config, AdapterOptions options) {
+  Adapter adapter(adapter_options_for(config, std::move(options)));  // checked before GL
+  adapter.set_pipeline(
+      std::make_shared<InsituPipeline>(config, adapter.options().classify.particle_spacing));
   return adapter;
 }
 
-}  // namespace
-
 Adapter Adapter::from_config_file(const std::string& path, AdapterOptions options) {
-  return with_pipeline(load_config_file(path), std::move(options));
+  return make_insitu_adapter(load_config_file(path), std::move(options));
 }
 
 Adapter Adapter::from_config_text(const std::string& yaml, AdapterOptions options,
                                   const std::string& source_name) {
-  return with_pipeline(load_config_string(yaml, source_name), std::move(options));
+  return make_insitu_adapter(load_config_string(yaml, source_name), std::move(options));
 }
 
 }  // namespace voxspan

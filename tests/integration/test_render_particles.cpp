@@ -1,0 +1,127 @@
+// The offline renderer (tools/render_particles) on small particle files: a CSV block with
+// attributes and an XYZ file with a broken particle, rendered with a YAML config the way an
+// in-situ run renders; and its errors on a missing file and a bad option.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+
+#include "output_files.h"
+#include "temp_folder.h"
+
+namespace voxspan {
+namespace {
+
+struct ToolRun {
+  int status = -1;
+  std::string out, err;
+};
+
+ToolRun run_tool(const std::filesystem::path& dir, const std::string& arguments) {
+  const std::string command = std::string(RENDER_PARTICLES_EXE) + " " + arguments + " >" +
+                              (dir / "stdout.txt").string() + " 2>" + (dir / "stderr.txt").string();
+  ToolRun r;
+  const int raw = std::system(command.c_str());
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream out(dir / "stdout.txt"), err(dir / "stderr.txt");
+  r.out.assign(std::istreambuf_iterator<char>(out), {});
+  r.err.assign(std::istreambuf_iterator<char>(err), {});
+  return r;
+}
+
+// A 14^3 block at spacing 1 cm (2744 particles) with a velocity and a pressure column.
+void write_block_csv(const std::filesystem::path& path) {
+  std::ofstream f(path);
+  f << "x,y,z,vx,vy,vz,pressure\n";
+  for (int k = 0; k < 14; ++k)
+    for (int j = 0; j < 14; ++j)
+      for (int i = 0; i < 14; ++i)
+        f << (i + 0.5) * 0.01 << ',' << (j + 0.5) * 0.01 << ',' << (k + 0.5) * 0.01 << ',' << i
+          << ",0,0," << k << '\n';
+}
+
+// The same block, shifted, as XYZ with a radius column, and one particle at NaN.
+void write_block_xyz(const std::filesystem::path& path) {
+  std::ofstream f(path);
+  f << 14 * 14 * 14 + 1 << "\nblock with a NaN\n";
+  for (int k = 0; k < 14; ++k)
+    for (int j = 0; j < 14; ++j)
+      for (int i = 0; i < 14; ++i)
+        f << (i + 0.5) * 0.01 + 0.02 << ' ' << (j + 0.5) * 0.01 << ' ' << (k + 0.5) * 0.01
+          << " 0.01\n";
+  f << "nan 0 0 0.01\n";
+}
+
+std::int64_t counter(const std::string& line, const std::string& name) {
+  std::smatch m;
+  return std::regex_search(line, m, std::regex("\"" + name + "\":([0-9]+)")) ? std::stoll(m[1]) : -1;
+}
+
+TEST(RenderParticles, RendersEveryFileWithTheConfig) {
+  test::TempFolder dir;
+  write_block_csv(dir / "a.csv");
+  write_block_xyz(dir / "b.xyz");
+  std::ofstream(dir / "offline.yaml")
+      << "views:\n"
+         "  - {name: front, width: 128, height: 96, absorption: [80, 40, 20]}\n"
+         "  - {name: side, width: 96, height: 96, shading: opaque, absorption: [80, 40, 20], camera: {direction: [1, 0.2, -0.3]}}\n"
+         "outputs:\n  vtk: {enabled: true, trigger: {last: true}, attributes: [pressure]}\n";
+  const std::filesystem::path out = dir / "out";
+  const ToolRun r = run_tool(dir.path(), "--config " + (dir / "offline.yaml").string() + " --output " +
+                                      out.string() + " " + (dir / "a.csv").string() + " " +
+                                      (dir / "b.xyz").string());
+  // b.xyz has no pressure column: its step fails, named, and the run goes on.
+  ASSERT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("particle spacing 0.01 (estimated"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find(dir.path().string() + "/b.xyz: attribute 'pressure'"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("a.csv: step 0, 2744 particles"), std::string::npos) << r.out;
+
+  // Attributes every file has (none): both files go through.
+  std::ofstream(dir / "offline.yaml", std::ios::trunc)
+      << "views:\n"
+         "  - {name: front, width: 128, height: 96, absorption: [80, 40, 20]}\n"
+         "  - {name: side, width: 96, height: 96, shading: opaque, absorption: [80, 40, 20], camera: {direction: [1, 0.2, -0.3]}}\n"
+         "outputs:\n  vtk: {enabled: true, trigger: {first: true}}\n";
+  std::filesystem::remove_all(out);
+  const ToolRun ok = run_tool(dir.path(), "--config " + (dir / "offline.yaml").string() + " --output " +
+                                       out.string() + " --spacing 0.01 " +
+                                       (dir / "a.csv").string() + " " + (dir / "b.xyz").string());
+  ASSERT_EQ(ok.status, 0) << ok.out << ok.err;
+  EXPECT_EQ(test::files_in(out / "frames"),
+            (std::vector<std::string>{"front_00000000.png", "front_00000001.png",
+                                      "side_00000000.png", "side_00000001.png"}));
+  for (const std::string& name : test::files_in(out / "frames")) {
+    const test::DecodedPng png = test::read_png_file(out / "frames" / name);
+    ASSERT_TRUE(png.ok) << name << ": " << png.error;
+    EXPECT_GT(png.fraction_unlike_row_background(), 0.05) << name;
+  }
+  const std::vector<std::string> stats = test::read_lines(out / "stats.jsonl");
+  ASSERT_EQ(stats.size(), 2u);
+  EXPECT_EQ(counter(stats[0], "particles"), 2744);
+  EXPECT_EQ(counter(stats[1], "particles"), 2745);
+  EXPECT_EQ(counter(stats[1], "dropped_nonfinite"), 1);  // the NaN particle, left out
+  // The classifier left the block's interior out: a 14^3 block in 2 cm cells keeps its shell.
+  EXPECT_LT(counter(stats[0], "boundary"), 2744);
+  EXPECT_GT(counter(stats[0], "boundary"), 1000);
+  const test::VtpContents vtp = test::read_vtp(out / "vtk" / "particles_00000000.vtp");
+  ASSERT_TRUE(vtp.ok);
+  EXPECT_EQ(vtp.points, counter(stats[0], "boundary"));
+  EXPECT_NE(std::find(vtp.arrays.begin(), vtp.arrays.end(), "radius"), vtp.arrays.end());
+}
+
+TEST(RenderParticles, MissingFileAndBadOptionAreOneLineErrors) {
+  test::TempFolder dir;
+  ToolRun r = run_tool(dir.path(), "--output " + (dir / "out").string() + " " + (dir / "none.csv").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find((dir / "none.csv").string()), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  r = run_tool(dir.path(), "--spacing -1 x.csv");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--spacing expects a positive number"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace voxspan
