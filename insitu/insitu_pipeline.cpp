@@ -1,5 +1,6 @@
 #include "insitu/insitu_pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <limits>
@@ -79,6 +80,7 @@ struct InsituPipeline::Impl {
   std::vector<ViewRecordSource> view_sources;  // the views' names and stats, for the record
   StatsRecord record;
   PipelineTotals totals;
+  std::size_t largest_view_pixels = 0;
   bool finished = false;
 
   Impl(const Config& c, double particle_spacing)
@@ -86,7 +88,10 @@ struct InsituPipeline::Impl {
         context(prepared(config)), renderer(shaders), timer(context.has_gpu_timers()),
         views(make_views(config, particle_spacing)),
         outputs(config, view_names(config), particle_spacing) {
-    for (const ViewState& v : views) view_sources.push_back({&v.config.name, &v.stats});
+    for (const ViewState& v : views) {
+      view_sources.push_back({&v.config.name, &v.stats});
+      largest_view_pixels = std::max(largest_view_pixels, std::size_t(v.config.width) * std::size_t(v.config.height));
+    }
   }
 
   // Folders first: a bad folder is reported before the (slower) GL start-up.
@@ -119,6 +124,7 @@ struct InsituPipeline::Impl {
       ViewState& v = views[i];
       StepOutputs::Frame* frame = png ? outputs.acquire_frame() : nullptr;
       ViewImage& image = frame != nullptr ? frame->image : v.scratch;
+      image.rgba.reserve(4 * largest_view_pixels);  // a pooled frame serves every view
       zero(v.stats);
       try {
         const Camera camera = v.framing.update(data.boundary);

@@ -108,6 +108,7 @@ std::int64_t particle_at(const CellRanges& r, std::int64_t k) {
 
 struct Classifier::Work {
   Classification result;
+  std::vector<AttributeView> requested;  // the attributes asked for, kept from run to run
   std::vector<std::uint32_t> cell_of, offsets, order, fill;
   std::vector<std::uint32_t> counts, emit, emit_offsets;
   std::vector<std::uint8_t> scratch, seen;
@@ -485,7 +486,8 @@ const Classification& Classifier::run(const ParticleView& view, const GridView& 
   if (!view.overflowed_attribute().empty())
     throw make_error("too many particle attributes: '", view.overflowed_attribute(),
                      "' is past the limit of ", ParticleView::kMaxAttributes);
-  std::vector<AttributeView> attributes;
+  std::vector<AttributeView>& attributes = work_->requested;
+  attributes.clear();  // keeps its storage: a solver's steady loop allocates nothing here
   for (const std::string& name : options.attributes) {
     const AttributeView* a = view.find_attribute(name);
     if (!a) {

@@ -183,7 +183,7 @@ void Program::dispatch(GLuint x, GLuint y, GLuint z) const {
 }
 
 GLint Program::uniform(const char* name) const {
-  auto it = locations_.find(name);
+  auto it = locations_.find(std::string_view(name));
   if (it != locations_.end()) return it->second;
   GLint loc = glGetUniformLocation(id(), name);
   locations_.emplace(name, loc);

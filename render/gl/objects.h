@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -152,9 +153,15 @@ class Program {
   glm::uvec3 work_group_size() const;
 
  private:
+  // Looked up by the caller's string without making a std::string: setting uniforms every
+  // frame allocates nothing once each name has been seen.
+  struct NameHash {
+    using is_transparent = void;
+    std::size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
+  };
   Handle<DeleteProgram> handle_;
   std::string name_;
-  mutable std::unordered_map<std::string, GLint> locations_;
+  mutable std::unordered_map<std::string, GLint, NameHash, std::equal_to<>> locations_;
 };
 
 // An immutable 3D texture (e.g. the per-cell states of the simulation grid as R8UI).

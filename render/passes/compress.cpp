@@ -23,7 +23,8 @@ void CompressPass::begin_frame() { stats_.clear(); }
 
 CompressTallies CompressPass::tallies() const {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  const auto t = stats_.read<std::uint32_t>(2);
+  std::uint32_t t[2] = {0, 0};
+  stats_.download(t, sizeof t);
   return {t[0], t[1]};
 }
 

@@ -1,0 +1,67 @@
+// Once sizes are stable, a render step allocates nothing new on the solver's thread: the
+// renderer reuses its GPU buffers, the read-back images and the snapshots' copies live in
+// pooled slots, the stats record keeps its names, the writer's queue is a ring. Counted with
+// a replaced operator new, on the solver's thread only (the writer's thread encodes PNGs and
+// builds VDB grids, which allocate as libpng and OpenVDB do).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <new>
+
+#include "dambreak_run.h"
+#include "temp_folder.h"
+#include "voxspan/adapter.h"
+
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+namespace {
+thread_local long t_allocations = 0;
+}
+void* operator new(std::size_t size) {
+  ++t_allocations;
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace voxspan {
+namespace {
+
+TEST(StepAllocations, RenderStepsWithFramesStatsAndSnapshotsAllocateNothingOnceStable) {
+  test::TempFolder dir;
+  // A particle spacing of its own, and a tank that does not move: the same sizes every step.
+  dambreak::DamBreak sim(test::small_dambreak(3000));
+  const std::string yaml = "output_folder: " + dir.path().string() + R"(
+trigger: {every_steps: 1}
+views:
+  - {name: a, width: 96, height: 64}
+  - {name: b, width: 80, height: 80, shading: refractive, camera: {direction: [1, 1, -0.5], framing: first}}
+outputs:
+  vdb: {enabled: true, trigger: {every_steps: 4}, attributes: [velocity, density]}
+  vtk: {enabled: true, trigger: {every_steps: 4}, attributes: [velocity]}
+writer: {queue_size: 64, fsync: false}
+)";
+  Adapter adapter = Adapter::from_config_text(yaml, test::solver_options(sim), "alloc.yaml");
+  const dambreak::Fluid& f = sim.fluid();
+  const dambreak::GridShape& g = sim.fluid_grid().shape();
+  auto execute = [&](std::int64_t step) {
+    const auto particles = ParticleView::soa(f.x.data(), f.y.data(), f.z.data(), f.size())
+                               .with_vector("velocity", f.vx.data(), f.vy.data(), f.vz.data())
+                               .with_scalar("density", f.rho.data());
+    const auto grid = GridView::offsets(GridGeometry{g.origin, g.cell_size, g.dims},
+                                        sim.fluid_grid().offsets().data());
+    return adapter.execute(step, 1e-4 * double(step), particles, grid);
+  };
+  // The same particles every step (the solver does not move): warm-up steps size everything,
+  // the pools get their slots while the writer catches up.
+  for (std::int64_t step = 1; step <= 16; ++step) ASSERT_TRUE(execute(step).ok());
+  adapter.finish();
+  const long before = t_allocations;
+  for (std::int64_t step = 17; step <= 24; ++step) ASSERT_TRUE(execute(step).ok());
+  const long during = t_allocations - before;
+  adapter.finish();
+  EXPECT_EQ(during, 0) << during << " allocations in 8 render steps (2 with snapshots)";
+}
+
+}  // namespace
+}  // namespace voxspan
