@@ -5,24 +5,10 @@
 // builds VDB grids, which allocate as libpng and OpenVDB do).
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <new>
-
+#include "allocation_counter.h"
 #include "dambreak_run.h"
 #include "temp_folder.h"
 #include "voxspan/adapter.h"
-
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-namespace {
-thread_local long t_allocations = 0;
-}
-void* operator new(std::size_t size) {
-  ++t_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace voxspan {
 namespace {
@@ -56,9 +42,9 @@ writer: {queue_size: 64, fsync: false}
   // the pools get their slots while the writer catches up.
   for (std::int64_t step = 1; step <= 16; ++step) ASSERT_TRUE(execute(step).ok());
   adapter.finish();
-  const long before = t_allocations;
+  const long before = test::thread_allocations();
   for (std::int64_t step = 17; step <= 24; ++step) ASSERT_TRUE(execute(step).ok());
-  const long during = t_allocations - before;
+  const long during = test::thread_allocations() - before;
   adapter.finish();
   EXPECT_EQ(during, 0) << during << " allocations in 8 render steps (2 with snapshots)";
 }

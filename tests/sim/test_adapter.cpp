@@ -9,22 +9,11 @@
 #include <new>
 #include <stdexcept>
 
+#include "allocation_counter.h"
 #include "particle_sets.h"
 #include "voxspan/adapter.h"
 #include "voxspan/error.h"
 #include "voxspan/log.h"
-
-// Counts every allocation of the process (the shared library's too). GCC takes the free()
-// in a replaced operator delete for a mismatch; here malloc is what operator new returns.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-static std::atomic<long> g_allocations{0};
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace voxspan {
 namespace {
@@ -110,16 +99,16 @@ TEST(Adapter, NonRenderStepsDoNotTouchTheParticles) {
   // Positions that would crash any read: a non-render step must not look at them.
   const auto view = ParticleView::aos(reinterpret_cast<const float*>(16), 1000000);
   Adapter adapter(every(100));
-  const long before = g_allocations.load();
+  const long before = test::allocations();
   int failures = 0;
   for (int step = 1; step < 100; ++step) failures += adapter.execute(step, 0, view).ok() ? 0 : 1;
-  EXPECT_EQ(g_allocations.load(), before) << "a non-render step allocated";
+  EXPECT_EQ(test::allocations(), before) << "a non-render step allocated";
   EXPECT_EQ(failures, 0);
   EXPECT_EQ(adapter.render_steps(), 0);
   // The counter does see the adapter's allocations: a render step makes its buffers.
   std::vector<Point> pts(8, Point{1, 1, 1});
   adapter.execute(100, 0, ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point)));
-  EXPECT_GT(g_allocations.load(), before + 1);
+  EXPECT_GT(test::allocations(), before + 1);
 }
 
 TEST(Adapter, BadInputIsAStatusNotAnException) {
