@@ -90,16 +90,14 @@ Camera frame_camera(const ViewConfig& view, const Bounds& box) {
 }
 
 Camera ViewFraming::update(std::span<const ParticleSphere> boundary) {
-  if (view_.camera.automatic) {
-    const bool refit = view_.camera.framing == Framing::each_step ||
-                       (view_.camera.framing == Framing::first && box_.empty());
-    if (refit || view_.camera.framing == Framing::grow) {
-      const Bounds now = Bounds::of_spheres(boundary);
-      if (view_.camera.framing == Framing::grow)
-        box_.add(now);
-      else if (!now.empty())
-        box_ = now;
-    }
+  // A manual camera keeps the box too: the environment's ground lies under it.
+  const Framing framing = view_.camera.framing;
+  if (framing != Framing::first || box_.empty()) {
+    const Bounds now = Bounds::of_spheres(boundary);
+    if (framing == Framing::grow)
+      box_.add(now);
+    else if (!now.empty())
+      box_ = now;
   }
   return frame_camera(view_, box_);
 }

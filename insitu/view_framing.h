@@ -40,7 +40,8 @@ class ViewFraming {
   explicit ViewFraming(const ViewConfig& view) : view_(view) {}
   // The camera for this render step's boundary spheres.
   Camera update(std::span<const ParticleSphere> boundary);
-  // The box the camera was framed on (the grown box under `grow`).
+  // The fluid's box as the framing follows it (the grown box under `grow`), kept for manual
+  // cameras too (the ground plane of the environment goes under it).
   const Bounds& box() const { return box_; }
 
  private:

@@ -1,0 +1,103 @@
+// Automatic framing: the fluid's box just fits the view (every corner inside the pyramid, one
+// on its edge), and the box follows the fluid as the view's `framing` says.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "insitu/view_framing.h"
+
+namespace voxspan {
+namespace {
+
+ViewConfig view_looking(Vec3d direction, Framing framing = Framing::grow) {
+  ViewConfig v;
+  v.width = 960;
+  v.height = 540;
+  v.camera.direction = direction;
+  v.camera.framing = framing;
+  return v;
+}
+
+// The largest of |x| / (tan_x z) and |y| / (tan_y z) over the corners of the box grown by the
+// margin: <= 1 when every corner is inside the view, 1 when one touches its edge.
+double fill(const Camera& camera, const Bounds& b, double margin) {
+  const ViewFrame frame(camera);
+  const glm::dvec3 lo(b.lo[0], b.lo[1], b.lo[2]), hi(b.hi[0], b.hi[1], b.hi[2]);
+  const glm::dvec3 c = 0.5 * (lo + hi), half = 0.5 * margin * (hi - lo);
+  double most = 0;
+  for (int k = 0; k < 8; ++k) {
+    const glm::dvec3 p = c + glm::dvec3(k & 1 ? half.x : -half.x, k & 2 ? half.y : -half.y,
+                                        k & 4 ? half.z : -half.z);
+    const glm::dvec3 v = frame.to_view(p);
+    EXPECT_GT(v.z, 0);
+    most = std::max({most, std::abs(v.x) / (frame.tan_half_x * v.z),
+                     std::abs(v.y) / (frame.tan_half_y * v.z)});
+  }
+  return most;
+}
+
+// Spheres of radius 0.01 at 0.05 spacing over [x0, x1] x [0, 0.25] x [0, z1].
+std::vector<ParticleSphere> block(float x0, float x1, float z1) {
+  std::vector<ParticleSphere> s;
+  const auto steps = [](float length) { return int(std::lround(length / 0.05f)); };
+  for (int i = 0; i <= steps(x1 - x0); ++i)
+    for (int j = 0; j <= steps(0.25f); ++j)
+      for (int k = 0; k <= steps(z1); ++k) s.push_back({x0 + 0.05f * i, 0.05f * j, 0.05f * k, 0.01f});
+  return s;
+}
+
+TEST(ViewFraming, TheFluidsBoxJustFitsTheView) {
+  for (Vec3d direction : {Vec3d{0.3, 1, -0.45}, Vec3d{-1, 2, -0.8}, Vec3d{0, 0.01, -1},
+                          Vec3d{1, 0, 0}}) {
+    ViewConfig v = view_looking(direction);
+    if (std::abs(direction[2]) > 0.99) v.camera.up = {0, 1, 0};
+    const std::vector<ParticleSphere> spheres = block(0, 1, 0.5);
+    const Bounds box = Bounds::of_spheres(spheres);
+    EXPECT_FLOAT_EQ(float(box.lo[0]), -0.01f);
+    const Camera camera = frame_camera(v, box);
+    EXPECT_NEAR(fill(camera, box, v.camera.margin), 1.0, 1e-9) << direction[0];
+    validate(camera);
+  }
+}
+
+TEST(ViewFraming, GrowEachStepAndFirstFollowTheFluidDifferently) {
+  const std::vector<ParticleSphere> column = block(0, 0.25, 0.5), spread = block(0, 1, 0.1);
+  ViewFraming grow(view_looking({0.3, 1, -0.45}, Framing::grow));
+  ViewFraming each(view_looking({0.3, 1, -0.45}, Framing::each_step));
+  ViewFraming first(view_looking({0.3, 1, -0.45}, Framing::first));
+  for (ViewFraming* f : {&grow, &each, &first}) f->update(column);
+  for (ViewFraming* f : {&grow, &each, &first}) f->update(spread);
+  // grow: the union (tall and long); each_step: the spread only; first: the column only.
+  EXPECT_NEAR(grow.box().hi[0], 1.01, 1e-6);
+  EXPECT_NEAR(grow.box().hi[2], 0.51, 1e-6);
+  EXPECT_NEAR(each.box().hi[0], 1.01, 1e-6);
+  EXPECT_NEAR(each.box().hi[2], 0.11, 1e-6);
+  EXPECT_NEAR(first.box().hi[0], 0.26, 1e-6);
+  EXPECT_NEAR(first.box().hi[2], 0.51, 1e-6);
+  // No particle at all (or only NaN): the box keeps what it had.
+  const std::vector<ParticleSphere> none = {{NAN, 0, 0, 0.01f}};
+  each.update(none);
+  EXPECT_NEAR(each.box().hi[0], 1.01, 1e-6);
+}
+
+TEST(ViewFraming, ManualCameraIsAsGivenAndStillTracksTheBox) {
+  ViewConfig v;
+  v.width = 320;
+  v.height = 200;
+  v.camera.automatic = false;
+  v.camera.eye = {1, -2, 3};
+  v.camera.target = {0.5, 0, 0};
+  v.camera.fov_degrees = 30;
+  ViewFraming framing(v);
+  const Camera c = framing.update(block(0, 1, 0.5));
+  EXPECT_EQ(c.eye, glm::dvec3(1, -2, 3));
+  EXPECT_EQ(c.target, glm::dvec3(0.5, 0, 0));
+  EXPECT_EQ(c.fov_y_degrees, 30);
+  EXPECT_EQ(c.width, 320);
+  EXPECT_NEAR(framing.box().lo[2], -0.01, 1e-6);  // the ground goes under the fluid
+}
+
+}  // namespace
+}  // namespace voxspan
