@@ -1,8 +1,8 @@
 // Bad input at the integration level, through the shared library: what a user gets wrong at
 // start-up is one clear error before step 1; what goes wrong mid-run (a full disk, a writer
 // that cannot keep up) never stops the solver, is reported once, and leaves no partial file
-// under a final name. The runs that fill a disk happen in a child process (a private tmpfs, or
-// a file-size limit), which also makes its own GL context.
+// under a final name. The runs that fill a disk happen in a fresh child process (a private
+// tmpfs, or a file-size limit; fresh_child.h), which makes its own GL context.
 #include <gtest/gtest.h>
 #include <sched.h>
 #include <signal.h>
@@ -16,7 +16,7 @@
 #include <regex>
 #include <sstream>
 
-#include "child_process.h"
+#include "fresh_child.h"
 #include "dambreak_run.h"
 #include "log_capture.h"
 #include "output_files.h"
@@ -146,10 +146,11 @@ void expect_run_went_on(const std::map<std::string, std::string>& r, const std::
 }
 
 TEST(MidRun, DiskFillsUp) {
+  if (const char* folder = test::child_folder()) return test::write_child_report(run_and_inspect(folder));
   test::TempFolder dir;
   const std::filesystem::path mount_point = dir / "small";
   std::filesystem::create_directories(mount_point);
-  const std::string report = test::run_in_child([&]() -> std::string {
+  const std::string report = test::run_test_in_fresh_process(mount_point, dir / "report.txt", [&]() -> std::string {
     const bool root = ::geteuid() == 0;
     const uid_t uid = ::geteuid();
     const gid_t gid = ::getegid();
@@ -161,7 +162,7 @@ TEST(MidRun, DiskFillsUp) {
     }
     if (::mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0) return "skip=private\n";
     if (::mount("tmpfs", mount_point.c_str(), "tmpfs", 0, "size=1m") != 0) return "skip=mount\n";
-    return run_and_inspect(mount_point);
+    return "";
   });
   const auto r = parse_report(report);
   if (r.count("skip")) GTEST_SKIP() << "no tmpfs mount in a namespace here (" << r.at("skip") << ")";
@@ -170,12 +171,13 @@ TEST(MidRun, DiskFillsUp) {
 }
 
 TEST(MidRun, FileSizeLimitFailsTheLargeFiles) {
+  if (const char* folder = test::child_folder()) return test::write_child_report(run_and_inspect(folder));
   test::TempFolder dir;
-  const std::string report = test::run_in_child([&]() -> std::string {
+  const std::string report = test::run_test_in_fresh_process(dir / "run", dir / "report.txt", [&]() -> std::string {
     ::signal(SIGXFSZ, SIG_IGN);  // write(2) returns EFBIG instead of killing the process
     const struct rlimit limit {48 << 10, 48 << 10};
     if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) return "skip=setrlimit\n";
-    return run_and_inspect(dir.path());
+    return "";
   });
   const auto r = parse_report(report);
   ASSERT_FALSE(r.count("skip")) << report;
