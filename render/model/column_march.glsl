@@ -1,0 +1,236 @@
+// render/model/column_march.glsl - refraction by screen-space ray marching through the voxel
+// columns (paper 001, sec. 3.5 and Listing 2), shared by the GPU pass
+// (render/passes/shade_refractive.comp) and the CPU reference (render/model/cpp_host.h).
+//
+// A ray starts at the eye through the pixel's centre and walks column by column (pixel by
+// pixel) along its projection: in each column it finds the depths where it enters and leaves
+// the column's pyramid, and the span boundaries (entry and exit depths) between them. Crossing a
+// boundary that changes the ray's inside/outside state is a surface hit, and so is entering a
+// column whose state at that depth differs from the ray's (a hit on the column's side,
+// "in-between stored surface values", found from the parity of the boundaries before the
+// depth: Listing 2's LSB test). At a hit the ray refracts with the stored normal (Fresnel
+// reflection of the environment on entering, total internal reflection on leaving when
+// refraction is impossible), is absorbed (Beer-Lambert) and lit by scattering along every
+// stretch inside, and leaves to the environment at the grid's boundary. After `u_bounces` hits
+// past the first entry it goes straight on, still absorbed.
+//
+// One call of march_step() handles one event (a boundary crossed or a column left), so the
+// caller bounds the work per shader invocation (llvmpipe stops an invocation after 65535 loop
+// iterations) and resumes the RayState in a later dispatch.
+//
+// Host needs: links.glsl, surface_geometry.glsl, octahedral.glsl, lighting.glsl, shade_modes.glsl
+// and their needs; u_bounces, u_near, u_grid_far.
+#ifndef VX_MODEL_COLUMN_MARCH
+#define VX_MODEL_COLUMN_MARCH
+
+#define VX_HINT_SIDE -1  // origin on a side of the column just entered: compare its state
+#define VX_HINT_FREE -2  // origin inside the column, state already settled
+
+struct RayState {
+  vec3 origin;      // view space: the last event's point
+  vec3 dir;         // view space, unit
+  vec3 throughput;
+  vec3 color;       // radiance gathered so far
+  ivec2 pixel;      // the column the ray is in
+  int hint;         // >= 0: origin lies on that boundary of the column; or VX_HINT_*
+  int bounces;      // hits left that bend the ray
+  bool inside;
+  bool marching;
+  float occlusion;  // of the start pixel's front surface (deep AO), scales the scattering
+};
+
+uint boundary_count(ivec2 q) { return 2u * sd_count(q); }
+
+// Boundary i of column q: the entry (i even) or exit (i odd) of span i / 2.
+float boundary_depth(ivec2 q, uint i) {
+  vec2 d = sd_depths(sd_offset(q) + i / 2u);
+  return (i & 1u) == 0u ? d.x : d.y;
+}
+
+vec3 boundary_normal(ivec2 q, uint i) {
+  uvec2 words = sd_normals(sd_offset(q) + i / 2u);
+  return world_to_view_direction(decode_normal((i & 1u) == 0u ? words.x : words.y));
+}
+
+// Boundaries of column q at depth <= z (or < z when strict).
+uint boundaries_before(ivec2 q, float z, bool strict) {
+  uint lo = 0u, hi = boundary_count(q);
+  while (lo < hi) {
+    uint mid = (lo + hi) / 2u;
+    float b = boundary_depth(q, mid);
+    if (strict ? b < z : b <= z) lo = mid + 1u; else hi = mid;
+  }
+  return lo;
+}
+
+vec3 view_to_world_point(vec3 v) { return u_eye + view_to_world_direction(v); }
+
+RayState ray_start(ivec2 p) {
+  RayState s;
+  s.origin = vec3(0.0f);
+  s.dir = normalize(view_ray_at(vec2(p) + vec2(0.5f)));
+  s.throughput = vec3(1.0f);
+  s.color = vec3(0.0f);
+  s.pixel = p;
+  s.hint = VX_HINT_FREE;
+  s.bounces = u_bounces + 1;
+  s.inside = false;
+  s.marching = true;
+  s.occlusion = pixel_occlusion(p);
+  return s;
+}
+
+// Moves the ray to `point`, absorbing and scattering on the way when inside.
+RayState ray_advance(RayState s, vec3 point) {
+  if (s.inside) {
+    vec3 t = transmittance(length(point - s.origin));
+    s.color += s.throughput * (vec3(1.0f) - t) * u_scatter_color * s.occlusion;
+    s.throughput *= t;
+  }
+  s.origin = point;
+  return s;
+}
+
+RayState ray_leave(RayState s) {
+  s.color += s.throughput * environment(view_to_world_point(s.origin), view_to_world_direction(s.dir));
+  s.marching = false;
+  return s;
+}
+
+// A hit at s.origin, the outward normal n (view space); `entering`: from outside into fluid.
+RayState ray_interface(RayState s, vec3 n, bool entering) {
+  if (s.bounces <= 0) {
+    s.inside = entering;
+    return s;
+  }
+  s.bounces -= 1;
+  vec3 d = s.dir;
+  if (entering) {
+    if (!(dot(n, d) < 0.0f)) n = -d;  // a normal the ray cannot enter through: no bending
+    float f = fresnel(-dot(n, d));
+    s.color += s.throughput * f *
+               environment(view_to_world_point(s.origin), view_to_world_direction(reflect(d, n)));
+    s.throughput *= 1.0f - f;
+    s.dir = normalize(refract(d, n, 1.0f / u_ior));
+    s.inside = true;
+  } else {
+    if (!(dot(n, d) > 0.0f)) n = d;
+    vec3 t = refract(d, -n, u_ior);
+    if (dot(t, t) == 0.0f) {
+      s.dir = normalize(reflect(d, -n));  // total internal reflection: stays inside
+    } else {
+      t = normalize(t);
+      s.throughput *= 1.0f - fresnel(dot(t, n));
+      s.dir = t;
+      s.inside = false;
+    }
+  }
+  return s;
+}
+
+// Parameter along the ray where it crosses the column side k = x/z (axis 0) or y/z (axis 1);
+// negative or infinite when it does not.
+float side_crossing(vec3 o, vec3 d, float k, int axis) {
+  float oa = axis == 0 ? o.x : o.y;
+  float da = axis == 0 ? d.x : d.y;
+  float denom = da - k * d.z;
+  if (denom == 0.0f) return -1.0f;
+  return (k * o.z - oa) / denom;
+}
+
+// Direction of the ray's projection across the columns along an axis: +1 when x/z (y/z) grows,
+// -1 when it shrinks, 0 when it stays (rays through the eye). Constant along the ray.
+int projected_direction(vec3 o, vec3 d, int axis) {
+  float oa = axis == 0 ? o.x : o.y;
+  float da = axis == 0 ? d.x : d.y;
+  float g = da * o.z - oa * d.z;
+  float size = abs(da * o.z) + abs(oa * d.z);
+  if (!(abs(g) > 1e-6f * size)) return 0;
+  return g > 0.0f ? 1 : -1;
+}
+
+// One event: the next boundary of the current column, or the step into the next column.
+RayState march_step(RayState s) {
+  ivec2 q = s.pixel;
+  vec3 o = s.origin;
+  vec3 d = s.dir;
+  // Where the ray leaves this column's pyramid (or the grid's depth range).
+  float s_end = 3.0e38f;
+  ivec2 next_pixel = ivec2(-1);
+  int gx = projected_direction(o, d, 0);
+  if (gx != 0) {
+    float k = (2.0f * float(q.x + (gx > 0 ? 1 : 0)) / float(u_image.x) - 1.0f) * u_tan_half.x;
+    float t = side_crossing(o, d, k, 0);
+    if (t >= 0.0f && t < s_end) {
+      s_end = t;
+      next_pixel = q + ivec2(gx, 0);
+    }
+  }
+  int gy = projected_direction(o, d, 1);  // +1: y/z grows, the ray moves up a row
+  if (gy != 0) {
+    float k = (1.0f - 2.0f * float(q.y + (gy > 0 ? 0 : 1)) / float(u_image.y)) * u_tan_half.y;
+    float t = side_crossing(o, d, k, 1);
+    if (t >= 0.0f && t < s_end) {
+      s_end = t;
+      next_pixel = q + ivec2(0, -gy);
+    }
+  }
+  float limit = d.z > 0.0f ? (u_grid_far - o.z) / d.z : (d.z < 0.0f ? (u_near - o.z) / d.z : 3.0e38f);
+  if (limit < s_end) {
+    s_end = max(limit, 0.0f);
+    next_pixel = ivec2(-1);
+  }
+  bool forward = d.z >= 0.0f;
+  float z_end = o.z + s_end * d.z;
+
+  // The next boundary the ray may cross in this column.
+  int next;
+  if (s.hint >= 0) {
+    next = forward ? s.hint + 1 : s.hint - 1;
+  } else {
+    uint before = boundaries_before(q, o.z, false);
+    bool column_inside = (before & 1u) == 1u;
+    if (s.hint == VX_HINT_SIDE && column_inside != s.inside) {
+      // A hit on the column's side: the normal of the boundary nearest in depth (none in an
+      // empty column: the ray leaves the fluid unbent).
+      uint nb = boundary_count(q);
+      vec3 n = vec3(0.0f);
+      if (nb > 0u) {
+        uint i = before < nb ? before : nb - 1u;
+        if (before > 0u && before < nb && o.z - boundary_depth(q, before - 1u) < boundary_depth(q, before) - o.z)
+          i = before - 1u;
+        n = boundary_normal(q, i);
+      }
+      s.hint = VX_HINT_FREE;
+      return ray_interface(s, n, column_inside);
+    }
+    next = forward ? int(before) : int(boundaries_before(q, o.z, true)) - 1;
+  }
+  if (next >= 0 && uint(next) < boundary_count(q)) {
+    float b = boundary_depth(q, uint(next));
+    if (forward ? b <= z_end : b >= z_end) {
+      float t = d.z != 0.0f ? (b - o.z) / d.z : 0.0f;
+      s = ray_advance(s, o + t * d);
+      s.hint = next;
+      bool inside_after = forward ? (next & 1) == 0 : (next & 1) == 1;
+      if (inside_after == s.inside) return s;  // agrees with the ray's state: nothing to hit
+      return ray_interface(s, boundary_normal(q, uint(next)), inside_after);
+    }
+  }
+  s = ray_advance(s, o + s_end * d);
+  if (!in_image(next_pixel)) return ray_leave(s);
+  s.pixel = next_pixel;
+  s.hint = VX_HINT_SIDE;
+  return s;
+}
+
+// At most `budget` events.
+RayState march(RayState s, int budget) {
+  for (int i = 0; i < budget; ++i) {
+    if (!s.marching) break;
+    s = march_step(s);
+  }
+  return s;
+}
+
+#endif

@@ -1,0 +1,64 @@
+// Refractive shading (paper 001, sec. 3.5, Listing 2; render/passes/shade_refractive.h): one thread per
+// pixel, its ray's state kept in `rays` between dispatches (render/model/column_march.glsl).
+// REFRACT_BEGIN starts every ray at the eye; REFRACT_MARCH advances each marching ray by at most
+// u_march_budget column events and counts the rays still marching; REFRACT_RESOLVE sends the rays
+// still marching to the environment and writes every pixel's colour.
+layout(local_size_x = 64) in;
+
+#include "render/passes/shade_common.glsl"
+#include "render/model/column_march.glsl"
+
+struct RayRecord {
+  vec4 origin;      // xyz; w: occlusion
+  vec4 dir;
+  vec4 throughput;
+  vec4 color;
+  ivec4 ints;       // pixel x, pixel y, hint, bounces | inside << 16 | marching << 17
+};
+layout(std430, binding = 8) buffer Rays { RayRecord rays[]; };
+layout(std430, binding = 9) buffer ActiveRays { uint active_rays; };
+
+uniform int u_march_budget;
+
+RayRecord pack_ray(RayState s) {
+  RayRecord r;
+  r.origin = vec4(s.origin, s.occlusion);
+  r.dir = vec4(s.dir, 0.0);
+  r.throughput = vec4(s.throughput, 0.0);
+  r.color = vec4(s.color, 0.0);
+  r.ints = ivec4(s.pixel, s.hint, s.bounces | (s.inside ? 1 << 16 : 0) | (s.marching ? 1 << 17 : 0));
+  return r;
+}
+
+RayState unpack_ray(RayRecord r) {
+  RayState s;
+  s.origin = r.origin.xyz;
+  s.occlusion = r.origin.w;
+  s.dir = r.dir.xyz;
+  s.throughput = r.throughput.xyz;
+  s.color = r.color.xyz;
+  s.pixel = r.ints.xy;
+  s.hint = r.ints.z;
+  s.bounces = r.ints.w & 0xFFFF;
+  s.inside = (r.ints.w & (1 << 16)) != 0;
+  s.marching = (r.ints.w & (1 << 17)) != 0;
+  return s;
+}
+
+void main() {
+  uint i = thread_index();
+  if (i >= u_thread_count) return;
+#if defined(REFRACT_BEGIN)
+  rays[i] = pack_ray(ray_start(thread_pixel(i)));
+#elif defined(REFRACT_MARCH)
+  RayState s = unpack_ray(rays[i]);
+  if (!s.marching) return;
+  s = march(s, u_march_budget);
+  rays[i] = pack_ray(s);
+  if (s.marching) atomicAdd(active_rays, 1u);
+#else
+  RayState s = unpack_ray(rays[i]);
+  if (s.marching) s = ray_leave(s);
+  shaded[i] = vec4(s.color, 1.0);
+#endif
+}

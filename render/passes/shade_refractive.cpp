@@ -1,0 +1,57 @@
+#include "render/passes/shade_refractive.h"
+
+#include <algorithm>
+
+#include "render/grid_uniforms.h"
+#include "render/passes/dispatch.h"
+
+namespace voxspan {
+namespace {
+constexpr std::size_t kRayRecordBytes = 80;  // RayRecord in shade_refractive.comp
+}  // namespace
+
+ShadeRefractivePass::ShadeRefractivePass(const gl::ShaderLibrary& shaders)
+    : begin_(shaders.compute("render/passes/shade_refractive.comp", "#define REFRACT_BEGIN 1")),
+      march_(shaders.compute("render/passes/shade_refractive.comp", "#define REFRACT_MARCH 1")),
+      resolve_(shaders.compute("render/passes/shade_refractive.comp", "#define REFRACT_RESOLVE 1")),
+      active_(16) {}
+
+RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfaces& surfaces,
+                                      const model::ShadeUniforms& uniforms, int budget,
+                                      int max_dispatches, GpuFloatImage& out) {
+  const std::size_t pixels = std::size_t(image.width()) * std::size_t(image.height());
+  out.resize(image.width(), image.height());
+  rays_.reserve(std::max<std::size_t>(16, pixels * kRayRecordBytes));
+  const auto bind = [&] {
+    surfaces.bind(image);
+    out.buffer().bind(GL_SHADER_STORAGE_BUFFER, 7);
+    rays_.bind(GL_SHADER_STORAGE_BUFFER, 8);
+    active_.bind(GL_SHADER_STORAGE_BUFFER, 9);
+  };
+  for (const gl::Program* p : {&begin_, &march_, &resolve_}) {
+    set_grid_uniforms(*p, image.grid());
+    model::set_shade_uniforms(*p, uniforms);
+  }
+  march_.set("u_march_budget", budget);
+  bind();
+  dispatch_threads(begin_, pixels);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  RefractTally tally;
+  std::uint32_t active = 1;
+  while (active != 0 && tally.dispatches < max_dispatches) {
+    active_.clear();
+    bind();
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    dispatch_threads(march_, pixels);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    active = active_.read<std::uint32_t>(1)[0];
+    ++tally.dispatches;
+  }
+  tally.unfinished = active;
+  bind();
+  dispatch_threads(resolve_, pixels);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  return tally;
+}
+
+}  // namespace voxspan
