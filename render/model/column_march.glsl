@@ -19,7 +19,7 @@
 // iterations) and resumes the RayState in a later dispatch.
 //
 // Host needs: links.glsl, surface_geometry.glsl, octahedral.glsl, lighting.glsl, shade_modes.glsl
-// and their needs; u_bounces, u_near, u_grid_far.
+// and their needs; u_bounces, u_near, u_grid_far, u_log2_step.
 #ifndef VX_MODEL_COLUMN_MARCH
 #define VX_MODEL_COLUMN_MARCH
 
@@ -28,11 +28,16 @@
 
 struct RayState {
   vec3 origin;      // view space: the last event's point
+  vec3 anchor;      // view space: the eye or the last surface hit, where the environment is
+                    // looked up from (the grid's boundary is no place in the world)
   vec3 dir;         // view space, unit
   vec3 throughput;
   vec3 color;       // radiance gathered so far
   ivec2 pixel;      // the column the ray is in
   int hint;         // >= 0: origin lies on that boundary of the column; or VX_HINT_*
+  ivec2 last_pixel; // the surface point the ray crossed last (span -1: none yet)
+  int last_span;
+  uint last_end;
   int bounces;      // hits left that bend the ray
   bool inside;
   bool marching;
@@ -47,9 +52,37 @@ float boundary_depth(ivec2 q, uint i) {
   return (i & 1u) == 0u ? d.x : d.y;
 }
 
-vec3 boundary_normal(ivec2 q, uint i) {
-  uvec2 words = sd_normals(sd_offset(q) + i / 2u);
-  return world_to_view_direction(decode_normal((i & 1u) == 0u ? words.x : words.y));
+vec3 point_normal(SurfacePoint v) {
+  uvec2 words = sd_normals(v.span);
+  return decode_normal(v.end == 0u ? words.x : words.y);
+}
+
+// The normal at `hit` (view space) on boundary i of column q, interpolated bilinearly between
+// the column's surface point and the points its links reach across towards the hit's side, so
+// that the normal, and with it the refracted ray, varies smoothly across columns instead of
+// jumping at their sides (where the links end, the column's own normal stands in).
+vec3 boundary_normal(ivec2 q, uint i, vec3 hit) {
+  SurfacePoint v = surface_point(q, sd_offset(q) + i / 2u, i & 1u);
+  vec3 n = point_normal(v);
+  vec2 xy = vec2((hit.x / (hit.z * u_tan_half.x) + 1.0f) * 0.5f * float(u_image.x),
+                 (1.0f - hit.y / (hit.z * u_tan_half.y)) * 0.5f * float(u_image.y));
+  vec2 f = clamp(xy - vec2(q) - vec2(0.5f), vec2(-0.5f), vec2(0.5f));
+  int dir_x = f.x >= 0.0f ? 1 : 0;
+  int dir_y = f.y >= 0.0f ? 3 : 2;
+  vec3 nx = n;
+  vec3 ny = n;
+  vec3 nxy = n;
+  if (link_is_across(v, dir_x)) {
+    SurfacePoint w = follow_link(v, dir_x);
+    nx = point_normal(w);
+    nxy = link_is_across(w, dir_y) ? point_normal(follow_link(w, dir_y)) : nx;
+  }
+  if (link_is_across(v, dir_y)) ny = point_normal(follow_link(v, dir_y));
+  float wx = abs(f.x);
+  float wy = abs(f.y);
+  vec3 mixed = mix(mix(n, nx, wx), mix(ny, nxy, wx), wy);
+  float len = length(mixed);
+  return world_to_view_direction(len > 1e-6f ? mixed / len : n);
 }
 
 // Boundaries of column q at depth <= z (or < z when strict).
@@ -68,11 +101,15 @@ vec3 view_to_world_point(vec3 v) { return u_eye + view_to_world_direction(v); }
 RayState ray_start(ivec2 p) {
   RayState s;
   s.origin = vec3(0.0f);
+  s.anchor = vec3(0.0f);
   s.dir = normalize(view_ray_at(vec2(p) + vec2(0.5f)));
   s.throughput = vec3(1.0f);
   s.color = vec3(0.0f);
   s.pixel = p;
   s.hint = VX_HINT_FREE;
+  s.last_pixel = p;
+  s.last_span = -1;
+  s.last_end = 0u;
   s.bounces = u_bounces + 1;
   s.inside = false;
   s.marching = true;
@@ -92,7 +129,7 @@ RayState ray_advance(RayState s, vec3 point) {
 }
 
 RayState ray_leave(RayState s) {
-  s.color += s.throughput * environment(view_to_world_point(s.origin), view_to_world_direction(s.dir));
+  s.color += s.throughput * environment(view_to_world_point(s.anchor), view_to_world_direction(s.dir));
   s.marching = false;
   return s;
 }
@@ -104,6 +141,7 @@ RayState ray_interface(RayState s, vec3 n, bool entering) {
     return s;
   }
   s.bounces -= 1;
+  s.anchor = s.origin;
   vec3 d = s.dir;
   if (entering) {
     if (!(dot(n, d) < 0.0f)) n = -d;  // a normal the ray cannot enter through: no bending
@@ -149,6 +187,34 @@ int projected_direction(vec3 o, vec3 d, int axis) {
   return g > 0.0f ? 1 : -1;
 }
 
+RayState remember_crossing(RayState s, ivec2 q, uint i) {
+  s.last_pixel = q;
+  s.last_span = int(sd_offset(q) + i / 2u);
+  s.last_end = i & 1u;
+  return s;
+}
+
+// Entering column q from the side, the ray's state disagrees with the column's at its depth,
+// between boundaries before - 1 and before. When one of the two is the surface the ray crossed
+// last, continued across to this column by its link, the disagreement is that surface's
+// staircase (each column holds it at one depth; the ray left it at a slant), not a new
+// surface: returns that boundary, else -1.
+int continued_surface(RayState s, ivec2 q, uint before) {
+  if (s.last_span < 0) return -1;
+  ivec2 step = q - s.last_pixel;
+  int dir = -1;
+  if (step.x == -1 && step.y == 0) dir = 0;
+  if (step.x == 1 && step.y == 0) dir = 1;
+  if (step.x == 0 && step.y == -1) dir = 2;
+  if (step.x == 0 && step.y == 1) dir = 3;
+  if (dir < 0) return -1;
+  SurfacePoint v = surface_point(s.last_pixel, uint(s.last_span), s.last_end);
+  if (!link_is_across(v, dir)) return -1;
+  SurfacePoint w = follow_link(v, dir);
+  uint i = (w.span - sd_offset(q)) * 2u + w.end;
+  return (i == before || i + 1u == before) ? int(i) : -1;
+}
+
 // One event: the next boundary of the current column, or the step into the next column.
 RayState march_step(RayState s) {
   ivec2 q = s.pixel;
@@ -191,17 +257,26 @@ RayState march_step(RayState s) {
     uint before = boundaries_before(q, o.z, false);
     bool column_inside = (before & 1u) == 1u;
     if (s.hint == VX_HINT_SIDE && column_inside != s.inside) {
+      s.hint = VX_HINT_FREE;
+      int continued = continued_surface(s, q, before);
+      if (continued >= 0) return remember_crossing(s, q, uint(continued));
+      // Within one layer of a boundary the column's state is below the voxelization's
+      // resolution: the ray grazes the surface there rather than hitting its side.
+      uint nb = boundary_count(q);
+      float layer = o.z * (exp2(u_log2_step) - 1.0f);
+      if ((before > 0u && o.z - boundary_depth(q, before - 1u) < layer) ||
+          (before < nb && boundary_depth(q, before) - o.z < layer))
+        return s;
       // A hit on the column's side: the normal of the boundary nearest in depth (none in an
       // empty column: the ray leaves the fluid unbent).
-      uint nb = boundary_count(q);
       vec3 n = vec3(0.0f);
       if (nb > 0u) {
         uint i = before < nb ? before : nb - 1u;
         if (before > 0u && before < nb && o.z - boundary_depth(q, before - 1u) < boundary_depth(q, before) - o.z)
           i = before - 1u;
-        n = boundary_normal(q, i);
+        n = boundary_normal(q, i, o);
+        s = remember_crossing(s, q, i);
       }
-      s.hint = VX_HINT_FREE;
       return ray_interface(s, n, column_inside);
     }
     next = forward ? int(before) : int(boundaries_before(q, o.z, true)) - 1;
@@ -212,9 +287,10 @@ RayState march_step(RayState s) {
       float t = d.z != 0.0f ? (b - o.z) / d.z : 0.0f;
       s = ray_advance(s, o + t * d);
       s.hint = next;
+      s = remember_crossing(s, q, uint(next));
       bool inside_after = forward ? (next & 1) == 0 : (next & 1) == 1;
       if (inside_after == s.inside) return s;  // agrees with the ray's state: nothing to hit
-      return ray_interface(s, boundary_normal(q, uint(next)), inside_after);
+      return ray_interface(s, boundary_normal(q, uint(next), s.origin), inside_after);
     }
   }
   s = ray_advance(s, o + s_end * d);

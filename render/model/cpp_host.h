@@ -23,7 +23,7 @@ struct GridUniforms {
   vec3 u_eye{0.0f}, u_right{1.0f, 0.0f, 0.0f}, u_up{0.0f, 1.0f, 0.0f}, u_forward{0.0f, 0.0f, -1.0f};
   vec2 u_tan_half{1.0f};
   ivec2 u_image{1};
-  float u_near = 1.0f, u_grid_far = 2.0f;
+  float u_near = 1.0f, u_grid_far = 2.0f, u_log2_step = 0.0f;
 
   // As render/perspective_grid.glsl computes them, in float.
   vec3 view_ray(ivec2 pixel) const {

@@ -72,6 +72,7 @@ GridUniforms grid_uniforms(const PerspectiveGrid& grid) {
   g.u_image = ivec2(v.width, v.height);
   g.u_near = float(grid.near());
   g.u_grid_far = float(grid.grid_far());
+  g.u_log2_step = float(grid.log2_step());
   return g;
 }
 

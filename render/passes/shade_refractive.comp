@@ -10,10 +10,11 @@ layout(local_size_x = 64) in;
 
 struct RayRecord {
   vec4 origin;      // xyz; w: occlusion
-  vec4 dir;
-  vec4 throughput;
-  vec4 color;
+  vec4 dir;         // xyz; w: anchor x
+  vec4 throughput;  // xyz; w: anchor y
+  vec4 color;       // xyz; w: anchor z
   ivec4 ints;       // pixel x, pixel y, hint, bounces | inside << 16 | marching << 17
+  ivec4 last;       // last_pixel x, y, last_span, last_end
 };
 layout(std430, binding = 8) buffer Rays { RayRecord rays[]; };
 layout(std430, binding = 9) buffer ActiveRays { uint active_rays; };
@@ -23,9 +24,10 @@ uniform int u_march_budget;
 RayRecord pack_ray(RayState s) {
   RayRecord r;
   r.origin = vec4(s.origin, s.occlusion);
-  r.dir = vec4(s.dir, 0.0);
-  r.throughput = vec4(s.throughput, 0.0);
-  r.color = vec4(s.color, 0.0);
+  r.dir = vec4(s.dir, s.anchor.x);
+  r.throughput = vec4(s.throughput, s.anchor.y);
+  r.color = vec4(s.color, s.anchor.z);
+  r.last = ivec4(s.last_pixel, s.last_span, int(s.last_end));
   r.ints = ivec4(s.pixel, s.hint, s.bounces | (s.inside ? 1 << 16 : 0) | (s.marching ? 1 << 17 : 0));
   return r;
 }
@@ -37,8 +39,12 @@ RayState unpack_ray(RayRecord r) {
   s.dir = r.dir.xyz;
   s.throughput = r.throughput.xyz;
   s.color = r.color.xyz;
+  s.anchor = vec3(r.dir.w, r.throughput.w, r.color.w);
   s.pixel = r.ints.xy;
   s.hint = r.ints.z;
+  s.last_pixel = r.last.xy;
+  s.last_span = r.last.z;
+  s.last_end = uint(r.last.w);
   s.bounces = r.ints.w & 0xFFFF;
   s.inside = (r.ints.w & (1 << 16)) != 0;
   s.marching = (r.ints.w & (1 << 17)) != 0;

@@ -7,7 +7,7 @@
 
 namespace voxspan {
 namespace {
-constexpr std::size_t kRayRecordBytes = 80;  // RayRecord in shade_refractive.comp
+constexpr std::size_t kRayRecordBytes = 96;  // RayRecord in shade_refractive.comp
 }  // namespace
 
 ShadeRefractivePass::ShadeRefractivePass(const gl::ShaderLibrary& shaders)

@@ -3,7 +3,7 @@
 // pixel's ray marches through the columns, refracting at every surface it meets (several
 // bounces, total internal reflection), absorbed along the way, and leaves to the environment.
 // Reads: the span image, GpuSurfaces depths, normals and (with deep AO) ao. Writes: the float
-// image; keeps an 80-byte ray record per pixel between dispatches.
+// image; keeps a 96-byte ray record per pixel between dispatches.
 // Cost: one thread per pixel per dispatch, at most ShadeOptions::march_budget column events
 // each (bounded work per invocation); dispatches repeat, with a 4-byte read-back each, until no
 // ray is active (the paper's GTX 970: 359 ms for two paths per pixel at 1080p).

@@ -1,72 +1,8 @@
 #include "render/reference/reference_shading.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
-#include "render/model/cpp_host.h"
-#include "render/model/shade_uniforms.h"
+#include "render/reference/reference_host.h"
 
 namespace voxspan {
-namespace model {
-namespace {
-
-// The CPU host of the shared model files: the span data they read through sd_*, the uniforms
-// as members, and the model files' functions as its own (render/model/cpp_host.h).
-class ReferenceHost : public GridUniforms, public ShadeUniforms {
- public:
-  ReferenceHost(const SpanImage& spans, const ShadeUniforms& shade)
-      : GridUniforms(grid_uniforms(spans.grid)), ShadeUniforms(shade), spans_(spans) {}
-
-  std::vector<uvec2> links_, normals_;
-  std::vector<float> ao_;
-
-  uint sd_count(ivec2 p) const { return record(p).count; }
-  uint sd_offset(ivec2 p) const { return record(p).offset; }
-  float sd_inside(ivec2 p) const { return record(p).inside; }
-  vec2 sd_raw_depths(uint span) const { return vec2(spans_.spans[span].entry, spans_.spans[span].exit); }
-  vec2 sd_depths(uint span) const { return sd_raw_depths(span); }
-  uvec2 sd_links(uint span) const { return links_[span]; }
-  uvec2 sd_normals(uint span) const { return normals_[span]; }
-  float sd_ao(ivec2 p) const { return ao_[pixel_index(p)]; }
-
-  std::size_t pixel_index(ivec2 p) const {
-    return std::size_t(p.x) + std::size_t(p.y) * std::size_t(u_image.x);
-  }
-
-#include "render/model/links.glsl"
-#include "render/model/octahedral.glsl"
-#include "render/model/surface_geometry.glsl"
-#include "render/model/environment.glsl"
-#include "render/model/lighting.glsl"
-#include "render/model/shade_modes.glsl"
-#include "render/model/column_march.glsl"
-#include "render/model/deep_ao.glsl"
-
-  // f(p, span index) for every span, rows in parallel.
-  template <class F>
-  std::vector<uvec2> per_span(F&& f) {
-    std::vector<uvec2> out(spans_.spans.size());
-    each_pixel([&](ivec2 p) {
-      for (uint k = 0; k < sd_count(p); ++k) out[sd_offset(p) + k] = f(p, sd_offset(p) + k);
-    });
-    return out;
-  }
-
-  template <class F>
-  void each_pixel(F&& f) {
-    tbb::parallel_for(tbb::blocked_range<int>(0, u_image.y), [&](const tbb::blocked_range<int>& rows) {
-      for (int y = rows.begin(); y != rows.end(); ++y)
-        for (int x = 0; x < u_image.x; ++x) f(ivec2(x, y));
-    });
-  }
-
- private:
-  const PixelSpans& record(ivec2 p) const { return spans_.pixels[pixel_index(p)]; }
-  const SpanImage& spans_;
-};
-
-}  // namespace
-}  // namespace model
 
 std::vector<glm::uvec2> reference_links(const SpanImage& spans) {
   model::ReferenceHost host(spans, model::ShadeUniforms{});
@@ -129,3 +65,4 @@ FloatImage reference_shading(const SpanImage& spans, const ShadeOptions& options
 }
 
 }  // namespace voxspan
+

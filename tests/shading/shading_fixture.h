@@ -35,3 +35,11 @@ GpuResult shade_on_gpu(const SpanImage& spans, const SurfaceOptions& surfaces,
                        const ShadeOptions& shade);
 
 }  // namespace voxspan::test
+
+namespace voxspan::test {
+
+// Shading options for the tests: a fluid that absorbs enough to show its depth (a few world
+// units of it go dark), ground tiles of `tile`.
+ShadeOptions test_shading(ShadeMode mode, double tile = 0.1);
+
+}  // namespace voxspan::test
