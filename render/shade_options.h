@@ -11,8 +11,10 @@ namespace voxspan {
 // links. A surface point at depth z gets n(z) = ceil(2 (radius / pixel(z))^2) iterations
 // (pixel(z) = the pixel's width at depth z; n iterations of the kernel spread like a Gaussian of
 // sqrt(n / 2) pixels), so the smoothing radius is about `radius` in the world at every
-// distance, capped at max_iterations. No point moves more than `radius`, nor past the midpoint
-// to the next surface point of its column, so spray, thin sheets and span order survive.
+// distance, capped at max_iterations. Only points linked across (the same surface in the
+// neighbour pixel) are averaged, so silhouettes keep their depth and a lone droplet stays; no
+// point moves more than `radius`, spans of a column never cross, and a thin sheet's two sides
+// move alike (where they would cross, they meet), so spray and thin sheets survive.
 struct SurfaceOptions {
   double filter_radius = 0;  // world units; 0 = no filter
   int max_iterations = 32;   // the paper needed up to 20 at 1080p

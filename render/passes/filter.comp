@@ -3,7 +3,8 @@
 // kernel over the points its links reach across (render/model/links.glsl), from
 // surface_depths (the previous iteration) into filtered_depths. A point stops after n(z)
 // iterations (constant world radius); it never moves more than u_radius from its span depth,
-// nor past the midpoint to the next surface point of its column.
+// nor past the midpoint to the neighbouring span of its column, and a span's entry never
+// passes its exit.
 layout(local_size_x = 64) in;
 
 #define SPAN_IMAGE_ACCESS readonly
@@ -58,14 +59,18 @@ void main() {
   uint last = first + sd_count(p) - 1u;
   vec2 original = span_depths[s];
   vec2 current = surface_depths[s];
-  float middle = 0.5 * (original.x + original.y);
+  // Every point stays within the radius of where the voxelization put it, and on its side of
+  // the midpoints to the neighbouring spans' current depths (the neighbours' threads use the
+  // same midpoints, so no two spans of a column can cross).
   float entry_lo = original.x - u_radius, exit_hi = original.y + u_radius;
-  if (s > first) entry_lo = max(entry_lo, 0.5 * (span_depths[s - 1u].y + original.x));
-  if (s < last) exit_hi = min(exit_hi, 0.5 * (original.y + span_depths[s + 1u].x));
+  if (s > first) entry_lo = max(entry_lo, 0.5 * (surface_depths[s - 1u].y + current.x));
+  if (s < last) exit_hi = min(exit_hi, 0.5 * (current.y + surface_depths[s + 1u].x));
   vec2 next = current;
   if (still_filtering(original.x))
-    next.x = clamp(smoothed_depth(surface_point(p, s, 0u), current.x), entry_lo, min(middle, original.x + u_radius));
+    next.x = clamp(smoothed_depth(surface_point(p, s, 0u), current.x), entry_lo, original.x + u_radius);
   if (still_filtering(original.y))
-    next.y = clamp(smoothed_depth(surface_point(p, s, 1u), current.y), max(middle, original.y - u_radius), exit_hi);
+    next.y = clamp(smoothed_depth(surface_point(p, s, 1u), current.y), original.y - u_radius, exit_hi);
+  // The two sides of a thin sheet move alike; where they would cross, they meet halfway.
+  if (next.x > next.y) next = vec2(clamp(0.5 * (next.x + next.y), entry_lo, exit_hi));
   filtered_depths[s] = next;
 }
