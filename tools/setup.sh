@@ -12,7 +12,7 @@ packages=(
   libvtk9-dev                                        # .vtp/.vtu/.vti/.pvd files
   libhdf5-dev                                        # PySPH's HDF5 particle files (offline tools)
   libopenmpi-dev openmpi-bin                         # many ranks
-  libgtest-dev                                       # tests
+  libgtest-dev gfortran                              # tests (gfortran: the Fortran bindings)
 )
 if [[ ${1:-} == --media ]]; then
   packages+=(ffmpeg python3-matplotlib)              # the main job's video and charts

@@ -1,0 +1,177 @@
+// The Adapter: trigger check, classification and compaction on render steps, per-step stats,
+// and the hand-off to the pipeline the runtime plugs in. Nothing escapes execute(): every
+// failure becomes a Status and a log line.
+#include "voxspan/adapter.h"
+
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <new>
+#include <set>
+
+#include "voxspan/error.h"
+#include "voxspan/log.h"
+
+namespace voxspan {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void check_options(const AdapterOptions& options) {
+  const ClassifyOptions& o = options.classify;
+  auto non_negative = [](const char* name, double v) {
+    if (!(v >= 0) || !std::isfinite(v))
+      throw make_error("adapter option ", name, " = ", v, " must be a finite number >= 0");
+  };
+  if (options.render_every < 0)
+    throw make_error("adapter option render_every = ", options.render_every, " must be >= 0");
+  non_negative("particle_spacing", o.particle_spacing);
+  non_negative("radius", o.radius);
+  non_negative("cell_size", o.cell_size);
+  if (o.full_count < 0)
+    throw make_error("adapter option full_count = ", o.full_count, " must be >= 0");
+  if (!(o.full_fraction > 0) || !std::isfinite(o.full_fraction))
+    throw make_error("adapter option full_fraction = ", o.full_fraction, " must be > 0");
+  if (o.full_count == 0 && o.particle_spacing == 0)
+    throw make_error("adapter options: set particle_spacing (the rest spacing of the "
+                     "particles) or full_count (particles in a full cell)");
+  std::set<std::string> names;
+  for (const std::string& name : o.attributes) {
+    if (name.empty()) throw make_error("adapter option attributes: an empty attribute name");
+    if (!names.insert(name).second)
+      throw make_error("adapter option attributes: '", name, "' is listed twice");
+  }
+}
+
+// Records a failure; the message is dropped if even that allocation fails.
+void fail(Status& status, StatusCode code, const char* message) noexcept {
+  status.code = code;
+  try {
+    status.message = message;
+  } catch (...) {
+    status.message.clear();
+  }
+}
+
+// Logging must not throw out of execute() either.
+template <class... Parts>
+void log_quietly(LogLevel level, const Parts&... parts) noexcept {
+  try {
+    log(level, parts...);
+  } catch (...) {
+  }
+}
+
+}  // namespace
+
+struct Adapter::Impl {
+  AdapterOptions options;
+  Classifier classifier;
+  std::shared_ptr<Pipeline> pipeline;
+  StepStats stats;
+  std::int64_t steps_seen = 0, render_steps = 0, failed_steps = 0;
+
+  void render(std::int64_t step, double time, const ParticleView& particles,
+              const GridView& grid);
+};
+
+void Adapter::Impl::render(std::int64_t step, double time, const ParticleView& particles,
+                           const GridView& grid) {
+  const Classification& c = classifier.run(particles, grid, options.classify);
+  stats.counts = c.counts;
+  stats.seconds_classify = c.seconds_classify;
+  stats.seconds_compact = c.seconds_compact;
+  stats.rendered = true;
+  if (c.counts.dropped_nonfinite > 0)
+    log_quietly(LogLevel::warning, "step ", step, ": left out ", c.counts.dropped_nonfinite,
+                " particles with a NaN or infinite position or radius");
+  if (c.counts.not_in_grid > 0)
+    log_quietly(LogLevel::warning, "step ", step, ": ", c.counts.not_in_grid,
+                " particles are in no cell of the grid and were left out");
+  if (!pipeline) return;
+
+  const StepData data{step, time, c.boundary, c.cell_states(), c.attributes, &particles, &grid};
+  const auto t0 = Clock::now();
+  try {
+    Status s = pipeline->process(data, stats);
+    if (!s.ok()) stats.status = std::move(s);
+  } catch (const std::exception& e) {
+    fail(stats.status, StatusCode::pipeline_failed, e.what());
+  } catch (...) {
+    fail(stats.status, StatusCode::pipeline_failed, "unknown exception in the pipeline");
+  }
+  stats.seconds_pipeline = seconds_since(t0);
+}
+
+Adapter::Adapter(AdapterOptions options) : impl_(std::make_unique<Impl>()) {
+  check_options(options);
+  impl_->options = std::move(options);
+}
+Adapter::~Adapter() = default;
+Adapter::Adapter(Adapter&&) noexcept = default;
+Adapter& Adapter::operator=(Adapter&&) noexcept = default;
+
+void Adapter::set_pipeline(std::shared_ptr<Pipeline> pipeline) { impl_->pipeline = std::move(pipeline); }
+
+bool Adapter::is_render_step(std::int64_t step, double time) const noexcept {
+  const std::int64_t every = impl_->options.render_every;
+  if (every <= 0 || step % every != 0) return false;
+  if (!impl_->pipeline) return true;
+  try {
+    return impl_->pipeline->wants_step(step, time);
+  } catch (...) {
+    log_quietly(LogLevel::error, "step ", step, ": the pipeline's trigger threw; step skipped");
+    return false;
+  }
+}
+
+Status Adapter::execute(std::int64_t step, double time, const ParticleView& particles,
+                        const GridView& grid) noexcept {
+  Impl& m = *impl_;
+  ++m.steps_seen;
+  if (!is_render_step(step, time)) return {};
+
+  const auto t0 = Clock::now();
+  ++m.render_steps;
+  StepStats& s = m.stats;
+  s.step = step;
+  s.time = time;
+  s.rendered = false;
+  s.status = {};
+  s.counts = {};
+  s.seconds_classify = s.seconds_compact = s.seconds_pipeline = 0;
+  try {
+    m.render(step, time, particles, grid);
+  } catch (const Error& e) {
+    fail(s.status, StatusCode::invalid_input, e.what());
+  } catch (const std::bad_alloc&) {
+    fail(s.status, StatusCode::internal_error, "out of memory");
+  } catch (const std::exception& e) {
+    fail(s.status, StatusCode::internal_error, e.what());
+  } catch (...) {
+    fail(s.status, StatusCode::internal_error, "unknown exception");
+  }
+  s.seconds_total = seconds_since(t0);
+  if (!s.status.ok()) {
+    ++m.failed_steps;
+    log_quietly(LogLevel::error, "step ", step, ": ", s.status.message);
+  }
+  try {
+    return s.status;
+  } catch (...) {
+    return Status{s.status.code, {}};
+  }
+}
+
+const StepStats& Adapter::last_stats() const { return impl_->stats; }
+const Classification& Adapter::last_classification() const { return impl_->classifier.result(); }
+const AdapterOptions& Adapter::options() const { return impl_->options; }
+std::int64_t Adapter::steps_seen() const { return impl_->steps_seen; }
+std::int64_t Adapter::render_steps() const { return impl_->render_steps; }
+std::int64_t Adapter::failed_steps() const { return impl_->failed_steps; }
+
+}  // namespace voxspan

@@ -1,0 +1,212 @@
+! voxspan.f90 - Fortran 2003 bindings (iso_c_binding) of the C API in voxspan/voxspan.h.
+! Compile this file with the solver and link libvoxspan. Every call returns VOXSPAN_OK or an
+! error code; voxspan_error_message() gives the message. Arrays are passed with c_loc():
+!
+!   use voxspan
+!   type(voxspan_adapter_options) :: opt
+!   type(c_ptr) :: adapter, particles
+!   call voxspan_adapter_options_init(opt)
+!   opt%render_every = 10; opt%particle_spacing = dx
+!   adapter = voxspan_adapter_create(opt)
+!   particles = voxspan_particles_create()
+!   rc = voxspan_particles_set_soa(particles, VOXSPAN_FLOAT64, c_loc(x), c_loc(y), c_loc(z), n)
+!   rc = voxspan_adapter_execute(adapter, step, time, particles, c_null_ptr)
+!
+! The arrays must be TARGETs and stay in place until the execute call that uses them returns.
+! Grid indices may be 1-based: voxspan_grid_set_index_base(grid, 1).
+module voxspan
+  use, intrinsic :: iso_c_binding
+  implicit none
+
+  integer(c_int), parameter :: VOXSPAN_OK = 0, VOXSPAN_INVALID_INPUT = 1, &
+                               VOXSPAN_PIPELINE_FAILED = 2, VOXSPAN_INTERNAL_ERROR = 3
+  integer(c_int), parameter :: VOXSPAN_FLOAT32 = 0, VOXSPAN_FLOAT64 = 1
+  integer(c_int), parameter :: VOXSPAN_INT32 = 0, VOXSPAN_UINT32 = 1, VOXSPAN_INT64 = 2, &
+                               VOXSPAN_UINT64 = 3
+
+  type, bind(C) :: voxspan_adapter_options
+    integer(c_int64_t) :: render_every
+    real(c_double) :: particle_spacing
+    integer(c_int) :: full_count
+    real(c_double) :: full_fraction
+    real(c_double) :: particle_radius
+    real(c_double) :: cell_size
+    integer(c_int) :: validate
+    integer(c_int) :: include_ghosts
+  end type
+
+  ! The C struct's uint64_t counters read as 64-bit integers.
+  type, bind(C) :: voxspan_step_stats
+    integer(c_int64_t) :: step
+    real(c_double) :: time
+    integer(c_int) :: rendered, status
+    integer(c_int64_t) :: particles, owned, boundary, dropped_nonfinite, not_in_grid
+    integer(c_int64_t) :: cells, cells_empty, cells_partial, cells_full, cells_inner_empty, &
+                          cells_inner_full
+    integer(c_int) :: full_count, grid_built
+    real(c_double) :: cell_size
+    real(c_double) :: seconds_classify, seconds_compact, seconds_pipeline, seconds_total
+  end type
+
+  interface
+    subroutine voxspan_set_log_level(level) bind(C)
+      import :: c_int
+      integer(c_int), value :: level
+    end subroutine
+
+    function voxspan_last_error_c() bind(C, name="voxspan_last_error") result(message)
+      import :: c_ptr
+      type(c_ptr) :: message
+    end function
+
+    subroutine voxspan_adapter_options_init(options) bind(C)
+      import :: voxspan_adapter_options
+      type(voxspan_adapter_options), intent(out) :: options
+    end subroutine
+
+    function voxspan_adapter_create(options) bind(C) result(adapter)
+      import :: voxspan_adapter_options, c_ptr
+      type(voxspan_adapter_options), intent(in) :: options
+      type(c_ptr) :: adapter
+    end function
+
+    subroutine voxspan_adapter_destroy(adapter) bind(C)
+      import :: c_ptr
+      type(c_ptr), value :: adapter
+    end subroutine
+
+    function voxspan_adapter_execute(adapter, step, time, particles, grid) bind(C) result(rc)
+      import :: c_ptr, c_int64_t, c_double, c_int
+      type(c_ptr), value :: adapter, particles, grid
+      integer(c_int64_t), value :: step
+      real(c_double), value :: time
+      integer(c_int) :: rc
+    end function
+
+    function voxspan_adapter_stats(adapter, stats) bind(C) result(rc)
+      import :: c_ptr, c_int, voxspan_step_stats
+      type(c_ptr), value :: adapter
+      type(voxspan_step_stats), intent(out) :: stats
+      integer(c_int) :: rc
+    end function
+
+    function voxspan_particles_create() bind(C) result(particles)
+      import :: c_ptr
+      type(c_ptr) :: particles
+    end function
+
+    subroutine voxspan_particles_destroy(particles) bind(C)
+      import :: c_ptr
+      type(c_ptr), value :: particles
+    end subroutine
+
+    function voxspan_particles_set_aos(particles, type, xyz, count, stride_bytes) bind(C) &
+        result(rc)
+      import :: c_ptr, c_int, c_size_t
+      type(c_ptr), value :: particles, xyz
+      integer(c_int), value :: type
+      integer(c_size_t), value :: count, stride_bytes
+      integer(c_int) :: rc
+    end function
+
+    function voxspan_particles_set_soa(particles, type, x, y, z, count) bind(C) result(rc)
+      import :: c_ptr, c_int, c_size_t
+      type(c_ptr), value :: particles, x, y, z
+      integer(c_int), value :: type
+      integer(c_size_t), value :: count
+      integer(c_int) :: rc
+    end function
+
+    function voxspan_particles_set_owned(particles, owned) bind(C) result(rc)
+      import :: c_ptr, c_int, c_size_t
+      type(c_ptr), value :: particles
+      integer(c_size_t), value :: owned
+      integer(c_int) :: rc
+    end function
+
+    function voxspan_particles_set_radius(particles, radius) bind(C) result(rc)
+      import :: c_ptr, c_int, c_double
+      type(c_ptr), value :: particles
+      real(c_double), value :: radius
+      integer(c_int) :: rc
+    end function
+
+    function voxspan_grid_create() bind(C) result(grid)
+      import :: c_ptr
+      type(c_ptr) :: grid
+    end function
+
+    subroutine voxspan_grid_destroy(grid) bind(C)
+      import :: c_ptr
+      type(c_ptr), value :: grid
+    end subroutine
+
+    function voxspan_grid_set_offsets(grid, origin, cell_size, dims, index_type, offsets) &
+        bind(C) result(rc)
+      import :: c_ptr, c_int, c_double
+      type(c_ptr), value :: grid, offsets
+      real(c_double), intent(in) :: origin(3)
+      real(c_double), value :: cell_size
+      integer(c_int), intent(in) :: dims(3)
+      integer(c_int), value :: index_type
+      integer(c_int) :: rc
+    end function
+
+    function voxspan_grid_set_cell_index(grid, origin, cell_size, dims, index_type, cell_of) &
+        bind(C) result(rc)
+      import :: c_ptr, c_int, c_double
+      type(c_ptr), value :: grid, cell_of
+      real(c_double), intent(in) :: origin(3)
+      real(c_double), value :: cell_size
+      integer(c_int), intent(in) :: dims(3)
+      integer(c_int), value :: index_type
+      integer(c_int) :: rc
+    end function
+
+    function voxspan_grid_set_geometry(grid, origin, cell_size, dims) bind(C) result(rc)
+      import :: c_ptr, c_int, c_double
+      type(c_ptr), value :: grid
+      real(c_double), intent(in) :: origin(3)
+      real(c_double), value :: cell_size
+      integer(c_int), intent(in) :: dims(3)
+      integer(c_int) :: rc
+    end function
+
+    function voxspan_grid_set_order(grid, index_type, order) bind(C) result(rc)
+      import :: c_ptr, c_int
+      type(c_ptr), value :: grid, order
+      integer(c_int), value :: index_type
+      integer(c_int) :: rc
+    end function
+
+    function voxspan_grid_set_index_base(grid, base) bind(C) result(rc)
+      import :: c_ptr, c_int
+      type(c_ptr), value :: grid
+      integer(c_int), value :: base
+      integer(c_int) :: rc
+    end function
+  end interface
+
+contains
+
+  ! The message of the latest failed call on this thread, as a Fortran string.
+  function voxspan_error_message() result(message)
+    character(len=:), allocatable :: message
+    character(kind=c_char), pointer :: chars(:)
+    type(c_ptr) :: p
+    integer :: n
+    interface
+      function strlen(s) bind(C, name="strlen") result(length)
+        import :: c_ptr, c_size_t
+        type(c_ptr), value :: s
+        integer(c_size_t) :: length
+      end function
+    end interface
+    p = voxspan_last_error_c()
+    n = int(strlen(p))
+    call c_f_pointer(p, chars, [n])
+    allocate(character(len=n) :: message)
+    message = transfer(chars(1:n), message)
+  end function
+
+end module voxspan

@@ -1,0 +1,118 @@
+// voxspan/adapter.h - the entry point a solver calls every step:
+//
+//   voxspan::AdapterOptions options;
+//   options.render_every = 10;
+//   options.classify.particle_spacing = dx;
+//   voxspan::Adapter adapter(options);                      // throws voxspan::Error if invalid
+//   for (step...) {
+//     ...advance the solver...
+//     adapter.execute(step, time, ParticleView::soa(x, y, z, n), GridView::offsets(g, offsets));
+//   }
+//
+// execute() never throws into the solver and costs nothing on a step that is not a render
+// step (no allocation, no pass over the particles). On a render step it classifies the cells,
+// compacts the boundary particles (voxspan/classify.h) and hands them, with the cell states
+// and the step's stats, to the Pipeline plugged in behind it (the renderer and outputs).
+// Standard library only; no GL, VTK or OpenVDB.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "voxspan/cell_states.h"
+#include "voxspan/classify.h"
+#include "voxspan/grid.h"
+#include "voxspan/particles.h"
+
+namespace voxspan {
+
+struct AdapterOptions {
+  // A step is a render step when step % render_every == 0 (and the pipeline wants it);
+  // 0 never renders.
+  std::int64_t render_every = 1;
+  // Full count, particle spacing, radius, built-grid cell size, validation, ghosts and the
+  // attributes to compact: see voxspan/classify.h. particle_spacing or full_count is needed.
+  ClassifyOptions classify;
+};
+
+enum class StatusCode : int { ok = 0, invalid_input = 1, pipeline_failed = 2, internal_error = 3 };
+
+struct Status {
+  StatusCode code = StatusCode::ok;
+  std::string message;
+
+  bool ok() const { return code == StatusCode::ok; }
+};
+
+// What one execute() did. Occupancy counts (empty/partial/full) include the inner cells.
+struct StepStats {
+  std::int64_t step = -1;
+  double time = 0;
+  bool rendered = false;  // a render step that completed classification
+  Status status;
+  ClassifyCounts counts;  // particles total/owned/boundary/dropped, cells per state
+  double seconds_classify = 0, seconds_compact = 0, seconds_pipeline = 0, seconds_total = 0;
+};
+
+// Everything a render step produced, valid during Pipeline::process() only.
+struct StepData {
+  std::int64_t step = 0;
+  double time = 0;
+  std::span<const ParticleSphere> boundary;       // the boundary particles, packed float4
+  CellStatesView cells;                           // one state byte per cell
+  std::span<const CompactedAttribute> attributes; // in boundary order
+  const ParticleView* particles = nullptr;        // all particles, for outputs that want them
+  const GridView* grid = nullptr;                 // the grid as the solver passed it
+};
+
+// What the runtime plugs in behind the adapter: rendering and outputs.
+class Pipeline {
+ public:
+  virtual ~Pipeline() = default;
+  // Called on every step that passes the adapter's render_every filter, before any work:
+  // must be cheap and must not allocate. Lets the runtime's own triggers decide.
+  virtual bool wants_step(std::int64_t /*step*/, double /*time*/) { return true; }
+  // A render step's data. Exceptions are caught and reported as pipeline_failed; a returned
+  // error status is passed on as it is.
+  virtual Status process(const StepData& data, const StepStats& stats) = 0;
+};
+
+class Adapter {
+ public:
+  // Throws voxspan::Error naming the bad option (e.g. no spacing and no full count).
+  explicit Adapter(AdapterOptions options);
+  ~Adapter();
+  Adapter(const Adapter&) = delete;
+  Adapter& operator=(const Adapter&) = delete;
+  Adapter(Adapter&&) noexcept;
+  Adapter& operator=(Adapter&&) noexcept;
+
+  void set_pipeline(std::shared_ptr<Pipeline> pipeline);
+
+  // The per-step call. Returns ok on a step that is not a render step. Never throws; errors
+  // are logged (voxspan/log.h) and returned.
+  Status execute(std::int64_t step, double time, const ParticleView& particles,
+                 const GridView& grid = GridView()) noexcept;
+
+  // Whether execute(step, time, ...) would do any work.
+  bool is_render_step(std::int64_t step, double time) const noexcept;
+
+  // The stats of the latest render step (step == -1 before the first).
+  const StepStats& last_stats() const;
+  // The classification of the latest render step that got that far.
+  const Classification& last_classification() const;
+  const AdapterOptions& options() const;
+
+  std::int64_t steps_seen() const;
+  std::int64_t render_steps() const;
+  std::int64_t failed_steps() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace voxspan

@@ -1,0 +1,125 @@
+// voxspan/classify.h - cell classification and boundary-particle compaction (paper 001,
+// sec. 3.1 and 4.3): per cell of the simulation grid empty, partial or full; a cell is inner
+// when it and its 26 neighbours are all empty or all full; the particles of non-inner cells
+// (boundary particles) are compacted, in cell order, into packed float spheres (and the named
+// attributes asked for, in the same order). Particles of inner cells add nothing to the
+// picture and are left out.
+//
+// Reads: a ParticleView and a GridView (any layout). Writes: one state byte per cell
+// (voxspan/cell_states.h) and the boundary spheres. Costs: one pass over all positions (to
+// count valid particles per cell and drop NaN/inf), three passes over the cells, one pass over
+// the boundary particles; a counting sort first when the solver shares no cell ranges.
+// Parallel with oneTBB. Standard library only in this header.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "voxspan/cell_states.h"
+#include "voxspan/grid.h"
+#include "voxspan/particles.h"
+
+namespace voxspan {
+
+struct ClassifyOptions {
+  // The solver's particle spacing at rest density (world units). Gives the full count, the
+  // cell size of a grid the adapter builds, and the radius when the view has none.
+  double particle_spacing = 0;
+  // Particles that make a cell full. 0: the count of a cell filled at rest density, the
+  // fewest a cell inside a cubic rest lattice holds whatever its offset,
+  // round(full_fraction * floor(cell_size / spacing)^3).
+  int full_count = 0;
+  double full_fraction = 1.0;
+  // Cell size of the grid built when the solver gives none (GridView::none()); 0: 2 * spacing.
+  double cell_size = 0;
+  // Sphere radius when the view has no radius; 0: particle_spacing (a sphere of radius >=
+  // sqrt(3)/2 spacing leaves no holes in the rest lattice).
+  double radius = 0;
+  // Checks that every particle lies in the cell the grid claims, and appears once.
+  bool validate = false;
+  // Ghost particles (past ParticleView::owned_count()) count towards the cells' occupancy
+  // always; with this on they are also compacted when they are boundary particles.
+  bool include_ghosts = true;
+  // Names of the particle attributes to compact beside the spheres.
+  std::vector<std::string> attributes;
+  // A grid the adapter builds never has more cells than this: its cells grow instead.
+  std::size_t max_built_cells = std::size_t(1) << 27;
+};
+
+// What one classification saw. The occupancy counts (empty/partial/full) include the inner
+// cells; inner_empty and inner_full say how many of them are inner.
+struct ClassifyCounts {
+  std::size_t particles = 0;          // in the view
+  std::size_t owned = 0;              // of them owned by this rank
+  std::size_t boundary = 0;           // compacted
+  std::size_t dropped_nonfinite = 0;  // NaN/inf position or radius: left out
+  std::size_t not_in_grid = 0;        // listed in no cell of the solver's grid
+  std::size_t cells = 0;
+  std::size_t cells_empty = 0, cells_partial = 0, cells_full = 0;
+  std::size_t cells_inner_empty = 0, cells_inner_full = 0;
+  int full_count = 0;
+  double cell_size = 0;
+  bool grid_built = false;  // the adapter sorted the particles itself
+};
+
+// A compacted attribute: `components` floats per boundary particle, in boundary order.
+struct CompactedAttribute {
+  std::string name;
+  int components = 1;
+  std::vector<float> values;
+};
+
+struct Classification {
+  GridGeometry geometry;
+  std::vector<std::uint8_t> states;       // one byte per cell, voxspan::cell
+  std::vector<ParticleSphere> boundary;   // in cell order, then grid order within a cell
+  std::vector<CompactedAttribute> attributes;
+  ClassifyCounts counts;
+  double seconds_classify = 0;  // counting (and sorting) and the cell states
+  double seconds_compact = 0;   // the boundary spheres and attributes
+
+  CellStatesView cell_states() const {
+    return {geometry.origin, geometry.cell_size, geometry.dims,
+            states.empty() ? nullptr : states.data()};
+  }
+};
+
+// The occupancy and inner bits from per-cell particle counts (cells outside the grid are
+// empty). `states` must have geometry.cell_count() entries.
+void classify_cells(const GridGeometry& geometry, std::span<const std::uint32_t> counts,
+                    int full_count, std::span<std::uint8_t> states);
+
+// The full count for cells of `cell_size` (see ClassifyOptions::full_count).
+int full_count_for(const ClassifyOptions& options, double cell_size);
+
+// Reuses its buffers from step to step: a solver's loop should keep one.
+class Classifier {
+ public:
+  Classifier();
+  ~Classifier();
+  Classifier(Classifier&&) noexcept;
+  Classifier& operator=(Classifier&&) noexcept;
+
+  // Throws voxspan::Error naming the bad input (grid ranges out of bounds, cell index out of
+  // range, a particle outside its claimed cell under validate, a missing attribute...). NaN
+  // and infinite positions are not errors: they are counted and left out.
+  const Classification& run(const ParticleView& particles, const GridView& grid,
+                            const ClassifyOptions& options);
+  const Classification& result() const;
+  // Moves the result out (the next run() starts with empty buffers).
+  Classification take_result();
+
+ private:
+  struct Work;
+  std::unique_ptr<Work> work_;
+};
+
+// The common case, with fresh buffers.
+Classification classify(const ParticleView& particles, const GridView& grid,
+                        const ClassifyOptions& options);
+
+}  // namespace voxspan
