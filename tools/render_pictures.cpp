@@ -1,21 +1,23 @@
 // render_pictures: renders the dam break in every shading mode (paper 001, sec. 3.5, 3.6) and
-// writes 8-bit sRGB PNGs, the pictures of docs/images/ and the README.
+// writes 8-bit sRGB PNGs: the pictures of docs/images/ and the README.
 //
-// The scene: a water column of about --particles lattice particles collapsing along a tank at
-// --time seconds (Ritter's dam-break profile with a little spray: the test scene of
-// tests/render/scenes.h), classified into cells of two spacings so that only the boundary shell
-// is voxelized, with the cell states filling the inside. Filter radius: one particle spacing.
+// The fluid: the WCSPH dam-break solver of examples/dambreak run to Martin & Moyce's
+// T = t sqrt(2 g / a) (--time) with about --particles fluid particles, its state cached in
+// --state (reaching the splash takes minutes on two cores); or, with --ritter (or without the
+// examples), the Ritter-profile test scene of tests/render/scenes.h at t = --time seconds.
+// The adapter's classifier (voxspan/classify.h) keeps only the boundary particles, the cell
+// states fill the inside. Gap bridging one particle spacing, filter radius 1.5 spacings.
 // --reference also writes the exact CPU reference's pictures (exact spans, Sobel normals).
 //
-//   render_pictures [--out DIR] [--particles N] [--time T] [--size WxH] [--alpha DEG]
-//                   [--reference] [--platform auto|nvidia|device|surfaceless]
-#include <chrono>
+//   render_pictures [--out DIR] [--particles N] [--time T] [--state FILE] [--ritter]
+//                   [--size WxH] [--alpha DEG] [--reference]
+//                   [--platform auto|nvidia|device|surfaceless]
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
-#include <vector>
 
+#include "dambreak_state.h"
 #include "insitu/png_image.h"
 #include "render/gl/context.h"
 #include "render/gl/pass_timer.h"
@@ -23,8 +25,6 @@
 #include "render/reference/exact_spans.h"
 #include "render/reference/reference_shading.h"
 #include "render/renderer.h"
-#include "scene_cell_states.h"
-#include "scenes.h"
 #include "voxspan/error.h"
 
 namespace {
@@ -33,8 +33,10 @@ using namespace voxspan;
 
 struct Args {
   std::string out = "docs/images";
-  double particles = 3e5;
-  double time = 0.3;
+  double particles = 1e5;
+  double time = -1;  // default: T = 3.6 (solver), t = 0.3 s (Ritter)
+  std::string state = "build/dambreak_state.bin";
+  bool ritter = !tools::have_solver();
   int width = 960, height = 540;
   double alpha = 14;
   bool reference = false;
@@ -43,8 +45,9 @@ struct Args {
 
 int usage(FILE* out) {
   std::fprintf(out,
-               "usage: render_pictures [--out DIR] [--particles N] [--time T] [--size WxH]\n"
-               "         [--alpha DEG] [--reference] [--platform auto|nvidia|device|surfaceless]\n");
+               "usage: render_pictures [--out DIR] [--particles N] [--time T] [--state FILE]\n"
+               "         [--ritter] [--size WxH] [--alpha DEG] [--reference]\n"
+               "         [--platform auto|nvidia|device|surfaceless]\n");
   return out == stdout ? 0 : 2;
 }
 
@@ -55,6 +58,8 @@ bool parse(int argc, char** argv, Args& a) {
     if (k == "--out" && has_value) a.out = argv[++i];
     else if (k == "--particles" && has_value) a.particles = std::atof(argv[++i]);
     else if (k == "--time" && has_value) a.time = std::atof(argv[++i]);
+    else if (k == "--state" && has_value) a.state = argv[++i];
+    else if (k == "--ritter") a.ritter = true;
     else if (k == "--size" && has_value) {
       if (std::sscanf(argv[++i], "%dx%d", &a.width, &a.height) != 2) return false;
     } else if (k == "--alpha" && has_value) a.alpha = std::atof(argv[++i]);
@@ -77,30 +82,36 @@ void write(const std::filesystem::path& path, const FloatImage& image) {
   std::printf("wrote %s\n", path.c_str());
 }
 
+// The look of the pictures, in the scene's own scale (`length`: the column's width).
+RenderOptions picture_options(const tools::DamBreakState& s, double alpha) {
+  RenderOptions o;
+  o.voxelize.grid.alpha_degrees = alpha;
+  o.voxelize.gap_bridging = s.spacing;
+  o.surfaces.filter_radius = 1.5 * s.spacing;
+  ShadeOptions& shade = o.shade;
+  shade.material.absorption = glm::dvec3(3.0, 1.0, 0.4) / s.length;
+  shade.material.scatter_color = {0.04, 0.13, 0.2};
+  shade.environment.up = s.up;
+  shade.environment.ground_height = s.ground - 0.5 * s.spacing;
+  shade.environment.ground_tile = s.length / 3;
+  shade.environment.sun_direction = s.up + glm::dvec3(0.35, -0.3, 0.2);
+  shade.ao.radius = 4 * s.spacing;
+  return o;
+}
+
 int run(const Args& a) {
   gl::Context context(a.context);
   gl::ShaderLibrary shaders;
   Renderer renderer(shaders);
 
-  test::DamBreak shape;
-  shape.spacing = test::dam_break_spacing(shape, a.particles);
-  shape.radius = shape.spacing;
-  shape.spray_fraction = 0.004;
-  const test::Particles all = test::dam_break(shape, a.time);
-  test::TestCells cells = test::classify_for_test(all, 2 * shape.spacing, 8);
-  std::printf("dam break: %zu particles, %zu in the boundary shell, spacing %.4f\n", all.size(),
-              cells.boundary.size(), shape.spacing);
-
-  Camera camera = test::look_at({1.55, 0.75, 1.15}, {0.52, 0.12, 0.12}, a.width, a.height, 40);
-  RenderOptions options;
-  options.voxelize.grid.alpha_degrees = a.alpha;
-  options.voxelize.gap_bridging = shape.spacing;
-  options.surfaces.filter_radius = shape.spacing;
-  ShadeOptions& shade = options.shade;
-  shade.material.absorption = {2.2, 0.7, 0.3};
-  shade.material.scatter_color = {0.03, 0.09, 0.13};
-  shade.environment.ground_tile = 0.1;
-  shade.ao.radius = 4 * shape.spacing;
+  tools::DamBreakState s = a.ritter ? tools::ritter_dam_break(a.particles, a.time < 0 ? 0.3 : a.time)
+                                    : tools::solver_dam_break(a.particles, a.time < 0 ? 3.6 : a.time, a.state);
+  const Classification& c = s.classification;
+  std::printf("%s: %zu boundary particles of %zu, %zu inner-full cells\n", s.description.c_str(),
+              c.boundary.size(), s.x.size(), c.counts.cells_inner_full);
+  s.camera.width = a.width;
+  s.camera.height = a.height;
+  RenderOptions options = picture_options(s, a.alpha);
 
   const std::filesystem::path out(a.out);
   std::filesystem::create_directories(out);
@@ -110,18 +121,19 @@ int run(const Args& a) {
                               {"dambreak_translucent_ao", ShadeMode::translucent, true},
                               {"dambreak_refractive", ShadeMode::refractive, false}};
   for (const Picture& p : pictures) {
-    shade.mode = p.mode;
-    shade.deep_ao = p.deep_ao;
+    options.shade.mode = p.mode;
+    options.shade.deep_ao = p.deep_ao;
     gl::PassTimer timer(context.has_gpu_timers());
     FrameStats stats;
-    const FloatImage image = renderer.render(camera, cells.boundary, cells.view, options, timer, stats).download();
+    const FloatImage image =
+        renderer.render(s.camera, c.boundary, c.cell_states(), options, timer, stats).download();
     timer.collect(stats);
-    std::printf("%s: %.0f ms on the GPU side (%s)\n", p.name, stats.total_ms(), stats.json().c_str());
+    std::printf("%s: %.0f ms (%s)\n", p.name, stats.total_ms(), stats.json().c_str());
     write(out / (std::string(p.name) + ".png"), image);
     if (a.reference) {
-      const SpanImage spans = exact_spans(renderer.voxelizer().image().grid(), cells.boundary,
-                                          cells.view, {shape.spacing, 0});
-      write(out / (std::string(p.name) + "_reference.png"), reference_shading(spans, shade));
+      const SpanImage spans = exact_spans(renderer.voxelizer().image().grid(), c.boundary,
+                                          c.cell_states(), {options.voxelize.gap_bridging, 0});
+      write(out / (std::string(p.name) + "_reference.png"), reference_shading(spans, options.shade));
     }
   }
   return 0;
