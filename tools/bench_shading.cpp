@@ -125,7 +125,7 @@ double median(std::vector<double> v) {
 
 void time_modes(const Args& a, const gl::Context& context, Renderer& renderer) {
   tools::DamBreakState s = a.ritter ? tools::ritter_dam_break(a.particles, a.time < 0 ? 0.3 : a.time)
-                                    : tools::solver_dam_break(a.particles, a.time < 0 ? 3.6 : a.time, a.state);
+                                    : tools::solver_dam_break(a.particles, a.time < 0 ? 5.0 : a.time, a.state);
   const Classification& c = s.classification;
   std::vector<ParticleSphere> all;
   if (a.all_particles)

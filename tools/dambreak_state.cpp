@@ -105,8 +105,8 @@ DamBreakState solver_dam_break(double particles, double time, const std::string&
   s.ground = 0;
   s.length = a;
   // Tank [0, 4a] x [0, a] x [0, 3a]: from the front, above, looking down the tank.
-  s.camera.eye = {2.7 * a, -3.4 * a, 2.6 * a};
-  s.camera.target = {2.0 * a, 0.5 * a, 0.6 * a};
+  s.camera.eye = {2.3 * a, -4.7 * a, 3.5 * a};
+  s.camera.target = {2.05 * a, 0.5 * a, 1.2 * a};
   s.camera.up = {0, 0, 1};
   s.camera.fov_y_degrees = 40;
   classify(s);

@@ -34,8 +34,8 @@ using namespace voxspan;
 struct Args {
   std::string out = "docs/images";
   double particles = 1e5;
-  double time = -1;  // default: T = 3.6 (solver), t = 0.3 s (Ritter)
-  std::string state = "build/dambreak_state.bin";
+  double time = -1;  // default: T = 5 (solver: the run-up on the far wall), t = 0.3 s (Ritter)
+  std::string state = "build/dambreak_state.bin";  // cache of the solver state
   bool ritter = !tools::have_solver();
   int width = 960, height = 540;
   double alpha = 14;
@@ -89,8 +89,8 @@ RenderOptions picture_options(const tools::DamBreakState& s, double alpha) {
   o.voxelize.gap_bridging = s.spacing;
   o.surfaces.filter_radius = 1.5 * s.spacing;
   ShadeOptions& shade = o.shade;
-  shade.material.absorption = glm::dvec3(3.0, 1.0, 0.4) / s.length;
-  shade.material.scatter_color = {0.04, 0.13, 0.2};
+  shade.material.absorption = glm::dvec3(5.0, 1.8, 0.7) / s.length;
+  shade.material.scatter_color = {0.05, 0.16, 0.25};
   shade.environment.up = s.up;
   shade.environment.ground_height = s.ground - 0.5 * s.spacing;
   shade.environment.ground_tile = s.length / 3;
@@ -105,7 +105,7 @@ int run(const Args& a) {
   Renderer renderer(shaders);
 
   tools::DamBreakState s = a.ritter ? tools::ritter_dam_break(a.particles, a.time < 0 ? 0.3 : a.time)
-                                    : tools::solver_dam_break(a.particles, a.time < 0 ? 3.6 : a.time, a.state);
+                                    : tools::solver_dam_break(a.particles, a.time < 0 ? 5.0 : a.time, a.state);
   const Classification& c = s.classification;
   std::printf("%s: %zu boundary particles of %zu, %zu inner-full cells\n", s.description.c_str(),
               c.boundary.size(), s.x.size(), c.counts.cells_inner_full);
