@@ -19,12 +19,15 @@
 // iterations) and resumes the RayState in a later dispatch.
 //
 // Host needs: links.glsl, surface_geometry.glsl, octahedral.glsl, lighting.glsl, shade_modes.glsl
-// and their needs; u_bounces, u_near, u_grid_far, u_log2_step.
+// and their needs; u_bounces, u_near, u_grid_far, u_log2_step; vec2 sd_block_bounds(ivec2): the
+// nearest entry and farthest exit depth in a block of VX_BLOCK^2 columns ((3e38, -3e38) when it
+// holds no span), over the surface depths.
 #ifndef VX_MODEL_COLUMN_MARCH
 #define VX_MODEL_COLUMN_MARCH
 
 #define VX_HINT_SIDE -1  // origin on a side of the column just entered: compare its state
 #define VX_HINT_FREE -2  // origin inside the column, state already settled
+#define VX_BLOCK 8       // columns per side of the blocks the march skips when empty
 
 struct RayState {
   vec3 origin;      // view space: the last event's point
@@ -215,37 +218,83 @@ int continued_surface(RayState s, ivec2 q, uint before) {
   return (i == before || i + 1u == before) ? int(i) : -1;
 }
 
-// One event: the next boundary of the current column, or the step into the next column.
+// Where the ray leaves the pyramid of the pixels lo..hi (inclusive), or the grid's depth range.
+struct PyramidExit {
+  float s;   // ray parameter
+  int side;  // 0: an x side, 1: a y side, 2: the near or far end of the grid
+  int gx;    // projected_direction() along x and y
+  int gy;
+};
+
+PyramidExit pyramid_exit(vec3 o, vec3 d, ivec2 lo, ivec2 hi) {
+  PyramidExit e;
+  e.s = 3.0e38f;
+  e.side = 2;
+  e.gx = projected_direction(o, d, 0);
+  if (e.gx != 0) {
+    float k = (2.0f * float(e.gx > 0 ? hi.x + 1 : lo.x) / float(u_image.x) - 1.0f) * u_tan_half.x;
+    float t = side_crossing(o, d, k, 0);
+    if (t >= 0.0f && t < e.s) {
+      e.s = t;
+      e.side = 0;
+    }
+  }
+  e.gy = projected_direction(o, d, 1);  // +1: y/z grows, the ray moves up the rows
+  if (e.gy != 0) {
+    float k = (1.0f - 2.0f * float(e.gy > 0 ? lo.y : hi.y + 1) / float(u_image.y)) * u_tan_half.y;
+    float t = side_crossing(o, d, k, 1);
+    if (t >= 0.0f && t < e.s) {
+      e.s = t;
+      e.side = 1;
+    }
+  }
+  float limit = d.z > 0.0f ? (u_grid_far - o.z) / d.z : (d.z < 0.0f ? (u_near - o.z) / d.z : 3.0e38f);
+  if (limit < e.s) {
+    e.s = max(limit, 0.0f);
+    e.side = 2;
+  }
+  return e;
+}
+
+// Outside the fluid, a block of VX_BLOCK x VX_BLOCK columns with no surface between the depths
+// where the ray enters and leaves its pyramid is crossed in one step (sd_block_bounds: the
+// block's nearest entry and farthest exit): the march skips empty space without changing what
+// it finds.
+RayState skip_block(RayState s, PyramidExit e, ivec2 b0, ivec2 b1) {
+  vec3 p = s.origin + e.s * s.dir;
+  s.origin = p;
+  if (e.side == 2) return ray_leave(s);
+  vec2 xy = vec2((p.x / (p.z * u_tan_half.x) + 1.0f) * 0.5f * float(u_image.x),
+                 (1.0f - p.y / (p.z * u_tan_half.y)) * 0.5f * float(u_image.y));
+  ivec2 next;
+  if (e.side == 0) next = ivec2(e.gx > 0 ? b1.x + 1 : b0.x - 1, clamp(int(floor(xy.y)), b0.y, b1.y));
+  else next = ivec2(clamp(int(floor(xy.x)), b0.x, b1.x), e.gy > 0 ? b0.y - 1 : b1.y + 1);
+  if (!in_image(next)) return ray_leave(s);
+  s.pixel = next;
+  s.hint = VX_HINT_SIDE;
+  return s;
+}
+
+// One event: the next boundary of the current column, the step into the next column, or, outside
+// the fluid, the step across an empty block.
 RayState march_step(RayState s) {
   ivec2 q = s.pixel;
   vec3 o = s.origin;
   vec3 d = s.dir;
+  if (!s.inside) {
+    ivec2 b0 = (q / VX_BLOCK) * VX_BLOCK;
+    ivec2 b1 = min(b0 + ivec2(VX_BLOCK - 1), u_image - ivec2(1));
+    vec2 bounds = sd_block_bounds(q / VX_BLOCK);
+    PyramidExit block = pyramid_exit(o, d, b0, b1);
+    float z_block = o.z + block.s * d.z;
+    if (max(o.z, z_block) < bounds.x || min(o.z, z_block) > bounds.y) return skip_block(s, block, b0, b1);
+  }
   // Where the ray leaves this column's pyramid (or the grid's depth range).
-  float s_end = 3.0e38f;
+  PyramidExit column = pyramid_exit(o, d, q, q);
+  float s_end = column.s;
   ivec2 next_pixel = ivec2(-1);
-  int gx = projected_direction(o, d, 0);
-  if (gx != 0) {
-    float k = (2.0f * float(q.x + (gx > 0 ? 1 : 0)) / float(u_image.x) - 1.0f) * u_tan_half.x;
-    float t = side_crossing(o, d, k, 0);
-    if (t >= 0.0f && t < s_end) {
-      s_end = t;
-      next_pixel = q + ivec2(gx, 0);
-    }
-  }
-  int gy = projected_direction(o, d, 1);  // +1: y/z grows, the ray moves up a row
-  if (gy != 0) {
-    float k = (1.0f - 2.0f * float(q.y + (gy > 0 ? 0 : 1)) / float(u_image.y)) * u_tan_half.y;
-    float t = side_crossing(o, d, k, 1);
-    if (t >= 0.0f && t < s_end) {
-      s_end = t;
-      next_pixel = q + ivec2(0, -gy);
-    }
-  }
-  float limit = d.z > 0.0f ? (u_grid_far - o.z) / d.z : (d.z < 0.0f ? (u_near - o.z) / d.z : 3.0e38f);
-  if (limit < s_end) {
-    s_end = max(limit, 0.0f);
-    next_pixel = ivec2(-1);
-  }
+  if (column.side == 0) next_pixel = q + ivec2(column.gx, 0);
+  if (column.side == 1) next_pixel = q + ivec2(0, -column.gy);
   bool forward = d.z >= 0.0f;
   float z_end = o.z + s_end * d.z;
 

@@ -1,11 +1,26 @@
 // Refractive shading (paper 001, sec. 3.5, Listing 2; render/passes/shade_refractive.h): one thread per
 // pixel, its ray's state kept in `rays` between dispatches (render/model/column_march.glsl).
-// REFRACT_BEGIN starts every ray at the eye; REFRACT_MARCH advances each marching ray by at most
+// REFRACT_BEGIN starts every ray at the eye and gathers the depth bounds of each 8 x 8 block
+// (for skipping empty space); REFRACT_MARCH advances each marching ray by at most
 // u_march_budget column events and counts the rays still marching; REFRACT_RESOLVE sends the rays
 // still marching to the environment and writes every pixel's colour.
 layout(local_size_x = 64) in;
 
 #include "render/passes/shade_common.glsl"
+
+// Per block of 8 x 8 columns (VX_BLOCK): the largest ~bits of its nearest entry depth and the
+// largest bits of its farthest exit depth (positive floats order as their bits), both 0 when
+// the block holds no span; REFRACT_BEGIN gathers them.
+layout(std430, binding = 10) buffer BlockBounds { uint block_bounds[]; };
+uniform int u_blocks_x;
+
+vec2 sd_block_bounds(ivec2 block) {
+  uint i = 2u * uint(block.x + block.y * u_blocks_x);
+  uint far_bits = block_bounds[i + 1u];
+  if (far_bits == 0u) return vec2(3.0e38, -3.0e38);
+  return vec2(uintBitsToFloat(~block_bounds[i]), uintBitsToFloat(far_bits));
+}
+
 #include "render/model/column_march.glsl"
 
 struct RayRecord {
@@ -55,7 +70,15 @@ void main() {
   uint i = thread_index();
   if (i >= u_thread_count) return;
 #if defined(REFRACT_BEGIN)
-  rays[i] = pack_ray(ray_start(thread_pixel(i)));
+  ivec2 p = thread_pixel(i);
+  rays[i] = pack_ray(ray_start(p));
+  uint n = sd_count(p);
+  if (n > 0u) {
+    uint base = sd_offset(p);
+    uint b = 2u * uint(p.x / VX_BLOCK + (p.y / VX_BLOCK) * u_blocks_x);
+    atomicMax(block_bounds[b], ~floatBitsToUint(sd_depths(base).x));
+    atomicMax(block_bounds[b + 1u], floatBitsToUint(sd_depths(base + n - 1u).y));
+  }
 #elif defined(REFRACT_MARCH)
   RayState s = unpack_ray(rays[i]);
   if (!s.marching) return;

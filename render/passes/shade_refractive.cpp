@@ -8,6 +8,7 @@
 namespace voxspan {
 namespace {
 constexpr std::size_t kRayRecordBytes = 96;  // RayRecord in shade_refractive.comp
+constexpr int kBlock = 8;                       // VX_BLOCK in render/model/column_march.glsl
 }  // namespace
 
 ShadeRefractivePass::ShadeRefractivePass(const gl::ShaderLibrary& shaders)
@@ -22,15 +23,21 @@ RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfac
   const std::size_t pixels = std::size_t(image.width()) * std::size_t(image.height());
   out.resize(image.width(), image.height());
   rays_.reserve(std::max<std::size_t>(16, pixels * kRayRecordBytes));
+  const int blocks_x = (image.width() + kBlock - 1) / kBlock;
+  const std::size_t blocks = std::size_t(blocks_x) * std::size_t((image.height() + kBlock - 1) / kBlock);
+  blocks_.reserve(blocks * 8);
+  blocks_.clear(0, blocks * 8);
   const auto bind = [&] {
     surfaces.bind(image);
     out.buffer().bind(GL_SHADER_STORAGE_BUFFER, 7);
     rays_.bind(GL_SHADER_STORAGE_BUFFER, 8);
     active_.bind(GL_SHADER_STORAGE_BUFFER, 9);
+    blocks_.bind(GL_SHADER_STORAGE_BUFFER, 10);
   };
   for (const gl::Program* p : {&begin_, &march_, &resolve_}) {
     set_grid_uniforms(*p, image.grid());
     model::set_shade_uniforms(*p, uniforms);
+    p->set("u_blocks_x", blocks_x);
   }
   march_.set("u_march_budget", budget);
   bind();

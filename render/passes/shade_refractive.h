@@ -36,7 +36,7 @@ class ShadeRefractivePass {
 
  private:
   gl::Program begin_, march_, resolve_;
-  gl::Buffer rays_, active_;
+  gl::Buffer rays_, active_, blocks_;
 };
 
 }  // namespace voxspan

@@ -34,6 +34,9 @@ class ReferenceHost : public GridUniforms, public ShadeUniforms {
   uvec2 sd_links(uint span) const { return links_[span]; }
   uvec2 sd_normals(uint span) const { return normals_[span]; }
   float sd_ao(ivec2 p) const { return ao_[pixel_index(p)]; }
+  vec2 sd_block_bounds(ivec2 block) const {
+    return block_bounds_[std::size_t(block.x) + std::size_t(block.y) * std::size_t(blocks_x_)];
+  }
 
   std::size_t pixel_index(ivec2 p) const {
     return std::size_t(p.x) + std::size_t(p.y) * std::size_t(u_image.x);
@@ -47,6 +50,21 @@ class ReferenceHost : public GridUniforms, public ShadeUniforms {
 #include "render/model/shade_modes.glsl"
 #include "render/model/column_march.glsl"
 #include "render/model/deep_ao.glsl"
+
+  // The nearest entry and farthest exit per block of VX_BLOCK^2 columns, for the march.
+  void gather_block_bounds() {
+    blocks_x_ = (u_image.x + VX_BLOCK - 1) / VX_BLOCK;
+    const int blocks_y = (u_image.y + VX_BLOCK - 1) / VX_BLOCK;
+    block_bounds_.assign(std::size_t(blocks_x_) * std::size_t(blocks_y), vec2(3.0e38f, -3.0e38f));
+    for (int y = 0; y < u_image.y; ++y)
+      for (int x = 0; x < u_image.x; ++x) {
+        const uint n = sd_count(ivec2(x, y));
+        if (n == 0) continue;
+        vec2& b = block_bounds_[std::size_t(x / VX_BLOCK) + std::size_t(y / VX_BLOCK) * std::size_t(blocks_x_)];
+        b.x = min(b.x, sd_depths(sd_offset(ivec2(x, y))).x);
+        b.y = max(b.y, sd_depths(sd_offset(ivec2(x, y)) + n - 1).y);
+      }
+  }
 
   // f(p, span index) for every span, rows in parallel.
   template <class F>
@@ -69,6 +87,8 @@ class ReferenceHost : public GridUniforms, public ShadeUniforms {
  private:
   const PixelSpans& record(ivec2 p) const { return spans_.pixels[pixel_index(p)]; }
   const SpanImage& spans_;
+  std::vector<vec2> block_bounds_;
+  int blocks_x_ = 1;
 };
 
 }  // namespace voxspan::model

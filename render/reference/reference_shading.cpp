@@ -45,6 +45,7 @@ FloatImage reference_shading(const SpanImage& spans, const ShadeOptions& options
   if (options.deep_ao) host.ao_ = reference_ao(spans, host.links_, host.normals_, options);
   FloatImage image(spans.width(), spans.height());
   const int dispatches = refract_dispatch_limit(spans.width(), spans.height(), options);
+  if (options.mode == ShadeMode::refractive) host.gather_block_bounds();
   host.each_pixel([&](model::ivec2 p) {
     model::vec3 c(0.0f);
     switch (options.mode) {
