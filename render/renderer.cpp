@@ -48,6 +48,8 @@ const GpuFloatImage& Renderer::shade(const GpuSpanImage& spans, const SurfaceOpt
           refract_dispatch_limit(spans.width(), spans.height(), shade), image_);
       stats.set_count("refract.dispatches", tally.dispatches);
       stats.set_count("refract.unfinished", tally.unfinished);
+      stats.set_count("refract.events", tally.events);
+      stats.set_count("refract.most_events", tally.most_events);
       break;
     }
   }

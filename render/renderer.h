@@ -11,7 +11,8 @@
 //
 // Every pass is timed through the caller's gl::PassTimer (names: the voxelizer's, then
 // "connect", "filter", "normals", "deep_ao", "shade") and reports into FrameStats (counts
-// "links.unlinkable_spans", "filter.iterations", "refract.dispatches", "refract.unfinished").
+// "links.unlinkable_spans", "filter.iterations", "refract.dispatches", "refract.unfinished",
+// "refract.events", "refract.most_events").
 // shade() runs the passes after the voxelization on a span image made elsewhere (e.g. one
 // composited from several ranks).
 #pragma once

@@ -182,9 +182,12 @@ void time_modes(const Args& a, const gl::Context& context, Renderer& renderer) {
     for (const char* p : kPasses) std::printf(" %8.1f", median(samples[p]));
     std::printf(" %8.1f %8.0f\n", median(samples["total"]), double(last.gpu_peak_bytes) / (1 << 20));
     if (mode == ShadeMode::refractive)
-      std::printf("  refraction: %lld march dispatches, %lld rays unfinished\n",
+      std::printf("  refraction: %lld march dispatches, %lld rays unfinished, %.1f column events "
+                  "per pixel, %lld at most\n",
                   static_cast<long long>(last.count("refract.dispatches")),
-                  static_cast<long long>(last.count("refract.unfinished")));
+                  static_cast<long long>(last.count("refract.unfinished")),
+                  double(last.count("refract.events")) / (double(a.width) * a.height),
+                  static_cast<long long>(last.count("refract.most_events")));
     if (a.json) std::printf("  %s\n", last.json().c_str());
   }
 }

@@ -32,7 +32,11 @@ struct RayRecord {
   ivec4 last;       // last_pixel x, y, last_span, last_end
 };
 layout(std430, binding = 8) buffer Rays { RayRecord rays[]; };
-layout(std430, binding = 9) buffer ActiveRays { uint active_rays; };
+layout(std430, binding = 9) buffer MarchTally {
+  uint active_rays;  // still marching after this dispatch
+  uint events;       // column events in this dispatch, all rays
+  uint most_events;  // by one ray
+};
 
 uniform int u_march_budget;
 
@@ -82,9 +86,12 @@ void main() {
 #elif defined(REFRACT_MARCH)
   RayState s = unpack_ray(rays[i]);
   if (!s.marching) return;
-  s = march(s, u_march_budget);
+  int n = 0;
+  for (; n < u_march_budget && s.marching; ++n) s = march_step(s);
   rays[i] = pack_ray(s);
   if (s.marching) atomicAdd(active_rays, 1u);
+  atomicAdd(events, uint(n));
+  atomicMax(most_events, uint(n));
 #else
   RayState s = unpack_ray(rays[i]);
   if (s.marching) s = ray_leave(s);

@@ -51,7 +51,10 @@ RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfac
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     dispatch_threads(march_, pixels);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    active = active_.read<std::uint32_t>(1)[0];
+    const std::vector<std::uint32_t> t = active_.read<std::uint32_t>(3);
+    active = t[0];
+    tally.events += t[1];
+    tally.most_events = std::max<std::int64_t>(tally.most_events, t[2]);
     ++tally.dispatches;
   }
   tally.unfinished = active;
