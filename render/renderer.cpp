@@ -43,9 +43,7 @@ const GpuFloatImage& Renderer::shade(const GpuSpanImage& spans, const SurfaceOpt
     case ShadeMode::opaque: opaque_.run(spans, surfaces_, uniforms, image_); break;
     case ShadeMode::translucent: translucent_.run(spans, surfaces_, uniforms, image_); break;
     case ShadeMode::refractive: {
-      const RefractTally tally = refractive_.run(
-          spans, surfaces_, uniforms, shade.march_budget,
-          refract_dispatch_limit(spans.width(), spans.height(), shade), image_);
+      const RefractTally tally = refractive_.run(spans, surfaces_, uniforms, shade, image_);
       stats.set_count("refract.dispatches", tally.dispatches);
       stats.set_count("refract.unfinished", tally.unfinished);
       stats.set_count("refract.events", tally.events);

@@ -31,9 +31,9 @@ const char* shade_mode_name(ShadeMode mode) {
   return "?";
 }
 
-int refract_dispatch_limit(int width, int height, const ShadeOptions& o) {
-  const long long events = 2LL * (width + height) * (o.bounces + 2);
-  return static_cast<int>(events / std::max(o.march_budget, 1)) + 8;
+int refract_dispatch_limit(int width, int height, std::uint32_t most_spans, const ShadeOptions& o) {
+  const long long events = 2LL * (width + height + 2LL * most_spans) * (o.bounces + 2);
+  return static_cast<int>(std::min<long long>(events / std::max(o.march_budget, 1) + 8, 1 << 20));
 }
 
 void validate(const SurfaceOptions& o) {
@@ -69,8 +69,8 @@ void validate(const ShadeOptions& o) {
   if (o.ao.samples < 1 || o.ao.samples > 64)
     throw make_error("ao samples = ", o.ao.samples, " is outside 1..64");
   if (o.bounces < 0 || o.bounces > 16) throw make_error("bounces = ", o.bounces, " is outside 0..16");
-  if (o.march_budget < 1 || o.march_budget > 4096)
-    throw make_error("march_budget = ", o.march_budget, " is outside 1..4096");
+  if (o.march_budget < 1 || o.march_budget > 1024)
+    throw make_error("march_budget = ", o.march_budget, " is outside 1..1024");
 }
 
 }  // namespace voxspan

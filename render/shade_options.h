@@ -3,6 +3,8 @@
 // environment around it and deep ambient occlusion. Units are world units throughout.
 #pragma once
 
+#include <cstdint>
+
 #include <glm/glm.hpp>
 
 namespace voxspan {
@@ -63,14 +65,16 @@ struct ShadeOptions {
   bool deep_ao = false;
   AoOptions ao;
   int bounces = 3;              // refractive mode: hits past the first entry that bend the ray
-  int march_budget = 2048;      // refractive mode: column events per ray per dispatch (llvmpipe
-                                // stops a shader invocation after 65535 loop iterations)
+  int march_budget = 1024;      // refractive mode: column events per ray per dispatch, 1..1024
+                                // (an event loops at most ~30 times in binary searches, and
+                                // llvmpipe stops an invocation after 65535 loop iterations)
 };
 
 // Refractive mode: march dispatches at most (each advances every ray by march_budget events):
-// enough for every path of the bounces to cross the image twice over; rays still marching then
-// leave to the environment (and are counted).
-int refract_dispatch_limit(int width, int height, const ShadeOptions& options);
+// enough for every path of the bounces to cross the image twice over and every boundary of the
+// fullest column (`most_spans` spans) twice; rays still marching then leave to the environment
+// (and are counted).
+int refract_dispatch_limit(int width, int height, std::uint32_t most_spans, const ShadeOptions& options);
 
 // Throw voxspan::Error naming the option that is out of range.
 void validate(const SurfaceOptions& options);

@@ -36,6 +36,7 @@ layout(std430, binding = 9) buffer MarchTally {
   uint active_rays;  // still marching after this dispatch
   uint events;       // column events in this dispatch, all rays
   uint most_events;  // by one ray
+  uint most_spans;   // in one pixel (REFRACT_BEGIN)
 };
 
 uniform int u_march_budget;
@@ -77,6 +78,7 @@ void main() {
   ivec2 p = thread_pixel(i);
   rays[i] = pack_ray(ray_start(p));
   uint n = sd_count(p);
+  atomicMax(most_spans, n);
   if (n > 0u) {
     uint base = sd_offset(p);
     uint b = 2u * uint(p.x / VX_BLOCK + (p.y / VX_BLOCK) * u_blocks_x);

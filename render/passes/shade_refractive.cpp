@@ -18,8 +18,8 @@ ShadeRefractivePass::ShadeRefractivePass(const gl::ShaderLibrary& shaders)
       active_(16) {}
 
 RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfaces& surfaces,
-                                      const model::ShadeUniforms& uniforms, int budget,
-                                      int max_dispatches, GpuFloatImage& out) {
+                                      const model::ShadeUniforms& uniforms,
+                                      const ShadeOptions& options, GpuFloatImage& out) {
   const std::size_t pixels = std::size_t(image.width()) * std::size_t(image.height());
   out.resize(image.width(), image.height());
   rays_.reserve(std::max<std::size_t>(16, pixels * kRayRecordBytes));
@@ -39,10 +39,13 @@ RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfac
     model::set_shade_uniforms(*p, uniforms);
     p->set("u_blocks_x", blocks_x);
   }
-  march_.set("u_march_budget", budget);
+  march_.set("u_march_budget", options.march_budget);
+  active_.clear();
   bind();
   dispatch_threads(begin_, pixels);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  const std::uint32_t most_spans = active_.read<std::uint32_t>(4)[3];
+  const int max_dispatches = refract_dispatch_limit(image.width(), image.height(), most_spans, options);
   RefractTally tally;
   std::uint32_t active = 1;
   while (active != 0 && tally.dispatches < max_dispatches) {

@@ -17,6 +17,7 @@
 #include "render/gpu_span_image.h"
 #include "render/gpu_surfaces.h"
 #include "render/model/shade_uniforms.h"
+#include "render/shade_options.h"
 
 namespace voxspan {
 
@@ -30,10 +31,10 @@ struct RefractTally {
 class ShadeRefractivePass {
  public:
   explicit ShadeRefractivePass(const gl::ShaderLibrary& shaders);
-  // `budget`: column events per ray per dispatch; at most `max_dispatches` march dispatches
-  // (refract_dispatch_limit() in render/shade_options.h).
+  // `options`: the bounces and march_budget (column events per ray per dispatch); at most
+  // refract_dispatch_limit() march dispatches (render/shade_options.h).
   RefractTally run(const GpuSpanImage& image, const GpuSurfaces& surfaces,
-                   const model::ShadeUniforms& uniforms, int budget, int max_dispatches,
+                   const model::ShadeUniforms& uniforms, const ShadeOptions& options,
                    GpuFloatImage& out);
 
  private:

@@ -1,5 +1,7 @@
 #include "render/reference/reference_shading.h"
 
+#include <algorithm>
+
 #include "render/reference/reference_host.h"
 
 namespace voxspan {
@@ -44,7 +46,9 @@ FloatImage reference_shading(const SpanImage& spans, const ShadeOptions& options
   host.normals_ = normals != nullptr ? *normals : reference_normals(spans, host.links_);
   if (options.deep_ao) host.ao_ = reference_ao(spans, host.links_, host.normals_, options);
   FloatImage image(spans.width(), spans.height());
-  const int dispatches = refract_dispatch_limit(spans.width(), spans.height(), options);
+  std::uint32_t most_spans = 0;
+  for (const PixelSpans& p : spans.pixels) most_spans = std::max(most_spans, p.count);
+  const int dispatches = refract_dispatch_limit(spans.width(), spans.height(), most_spans, options);
   if (options.mode == ShadeMode::refractive) host.gather_block_bounds();
   host.each_pixel([&](model::ivec2 p) {
     model::vec3 c(0.0f);

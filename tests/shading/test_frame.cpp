@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "image_compare.h"
+#include "render/reference/reference_shading.h"
 #include "render/gl/pass_timer.h"
 #include "render_fixture.h"
 #include "scenes.h"
@@ -74,24 +75,58 @@ TEST(Translucency, TwentyFourLayersCappedAtSevenEqualUncapped) {
 }
 
 TEST(Refraction, MarchesResumedOverManyDispatchesComplete) {
+  // The dam break, and the 24 sheets seen edge-on at a slant (rays that cross every sheet
+  // and march far across the image): each ray resumed every 3 events must end where one
+  // marched in as few dispatches as the default budget allows, and every ray must finish.
   test::DamBreak shape;
   shape.spacing = 0.02;
   shape.radius = 0.02;
   const test::Particles dam = test::dam_break(shape, 0.3);
+  const test::Particles sheets = test::stacked_layers(24, 24, 2, 0.05, 0.045, 0.2);
   VoxelizeOptions options;
   options.gap_bridging = shape.spacing;
-  const SpanImage spans = test::voxelize(test::frame_scene(dam, {0.4, -0.5, -1}, 256, 144), dam, options);
+  for (const test::Particles* particles : {&dam, &sheets}) {
+    const SpanImage spans = test::voxelize(test::frame_scene(*particles, {0.4, -0.5, -1}, 256, 144), *particles, options);
+    ShadeOptions shade = test::test_shading(ShadeMode::refractive);
+    shade.bounces = 8;
+    const test::GpuResult whole = test::shade_on_gpu(spans, {}, shade);
+    shade.march_budget = 3;  // a few column events per ray and dispatch
+    const test::GpuResult pieces = test::shade_on_gpu(spans, {}, shade);
+    std::printf("default budget: %lld dispatches, longest ray %lld events; budget 3: %lld dispatches\n",
+                static_cast<long long>(whole.stats.count("refract.dispatches")),
+                static_cast<long long>(whole.stats.count("refract.most_events")),
+                static_cast<long long>(pieces.stats.count("refract.dispatches")));
+    EXPECT_EQ(whole.stats.count("refract.unfinished"), 0);
+    EXPECT_EQ(pieces.stats.count("refract.unfinished"), 0);
+    EXPECT_GT(whole.stats.count("refract.most_events"), 150) << "rays should cross many columns";
+    EXPECT_EQ(pieces.stats.count("refract.events"), whole.stats.count("refract.events"));
+    EXPECT_EQ(pieces.image.rgba, whole.image.rgba) << "resuming a ray must not change its path";
+  }
+}
+
+TEST(Refraction, AMarchLongerThanOneDispatchCompletes) {
+  // 700 thin spans in every column: the centre rays cross 1400 boundaries, more than one
+  // dispatch's default budget of column events, whose loops llvmpipe would cut short
+  // silently past 65535 iterations if a dispatch tried them all. The GPU must agree with the
+  // CPU (no loop limit) and with itself resumed every 7 events.
+  std::vector<Span> column;
+  for (int k = 0; k < 700; ++k) column.push_back({2.0f + 0.01f * k, 2.005f + 0.01f * k});
+  const SpanImage spans = test::hand_made(8, 8, std::vector<std::vector<Span>>(64, column), 1.0, 12.0);
   ShadeOptions shade = test::test_shading(ShadeMode::refractive);
-  const test::GpuResult whole = test::shade_on_gpu(spans, {}, shade);
-  shade.march_budget = 3;  // a few column events per ray and dispatch
-  const test::GpuResult pieces = test::shade_on_gpu(spans, {}, shade);
-  std::printf("budget 2048: %lld dispatches; budget 3: %lld dispatches\n",
-              static_cast<long long>(whole.stats.count("refract.dispatches")),
-              static_cast<long long>(pieces.stats.count("refract.dispatches")));
-  EXPECT_EQ(whole.stats.count("refract.unfinished"), 0);
-  EXPECT_EQ(pieces.stats.count("refract.unfinished"), 0);
-  EXPECT_GT(pieces.stats.count("refract.dispatches"), 20) << "rays should cross many columns";
-  EXPECT_EQ(pieces.image.rgba, whole.image.rgba) << "resuming a ray must not change its path";
+  shade.material.absorption = {0.2, 0.1, 0.05};
+  const test::GpuResult gpu = test::shade_on_gpu(spans, {}, shade);
+  EXPECT_GT(gpu.stats.count("refract.events"), 64 * 1400);
+  EXPECT_GE(gpu.stats.count("refract.dispatches"), 2);
+  EXPECT_EQ(gpu.stats.count("refract.unfinished"), 0);
+  const FloatImage cpu = reference_shading(spans, shade);
+  EXPECT_LE(test::compare_images(gpu.image, cpu).max_levels, 1);
+  shade.march_budget = 7;
+  EXPECT_EQ(test::shade_on_gpu(spans, {}, shade).image.rgba, gpu.image.rgba);
+  // Through 700 x 0.005 of fluid, red absorbed most: redder without the fluid, not black with it.
+  const FloatImage empty = test::shade_on_gpu(
+      test::hand_made(8, 8, std::vector<std::vector<Span>>(64), 1.0, 12.0), {}, shade).image;
+  EXPECT_LT(gpu.image.at(4, 4).r, 0.95f * empty.at(4, 4).r);
+  EXPECT_GT(gpu.image.at(4, 4).r, 0.05f);
 }
 
 TEST(Renderer, FullFrameFromParticles) {
