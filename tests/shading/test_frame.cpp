@@ -2,6 +2,7 @@
 // none on a flat floor, the same behind a sheet that hides the occluder from a front-layer AO),
 // the translucent 24-layer scene capped at 7 spans against uncapped, refraction resumed over
 // many dispatches, Renderer::render from particles with its stats, and bad options.
+#include <cmath>
 #include <cstdio>
 
 #include "image_compare.h"
@@ -153,6 +154,23 @@ TEST(Renderer, FullFrameFromParticles) {
     const SpanImage spans = test::voxelize(camera, dam, options.voxelize);
     const test::ImageDifference d = test::compare_images(image, test::shade_on_gpu(spans, options.surfaces, options.shade).image);
     EXPECT_EQ(d.max_levels, 0) << shade_mode_name(mode);
+  }
+}
+
+TEST(Renderer, NoParticlesGiveTheEnvironment) {
+  const Camera camera = test::look_at({0, 1, 3}, {0, 0, 0}, 32, 24);
+  for (ShadeMode mode : {ShadeMode::opaque, ShadeMode::translucent, ShadeMode::refractive}) {
+    RenderOptions options;
+    options.shade = test::test_shading(mode);
+    options.shade.deep_ao = true;
+    options.surfaces.filter_radius = 0.1;
+    gl::PassTimer timer(false);
+    FrameStats stats;
+    const FloatImage image = test::renderer().render(camera, {}, {}, options, timer, stats).download();
+    ASSERT_EQ(image.width, 32);
+    // Sky at the top, ground at the bottom, nothing else.
+    EXPECT_GT(image.at(16, 0).b, image.at(16, 0).r) << shade_mode_name(mode);
+    for (float c : image.rgba) ASSERT_TRUE(std::isfinite(c));
   }
 }
 
