@@ -9,8 +9,9 @@
 // column whose state at that depth differs from the ray's (a hit on the column's side,
 // "in-between stored surface values", found from the parity of the boundaries before the
 // depth: Listing 2's LSB test). At a hit the ray refracts with the stored normal (Fresnel
-// reflection of the environment on entering, total internal reflection on leaving when
-// refraction is impossible), is absorbed (Beer-Lambert) and lit by scattering along every
+// reflection of the environment on entering; on leaving it follows the larger of the refracted
+// and the reflected share, so near and past the critical angle it reflects and stays inside:
+// total internal reflection), is absorbed (Beer-Lambert) and lit by scattering along every
 // stretch inside, and leaves to the environment at the grid's boundary. After `u_bounces` hits
 // past the first entry it goes straight on, still absorbed.
 //
@@ -157,12 +158,13 @@ RayState ray_interface(RayState s, vec3 n, bool entering) {
   } else {
     if (!(dot(n, d) > 0.0f)) n = d;
     vec3 t = refract(d, -n, u_ior);
-    if (dot(t, t) == 0.0f) {
-      s.dir = normalize(reflect(d, -n));  // total internal reflection: stays inside
+    float f = dot(t, t) == 0.0f ? 1.0f : fresnel(dot(normalize(t), n));
+    if (f > 0.5f) {
+      s.throughput *= f;
+      s.dir = normalize(reflect(d, -n));  // (total) internal reflection: stays inside
     } else {
-      t = normalize(t);
-      s.throughput *= 1.0f - fresnel(dot(t, n));
-      s.dir = t;
+      s.throughput *= 1.0f - f;
+      s.dir = normalize(t);
       s.inside = false;
     }
   }

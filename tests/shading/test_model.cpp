@@ -92,22 +92,29 @@ TEST(Model, FresnelAndSnell) {
     EXPECT_GT(in.color.x + in.color.y + in.color.z, 0.0f) << "reflection of the environment";
   }
   // Leaving through the back (outward normal away from the eye): Snell below the critical
-  // angle, total internal reflection above it.
+  // angle; just below it the reflected share (Fresnel > 1/2) dominates and the ray follows
+  // it; total internal reflection above it.
   const glm::vec3 back(0, 0, 1);
   const float critical = std::asin(1 / ior);
-  for (float a : {critical - 0.05f, critical + 0.05f}) {
+  for (float a : {critical - 0.05f, critical - 0.003f, critical + 0.05f}) {
     ReferenceHost::RayState s = host.ray_start({0, 0});
     s.inside = true;
     s.dir = glm::vec3(std::sin(a), 0.0f, std::cos(a));
     const ReferenceHost::RayState out = host.ray_interface(s, back, false);
-    if (a < critical) {
+    if (a < critical - 0.01f) {
       EXPECT_FALSE(out.inside);
       EXPECT_NEAR(std::sqrt(out.dir.x * out.dir.x + out.dir.y * out.dir.y), ior * std::sin(a), 1e-4);
+      EXPECT_LT(out.throughput.x, 1.0f);
     } else {
-      EXPECT_TRUE(out.inside) << "total internal reflection keeps the ray inside";
+      EXPECT_TRUE(out.inside) << "internal reflection keeps the ray inside";
       EXPECT_NEAR(out.dir.x, std::sin(a), 1e-5);
       EXPECT_NEAR(out.dir.z, -std::cos(a), 1e-5);
-      EXPECT_EQ(out.throughput, s.throughput) << "nothing leaves";
+      if (a > critical) {
+        EXPECT_EQ(out.throughput, s.throughput) << "total: nothing leaves";
+      } else {
+        EXPECT_GT(out.throughput.x, 0.5f);
+        EXPECT_LT(out.throughput.x, 1.0f);
+      }
     }
   }
 }
