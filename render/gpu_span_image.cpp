@@ -20,6 +20,19 @@ SpanImage GpuSpanImage::download() const {
   return image;
 }
 
+void GpuSpanImage::upload(const SpanImage& image) {
+  grid_ = image.grid;
+  const std::size_t pixels = static_cast<std::size_t>(width()) * height();
+  if (image.pixels.size() != pixels)
+    throw make_error("GpuSpanImage::upload: ", image.pixels.size(), " pixel records for a ",
+                     width(), "x", height(), " grid");
+  pixels_.reserve(std::max<std::size_t>(16, pixels * sizeof(PixelSpans)));
+  if (pixels != 0) pixels_.upload(image.pixels.data(), pixels * sizeof(PixelSpans));
+  spans_.reserve(std::max<std::size_t>(sizeof(Span) * 1024, image.spans.size() * sizeof(Span)));
+  if (!image.spans.empty()) spans_.upload(image.spans.data(), image.spans.size() * sizeof(Span));
+  span_count_ = image.spans.size();
+}
+
 void GpuSpanImage::reset(const PerspectiveGrid& grid, const ClearPass& clear) {
   grid_ = grid;
   span_count_ = 0;

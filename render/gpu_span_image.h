@@ -28,6 +28,9 @@ class GpuSpanImage {
   void bind(GLuint pixels_binding = 0, GLuint spans_binding = 1) const;
   // Reads the whole image back (tests, the CPU paths, file output).
   SpanImage download() const;
+  // Replaces the image with one made on the CPU (a composited or hand-made span image, or the
+  // exact reference), for the passes after the voxelization.
+  void upload(const SpanImage& image);
 
   // For the voxelizer: starts a frame with every pixel empty.
   void reset(const PerspectiveGrid& grid, const ClearPass& clear);

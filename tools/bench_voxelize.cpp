@@ -5,8 +5,8 @@
 //
 // The scene: a water column (0.3 x 0.6 x 0.3) of about --particles lattice particles collapsing
 // along a tank (Ritter's dam-break profile at --time seconds), with a little spray. Cells of two
-// particle spacings are classified by the test-scene helper (tests/render/scene_cell_states.h,
-// a stand-in for the solver-side classifier): only the boundary shell (particles of cells that
+// particle spacings are classified by the solver side's classifier (voxspan/classify.h, through
+// tests/render/scene_cell_states.h): only the boundary shell (particles of cells that
 // are not inner: within about one cell of the surface) is voxelized, with the cell states
 // skipping inner-empty and filling inner-full cells; --all-particles voxelizes every particle.
 //

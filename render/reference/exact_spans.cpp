@@ -21,6 +21,7 @@ struct Sphere {
 
 struct Interval {
   double entry, exit;
+  int entry_sphere = -1, exit_sphere = -1;  // the spheres the boundaries lie on; -1: none
 };
 
 // Spheres of the frame sorted into screen bins by their conservative pixel rectangles.
@@ -60,35 +61,54 @@ bool chord(glm::dvec3 d, const Sphere& s, Interval& out) {
   const double h2 = s.radius * s.radius - glm::dot(perp, perp);
   if (!(h2 > 0)) return false;
   const double half = std::sqrt(h2 / a);
-  out = {zc - half, zc + half};
+  out.entry = zc - half;
+  out.exit = zc + half;
   return true;
 }
 
-void merge(std::vector<Interval>& intervals, double ray_scale, double gap, SpanListBuilder& out) {
+// Outward world normal of sphere `index` at depth z on the view ray d; zero for no sphere.
+glm::vec3 sphere_normal(const PerspectiveGrid& grid, const std::vector<Sphere>& spheres, int index,
+                        glm::dvec3 d, double z) {
+  if (index < 0) return glm::vec3(0.0f);
+  const glm::dvec3 n = glm::normalize(d * z - spheres[static_cast<std::size_t>(index)].center);
+  const ViewFrame& v = grid.view();
+  return glm::vec3(n.x * v.right + n.y * v.up + n.z * v.forward);
+}
+
+// Hands each merged interval to `emit`.
+template <class Emit>
+void merge(std::vector<Interval>& intervals, double ray_scale, double gap, Emit&& emit) {
   std::sort(intervals.begin(), intervals.end(),
             [](const Interval& a, const Interval& b) { return a.entry < b.entry; });
   bool open = false;
   Interval cur{0, 0};
   for (const Interval& iv : intervals) {
     if (open && (iv.entry <= cur.exit || (iv.entry - cur.exit) * ray_scale < gap)) {
-      cur.exit = std::max(cur.exit, iv.exit);
+      if (iv.exit > cur.exit) cur.exit = iv.exit, cur.exit_sphere = iv.exit_sphere;
       continue;
     }
-    if (open) out.add(cur.entry, cur.exit, ray_scale);
+    if (open) emit(cur);
     cur = iv;
     open = true;
   }
-  if (open) out.add(cur.entry, cur.exit, ray_scale);
+  if (open) emit(cur);
 }
 
 }  // namespace
 
 SpanImage exact_spans(const PerspectiveGrid& grid, std::span<const ParticleSphere> particles,
                       const CellStatesView& cells, const ReferenceOptions& options) {
+  return exact_spans(grid, particles, cells, options, nullptr);
+}
+
+SpanImage exact_spans(const PerspectiveGrid& grid, std::span<const ParticleSphere> particles,
+                      const CellStatesView& cells, const ReferenceOptions& options,
+                      std::vector<SpanNormals>* normals) {
   SpanImage image;
   image.grid = grid;
   const int width = grid.width(), height = grid.height();
   image.pixels.assign(static_cast<std::size_t>(width) * height, PixelSpans{});
+  if (normals != nullptr) normals->clear();
   if (grid.empty()) return image;
 
   std::vector<Sphere> spheres;
@@ -109,6 +129,7 @@ SpanImage exact_spans(const PerspectiveGrid& grid, std::span<const ParticleSpher
 
   // Rows in parallel, each into its own list; offsets are fixed up when they are joined.
   std::vector<std::vector<Span>> row_spans(static_cast<std::size_t>(height));
+  std::vector<std::vector<SpanNormals>> row_normals(normals != nullptr ? row_spans.size() : 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     std::vector<Interval> intervals;
     for (int y = rows.begin(); y != rows.end(); ++y) {
@@ -122,6 +143,8 @@ SpanImage exact_spans(const PerspectiveGrid& grid, std::span<const ParticleSpher
         for (std::uint32_t k = bins.start[bin]; k < bins.start[bin + 1]; ++k) {
           Interval iv;
           if (!chord(d, spheres[bins.items[k]], iv)) continue;
+          iv.entry_sphere = iv.entry >= near ? static_cast<int>(bins.items[k]) : -1;
+          iv.exit_sphere = iv.exit <= far ? static_cast<int>(bins.items[k]) : -1;
           iv.entry = std::max(iv.entry, near);
           iv.exit = std::min(iv.exit, far);
           if (iv.entry < iv.exit) intervals.push_back(iv);
@@ -133,7 +156,18 @@ SpanImage exact_spans(const PerspectiveGrid& grid, std::span<const ParticleSpher
                         intervals.push_back({z_in, z_out});
                     });
         builder.begin();
-        merge(intervals, scale, options.gap_bridging, builder);
+        auto& row = row_spans[static_cast<std::size_t>(y)];
+        merge(intervals, scale, options.gap_bridging, [&](const Interval& iv) {
+          const std::size_t stored = row.size();
+          builder.add(iv.entry, iv.exit, scale);
+          if (normals == nullptr) return;
+          auto& row_n = row_normals[static_cast<std::size_t>(y)];
+          const glm::vec3 exit_normal = sphere_normal(grid, spheres, iv.exit_sphere, d, iv.exit);
+          if (row.size() > stored)
+            row_n.push_back({sphere_normal(grid, spheres, iv.entry_sphere, d, iv.entry), exit_normal});
+          else
+            row_n.back().exit = exit_normal;  // past the cap: the stored span was extended
+        });
         image.pixels[static_cast<std::size_t>(x) + static_cast<std::size_t>(y) * width] =
             builder.end();
       }
@@ -145,6 +179,10 @@ SpanImage exact_spans(const PerspectiveGrid& grid, std::span<const ParticleSpher
     for (int x = 0; x < width; ++x)
       image.pixels[static_cast<std::size_t>(x) + static_cast<std::size_t>(y) * width].offset += offset;
     image.spans.insert(image.spans.end(), row.begin(), row.end());
+    if (normals != nullptr) {
+      const auto& row_n = row_normals[static_cast<std::size_t>(y)];
+      normals->insert(normals->end(), row_n.begin(), row_n.end());
+    }
     offset += static_cast<std::uint32_t>(row.size());
   }
   return image;

@@ -13,6 +13,9 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "render/perspective_grid.h"
 #include "render/span_image.h"
@@ -28,5 +31,18 @@ struct ReferenceOptions {
 // Spans in the frame of `grid` (usually the GPU image's grid, so both share near and layers).
 SpanImage exact_spans(const PerspectiveGrid& grid, std::span<const ParticleSphere> particles,
                       const CellStatesView& cells, const ReferenceOptions& options);
+
+// The exact outward world normals of a span's entry and exit: the normal of the sphere whose
+// surface the boundary lies on (for a capped pixel's extended span, the exit of the last span
+// found); zero where the boundary lies on no sphere (an inner-full cell, the near or far plane).
+struct SpanNormals {
+  glm::vec3 entry{0.0f};
+  glm::vec3 exit{0.0f};
+};
+
+// The same spans, and in `normals` (resized to the span count) each span's exact normals.
+SpanImage exact_spans(const PerspectiveGrid& grid, std::span<const ParticleSphere> particles,
+                      const CellStatesView& cells, const ReferenceOptions& options,
+                      std::vector<SpanNormals>* normals);
 
 }  // namespace voxspan

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "voxspan/classify.h"
+
 namespace voxspan::test {
 
 TestCells classify_for_test(const std::vector<ParticleSphere>& particles, double h,
@@ -14,49 +16,26 @@ TestCells classify_for_test(const std::vector<ParticleSphere>& particles, double
     const double c[3] = {p.x, p.y, p.z};
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
   }
-  CellStatesView& v = out.view;
-  v.cell_size = h;
+  // A grid aligned with the origin, one cell of margin: the solver side's classifier sorts the
+  // particles into it itself.
+  GridGeometry g;
+  g.cell_size = h;
   for (int a = 0; a < 3; ++a) {
-    v.origin[a] = (std::floor(lo[a] / h) - 1) * h;
-    v.dims[a] = static_cast<int>(std::floor((hi[a] - v.origin[a]) / h)) + 2;
+    g.origin[a] = (std::floor(lo[a] / h) - 1) * h;
+    g.dims[a] = static_cast<int>(std::floor((hi[a] - g.origin[a]) / h)) + 2;
   }
-  const auto index = [&](int i, int j, int k) {
-    return static_cast<std::size_t>(i) +
-           static_cast<std::size_t>(v.dims[0]) *
-               (static_cast<std::size_t>(j) + static_cast<std::size_t>(v.dims[1]) * k);
-  };
-  const auto cell_of = [&](const ParticleSphere& p) {
-    const double c[3] = {p.x, p.y, p.z};
-    int ijk[3];
-    for (int a = 0; a < 3; ++a)
-      ijk[a] = std::clamp(static_cast<int>(std::floor((c[a] - v.origin[a]) / h)), 0, v.dims[a] - 1);
-    return index(ijk[0], ijk[1], ijk[2]);
-  };
-  std::vector<int> counts(v.cell_count(), 0);
-  for (const ParticleSphere& p : particles) ++counts[cell_of(p)];
-  std::vector<std::uint8_t> occupancy(v.cell_count());
-  for (std::size_t c = 0; c < counts.size(); ++c)
-    occupancy[c] = counts[c] == 0 ? cell::kEmpty : (counts[c] >= full_count ? cell::kFull : cell::kPartial);
-  out.states.resize(v.cell_count());
-  for (int k = 0; k < v.dims[2]; ++k)
-    for (int j = 0; j < v.dims[1]; ++j)
-      for (int i = 0; i < v.dims[0]; ++i) {
-        const std::uint8_t own = occupancy[index(i, j, k)];
-        bool inner = own != cell::kPartial;
-        for (int dk = -1; dk <= 1 && inner; ++dk)
-          for (int dj = -1; dj <= 1 && inner; ++dj)
-            for (int di = -1; di <= 1 && inner; ++di) {
-              const int x = i + di, y = j + dj, z = k + dk;
-              const bool outside = x < 0 || y < 0 || z < 0 || x >= v.dims[0] || y >= v.dims[1] ||
-                                   z >= v.dims[2];
-              inner = (outside ? cell::kEmpty : occupancy[index(x, y, z)]) == own;
-            }
-        out.states[index(i, j, k)] = static_cast<std::uint8_t>(own | (inner ? cell::kInner : 0));
-        if (inner) ++(own == cell::kFull ? out.inner_full_cells : out.inner_empty_cells);
-      }
-  v.states = out.states.data();
-  for (const ParticleSphere& p : particles)
-    if (!cell::is_inner(out.states[cell_of(p)])) out.boundary.push_back(p);
+  ClassifyOptions options;
+  options.particle_spacing = h / 2;
+  options.full_count = full_count;
+  const std::size_t stride = sizeof(ParticleSphere);
+  const ParticleView view =
+      ParticleView::aos(&particles[0].x, particles.size(), stride).with_radii(&particles[0].radius, stride);
+  Classification c = classify(view, GridView::geometry_only(g), options);
+  out.states = std::move(c.states);
+  out.boundary = std::move(c.boundary);
+  out.inner_full_cells = static_cast<std::int64_t>(c.counts.cells_inner_full);
+  out.inner_empty_cells = static_cast<std::int64_t>(c.counts.cells_inner_empty);
+  out.view = {g.origin, g.cell_size, g.dims, out.states.data()};
   return out;
 }
 

@@ -1,8 +1,8 @@
-// A TEST UTILITY standing in for the solver-side classification (sim_adapter) until it is
-// merged: counts particle centres per cell of a uniform grid, calls a cell empty (0), full
-// (>= full_count) or partial, inner when it and its 26 neighbours are all empty or all full
-// (outside the grid is empty air), and keeps the particles of non-inner cells as the boundary
-// particles (paper 001, sec. 3.1, 5).
+// Cell states and boundary particles of a test scene, from the solver side's classifier
+// (voxspan/classify.h) on a grid aligned with the origin: a cell is empty, full (>= full_count
+// particle centres) or partial, inner when it and its 26 neighbours are all empty or all full
+// (outside the grid is empty air); the particles of non-inner cells are the boundary particles
+// (paper 001, sec. 3.1, 5).
 #pragma once
 
 #include <cstdint>

@@ -1,0 +1,363 @@
+// render/model/column_march.glsl - refraction by screen-space ray marching through the voxel
+// columns (paper 001, sec. 3.5 and Listing 2), shared by the GPU pass
+// (render/passes/shade_refractive.comp) and the CPU reference (render/model/cpp_host.h).
+//
+// A ray starts at the eye through the pixel's centre and walks column by column (pixel by
+// pixel) along its projection: in each column it finds the depths where it enters and leaves
+// the column's pyramid, and the span boundaries (entry and exit depths) between them. Crossing a
+// boundary that changes the ray's inside/outside state is a surface hit, and so is entering a
+// column whose state at that depth differs from the ray's (a hit on the column's side,
+// "in-between stored surface values", found from the parity of the boundaries before the
+// depth: Listing 2's LSB test). At a hit the ray refracts with the stored normal (Fresnel
+// reflection of the environment on entering; on leaving it follows the larger of the refracted
+// and the reflected share, so near and past the critical angle it reflects and stays inside:
+// total internal reflection), is absorbed (Beer-Lambert) and lit by scattering along every
+// stretch inside, and leaves to the environment at the grid's boundary. After `u_bounces` hits
+// past the first entry it goes straight on, still absorbed.
+//
+// One call of march_step() handles one event (a boundary crossed or a column left), so the
+// caller bounds the work per shader invocation (llvmpipe stops an invocation after 65535 loop
+// iterations) and resumes the RayState in a later dispatch.
+//
+// Host needs: links.glsl, surface_geometry.glsl, octahedral.glsl, lighting.glsl, shade_modes.glsl
+// and their needs; u_bounces, u_near, u_grid_far, u_log2_step; vec2 sd_block_bounds(ivec2): the
+// nearest entry and farthest exit depth in a block of VX_BLOCK^2 columns ((3e38, -3e38) when it
+// holds no span), over the surface depths.
+#ifndef VX_MODEL_COLUMN_MARCH
+#define VX_MODEL_COLUMN_MARCH
+
+#define VX_HINT_SIDE -1  // origin on a side of the column just entered: compare its state
+#define VX_HINT_FREE -2  // origin inside the column, state already settled
+#define VX_BLOCK 8       // columns per side of the blocks the march skips when empty
+
+struct RayState {
+  vec3 origin;      // view space: the last event's point
+  vec3 anchor;      // view space: the eye or the last surface hit, where the environment is
+                    // looked up from (the grid's boundary is no place in the world)
+  vec3 dir;         // view space, unit
+  vec3 throughput;
+  vec3 color;       // radiance gathered so far
+  ivec2 pixel;      // the column the ray is in
+  int hint;         // >= 0: origin lies on that boundary of the column; or VX_HINT_*
+  ivec2 last_pixel; // the surface point the ray crossed last (span -1: none yet)
+  int last_span;
+  uint last_end;
+  int bounces;      // hits left that bend the ray
+  bool inside;
+  bool marching;
+  float occlusion;  // of the start pixel's front surface (deep AO), scales the scattering
+};
+
+uint boundary_count(ivec2 q) { return 2u * sd_count(q); }
+
+// Boundary i of column q: the entry (i even) or exit (i odd) of span i / 2.
+float boundary_depth(ivec2 q, uint i) {
+  vec2 d = sd_depths(sd_offset(q) + i / 2u);
+  return (i & 1u) == 0u ? d.x : d.y;
+}
+
+vec3 point_normal(SurfacePoint v) {
+  uvec2 words = sd_normals(v.span);
+  return decode_normal(v.end == 0u ? words.x : words.y);
+}
+
+// The normal at `hit` (view space) on boundary i of column q, interpolated bilinearly between
+// the column's surface point and the points its links reach across towards the hit's side, so
+// that the normal, and with it the refracted ray, varies smoothly across columns instead of
+// jumping at their sides (where the links end, the column's own normal stands in).
+vec3 boundary_normal(ivec2 q, uint i, vec3 hit) {
+  SurfacePoint v = surface_point(q, sd_offset(q) + i / 2u, i & 1u);
+  vec3 n = point_normal(v);
+  vec2 xy = vec2((hit.x / (hit.z * u_tan_half.x) + 1.0f) * 0.5f * float(u_image.x),
+                 (1.0f - hit.y / (hit.z * u_tan_half.y)) * 0.5f * float(u_image.y));
+  vec2 f = clamp(xy - vec2(q) - vec2(0.5f), vec2(-0.5f), vec2(0.5f));
+  int dir_x = f.x >= 0.0f ? 1 : 0;
+  int dir_y = f.y >= 0.0f ? 3 : 2;
+  vec3 nx = n;
+  vec3 ny = n;
+  vec3 nxy = n;
+  if (link_is_across(v, dir_x)) {
+    SurfacePoint w = follow_link(v, dir_x);
+    nx = point_normal(w);
+    nxy = link_is_across(w, dir_y) ? point_normal(follow_link(w, dir_y)) : nx;
+  }
+  if (link_is_across(v, dir_y)) ny = point_normal(follow_link(v, dir_y));
+  float wx = abs(f.x);
+  float wy = abs(f.y);
+  vec3 mixed = mix(mix(n, nx, wx), mix(ny, nxy, wx), wy);
+  float len = length(mixed);
+  return world_to_view_direction(len > 1e-6f ? mixed / len : n);
+}
+
+// Boundaries of column q at depth <= z (or < z when strict).
+uint boundaries_before(ivec2 q, float z, bool strict) {
+  uint lo = 0u, hi = boundary_count(q);
+  while (lo < hi) {
+    uint mid = (lo + hi) / 2u;
+    float b = boundary_depth(q, mid);
+    if (strict ? b < z : b <= z) lo = mid + 1u; else hi = mid;
+  }
+  return lo;
+}
+
+vec3 view_to_world_point(vec3 v) { return u_eye + view_to_world_direction(v); }
+
+RayState ray_start(ivec2 p) {
+  RayState s;
+  s.origin = vec3(0.0f);
+  s.anchor = vec3(0.0f);
+  s.dir = normalize(view_ray_at(vec2(p) + vec2(0.5f)));
+  s.throughput = vec3(1.0f);
+  s.color = vec3(0.0f);
+  s.pixel = p;
+  s.hint = VX_HINT_FREE;
+  s.last_pixel = p;
+  s.last_span = -1;
+  s.last_end = 0u;
+  s.bounces = u_bounces + 1;
+  s.inside = false;
+  s.marching = true;
+  s.occlusion = pixel_occlusion(p);
+  return s;
+}
+
+// Moves the ray to `point`, absorbing and scattering on the way when inside.
+RayState ray_advance(RayState s, vec3 point) {
+  if (s.inside) {
+    vec3 t = transmittance(length(point - s.origin));
+    s.color += s.throughput * (vec3(1.0f) - t) * u_scatter_color * s.occlusion;
+    s.throughput *= t;
+  }
+  s.origin = point;
+  return s;
+}
+
+RayState ray_leave(RayState s) {
+  s.color += s.throughput * environment(view_to_world_point(s.anchor), view_to_world_direction(s.dir));
+  s.marching = false;
+  return s;
+}
+
+// A hit at s.origin, the outward normal n (view space); `entering`: from outside into fluid.
+RayState ray_interface(RayState s, vec3 n, bool entering) {
+  if (s.bounces <= 0) {
+    s.inside = entering;
+    return s;
+  }
+  s.bounces -= 1;
+  s.anchor = s.origin;
+  vec3 d = s.dir;
+  if (entering) {
+    if (!(dot(n, d) < 0.0f)) n = -d;  // a normal the ray cannot enter through: no bending
+    float f = fresnel(-dot(n, d));
+    s.color += s.throughput * f *
+               environment(view_to_world_point(s.origin), view_to_world_direction(reflect(d, n)));
+    s.throughput *= 1.0f - f;
+    s.dir = normalize(refract(d, n, 1.0f / u_ior));
+    s.inside = true;
+  } else {
+    if (!(dot(n, d) > 0.0f)) n = d;
+    vec3 t = refract(d, -n, u_ior);
+    float f = dot(t, t) == 0.0f ? 1.0f : fresnel(dot(normalize(t), n));
+    if (f > 0.5f) {
+      s.throughput *= f;
+      s.dir = normalize(reflect(d, -n));  // (total) internal reflection: stays inside
+    } else {
+      s.throughput *= 1.0f - f;
+      s.dir = normalize(t);
+      s.inside = false;
+    }
+  }
+  return s;
+}
+
+// Parameter along the ray where it crosses the column side k = x/z (axis 0) or y/z (axis 1);
+// negative or infinite when it does not.
+float side_crossing(vec3 o, vec3 d, float k, int axis) {
+  float oa = axis == 0 ? o.x : o.y;
+  float da = axis == 0 ? d.x : d.y;
+  float denom = da - k * d.z;
+  if (denom == 0.0f) return -1.0f;
+  return (k * o.z - oa) / denom;
+}
+
+// Direction of the ray's projection across the columns along an axis: +1 when x/z (y/z) grows,
+// -1 when it shrinks, 0 when it stays (rays through the eye). Constant along the ray.
+int projected_direction(vec3 o, vec3 d, int axis) {
+  float oa = axis == 0 ? o.x : o.y;
+  float da = axis == 0 ? d.x : d.y;
+  float g = da * o.z - oa * d.z;
+  float size = abs(da * o.z) + abs(oa * d.z);
+  if (!(abs(g) > 1e-6f * size)) return 0;
+  return g > 0.0f ? 1 : -1;
+}
+
+RayState remember_crossing(RayState s, ivec2 q, uint i) {
+  s.last_pixel = q;
+  s.last_span = int(sd_offset(q) + i / 2u);
+  s.last_end = i & 1u;
+  return s;
+}
+
+// Entering column q from the side, the ray's state disagrees with the column's at its depth,
+// between boundaries before - 1 and before. When one of the two is the surface the ray crossed
+// last, continued across to this column by its link, the disagreement is that surface's
+// staircase (each column holds it at one depth; the ray left it at a slant), not a new
+// surface: returns that boundary, else -1.
+int continued_surface(RayState s, ivec2 q, uint before) {
+  if (s.last_span < 0) return -1;
+  ivec2 step = q - s.last_pixel;
+  int dir = -1;
+  if (step.x == -1 && step.y == 0) dir = 0;
+  if (step.x == 1 && step.y == 0) dir = 1;
+  if (step.x == 0 && step.y == -1) dir = 2;
+  if (step.x == 0 && step.y == 1) dir = 3;
+  if (dir < 0) return -1;
+  SurfacePoint v = surface_point(s.last_pixel, uint(s.last_span), s.last_end);
+  if (!link_is_across(v, dir)) return -1;
+  SurfacePoint w = follow_link(v, dir);
+  uint i = (w.span - sd_offset(q)) * 2u + w.end;
+  return (i == before || i + 1u == before) ? int(i) : -1;
+}
+
+// Where the ray leaves the pyramid of the pixels lo..hi (inclusive), or the grid's depth range.
+struct PyramidExit {
+  float s;   // ray parameter
+  int side;  // 0: an x side, 1: a y side, 2: the near or far end of the grid
+  int gx;    // projected_direction() along x and y
+  int gy;
+};
+
+PyramidExit pyramid_exit(vec3 o, vec3 d, ivec2 lo, ivec2 hi) {
+  PyramidExit e;
+  e.s = 3.0e38f;
+  e.side = 2;
+  e.gx = projected_direction(o, d, 0);
+  if (e.gx != 0) {
+    float k = (2.0f * float(e.gx > 0 ? hi.x + 1 : lo.x) / float(u_image.x) - 1.0f) * u_tan_half.x;
+    float t = side_crossing(o, d, k, 0);
+    if (t >= 0.0f && t < e.s) {
+      e.s = t;
+      e.side = 0;
+    }
+  }
+  e.gy = projected_direction(o, d, 1);  // +1: y/z grows, the ray moves up the rows
+  if (e.gy != 0) {
+    float k = (1.0f - 2.0f * float(e.gy > 0 ? lo.y : hi.y + 1) / float(u_image.y)) * u_tan_half.y;
+    float t = side_crossing(o, d, k, 1);
+    if (t >= 0.0f && t < e.s) {
+      e.s = t;
+      e.side = 1;
+    }
+  }
+  float limit = d.z > 0.0f ? (u_grid_far - o.z) / d.z : (d.z < 0.0f ? (u_near - o.z) / d.z : 3.0e38f);
+  if (limit < e.s) {
+    e.s = max(limit, 0.0f);
+    e.side = 2;
+  }
+  return e;
+}
+
+// Outside the fluid, a block of VX_BLOCK x VX_BLOCK columns with no surface between the depths
+// where the ray enters and leaves its pyramid is crossed in one step (sd_block_bounds: the
+// block's nearest entry and farthest exit): the march skips empty space without changing what
+// it finds.
+RayState skip_block(RayState s, PyramidExit e, ivec2 b0, ivec2 b1) {
+  vec3 p = s.origin + e.s * s.dir;
+  s.origin = p;
+  if (e.side == 2) return ray_leave(s);
+  vec2 xy = vec2((p.x / (p.z * u_tan_half.x) + 1.0f) * 0.5f * float(u_image.x),
+                 (1.0f - p.y / (p.z * u_tan_half.y)) * 0.5f * float(u_image.y));
+  ivec2 next;
+  if (e.side == 0) next = ivec2(e.gx > 0 ? b1.x + 1 : b0.x - 1, clamp(int(floor(xy.y)), b0.y, b1.y));
+  else next = ivec2(clamp(int(floor(xy.x)), b0.x, b1.x), e.gy > 0 ? b0.y - 1 : b1.y + 1);
+  if (!in_image(next)) return ray_leave(s);
+  s.pixel = next;
+  s.hint = VX_HINT_SIDE;
+  return s;
+}
+
+// One event: the next boundary of the current column, the step into the next column, or, outside
+// the fluid, the step across an empty block.
+RayState march_step(RayState s) {
+  ivec2 q = s.pixel;
+  vec3 o = s.origin;
+  vec3 d = s.dir;
+  if (!s.inside) {
+    ivec2 b0 = (q / VX_BLOCK) * VX_BLOCK;
+    ivec2 b1 = min(b0 + ivec2(VX_BLOCK - 1), u_image - ivec2(1));
+    vec2 bounds = sd_block_bounds(q / VX_BLOCK);
+    PyramidExit block = pyramid_exit(o, d, b0, b1);
+    float z_block = o.z + block.s * d.z;
+    if (max(o.z, z_block) < bounds.x || min(o.z, z_block) > bounds.y) return skip_block(s, block, b0, b1);
+  }
+  // Where the ray leaves this column's pyramid (or the grid's depth range).
+  PyramidExit column = pyramid_exit(o, d, q, q);
+  float s_end = column.s;
+  ivec2 next_pixel = ivec2(-1);
+  if (column.side == 0) next_pixel = q + ivec2(column.gx, 0);
+  if (column.side == 1) next_pixel = q + ivec2(0, -column.gy);
+  bool forward = d.z >= 0.0f;
+  float z_end = o.z + s_end * d.z;
+
+  // The next boundary the ray may cross in this column.
+  int next;
+  if (s.hint >= 0) {
+    next = forward ? s.hint + 1 : s.hint - 1;
+  } else {
+    uint before = boundaries_before(q, o.z, false);
+    bool column_inside = (before & 1u) == 1u;
+    if (s.hint == VX_HINT_SIDE && column_inside != s.inside) {
+      s.hint = VX_HINT_FREE;
+      int continued = continued_surface(s, q, before);
+      if (continued >= 0) return remember_crossing(s, q, uint(continued));
+      // Within one layer of a boundary the column's state is below the voxelization's
+      // resolution: the ray grazes the surface there rather than hitting its side.
+      uint nb = boundary_count(q);
+      float layer = o.z * (exp2(u_log2_step) - 1.0f);
+      if ((before > 0u && o.z - boundary_depth(q, before - 1u) < layer) ||
+          (before < nb && boundary_depth(q, before) - o.z < layer))
+        return s;
+      // A hit on the column's side: the normal of the boundary nearest in depth (none in an
+      // empty column: the ray leaves the fluid unbent).
+      vec3 n = vec3(0.0f);
+      if (nb > 0u) {
+        uint i = before < nb ? before : nb - 1u;
+        if (before > 0u && before < nb && o.z - boundary_depth(q, before - 1u) < boundary_depth(q, before) - o.z)
+          i = before - 1u;
+        n = boundary_normal(q, i, o);
+        s = remember_crossing(s, q, i);
+      }
+      return ray_interface(s, n, column_inside);
+    }
+    next = forward ? int(before) : int(boundaries_before(q, o.z, true)) - 1;
+  }
+  if (next >= 0 && uint(next) < boundary_count(q)) {
+    float b = boundary_depth(q, uint(next));
+    if (forward ? b <= z_end : b >= z_end) {
+      float t = d.z != 0.0f ? (b - o.z) / d.z : 0.0f;
+      s = ray_advance(s, o + t * d);
+      s.hint = next;
+      s = remember_crossing(s, q, uint(next));
+      bool inside_after = forward ? (next & 1) == 0 : (next & 1) == 1;
+      if (inside_after == s.inside) return s;  // agrees with the ray's state: nothing to hit
+      return ray_interface(s, boundary_normal(q, uint(next), s.origin), inside_after);
+    }
+  }
+  s = ray_advance(s, o + s_end * d);
+  if (!in_image(next_pixel)) return ray_leave(s);
+  s.pixel = next_pixel;
+  s.hint = VX_HINT_SIDE;
+  return s;
+}
+
+// At most `budget` events.
+RayState march(RayState s, int budget) {
+  for (int i = 0; i < budget; ++i) {
+    if (!s.marching) break;
+    s = march_step(s);
+  }
+  return s;
+}
+
+#endif

@@ -1,0 +1,44 @@
+// render/model/environment.glsl - what surrounds the fluid: a sky gradient with a soft sun glow
+// and an infinite ground plane with a checker pattern fading into the horizon, so that
+// reflections and refractions show where the light comes from (paper 001, sec. 3.5).
+// Shared by the GPU shading passes and the CPU reference (render/model/cpp_host.h).
+// All world space.
+//
+// Host needs uniforms: u_env_up (unit, the sky's direction), u_env_axis_a, u_env_axis_b (unit,
+// the ground's tangent axes), u_ground_height (the plane dot(x, up) = height), u_ground_tile
+// (checker side, world units), u_ground_fade (distance over which the pattern fades),
+// u_sky_zenith, u_sky_horizon, u_ground_light, u_ground_dark, u_sun_direction (unit, towards the
+// sun), u_sun_color.
+#ifndef VX_MODEL_ENVIRONMENT
+#define VX_MODEL_ENVIRONMENT
+
+vec3 sky_color(vec3 dir) {
+  float h = clamp(dot(dir, u_env_up), 0.0f, 1.0f);
+  vec3 sky = mix(u_sky_horizon, u_sky_zenith, sqrt(h));
+  float glow = max(dot(dir, u_sun_direction), 0.0f);
+  return sky + u_sun_color * (0.2f * pow(glow, 32.0f));
+}
+
+// A square wave with edges softened over about a twentieth of a tile, so the pattern stays
+// calm under small changes of the rays that sample it.
+float soft_square(float u) { return clamp(4.0f * sin(3.14159265f * u), -1.0f, 1.0f); }
+
+vec3 ground_color(vec3 hit, float distance) {
+  float a = dot(hit, u_env_axis_a) / u_ground_tile;
+  float b = dot(hit, u_env_axis_b) / u_ground_tile;
+  float checker = 0.5f + 0.5f * soft_square(a) * soft_square(b);
+  vec3 ground = mix(u_ground_dark, u_ground_light, checker);
+  float fade = 1.0f - exp(-distance / u_ground_fade);
+  return mix(ground, u_sky_horizon, fade);
+}
+
+// Radiance arriving at `origin` from direction `dir` (unit).
+vec3 environment(vec3 origin, vec3 dir) {
+  float down = dot(dir, u_env_up);
+  if (down >= 0.0f) return sky_color(dir);
+  // Below the horizon: the ground, seen from above (from below the plane, where it lies).
+  float t = max((u_ground_height - dot(origin, u_env_up)) / down, 0.0f);
+  return ground_color(origin + t * dir, t);
+}
+
+#endif

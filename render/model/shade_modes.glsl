@@ -1,0 +1,57 @@
+// render/model/shade_modes.glsl - the opaque and translucent shading of one pixel (paper 001,
+// sec. 3.5), shared by the GPU passes (render/passes/shade_opaque.comp,
+// shade_translucent.comp) and the CPU reference (render/model/cpp_host.h).
+//
+// Translucent: Fresnel reflection of the environment at the first entry; the rest passes
+// straight through every span, absorbed (Beer-Lambert) over each span's length and lit by the
+// light the fluid scatters towards the eye. The last span's length is `inside` minus the
+// others, so a capped pixel (whose last stored span was extended over the spans past the cap,
+// sec. 3.1) absorbs exactly as much as if every span were stored.
+//
+// Host needs: links.glsl, surface_geometry.glsl, octahedral.glsl, lighting.glsl and their
+// needs; float sd_inside(ivec2), uvec2 sd_normals(uint) (entry, exit words), float sd_ao(ivec2)
+// (used when u_use_ao != 0), u_eye.
+#ifndef VX_MODEL_SHADE_MODES
+#define VX_MODEL_SHADE_MODES
+
+vec3 pixel_direction(ivec2 p) { return normalize(view_to_world_direction(view_ray_at(vec2(p) + vec2(0.5f)))); }
+
+float pixel_occlusion(ivec2 p) { return u_use_ao != 0 ? sd_ao(p) : 1.0f; }
+
+vec3 shade_opaque(ivec2 p) {
+  vec3 dir = pixel_direction(p);
+  if (sd_count(p) == 0u) return environment(u_eye, dir);
+  vec3 normal = decode_normal(sd_normals(sd_offset(p)).x);
+  return opaque_surface(normal, dir, pixel_occlusion(p));
+}
+
+vec3 shade_translucent(ivec2 p) {
+  vec3 dir = pixel_direction(p);
+  vec3 behind = environment(u_eye, dir);
+  uint n = sd_count(p);
+  if (n == 0u) return behind;
+  uint base = sd_offset(p);
+  vec3 ray = view_to_world_direction(view_ray_at(vec2(p) + vec2(0.5f)));
+  vec3 entry = u_eye + ray * sd_depths(base).x;
+  vec3 normal = decode_normal(sd_normals(base).x);
+  float reflectance = fresnel(-dot(dir, normal));
+  vec3 reflected = environment(entry, reflect(dir, normal));
+
+  float scale = length(ray);
+  float inside = sd_inside(p);
+  float counted = 0.0f;
+  vec3 through = vec3(1.0f);
+  vec3 scattered = vec3(0.0f);
+  for (uint k = 0u; k < n; ++k) {
+    vec2 span = sd_raw_depths(base + k);
+    float len = k + 1u < n ? (span.y - span.x) * scale : max(inside - counted, 0.0f);
+    counted += len;
+    vec3 t = transmittance(len);
+    scattered += through * (vec3(1.0f) - t);
+    through *= t;
+  }
+  vec3 body = through * behind + scattered * u_scatter_color * pixel_occlusion(p);
+  return reflectance * reflected + (1.0f - reflectance) * body;
+}
+
+#endif

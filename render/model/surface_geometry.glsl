@@ -1,0 +1,86 @@
+// render/model/surface_geometry.glsl - positions of surface points and the Sobel normal along
+// the surface links (paper 001, sec. 3.4: "Sobel operator on connected surface depths"),
+// shared by the GPU normals pass and the CPU reference (render/model/cpp_host.h).
+//
+// The 3x3 neighbourhood of a surface point is reached through its links: the four direct
+// neighbours by one link, the corners by a horizontal link then a vertical one. Where a link
+// stays in the point's own column (SELF: the span's silhouette, OWN: a bubble wall), the surface
+// turns there: its sample is the wall point half a pixel over, halfway in depth between the
+// two linked points, and a corner beyond a wall is that wall point again. The normal is the
+// cross product of the two Sobel tangents, turned to face the eye at an entry and away from it
+// at an exit (so every stored normal points out of the fluid), in world space.
+//
+// Host needs: links.glsl and its needs, vec2 sd_depths(uint) (the surface depths the normals are
+// built on: filtered or not), u_image, u_tan_half, u_right, u_up, u_forward.
+#ifndef VX_MODEL_SURFACE_GEOMETRY
+#define VX_MODEL_SURFACE_GEOMETRY
+
+// View-space ray (depth component 1) through image position xy in pixels (pixel (x, y) spans
+// [x, x + 1) x [y, y + 1); its centre is (x + 0.5, y + 0.5)).
+vec3 view_ray_at(vec2 xy) {
+  vec2 ndc = vec2(2.0f * xy.x / float(u_image.x) - 1.0f, 1.0f - 2.0f * xy.y / float(u_image.y));
+  return vec3(ndc.x * u_tan_half.x, ndc.y * u_tan_half.y, 1.0f);
+}
+
+vec3 view_to_world_direction(vec3 v) { return v.x * u_right + v.y * u_up + v.z * u_forward; }
+vec3 world_to_view_direction(vec3 w) { return vec3(dot(w, u_right), dot(w, u_up), dot(w, u_forward)); }
+
+float point_depth(SurfacePoint v) {
+  vec2 d = sd_depths(v.span);
+  return v.end == 0u ? d.x : d.y;
+}
+
+vec3 point_position(SurfacePoint v) { return view_ray_at(vec2(v.pixel) + vec2(0.5f)) * point_depth(v); }
+
+struct SobelSample {
+  vec3 position;       // view space
+  SurfacePoint point;  // the linked point
+  bool across;         // in the neighbour pixel; false: a wall sample in v's own column
+};
+
+SobelSample sobel_step(SurfacePoint v, int dir) {
+  SobelSample s;
+  s.point = follow_link(v, dir);
+  s.across = link_is_across(v, dir);
+  if (s.across) {
+    s.position = point_position(s.point);
+  } else {
+    vec2 xy = vec2(v.pixel) + vec2(0.5f) + 0.5f * vec2(link_step(dir));
+    s.position = view_ray_at(xy) * (0.5f * (point_depth(v) + point_depth(s.point)));
+  }
+  return s;
+}
+
+// Corner sample: horizontal step h, then vertical direction dir_y.
+vec3 sobel_corner(SobelSample h, int dir_y) { return h.across ? sobel_step(h.point, dir_y).position : h.position; }
+
+// Outward unit normal at v, view space.
+vec3 sobel_normal_view(SurfacePoint v) {
+  vec3 c = point_position(v);
+  SobelSample l = sobel_step(v, 0);
+  SobelSample r = sobel_step(v, 1);
+  SobelSample u = sobel_step(v, 2);
+  SobelSample d = sobel_step(v, 3);
+  vec3 lu = sobel_corner(l, 2);
+  vec3 ld = sobel_corner(l, 3);
+  vec3 ru = sobel_corner(r, 2);
+  vec3 rd = sobel_corner(r, 3);
+  vec3 tx = (ru - lu) + 2.0f * (r.position - l.position) + (rd - ld);  // towards +x
+  vec3 ty = (ld - lu) + 2.0f * (d.position - u.position) + (rd - ru);  // towards row + 1
+  vec3 n = cross(tx, ty);
+  float len = length(n);
+  // Out of the fluid: towards the eye at an entry, away from it at an exit.
+  float facing = v.end == 0u ? -1.0f : 1.0f;
+  if (!(len > 1e-30f)) return facing * normalize(c);
+  n = n / len;
+  return dot(n, c) * facing >= 0.0f ? n : -n;
+}
+
+// The encoded world-space normals (entry, exit) of span `span` of pixel p.
+uvec2 span_normal_words(ivec2 p, uint span) {
+  vec3 in_normal = view_to_world_direction(sobel_normal_view(surface_point(p, span, 0u)));
+  vec3 out_normal = view_to_world_direction(sobel_normal_view(surface_point(p, span, 1u)));
+  return uvec2(encode_normal(in_normal), encode_normal(out_normal));
+}
+
+#endif

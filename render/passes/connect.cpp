@@ -1,0 +1,28 @@
+#include "render/passes/connect.h"
+
+#include "render/grid_uniforms.h"
+#include "render/passes/dispatch.h"
+
+namespace voxspan {
+
+ConnectPass::ConnectPass(const gl::ShaderLibrary& shaders)
+    : owners_(shaders.compute("render/passes/connect.comp", "#define CONNECT_OWNERS 1")),
+      connect_(shaders.compute("render/passes/connect.comp")),
+      tally_(16) {}
+
+std::uint32_t ConnectPass::run(const GpuSpanImage& image, GpuSurfaces& surfaces) {
+  surfaces.prepare(image);
+  if (image.span_count() == 0) return 0;
+  tally_.clear();
+  surfaces.bind(image);
+  tally_.bind(GL_SHADER_STORAGE_BUFFER, 7);
+  set_grid_uniforms(owners_, image.grid());
+  dispatch_threads(owners_, std::size_t(image.width()) * std::size_t(image.height()));
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  set_grid_uniforms(connect_, image.grid());
+  dispatch_threads(connect_, image.span_count());
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  return tally_.read<std::uint32_t>(1)[0];
+}
+
+}  // namespace voxspan

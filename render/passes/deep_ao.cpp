@@ -1,0 +1,20 @@
+#include "render/passes/deep_ao.h"
+
+#include "render/grid_uniforms.h"
+#include "render/passes/dispatch.h"
+
+namespace voxspan {
+
+DeepAoPass::DeepAoPass(const gl::ShaderLibrary& shaders)
+    : program_(shaders.compute("render/passes/deep_ao.comp")) {}
+
+void DeepAoPass::run(const GpuSpanImage& image, const GpuSurfaces& surfaces,
+                     const model::ShadeUniforms& uniforms) {
+  surfaces.bind(image);
+  set_grid_uniforms(program_, image.grid());
+  model::set_shade_uniforms(program_, uniforms);
+  dispatch_threads(program_, std::size_t(image.width()) * std::size_t(image.height()));
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+}  // namespace voxspan

@@ -1,0 +1,35 @@
+// render/passes/filter.h - the surface filter (paper 001, sec. 3.4, 4.6;
+// render/passes/filter.comp): iterated 3x3 binomial smoothing of reciprocal depth along the
+// surface links, one dispatch per iteration, ping-ponging two depth buffers. The number of
+// iterations of a point follows its depth so the filter's world radius stays constant
+// (SurfaceOptions in render/shade_options.h says how).
+// Reads: the span image, GpuSurfaces owners and links. Writes: GpuSurfaces filter buffers and
+// marks the result as the surface depths.
+// Cost per iteration: one thread per span reading up to 8 linked neighbours' depths per end
+// (~40 bytes read, 8 written per span). Iterations: max over the image of n(near), capped (the
+// paper's GTX 970: 14 ms at 1080p, up to 20 iterations).
+#pragma once
+
+#include "render/gl/objects.h"
+#include "render/gl/shader_library.h"
+#include "render/gpu_span_image.h"
+#include "render/gpu_surfaces.h"
+#include "render/shade_options.h"
+
+namespace voxspan {
+
+class FilterPass {
+ public:
+  explicit FilterPass(const gl::ShaderLibrary& shaders);
+  // Runs after ConnectPass. Returns the iterations dispatched (0: filter off or nothing to do;
+  // the span image's depths stay the surface depths).
+  int run(const GpuSpanImage& image, GpuSurfaces& surfaces, const SurfaceOptions& options);
+
+  // Iterations a point at `depth` gets (before the cap): ceil(2 (radius / pixel(depth))^2).
+  static double iterations_at(const PerspectiveGrid& grid, double radius, double depth);
+
+ private:
+  gl::Program program_;
+};
+
+}  // namespace voxspan

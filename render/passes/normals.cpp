@@ -1,0 +1,19 @@
+#include "render/passes/normals.h"
+
+#include "render/grid_uniforms.h"
+#include "render/passes/dispatch.h"
+
+namespace voxspan {
+
+NormalsPass::NormalsPass(const gl::ShaderLibrary& shaders)
+    : program_(shaders.compute("render/passes/normals.comp")) {}
+
+void NormalsPass::run(const GpuSpanImage& image, const GpuSurfaces& surfaces) {
+  if (image.span_count() == 0) return;
+  surfaces.bind(image);
+  set_grid_uniforms(program_, image.grid());
+  dispatch_threads(program_, image.span_count());
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+}  // namespace voxspan

@@ -1,0 +1,18 @@
+// render/passes/shade_common.glsl - what every shading pass includes: the span image and the
+// surface data (read only), the shading uniforms, the shared model files, and the output image
+// (vec4 linear RGBA per pixel, binding 7, row 0 at the top).
+#define SPAN_IMAGE_ACCESS readonly
+#include "render/span_image.glsl"
+#include "render/passes/surface_data.glsl"
+#include "render/passes/thread_index.glsl"
+#include "render/passes/shade_uniforms.glsl"
+#include "render/model/links.glsl"
+#include "render/model/octahedral.glsl"
+#include "render/model/surface_geometry.glsl"
+#include "render/model/environment.glsl"
+#include "render/model/lighting.glsl"
+#include "render/model/shade_modes.glsl"
+
+layout(std430, binding = 7) writeonly buffer ShadedImage { vec4 shaded[]; };
+
+ivec2 thread_pixel(uint i) { return ivec2(int(i % uint(u_image.x)), int(i / uint(u_image.x))); }

@@ -1,0 +1,102 @@
+// Refractive shading (paper 001, sec. 3.5, Listing 2; render/passes/shade_refractive.h): one thread per
+// pixel, its ray's state kept in `rays` between dispatches (render/model/column_march.glsl).
+// REFRACT_BEGIN starts every ray at the eye and gathers the depth bounds of each 8 x 8 block
+// (for skipping empty space); REFRACT_MARCH advances each marching ray by at most
+// u_march_budget column events and counts the rays still marching; REFRACT_RESOLVE sends the rays
+// still marching to the environment and writes every pixel's colour.
+layout(local_size_x = 64) in;
+
+#include "render/passes/shade_common.glsl"
+
+// Per block of 8 x 8 columns (VX_BLOCK): the largest ~bits of its nearest entry depth and the
+// largest bits of its farthest exit depth (positive floats order as their bits), both 0 when
+// the block holds no span; REFRACT_BEGIN gathers them.
+layout(std430, binding = 10) buffer BlockBounds { uint block_bounds[]; };
+uniform int u_blocks_x;
+
+vec2 sd_block_bounds(ivec2 block) {
+  uint i = 2u * uint(block.x + block.y * u_blocks_x);
+  uint far_bits = block_bounds[i + 1u];
+  if (far_bits == 0u) return vec2(3.0e38, -3.0e38);
+  return vec2(uintBitsToFloat(~block_bounds[i]), uintBitsToFloat(far_bits));
+}
+
+#include "render/model/column_march.glsl"
+
+struct RayRecord {
+  vec4 origin;      // xyz; w: occlusion
+  vec4 dir;         // xyz; w: anchor x
+  vec4 throughput;  // xyz; w: anchor y
+  vec4 color;       // xyz; w: anchor z
+  ivec4 ints;       // pixel x, pixel y, hint, bounces | inside << 16 | marching << 17
+  ivec4 last;       // last_pixel x, y, last_span, last_end
+};
+layout(std430, binding = 8) buffer Rays { RayRecord rays[]; };
+layout(std430, binding = 9) buffer MarchTally {
+  uint active_rays;  // still marching after this dispatch
+  uint events;       // column events in this dispatch, all rays
+  uint most_events;  // by one ray
+  uint most_spans;   // in one pixel (REFRACT_BEGIN)
+};
+
+uniform int u_march_budget;
+
+RayRecord pack_ray(RayState s) {
+  RayRecord r;
+  r.origin = vec4(s.origin, s.occlusion);
+  r.dir = vec4(s.dir, s.anchor.x);
+  r.throughput = vec4(s.throughput, s.anchor.y);
+  r.color = vec4(s.color, s.anchor.z);
+  r.last = ivec4(s.last_pixel, s.last_span, int(s.last_end));
+  r.ints = ivec4(s.pixel, s.hint, s.bounces | (s.inside ? 1 << 16 : 0) | (s.marching ? 1 << 17 : 0));
+  return r;
+}
+
+RayState unpack_ray(RayRecord r) {
+  RayState s;
+  s.origin = r.origin.xyz;
+  s.occlusion = r.origin.w;
+  s.dir = r.dir.xyz;
+  s.throughput = r.throughput.xyz;
+  s.color = r.color.xyz;
+  s.anchor = vec3(r.dir.w, r.throughput.w, r.color.w);
+  s.pixel = r.ints.xy;
+  s.hint = r.ints.z;
+  s.last_pixel = r.last.xy;
+  s.last_span = r.last.z;
+  s.last_end = uint(r.last.w);
+  s.bounces = r.ints.w & 0xFFFF;
+  s.inside = (r.ints.w & (1 << 16)) != 0;
+  s.marching = (r.ints.w & (1 << 17)) != 0;
+  return s;
+}
+
+void main() {
+  uint i = thread_index();
+  if (i >= u_thread_count) return;
+#if defined(REFRACT_BEGIN)
+  ivec2 p = thread_pixel(i);
+  rays[i] = pack_ray(ray_start(p));
+  uint n = sd_count(p);
+  atomicMax(most_spans, n);
+  if (n > 0u) {
+    uint base = sd_offset(p);
+    uint b = 2u * uint(p.x / VX_BLOCK + (p.y / VX_BLOCK) * u_blocks_x);
+    atomicMax(block_bounds[b], ~floatBitsToUint(sd_depths(base).x));
+    atomicMax(block_bounds[b + 1u], floatBitsToUint(sd_depths(base + n - 1u).y));
+  }
+#elif defined(REFRACT_MARCH)
+  RayState s = unpack_ray(rays[i]);
+  if (!s.marching) return;
+  int n = 0;
+  for (; n < u_march_budget && s.marching; ++n) s = march_step(s);
+  rays[i] = pack_ray(s);
+  if (s.marching) atomicAdd(active_rays, 1u);
+  atomicAdd(events, uint(n));
+  atomicMax(most_events, uint(n));
+#else
+  RayState s = unpack_ray(rays[i]);
+  if (s.marching) s = ray_leave(s);
+  shaded[i] = vec4(s.color, 1.0);
+#endif
+}

@@ -1,0 +1,70 @@
+#include "render/passes/shade_refractive.h"
+
+#include <algorithm>
+
+#include "render/grid_uniforms.h"
+#include "render/passes/dispatch.h"
+
+namespace voxspan {
+namespace {
+constexpr std::size_t kRayRecordBytes = 96;  // RayRecord in shade_refractive.comp
+constexpr int kBlock = 8;                       // VX_BLOCK in render/model/column_march.glsl
+}  // namespace
+
+ShadeRefractivePass::ShadeRefractivePass(const gl::ShaderLibrary& shaders)
+    : begin_(shaders.compute("render/passes/shade_refractive.comp", "#define REFRACT_BEGIN 1")),
+      march_(shaders.compute("render/passes/shade_refractive.comp", "#define REFRACT_MARCH 1")),
+      resolve_(shaders.compute("render/passes/shade_refractive.comp", "#define REFRACT_RESOLVE 1")),
+      active_(16) {}
+
+RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfaces& surfaces,
+                                      const model::ShadeUniforms& uniforms,
+                                      const ShadeOptions& options, GpuFloatImage& out) {
+  const std::size_t pixels = std::size_t(image.width()) * std::size_t(image.height());
+  out.resize(image.width(), image.height());
+  rays_.reserve(std::max<std::size_t>(16, pixels * kRayRecordBytes));
+  const int blocks_x = (image.width() + kBlock - 1) / kBlock;
+  const std::size_t blocks = std::size_t(blocks_x) * std::size_t((image.height() + kBlock - 1) / kBlock);
+  blocks_.reserve(blocks * 8);
+  blocks_.clear(0, blocks * 8);
+  const auto bind = [&] {
+    surfaces.bind(image);
+    out.buffer().bind(GL_SHADER_STORAGE_BUFFER, 7);
+    rays_.bind(GL_SHADER_STORAGE_BUFFER, 8);
+    active_.bind(GL_SHADER_STORAGE_BUFFER, 9);
+    blocks_.bind(GL_SHADER_STORAGE_BUFFER, 10);
+  };
+  for (const gl::Program* p : {&begin_, &march_, &resolve_}) {
+    set_grid_uniforms(*p, image.grid());
+    model::set_shade_uniforms(*p, uniforms);
+    p->set("u_blocks_x", blocks_x);
+  }
+  march_.set("u_march_budget", options.march_budget);
+  active_.clear();
+  bind();
+  dispatch_threads(begin_, pixels);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  const std::uint32_t most_spans = active_.read<std::uint32_t>(4)[3];
+  const int max_dispatches = refract_dispatch_limit(image.width(), image.height(), most_spans, options);
+  RefractTally tally;
+  std::uint32_t active = 1;
+  while (active != 0 && tally.dispatches < max_dispatches) {
+    active_.clear();
+    bind();
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    dispatch_threads(march_, pixels);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    const std::vector<std::uint32_t> t = active_.read<std::uint32_t>(3);
+    active = t[0];
+    tally.events += t[1];
+    tally.most_events = std::max<std::int64_t>(tally.most_events, t[2]);
+    ++tally.dispatches;
+  }
+  tally.unfinished = active;
+  bind();
+  dispatch_threads(resolve_, pixels);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  return tally;
+}
+
+}  // namespace voxspan

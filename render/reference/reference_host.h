@@ -1,0 +1,94 @@
+// render/reference/reference_host.h - the CPU host of the shared model files
+// (render/model/*.glsl, render/model/cpp_host.h): a span image and its per-span surface data
+// read through the sd_* accessors the model files call, the uniforms as members, and the model
+// files' functions as its own. The CPU reference (render/reference/reference_shading.h) runs
+// the GPU passes' rules through it; tests call single model functions on it.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "render/model/cpp_host.h"
+#include "render/model/shade_uniforms.h"
+#include "render/span_image.h"
+
+namespace voxspan::model {
+
+class ReferenceHost : public GridUniforms, public ShadeUniforms {
+ public:
+  ReferenceHost(const SpanImage& spans, const ShadeUniforms& shade)
+      : GridUniforms(grid_uniforms(spans.grid)), ShadeUniforms(shade), spans_(spans) {}
+
+  // Per span (entry, exit) link and normal words; per pixel deep AO: filled by the caller.
+  std::vector<uvec2> links_, normals_;
+  std::vector<float> ao_;
+
+  uint sd_count(ivec2 p) const { return record(p).count; }
+  uint sd_offset(ivec2 p) const { return record(p).offset; }
+  float sd_inside(ivec2 p) const { return record(p).inside; }
+  vec2 sd_raw_depths(uint span) const { return vec2(spans_.spans[span].entry, spans_.spans[span].exit); }
+  vec2 sd_depths(uint span) const { return sd_raw_depths(span); }
+  uvec2 sd_links(uint span) const { return links_[span]; }
+  uvec2 sd_normals(uint span) const { return normals_[span]; }
+  float sd_ao(ivec2 p) const { return ao_[pixel_index(p)]; }
+  vec2 sd_block_bounds(ivec2 block) const {
+    return block_bounds_[std::size_t(block.x) + std::size_t(block.y) * std::size_t(blocks_x_)];
+  }
+
+  std::size_t pixel_index(ivec2 p) const {
+    return std::size_t(p.x) + std::size_t(p.y) * std::size_t(u_image.x);
+  }
+
+#include "render/model/links.glsl"
+#include "render/model/octahedral.glsl"
+#include "render/model/surface_geometry.glsl"
+#include "render/model/environment.glsl"
+#include "render/model/lighting.glsl"
+#include "render/model/shade_modes.glsl"
+#include "render/model/column_march.glsl"
+#include "render/model/deep_ao.glsl"
+
+  // The nearest entry and farthest exit per block of VX_BLOCK^2 columns, for the march.
+  void gather_block_bounds() {
+    blocks_x_ = (u_image.x + VX_BLOCK - 1) / VX_BLOCK;
+    const int blocks_y = (u_image.y + VX_BLOCK - 1) / VX_BLOCK;
+    block_bounds_.assign(std::size_t(blocks_x_) * std::size_t(blocks_y), vec2(3.0e38f, -3.0e38f));
+    for (int y = 0; y < u_image.y; ++y)
+      for (int x = 0; x < u_image.x; ++x) {
+        const uint n = sd_count(ivec2(x, y));
+        if (n == 0) continue;
+        vec2& b = block_bounds_[std::size_t(x / VX_BLOCK) + std::size_t(y / VX_BLOCK) * std::size_t(blocks_x_)];
+        b.x = min(b.x, sd_depths(sd_offset(ivec2(x, y))).x);
+        b.y = max(b.y, sd_depths(sd_offset(ivec2(x, y)) + n - 1).y);
+      }
+  }
+
+  // f(p, span index) for every span, rows in parallel.
+  template <class F>
+  std::vector<uvec2> per_span(F&& f) {
+    std::vector<uvec2> out(spans_.spans.size());
+    each_pixel([&](ivec2 p) {
+      for (uint k = 0; k < sd_count(p); ++k) out[sd_offset(p) + k] = f(p, sd_offset(p) + k);
+    });
+    return out;
+  }
+
+  template <class F>
+  void each_pixel(F&& f) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, u_image.y), [&](const tbb::blocked_range<int>& rows) {
+      for (int y = rows.begin(); y != rows.end(); ++y)
+        for (int x = 0; x < u_image.x; ++x) f(ivec2(x, y));
+    });
+  }
+
+ private:
+  const PixelSpans& record(ivec2 p) const { return spans_.pixels[pixel_index(p)]; }
+  const SpanImage& spans_;
+  std::vector<vec2> block_bounds_;
+  int blocks_x_ = 1;
+};
+
+}  // namespace voxspan::model

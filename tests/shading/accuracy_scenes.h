@@ -1,0 +1,26 @@
+// The voxelization issue's accuracy scenes (tests/render/test_voxelize_accuracy.cpp: one
+// sphere, a lattice block, the dam break, 24 stacked layers, a 3D checkerboard, a random cloud
+// with mixed radii) with their cameras and voxelization options, for measuring how close the
+// shaded pictures come to the exact reference's.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "render/voxelizer.h"
+#include "scenes.h"
+
+namespace voxspan::test {
+
+struct AccuracyScene {
+  std::string name;
+  Particles particles;
+  Camera camera;
+  VoxelizeOptions options;  // gap bridging, span cap; the grid's alpha is the caller's
+  double ground_tile = 0.1;
+};
+
+// Images of width x height (the cameras keep their framing at any size).
+std::vector<AccuracyScene> accuracy_scenes(int width, int height);
+
+}  // namespace voxspan::test

@@ -1,0 +1,19 @@
+// Picture comparisons for the shading tests and benchmarks: PSNR and largest difference of two
+// float images as they are seen, i.e. after the 8-bit sRGB encoding the PNG frames get
+// (insitu/png_image.h), over the RGB channels of every pixel.
+#pragma once
+
+#include "render/float_image.h"
+
+namespace voxspan::test {
+
+struct ImageDifference {
+  double psnr = 0;       // dB; infinite when identical
+  int max_levels = 0;    // largest difference of one channel, in 1/255 steps
+  double mean_levels = 0;
+};
+
+// Throws voxspan::Error when the sizes differ.
+ImageDifference compare_images(const FloatImage& a, const FloatImage& b);
+
+}  // namespace voxspan::test

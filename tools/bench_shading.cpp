@@ -1,0 +1,260 @@
+// bench_shading: times a whole frame, voxelization then the passes after it (paper 001, sec.
+// 3.3-3.6: connect, filter, normals, deep AO, shade) per shading mode, on the dam break, and
+// measures how close the shaded pictures come to the exact reference per angle resolution.
+//
+// Timing (default): the WCSPH dam break of examples/dambreak at Martin & Moyce's T (--time),
+// about --particles fluid particles, state cached in --state; or --ritter: the Ritter-profile
+// test scene (with --all-particles every particle is voxelized, no cell states: the way to
+// reach millions of voxelized particles). Milliseconds per pass are medians over --frames
+// frames after one warm-up (glFinish + wall clock on llvmpipe, GPU timer queries on NVIDIA);
+// "frame" is the whole frame from particles to the float image, no read-back, no disk.
+//
+// Accuracy (--accuracy FILE.csv): the voxelization's accuracy scenes (tests/shading/
+// accuracy_scenes.h) at 160x120, filter off, for each angle resolution of --alphas: PSNR of the
+// GPU's picture against the exact reference with the same (Sobel) normals and with exact sphere
+// normals, per mode; printed and written as CSV for tools/plot_psnr.py.
+//
+//   bench_shading [--particles N] [--time T] [--state FILE] [--ritter] [--all-particles]
+//                 [--size WxH] [--alpha DEG] [--max-layers L] [--budget-mib M] [--frames F]
+//                 [--modes opaque,translucent,refractive] [--ao] [--accuracy FILE.csv]
+//                 [--alphas 14,7,3.5,2,1] [--json] [--platform auto|nvidia|device|surfaceless]
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "accuracy_scenes.h"
+#include "dambreak_state.h"
+#include "image_compare.h"
+#include "render/gl/context.h"
+#include "render/gl/info.h"
+#include "render/gl/pass_timer.h"
+#include "render/gl/shader_library.h"
+#include "render/reference/exact_spans.h"
+#include "render/reference/reference_shading.h"
+#include "render/renderer.h"
+#include "voxspan/error.h"
+
+namespace {
+
+using namespace voxspan;
+
+struct Args {
+  double particles = 1e5;
+  double time = -1;
+  std::string state = "build/dambreak_state.bin";
+  bool ritter = !tools::have_solver();
+  bool all_particles = false;
+  int width = 960, height = 540;
+  double alpha = 14;
+  int max_layers = 16384;
+  double budget_mib = 512;
+  int frames = 3;
+  std::vector<ShadeMode> modes = {ShadeMode::opaque, ShadeMode::translucent, ShadeMode::refractive};
+  bool ao = false;
+  std::string accuracy;
+  std::vector<double> alphas = {14, 7, 3.5, 2, 1};
+  bool json = false;
+  gl::ContextOptions context;
+};
+
+const char* kPasses[] = {"frame", "upload", "bin", "clear", "splat", "compress",
+                         "connect", "filter", "normals", "deep_ao", "shade"};
+
+int usage(FILE* out) {
+  std::fprintf(out,
+               "usage: bench_shading [--particles N] [--time T] [--state FILE] [--ritter]\n"
+               "         [--all-particles] [--size WxH] [--alpha DEG] [--max-layers L]\n"
+               "         [--budget-mib M] [--frames F] [--modes opaque,translucent,refractive]\n"
+               "         [--ao] [--accuracy FILE.csv] [--alphas 14,7,3.5,2,1] [--json]\n"
+               "         [--platform auto|nvidia|device|surfaceless]\n");
+  return out == stdout ? 0 : 2;
+}
+
+std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream s(text);
+  for (std::string item; std::getline(s, item, ',');) items.push_back(item);
+  return items;
+}
+
+bool parse(int argc, char** argv, Args& a) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string k = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (k == "--particles" && has_value) a.particles = std::atof(argv[++i]);
+    else if (k == "--time" && has_value) a.time = std::atof(argv[++i]);
+    else if (k == "--state" && has_value) a.state = argv[++i];
+    else if (k == "--ritter") a.ritter = true;
+    else if (k == "--all-particles") a.all_particles = true;
+    else if (k == "--size" && has_value) {
+      if (std::sscanf(argv[++i], "%dx%d", &a.width, &a.height) != 2) return false;
+    } else if (k == "--alpha" && has_value) a.alpha = std::atof(argv[++i]);
+    else if (k == "--max-layers" && has_value) a.max_layers = std::atoi(argv[++i]);
+    else if (k == "--budget-mib" && has_value) a.budget_mib = std::atof(argv[++i]);
+    else if (k == "--frames" && has_value) a.frames = std::max(1, std::atoi(argv[++i]));
+    else if (k == "--modes" && has_value) {
+      a.modes.clear();
+      for (const std::string& m : split(argv[++i])) {
+        if (m == "opaque") a.modes.push_back(ShadeMode::opaque);
+        else if (m == "translucent") a.modes.push_back(ShadeMode::translucent);
+        else if (m == "refractive") a.modes.push_back(ShadeMode::refractive);
+        else return false;
+      }
+    } else if (k == "--ao") a.ao = true;
+    else if (k == "--accuracy" && has_value) a.accuracy = argv[++i];
+    else if (k == "--alphas" && has_value) {
+      a.alphas.clear();
+      for (const std::string& v : split(argv[++i])) a.alphas.push_back(std::atof(v.c_str()));
+    } else if (k == "--json") a.json = true;
+    else if (k == "--platform" && has_value) {
+      if (!gl::parse_platform(argv[++i], a.context.platform)) return false;
+    } else return false;
+  }
+  return a.width > 0 && a.height > 0 && a.particles > 0 && !a.modes.empty();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
+}
+
+void time_modes(const Args& a, const gl::Context& context, Renderer& renderer) {
+  tools::DamBreakState s = a.ritter ? tools::ritter_dam_break(a.particles, a.time < 0 ? 0.3 : a.time)
+                                    : tools::solver_dam_break(a.particles, a.time < 0 ? 5.0 : a.time, a.state);
+  const Classification& c = s.classification;
+  std::vector<ParticleSphere> all;
+  if (a.all_particles)
+    for (std::size_t i = 0; i < s.x.size(); ++i)
+      all.push_back({s.x[i], s.y[i], s.z[i], float(s.spacing)});
+  const std::vector<ParticleSphere>& particles = a.all_particles ? all : c.boundary;
+  const CellStatesView cells = a.all_particles ? CellStatesView{} : c.cell_states();
+  s.camera.width = a.width;
+  s.camera.height = a.height;
+  std::printf("scene: %s; %zu voxelized (%s)\n", s.description.c_str(), particles.size(),
+              a.all_particles ? "all particles" : "boundary particles, cell states");
+
+  RenderOptions o;
+  o.voxelize.grid.alpha_degrees = a.alpha;
+  o.voxelize.grid.max_layers = a.max_layers;
+  o.voxelize.gap_bridging = s.spacing;
+  o.voxelize.tiles.memory_budget = static_cast<std::size_t>(a.budget_mib * (1 << 20));
+  o.surfaces.filter_radius = 1.5 * s.spacing;
+  o.shade.environment.up = s.up;
+  o.shade.environment.ground_tile = s.length / 3;
+  o.shade.material.absorption = glm::dvec3(3.0, 1.0, 0.4) / s.length;
+  o.shade.ao.radius = 4 * s.spacing;
+  o.shade.deep_ao = a.ao;
+
+  bool first = true;
+  for (ShadeMode mode : a.modes) {
+    o.shade.mode = mode;
+    std::map<std::string, std::vector<double>> samples;
+    FrameStats last;
+    for (int f = -1; f < a.frames; ++f) {
+      gl::reset_memory_peak();
+      gl::PassTimer timer(context.has_gpu_timers());
+      FrameStats stats;
+      renderer.render(s.camera, particles, cells, o, timer, stats);
+      timer.collect(stats);
+      if (f < 0) continue;
+      for (const char* p : kPasses) samples[p].push_back(stats.ms(p));
+      samples["total"].push_back(stats.total_ms());
+      last = stats;
+    }
+    if (first) {
+      std::printf("grid: %dx%d x %lld layers (alpha %.2f deg), %lld spans stored, filter %lld "
+                  "iterations\n\n%-22s",
+                  a.width, a.height, static_cast<long long>(last.count("grid.layers")),
+                  last.figure("grid.alpha_degrees"), static_cast<long long>(last.count("spans.stored")),
+                  static_cast<long long>(last.count("filter.iterations")), "mode (median ms)");
+      for (const char* p : kPasses) std::printf(" %8s", p);
+      std::printf(" %8s %8s\n", "total", "peak MiB");
+      first = false;
+    }
+    char label[64];
+    std::snprintf(label, sizeof label, "%s%s", shade_mode_name(mode), a.ao ? " + deep AO" : "");
+    std::printf("%-22s", label);
+    for (const char* p : kPasses) std::printf(" %8.1f", median(samples[p]));
+    std::printf(" %8.1f %8.0f\n", median(samples["total"]), double(last.gpu_peak_bytes) / (1 << 20));
+    if (mode == ShadeMode::refractive)
+      std::printf("  refraction: %lld march dispatches, %lld rays unfinished, %.1f column events "
+                  "per pixel, %lld at most\n",
+                  static_cast<long long>(last.count("refract.dispatches")),
+                  static_cast<long long>(last.count("refract.unfinished")),
+                  double(last.count("refract.events")) / (double(a.width) * a.height),
+                  static_cast<long long>(last.count("refract.most_events")));
+    if (a.json) std::printf("  %s\n", last.json().c_str());
+  }
+}
+
+void accuracy(const Args& a, const gl::Context& context, Renderer& renderer) {
+  std::ofstream csv(a.accuracy);
+  if (!csv) throw make_error("cannot write ", a.accuracy);
+  csv << "scene,alpha,layers,mode,psnr_same_normals,psnr_sphere_normals\n";
+  std::printf("\nPSNR (dB) against the exact reference, same normals / sphere normals, 160x120, filter off\n");
+  std::printf("%-18s %6s %6s %14s %14s %14s\n", "scene", "alpha", "layers", "opaque", "translucent", "refractive");
+  for (const test::AccuracyScene& scene : test::accuracy_scenes(160, 120)) {
+    for (double alpha : a.alphas) {
+      VoxelizeOptions vo = scene.options;
+      vo.grid.alpha_degrees = alpha;
+      gl::PassTimer timer(context.has_gpu_timers());
+      FrameStats stats;
+      const GpuSpanImage& gpu = renderer.voxelizer().run(scene.camera, scene.particles, {}, vo, timer, stats);
+      const SpanImage spans = gpu.download();
+      std::vector<SpanNormals> exact_normals;
+      const SpanImage exact = exact_spans(spans.grid, scene.particles, {}, {vo.gap_bridging, vo.max_spans},
+                                          &exact_normals);
+      const std::vector<glm::uvec2> sobel = reference_normals(exact, reference_links(exact));
+      const std::vector<glm::uvec2> sphere = encode_exact_normals(exact_normals, sobel);
+      std::printf("%-18s %6.2f %6d", scene.name.c_str(), alpha, spans.grid.layers());
+      for (ShadeMode mode : {ShadeMode::opaque, ShadeMode::translucent, ShadeMode::refractive}) {
+        ShadeOptions shade;
+        shade.mode = mode;
+        shade.material.absorption = {3.0, 1.2, 0.5};
+        shade.material.scatter_color = {0.04, 0.1, 0.16};
+        shade.environment.ground_tile = scene.ground_tile;
+        const FloatImage image = renderer.shade(gpu, {}, shade, timer, stats).download();
+        const double same = test::compare_images(image, reference_shading(exact, shade, &sobel)).psnr;
+        const double exact_n = test::compare_images(image, reference_shading(exact, shade, &sphere)).psnr;
+        std::printf(" %6.1f / %5.1f", same, exact_n);
+        csv << '"' << scene.name << "\"," << alpha << ',' << spans.grid.layers() << ','
+            << shade_mode_name(mode) << ',' << same << ',' << exact_n << '\n';
+      }
+      std::printf("\n");
+      timer.collect(stats);
+    }
+  }
+  std::printf("wrote %s\n", a.accuracy.c_str());
+}
+
+int run(const Args& a) {
+  gl::Context context(a.context);
+  const gl::Info info = gl::query_info(context);
+  std::printf("renderer: %s (%s), GPU timers: %s\n", info.renderer.c_str(), info.version.c_str(),
+              context.has_gpu_timers() ? "yes" : "no, glFinish + wall clock");
+  gl::ShaderLibrary shaders;
+  Renderer renderer(shaders);
+  if (!a.accuracy.empty()) accuracy(a, context, renderer);
+  else time_modes(a, context, renderer);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args a;
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") return usage(stdout);
+  if (!parse(argc, argv, a)) return usage(stderr);
+  try {
+    return run(a);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_shading: error: %s\n", e.what());
+    return 1;
+  }
+}

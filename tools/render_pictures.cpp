@@ -1,0 +1,154 @@
+// render_pictures: renders the dam break in every shading mode (paper 001, sec. 3.5, 3.6) and
+// writes 8-bit sRGB PNGs: the pictures of docs/images/ and the README.
+//
+// The fluid: the WCSPH dam-break solver of examples/dambreak run to Martin & Moyce's
+// T = t sqrt(2 g / a) (--time) with about --particles fluid particles, its state cached in
+// --state (reaching the splash takes minutes on two cores); or, with --ritter (or without the
+// examples), the Ritter-profile test scene of tests/render/scenes.h at t = --time seconds.
+// The adapter's classifier (voxspan/classify.h) keeps only the boundary particles, the cell
+// states fill the inside. Gap bridging one particle spacing, filter radius 1.5 spacings.
+// --reference also writes the exact CPU reference's pictures (exact spans, Sobel normals).
+//
+//   render_pictures [--out DIR] [--particles N] [--time T] [--state FILE] [--ritter]
+//                   [--size WxH] [--alpha DEG] [--reference]
+//                   [--platform auto|nvidia|device|surfaceless]
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "dambreak_state.h"
+#include "insitu/png_image.h"
+#include "render/gl/context.h"
+#include "render/gl/pass_timer.h"
+#include "render/gl/shader_library.h"
+#include "render/reference/exact_spans.h"
+#include "render/reference/reference_shading.h"
+#include "render/renderer.h"
+#include "voxspan/error.h"
+
+namespace {
+
+using namespace voxspan;
+
+struct Args {
+  std::string out = "docs/images";
+  double particles = 1e5;
+  double time = -1;  // default: T = 5 (solver: the run-up on the far wall), t = 0.3 s (Ritter)
+  std::string state = "build/dambreak_state.bin";  // cache of the solver state
+  bool ritter = !tools::have_solver();
+  int width = 960, height = 540;
+  double alpha = 14;
+  bool reference = false;
+  gl::ContextOptions context;
+};
+
+int usage(FILE* out) {
+  std::fprintf(out,
+               "usage: render_pictures [--out DIR] [--particles N] [--time T] [--state FILE]\n"
+               "         [--ritter] [--size WxH] [--alpha DEG] [--reference]\n"
+               "         [--platform auto|nvidia|device|surfaceless]\n");
+  return out == stdout ? 0 : 2;
+}
+
+bool parse(int argc, char** argv, Args& a) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string k = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (k == "--out" && has_value) a.out = argv[++i];
+    else if (k == "--particles" && has_value) a.particles = std::atof(argv[++i]);
+    else if (k == "--time" && has_value) a.time = std::atof(argv[++i]);
+    else if (k == "--state" && has_value) a.state = argv[++i];
+    else if (k == "--ritter") a.ritter = true;
+    else if (k == "--size" && has_value) {
+      if (std::sscanf(argv[++i], "%dx%d", &a.width, &a.height) != 2) return false;
+    } else if (k == "--alpha" && has_value) a.alpha = std::atof(argv[++i]);
+    else if (k == "--reference") a.reference = true;
+    else if (k == "--platform" && has_value) {
+      if (!gl::parse_platform(argv[++i], a.context.platform)) return false;
+    } else return false;
+  }
+  return a.width > 0 && a.height > 0 && a.particles > 0;
+}
+
+struct Picture {
+  const char* name;
+  ShadeMode mode;
+  bool deep_ao;
+};
+
+void write(const std::filesystem::path& path, const FloatImage& image) {
+  write_png(path, linear_to_srgb8(image.rgba, image.width, image.height), false);
+  std::printf("wrote %s\n", path.c_str());
+}
+
+// The look of the pictures, in the scene's own scale (`length`: the column's width).
+RenderOptions picture_options(const tools::DamBreakState& s, double alpha) {
+  RenderOptions o;
+  o.voxelize.grid.alpha_degrees = alpha;
+  o.voxelize.gap_bridging = s.spacing;
+  o.surfaces.filter_radius = 1.5 * s.spacing;
+  ShadeOptions& shade = o.shade;
+  shade.material.absorption = glm::dvec3(5.0, 1.8, 0.7) / s.length;
+  shade.material.scatter_color = {0.05, 0.16, 0.25};
+  shade.environment.up = s.up;
+  shade.environment.ground_height = s.ground - 0.5 * s.spacing;
+  shade.environment.ground_tile = s.length / 3;
+  shade.environment.sun_direction = s.up + glm::dvec3(0.35, -0.3, 0.2);
+  shade.ao.radius = 4 * s.spacing;
+  return o;
+}
+
+int run(const Args& a) {
+  gl::Context context(a.context);
+  gl::ShaderLibrary shaders;
+  Renderer renderer(shaders);
+
+  tools::DamBreakState s = a.ritter ? tools::ritter_dam_break(a.particles, a.time < 0 ? 0.3 : a.time)
+                                    : tools::solver_dam_break(a.particles, a.time < 0 ? 5.0 : a.time, a.state);
+  const Classification& c = s.classification;
+  std::printf("%s: %zu boundary particles of %zu, %zu inner-full cells\n", s.description.c_str(),
+              c.boundary.size(), s.x.size(), c.counts.cells_inner_full);
+  s.camera.width = a.width;
+  s.camera.height = a.height;
+  RenderOptions options = picture_options(s, a.alpha);
+
+  const std::filesystem::path out(a.out);
+  std::filesystem::create_directories(out);
+  const Picture pictures[] = {{"dambreak_opaque", ShadeMode::opaque, false},
+                              {"dambreak_opaque_ao", ShadeMode::opaque, true},
+                              {"dambreak_translucent", ShadeMode::translucent, false},
+                              {"dambreak_translucent_ao", ShadeMode::translucent, true},
+                              {"dambreak_refractive", ShadeMode::refractive, false}};
+  for (const Picture& p : pictures) {
+    options.shade.mode = p.mode;
+    options.shade.deep_ao = p.deep_ao;
+    gl::PassTimer timer(context.has_gpu_timers());
+    FrameStats stats;
+    const FloatImage image =
+        renderer.render(s.camera, c.boundary, c.cell_states(), options, timer, stats).download();
+    timer.collect(stats);
+    std::printf("%s: %.0f ms (%s)\n", p.name, stats.total_ms(), stats.json().c_str());
+    write(out / (std::string(p.name) + ".png"), image);
+    if (a.reference) {
+      const SpanImage spans = exact_spans(renderer.voxelizer().image().grid(), c.boundary,
+                                          c.cell_states(), {options.voxelize.gap_bridging, 0});
+      write(out / (std::string(p.name) + "_reference.png"), reference_shading(spans, options.shade));
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args a;
+  if (argc > 1 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help")) return usage(stdout);
+  if (!parse(argc, argv, a)) return usage(stderr);
+  try {
+    return run(a);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "render_pictures: %s\n", e.what());
+    return 1;
+  }
+}
