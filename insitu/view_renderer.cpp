@@ -10,27 +10,34 @@ namespace {
 
 constexpr double kMiB = 1024.0 * 1024.0;
 
-// The picture from the span image alone, until the shading passes are on this branch:
-// Beer-Lambert absorption over the exact inside length of every pixel (sec. 3.5's
-// translucency without Fresnel or normals) in front of a sky gradient.
-void shade_inside_length(std::span<const PixelSpans> pixels, int width, int height,
-                         const Vec3d& absorption, std::vector<float>& rgba) {
-  const float zenith[3] = {0.22f, 0.42f, 0.8f}, horizon[3] = {0.78f, 0.84f, 0.9f};
-  const float scatter[3] = {0.02f, 0.06f, 0.09f};
-  for (int y = 0; y < height; ++y) {
-    const float t = float(y) / float(std::max(height - 1, 1));
-    for (int x = 0; x < width; ++x) {
-      const std::size_t p = std::size_t(x) + std::size_t(y) * std::size_t(width);
-      const float inside = pixels[p].inside;
-      float* out = &rgba[4 * p];
-      for (int c = 0; c < 3; ++c) {
-        const float sky = zenith[c] + (horizon[c] - zenith[c]) * t;
-        const float transmit = std::exp(-float(absorption[std::size_t(c)]) * inside);
-        out[c] = sky * transmit + scatter[c] * (1 - transmit);
-      }
-      out[3] = 1;
-    }
+glm::dvec3 vec(const Vec3d& v) { return {v[0], v[1], v[2]}; }
+
+ShadeMode shade_mode(ShadingMode mode) {
+  switch (mode) {
+    case ShadingMode::opaque: return ShadeMode::opaque;
+    case ShadingMode::translucent: return ShadeMode::translucent;
+    case ShadingMode::refractive: return ShadeMode::refractive;
   }
+  return ShadeMode::translucent;
+}
+
+// Towards the sun: mostly up, a little to two sides, whatever axis is up.
+glm::dvec3 sun_direction(glm::dvec3 up) {
+  up = glm::normalize(up);
+  const glm::dvec3 other = std::abs(up.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 a = glm::normalize(glm::cross(up, other)), b = glm::cross(up, a);
+  return up + 0.35 * a + 0.45 * b;
+}
+
+// The lowest point of the box along `up`: the ground plane lies there.
+double lowest(const Bounds& box, glm::dvec3 up) {
+  up = glm::normalize(up);
+  double low = 1e300;
+  for (int k = 0; k < 8; ++k)
+    low = std::min(low, glm::dot(up, glm::dvec3(k & 1 ? box.hi[0] : box.lo[0],
+                                                 k & 2 ? box.hi[1] : box.lo[1],
+                                                 k & 4 ? box.hi[2] : box.lo[2])));
+  return low;
 }
 
 }  // namespace
@@ -39,45 +46,48 @@ ViewRenderSettings view_render_settings(const ViewConfig& view, const RendererCo
                                         double spacing) {
   if (!(spacing > 0) || !std::isfinite(spacing))
     throw make_error("view ", view.name, ": the particle spacing (", spacing,
-                     ") is needed for the automatic gap and filter radius; set "
-                     "classification.particle_spacing or the view's gap and filter_radius");
+                     ") is needed for the view's automatic settings; set "
+                     "classification.particle_spacing or pass it to the adapter");
   ViewRenderSettings s;
-  s.voxelize.grid.alpha_degrees = view.alpha_degrees;
-  s.voxelize.grid.max_layers = view.max_layers;
-  s.voxelize.gap_bridging = view.gap.value_or(spacing);
-  s.voxelize.max_spans = static_cast<std::uint32_t>(view.max_spans);
-  s.voxelize.tiles.memory_budget = static_cast<std::size_t>(renderer.gpu_memory_mib * kMiB);
-  s.shading = view.shading;
-  s.deep_ao = view.deep_ao;
-  s.filter_radius = view.filter_radius.value_or(spacing);
-  s.absorption = view.absorption;
-  s.ior = view.ior;
-  s.bounces = view.bounces;
-  s.up = view.camera.up;
-  validate(s.voxelize);
+  VoxelizeOptions& v = s.render.voxelize;
+  v.grid.alpha_degrees = view.alpha_degrees;
+  v.grid.max_layers = view.max_layers;
+  v.gap_bridging = view.gap.value_or(spacing);
+  v.max_spans = static_cast<std::uint32_t>(view.max_spans);
+  v.tiles.memory_budget = static_cast<std::size_t>(renderer.gpu_memory_mib * kMiB);
+  s.render.surfaces.filter_radius = view.filter_radius.value_or(spacing);
+  ShadeOptions& shade = s.render.shade;
+  shade.mode = shade_mode(view.shading);
+  shade.deep_ao = view.deep_ao;
+  shade.ao.radius = 4 * spacing;
+  shade.material.absorption = vec(view.absorption);
+  shade.material.ior = view.ior;
+  shade.bounces = view.bounces;
+  shade.environment.up = vec(view.camera.up);
+  shade.environment.sun_direction = sun_direction(shade.environment.up);
+  shade.environment.ground_tile = 12 * spacing;
+  validate(v);
+  validate(s.render.surfaces);
+  validate(shade);
   return s;
 }
 
-ViewRenderer::ViewRenderer(const gl::ShaderLibrary& shaders) : voxelizer_(shaders) {}
+ViewRenderer::ViewRenderer(const gl::ShaderLibrary& shaders) : renderer_(shaders) {}
 
 void ViewRenderer::render(const ViewRenderSettings& settings, const Camera& camera,
-                          const Bounds& /*fluid_box*/, std::span<const ParticleSphere> boundary,
+                          const Bounds& fluid_box, std::span<const ParticleSphere> boundary,
                           const CellStatesView& cells, gl::PassTimer& timer, FrameStats& stats,
                           ViewImage& out) {
-  const GpuSpanImage& spans =
-      voxelizer_.run(camera, boundary, cells, settings.voxelize, timer, stats);
-  out.width = camera.width;
-  out.height = camera.height;
-  const std::size_t count = std::size_t(out.width) * std::size_t(out.height);
-  out.rgba.resize(4 * count);
-  pixels_.resize(count);
-  {
-    auto t = timer.gpu("readback");
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the compress pass wrote them in a shader
-    spans.pixels().download(pixels_.data(), count * sizeof(PixelSpans));
-  }
-  auto t = timer.cpu("shade");
-  shade_inside_length(pixels_, out.width, out.height, settings.absorption, out.rgba);
+  options_ = settings.render;
+  if (!fluid_box.empty())
+    options_.shade.environment.ground_height = lowest(fluid_box, options_.shade.environment.up);
+  const GpuFloatImage& image = renderer_.render(camera, boundary, cells, options_, timer, stats);
+  out.width = image.width();
+  out.height = image.height();
+  out.rgba.resize(std::size_t(out.width) * std::size_t(out.height) * 4);
+  auto t = timer.gpu("readback");
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the shade pass wrote it in a shader
+  image.buffer().download(out.rgba.data(), out.rgba.size() * sizeof(float));
 }
 
 }  // namespace voxspan

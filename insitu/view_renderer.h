@@ -4,9 +4,10 @@
 // sec. 3.3-3.6), and reads the picture back for the PNG writer.
 //
 // Reads: the boundary spheres and cell states of the step, the view's settings, the fluid's
-// box (where the ground plane of the environment goes). Writes: ViewImage (its storage is
+// box (the ground plane of the environment lies under it). Writes: ViewImage (its storage is
 // reused from step to step; GPU buffers are the renderer's and are reused too).
-// Costs: the renderer's passes plus one read-back of width x height x 16 bytes.
+// Costs: the renderer's passes (render/README.md, render/SHADING.md) plus one read-back of
+// width x height x 16 bytes.
 #pragma once
 
 #include <span>
@@ -18,8 +19,7 @@
 #include "render/frame_stats.h"
 #include "render/gl/pass_timer.h"
 #include "render/gl/shader_library.h"
-#include "render/span_image.h"
-#include "render/voxelizer.h"
+#include "render/renderer.h"
 #include "voxspan/cell_states.h"
 
 namespace voxspan {
@@ -31,20 +31,16 @@ struct ViewImage {
   std::vector<float> rgba;  // width * height * 4
 };
 
-// What a view's settings become for the renderer; made once per view.
+// What a view's settings become for the renderer; made once per view. Only the ground plane's
+// height follows the fluid from step to step (render()).
 struct ViewRenderSettings {
-  VoxelizeOptions voxelize;
-  ShadingMode shading = ShadingMode::translucent;
-  bool deep_ao = false;
-  double filter_radius = 0;  // world units
-  Vec3d absorption{0.45, 0.12, 0.05};
-  double ior = 1.33;
-  int bounces = 3;
-  Vec3d up{0, 0, 1};  // the environment's up: the camera's
+  RenderOptions render;
 };
 
-// `spacing` is the particles' rest spacing (world units): gap bridging and the filter radius
-// default to it when the view says `auto`. Throws voxspan::Error naming a bad setting.
+// `spacing` is the particles' rest spacing (world units), the scale of what the view leaves
+// `auto`: gap bridging and the filter radius one spacing, deep AO's radius four, the ground's
+// checker twelve. The environment's up is the camera's, the sun above and to one side.
+// Throws voxspan::Error naming a bad setting.
 ViewRenderSettings view_render_settings(const ViewConfig& view, const RendererConfig& renderer,
                                         double spacing);
 
@@ -60,8 +56,8 @@ class ViewRenderer {
               gl::PassTimer& timer, FrameStats& stats, ViewImage& out);
 
  private:
-  Voxelizer voxelizer_;
-  std::vector<PixelSpans> pixels_;  // read-back of the span image's pixel records
+  Renderer renderer_;
+  RenderOptions options_;  // the settings' options with this step's ground
 };
 
 }  // namespace voxspan

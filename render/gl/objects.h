@@ -7,6 +7,7 @@
 
 #include <epoxy/gl.h>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -97,6 +98,14 @@ class Buffer {
   // Zero-fills [offset, offset+bytes) with glClearNamedBufferSubData: fine for small buffers;
   // large bit grids are cleared by a compute shader (GPU-NOTES: 50x faster on NVIDIA).
   void clear(std::size_t offset = 0, std::size_t bytes = SIZE_MAX);
+
+  // N values from `first`, on the stack: a tally read back every frame allocates nothing.
+  template <class T, std::size_t N>
+  std::array<T, N> read_array(std::size_t first = 0) const {
+    std::array<T, N> out{};
+    download(out.data(), N * sizeof(T), first * sizeof(T));
+    return out;
+  }
 
   template <class T>
   std::vector<T> read(std::size_t count, std::size_t first = 0) const {

@@ -70,7 +70,7 @@ const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
     bins_.offsets.resize(tile_count + 1);  // keeps its storage from frame to frame
     counts_.download(bins_.offsets.data(), bins_.offsets.size() * sizeof(std::uint32_t));
   }
-  large_.download(&bins_.large, sizeof(std::uint32_t));
+  bins_.large = large_.read_array<std::uint32_t, 1>()[0];
   // The scatter turns each tile's first slot into a cursor.
   lists_.reserve(std::max<std::size_t>(tile_lists ? bins_.offsets.back() : 0, 1) * 4);
   large_list_.reserve(std::max<std::size_t>(bins_.large, 1) * 4);

@@ -23,8 +23,7 @@ void CompressPass::begin_frame() { stats_.clear(); }
 
 CompressTallies CompressPass::tallies() const {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  std::uint32_t t[2] = {0, 0};
-  stats_.download(t, sizeof t);
+  const auto t = stats_.read_array<std::uint32_t, 2>();
   return {t[0], t[1]};
 }
 

@@ -22,7 +22,7 @@ std::uint32_t ConnectPass::run(const GpuSpanImage& image, GpuSurfaces& surfaces)
   set_grid_uniforms(connect_, image.grid());
   dispatch_threads(connect_, image.span_count());
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-  return tally_.read<std::uint32_t>(1)[0];
+  return tally_.read_array<std::uint32_t, 1>()[0];
 }
 
 }  // namespace voxspan

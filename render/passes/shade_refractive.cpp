@@ -44,7 +44,7 @@ RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfac
   bind();
   dispatch_threads(begin_, pixels);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-  const std::uint32_t most_spans = active_.read<std::uint32_t>(4)[3];
+  const std::uint32_t most_spans = active_.read_array<std::uint32_t, 4>()[3];
   const int max_dispatches = refract_dispatch_limit(image.width(), image.height(), most_spans, options);
   RefractTally tally;
   std::uint32_t active = 1;
@@ -54,7 +54,7 @@ RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfac
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     dispatch_threads(march_, pixels);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    const std::vector<std::uint32_t> t = active_.read<std::uint32_t>(3);
+    const auto t = active_.read_array<std::uint32_t, 3>();
     active = t[0];
     tally.events += t[1];
     tally.most_events = std::max<std::int64_t>(tally.most_events, t[2]);
