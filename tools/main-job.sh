@@ -25,10 +25,10 @@ build/tools/insitu-info | grep -E "^(platform|renderer|OpenGL) "
 out=main-job-output
 rm -rf "$out"
 mkdir -p "$out"
-echo "main job: dam break, about 100 000 particles, until the surge hits the far wall (T = 2.4)"
+echo "main job: dam break, about 100 000 particles, until the surge has hit the far wall (T = 2.6)"
 run_start=$SECONDS
 build/examples/dambreak/dambreak --config examples/dambreak/main-job.yaml \
-    --particles 100000 --until 2.4 --progress-every 250 "$@" 2>&1 | tee "$out/log.txt"
+    --particles 100000 --tank-length 3 --until 2.6 --progress-every 250 "$@" 2>&1 | tee "$out/log.txt"
 run_seconds=$((SECONDS - run_start))
 
 # The video: the views side by side (they share a height in the shipped config), 20 frames/s.
