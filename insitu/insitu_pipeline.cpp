@@ -275,6 +275,7 @@ std::string InsituPipeline::summary() const {
     << " VTK sets, " << t.written.stats << " stats lines";
   if (t.writer.failed) s << "; " << t.writer.failed << " files failed (first: " << t.writer.first_error << ")";
   if (t.writer.dropped) s << "; " << t.writer.dropped << " files dropped (writer queue full)";
+  if (t.writer.waits) s << "; the solver waited " << t.writer.waits << " times for a full writer queue";
   s << "; on the solver's thread " << t.seconds_process << " s (render " << t.seconds_render
     << " s, outputs " << t.seconds_outputs << " s), writer thread " << t.written.writer_seconds
     << " s";

@@ -7,13 +7,17 @@
 //      the solver alone, split into what the solver's thread spent (per pass) and what the
 //      writer's thread spent beside it (PNG encoding, snapshots) on the same cores.
 //
-//   bench_insitu [--config FILE] [--particles N] [--steps S] [--render-every K]
-//                [--vdb-every V] [--non-render-steps M] [--skip-runs] [--size WxH]
-// Defaults: examples/dambreak/main-job.yaml, 100000 particles, 300 steps, K = 10, V = 100.
+//   bench_insitu [--config FILE] [--particles N] [--tank-length L] [--start T] [--steps S]
+//                [--render-every K] [--vdb-every V] [--non-render-steps M] [--skip-runs]
+//                [--size WxH] [--view NAME]...
+// Defaults: examples/dambreak/main-job.yaml, 100000 particles, the main job's 3a tank, runs
+// from the flowing state at T = 1.5 (the solver advances there once, untimed, and every run
+// starts from a copy), 300 steps, K = 10, V = 100.
 // The tool links the runtime statically (the same adapter code a solver gets from
 // libvoxspan.so, one indirect call fewer), so it can read the pipeline's totals.
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -21,6 +25,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "insitu/adapter_config.h"
 #include "insitu/config.h"
@@ -40,12 +45,15 @@ double seconds_since(Clock::time_point t0) {
 struct Options {
   std::string config = "examples/dambreak/main-job.yaml";
   std::size_t particles = 100000;
+  double tank_length = 3;
+  double start = 1.5;  // Martin & Moyce's T where the runs start
   long steps = 300;
   long render_every = 10;
   long vdb_every = 100;
   long non_render_steps = 20000000;
   bool runs = true;
   int width = 0, height = 0;  // 0: the config's view sizes
+  std::vector<std::string> views;  // keep only these views (all when empty)
 };
 
 voxspan::ParticleView fluid_view(const dambreak::Fluid& f) {
@@ -98,20 +106,21 @@ struct RunFigures {
   voxspan::PipelineTotals totals;
 };
 
-RunFigures run(const dambreak::Config& scene, long steps, const voxspan::Config* config) {
-  dambreak::DamBreak sim(scene);
+RunFigures run(const dambreak::DamBreak& start, long steps, const voxspan::Config* config) {
+  dambreak::DamBreak sim = start;
   RunFigures f;
   std::unique_ptr<voxspan::Adapter> adapter;
   if (config)
     adapter = std::make_unique<voxspan::Adapter>(voxspan::make_insitu_adapter(*config, adapter_options(sim)));
   const auto t0 = Clock::now();
-  for (long step = 1; step <= steps; ++step) {
+  const std::int64_t first = sim.steps();
+  for (long i = 1; i <= steps; ++i) {
     const auto ts = Clock::now();
     sim.step();
     f.solver += seconds_since(ts);
     if (!adapter) continue;
     const auto ta = Clock::now();
-    adapter->execute(step, sim.time(), fluid_view(sim.fluid()), fluid_grid(sim));
+    adapter->execute(first + i, sim.time(), fluid_view(sim.fluid()), fluid_grid(sim));
     f.in_situ += seconds_since(ta);
   }
   if (adapter) {
@@ -158,10 +167,13 @@ bool parse(int argc, char** argv, Options& o) {
     if (a == "--config") o.config = value();
     else if (a == "--particles") o.particles = std::size_t(std::atof(value()));
     else if (a == "--steps") o.steps = std::atol(value());
+    else if (a == "--tank-length") o.tank_length = std::atof(value());
+    else if (a == "--start") o.start = std::atof(value());
     else if (a == "--render-every") o.render_every = std::atol(value());
     else if (a == "--vdb-every") o.vdb_every = std::atol(value());
     else if (a == "--non-render-steps") o.non_render_steps = std::atol(value());
     else if (a == "--skip-runs") o.runs = false;
+    else if (a == "--view") o.views.push_back(value());
     else if (a == "--size") {
       if (std::sscanf(value(), "%dx%d", &o.width, &o.height) != 2) {
         std::fprintf(stderr, "bench_insitu: --size expects WxH\n");
@@ -185,12 +197,18 @@ int main(int argc, char** argv) {
     config.log_level = "warning";
     config.output_folder = (std::filesystem::temp_directory_path() / "voxspan-bench-insitu").string();
     std::filesystem::remove_all(config.output_folder);
+    if (!o.views.empty())
+      std::erase_if(config.views, [&](const voxspan::ViewConfig& v) {
+        return std::find(o.views.begin(), o.views.end(), v.name) == o.views.end();
+      });
     for (voxspan::ViewConfig& v : config.views)
       if (o.width > 0) v.width = o.width, v.height = o.height;
     dambreak::Config scene;
     scene.particles = o.particles;
+    scene.tank_length = o.tank_length;
+    dambreak::DamBreak start(scene);
     {
-      dambreak::DamBreak sim(scene);
+      dambreak::DamBreak& sim = start;
       std::printf("dam break: %zu fluid particles, dx %.4g m; config %s: %zu views", sim.fluid().size(),
                   sim.dx(), o.config.c_str(), config.views.size());
       for (const voxspan::ViewConfig& v : config.views)
@@ -201,6 +219,10 @@ int main(int argc, char** argv) {
       bench_non_render(config, sim, o.non_render_steps);
     }
     if (!o.runs) return 0;
+    while (start.nondimensional_time() < o.start) start.step();
+    std::printf("runs start at step %lld, T %.2f (front x/a %.2f)\n",
+                static_cast<long long>(start.steps()), start.nondimensional_time(),
+                start.diagnostics().front / scene.column_width);
 
     // Rendering every K steps (PNG and stats with it), no snapshots; then with snapshots.
     config.trigger = {o.render_every, 0, true, true};
@@ -213,14 +235,14 @@ int main(int argc, char** argv) {
 
     std::printf("%ld solver steps per run; render every %ld steps; snapshots every %ld steps\n",
                 o.steps, o.render_every, o.vdb_every);
-    const RunFigures alone = run(scene, o.steps, nullptr);
+    const RunFigures alone = run(start, o.steps, nullptr);
     std::printf("%-34s wall %7.1f s  solver %6.1f s (%.1f ms per step)\n", "solver alone", alone.wall,
                 alone.solver, 1e3 * alone.solver / double(o.steps));
     std::fflush(stdout);
-    const RunFigures rendered = run(scene, o.steps, &config);
+    const RunFigures rendered = run(start, o.steps, &config);
     report("render, no snapshots", rendered, alone, o.steps);
     std::fflush(stdout);
-    const RunFigures snapshots = run(scene, o.steps, &with_vdb);
+    const RunFigures snapshots = run(start, o.steps, &with_vdb);
     report("render + VDB snapshots", snapshots, alone, o.steps);
     std::filesystem::remove_all(config.output_folder);
   } catch (const std::exception& e) {

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -69,6 +70,20 @@ TEST(StartUp, OutputFolderThatCannotBeWrittenFailsBeforeStepOne) {
   e = start_error("outputs:\n  vdb: {enabled: true, folder: /proc/voxspan-snapshots}\n"
                   "output_folder: " + (dir / "ok").string() + "\n");
   EXPECT_NE(e.find("cannot use outputs.vdb folder /proc/voxspan-snapshots"), std::string::npos) << e;
+}
+
+// The platform the config asks for, where it cannot work (no NVIDIA EGL device here), is one
+// error at start-up naming it: no step runs on a renderer that is not there.
+TEST(StartUp, UnusableGlPlatformFailsBeforeStepOne) {
+  test::TempFolder dir;
+  const char* forced = std::getenv("VOXSPAN_GL_PLATFORM");  // it would override the config
+  const std::string saved = forced ? forced : "";
+  ::unsetenv("VOXSPAN_GL_PLATFORM");
+  const std::string e = start_error("output_folder: " + dir.path().string() +
+                                    "\nrenderer: {gl_platform: nvidia}\n");
+  if (!saved.empty()) ::setenv("VOXSPAN_GL_PLATFORM", saved.c_str(), 1);
+  if (e.empty()) GTEST_SKIP() << "this machine has an NVIDIA EGL device";
+  EXPECT_NE(e.find("cannot create an OpenGL context (platform nvidia"), std::string::npos) << e;
 }
 
 // --- a disk that fills mid-run ----------------------------------------------------------
