@@ -81,7 +81,6 @@ struct InsituPipeline::Impl {
   StatsRecord record;
   PipelineTotals totals;
   std::size_t largest_view_pixels = 0;
-  bool finished = false;
 
   Impl(const Config& c, double particle_spacing)
       : config(with_log_level(c)), spacing(particle_spacing), schedule(config),
@@ -232,11 +231,7 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
   return {StatusCode::pipeline_failed, failure};
 }
 
-void InsituPipeline::finish() {
-  if (impl_->finished) return;
-  impl_->outputs.drain();
-  impl_->finished = true;
-}
+void InsituPipeline::finish() { impl_->outputs.drain(); }
 
 PipelineTotals InsituPipeline::totals() const {
   PipelineTotals t = impl_->totals;
