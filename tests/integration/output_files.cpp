@@ -103,7 +103,8 @@ VdbContents read_vdb(const std::filesystem::path& path) {
       out.grids.push_back(g->getName());
       if (g->getName() != "fluid") continue;
       out.fluid_class = g->getGridClass() == openvdb::GRID_LEVEL_SET ? "level set" : "other";
-      if (auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(g))
+      // An empty level set (no fluid) has volume 0; OpenVDB's measure refuses it.
+      if (auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(g); f && f->activeVoxelCount() > 0)
         out.fluid_volume = openvdb::tools::levelSetVolume(*f);
     }
     if (auto step = meta->getMetadata<openvdb::Int64Metadata>("step")) out.step = step->value();

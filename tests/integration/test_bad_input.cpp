@@ -12,6 +12,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -198,6 +199,37 @@ TEST(MidRun, FileSizeLimitFailsTheLargeFiles) {
   ASSERT_FALSE(r.count("skip")) << report;
   ASSERT_TRUE(r.count("steps")) << report;
   expect_run_went_on(r, "File too large");
+}
+
+// Zero particles and NaN positions are valid steps for every output: pictures of the empty
+// environment, snapshots of nothing, the NaNs counted and left out.
+TEST(MidRun, EmptyAndNanStepsRenderAndWrite) {
+  test::TempFolder dir;
+  test::LogCapture log;
+  const std::string yaml = "output_folder: " + dir.path().string() + R"(
+trigger: {every_steps: 1}
+views: [{name: a, width: 64, height: 48}]
+outputs:
+  vdb: {enabled: true, trigger: {every_steps: 1}}
+  vtk: {enabled: true, trigger: {every_steps: 1}}
+)";
+  AdapterOptions options;
+  options.classify.particle_spacing = 0.01;
+  Adapter adapter = Adapter::from_config_text(yaml, options, "empty.yaml");
+  EXPECT_TRUE(adapter.execute(1, 0.0, ParticleView()).ok()) << adapter.last_stats().status.message;
+  std::vector<float> xyz;
+  for (int i = 0; i < 64; ++i) xyz.insert(xyz.end(), {0.01f * float(i % 4), 0.01f * float(i / 4 % 4), 0.01f * float(i / 16)});
+  xyz[3 * 5] = std::nanf("");
+  EXPECT_TRUE(adapter.execute(2, 0.1, ParticleView::aos(xyz.data(), 64)).ok())
+      << adapter.last_stats().status.message;
+  EXPECT_EQ(adapter.last_stats().counts.dropped_nonfinite, 1u);
+  adapter.finish();
+  EXPECT_EQ(test::files_in(dir / "frames"), (std::vector<std::string>{"a_00000001.png", "a_00000002.png"}));
+  EXPECT_TRUE(test::read_png_file(dir / "frames" / "a_00000001.png").ok);
+  EXPECT_TRUE(test::read_vdb(dir / "snapshots" / "fluid_00000001.vdb").ok);
+  EXPECT_TRUE(test::read_vdb(dir / "snapshots" / "fluid_00000002.vdb").ok);
+  EXPECT_TRUE(test::read_vtp(dir / "vtk" / "particles_00000002.vtp").ok);
+  EXPECT_EQ(log.at(LogLevel::error).size(), 0u) << log.all();
 }
 
 // --- a writer queue that overflows ------------------------------------------------------
