@@ -41,7 +41,7 @@ std::string start_error(const std::string& yaml) {
 }
 
 TEST(StartUp, UnknownConfigKeyIsNamedWithItsLine) {
-  const std::string e = start_error("output_folder: /tmp\nviews:\n  - name: front\n    shadng: opaque\n");
+  const std::string e = start_error("output_folder: out\nviews:\n  - name: front\n    shadng: opaque\n");
   EXPECT_NE(e.find("run.yaml:4:5: views[0].shadng: unknown key (did you mean 'shading'?)"),
             std::string::npos) << e;
 }
