@@ -1,7 +1,9 @@
 #!/bin/bash
 # tools/make-bundle.sh [OUT_DIR] - a lean Release build of the command-line tools, with the
 # non-system shared libraries they need, in one folder that runs on a GPU machine without a
-# package manager:  OUT_DIR/bin/<tool>  (RPATH $ORIGIN/../lib)  and  OUT_DIR/lib/*.so*.
+# package manager:  OUT_DIR/bin/<tool>  (RPATH $ORIGIN/../lib)  and  OUT_DIR/lib/*.so*,
+# and the same folder as OUT_DIR.tar.gz, one file to copy (about 30 MB; the folder is about
+# 120 MB, half of it OpenVDB). tools/device-check.sh runs from either.
 #
 # Left out on purpose, because the target machine must provide its own:
 #   glibc (libc, libm, ld-linux...), libstdc++ and libgcc_s (a newer system copy is backward
@@ -15,8 +17,9 @@ build=build-bundle
 
 tools/setup.sh
 # DT_RPATH (not RUNPATH) so that the carried libraries' own dependencies resolve from lib/ too.
+# The examples' WCSPH solver goes in for bench_insitu (the in-situ cost on the GPU machine).
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DVOXSPAN_BUILD_TESTS=OFF \
-  -DVOXSPAN_BUILD_EXAMPLES=OFF -DCMAKE_INSTALL_RPATH='$ORIGIN/../lib' \
+  -DVOXSPAN_BUILD_EXAMPLES=ON -DCMAKE_INSTALL_RPATH='$ORIGIN/../lib' \
   -DCMAKE_EXE_LINKER_FLAGS='-Wl,--disable-new-dtags' >/dev/null
 cmake --build "$build" -j"$(nproc)"
 rm -rf "$out"
@@ -30,4 +33,6 @@ for exe in "$out"/bin/*; do
     [[ -e $out/lib/$name ]] || cp -L "$path" "$out/lib/$name"
   done
 done
-echo "bundle: $out ($(du -sh "$out" | cut -f1)): $(ls "$out/bin" | tr '\n' ' ')"
+tar -C "$(dirname "$out")" -czf "$out.tar.gz" "$(basename "$out")"
+echo "bundle: $out ($(du -sh "$out" | cut -f1)), $out.tar.gz ($(du -sh "$out.tar.gz" | cut -f1)):" \
+  "$(ls "$out/bin" | tr '\n' ' ')"

@@ -8,9 +8,12 @@
 // The adapter's classifier (voxspan/classify.h) keeps only the boundary particles, the cell
 // states fill the inside. Gap bridging one particle spacing, filter radius 1.5 spacings.
 // --reference also writes the exact CPU reference's pictures (exact spans, Sobel normals).
+// --compare DIR compares each picture with DIR's picture of the same name (made by another
+// renderer, e.g. an NVIDIA GPU against llvmpipe: tools/device-check.sh) and prints the PSNR and
+// the largest difference.
 //
 //   render_pictures [--out DIR] [--particles N] [--time T] [--state FILE] [--ritter]
-//                   [--size WxH] [--alpha DEG] [--reference]
+//                   [--size WxH] [--alpha DEG] [--reference] [--compare DIR]
 //                   [--platform auto|nvidia|device|surfaceless]
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +21,7 @@
 #include <string>
 
 #include "dambreak_state.h"
+#include "image_compare.h"
 #include "insitu/png_image.h"
 #include "render/gl/context.h"
 #include "render/gl/pass_timer.h"
@@ -40,13 +44,14 @@ struct Args {
   int width = 960, height = 540;
   double alpha = 14;
   bool reference = false;
+  std::string compare;  // folder of pictures to compare with; empty: none
   gl::ContextOptions context;
 };
 
 int usage(FILE* out) {
   std::fprintf(out,
                "usage: render_pictures [--out DIR] [--particles N] [--time T] [--state FILE]\n"
-               "         [--ritter] [--size WxH] [--alpha DEG] [--reference]\n"
+               "         [--ritter] [--size WxH] [--alpha DEG] [--reference] [--compare DIR]\n"
                "         [--platform auto|nvidia|device|surfaceless]\n");
   return out == stdout ? 0 : 2;
 }
@@ -64,6 +69,7 @@ bool parse(int argc, char** argv, Args& a) {
       if (std::sscanf(argv[++i], "%dx%d", &a.width, &a.height) != 2) return false;
     } else if (k == "--alpha" && has_value) a.alpha = std::atof(argv[++i]);
     else if (k == "--reference") a.reference = true;
+    else if (k == "--compare" && has_value) a.compare = argv[++i];
     else if (k == "--platform" && has_value) {
       if (!gl::parse_platform(argv[++i], a.context.platform)) return false;
     } else return false;
@@ -77,9 +83,31 @@ struct Picture {
   bool deep_ao;
 };
 
-void write(const std::filesystem::path& path, const FloatImage& image) {
-  write_png(path, linear_to_srgb8(image.rgba, image.width, image.height), false);
+void write(const std::filesystem::path& path, const ImageRGBA8& image) {
+  write_png(path, image, false);
   std::printf("wrote %s\n", path.c_str());
+}
+
+void write(const std::filesystem::path& path, const FloatImage& image) {
+  write(path, linear_to_srgb8(image.rgba, image.width, image.height));
+}
+
+// Returns false when the other picture is missing or differs in size.
+bool compare(const std::filesystem::path& other, const ImageRGBA8& ours) {
+  if (!std::filesystem::exists(other)) {
+    std::printf("compare %s: missing\n", other.c_str());
+    return false;
+  }
+  const ImageRGBA8 theirs = read_png(other);
+  if (theirs.width != ours.width || theirs.height != ours.height) {
+    std::printf("compare %s: %dx%d, ours %dx%d\n", other.c_str(), theirs.width, theirs.height,
+                ours.width, ours.height);
+    return false;
+  }
+  const test::ImageDifference d = test::compare_images(ours, theirs);
+  std::printf("compare %s: PSNR %.1f dB, largest difference %d/255, mean %.3f/255\n",
+              other.c_str(), d.psnr, d.max_levels, d.mean_levels);
+  return true;
 }
 
 // The look of the pictures, in the scene's own scale (`length`: the column's width).
@@ -114,6 +142,7 @@ int run(const Args& a) {
   RenderOptions options = picture_options(s, a.alpha);
 
   const std::filesystem::path out(a.out);
+  bool compared = true;
   std::filesystem::create_directories(out);
   const Picture pictures[] = {{"dambreak_opaque", ShadeMode::opaque, false},
                               {"dambreak_opaque_ao", ShadeMode::opaque, true},
@@ -129,14 +158,17 @@ int run(const Args& a) {
         renderer.render(s.camera, c.boundary, c.cell_states(), options, timer, stats).download();
     timer.collect(stats);
     std::printf("%s: %.0f ms (%s)\n", p.name, stats.total_ms(), stats.json().c_str());
-    write(out / (std::string(p.name) + ".png"), image);
+    const ImageRGBA8 picture = linear_to_srgb8(image.rgba, image.width, image.height);
+    write(out / (std::string(p.name) + ".png"), picture);
+    if (!a.compare.empty())
+      compared &= compare(std::filesystem::path(a.compare) / (std::string(p.name) + ".png"), picture);
     if (a.reference) {
       const SpanImage spans = exact_spans(renderer.voxelizer().image().grid(), c.boundary,
                                           c.cell_states(), {options.voxelize.gap_bridging, 0});
       write(out / (std::string(p.name) + "_reference.png"), reference_shading(spans, options.shade));
     }
   }
-  return 0;
+  return compared ? 0 : 1;
 }
 
 }  // namespace

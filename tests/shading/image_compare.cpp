@@ -4,16 +4,19 @@
 #include <cstdlib>
 #include <limits>
 
-#include "insitu/png_image.h"
 #include "voxspan/error.h"
 
 namespace voxspan::test {
 
 ImageDifference compare_images(const FloatImage& a, const FloatImage& b) {
-  if (a.width != b.width || a.height != b.height)
-    throw make_error("compare_images: ", a.width, "x", a.height, " against ", b.width, "x", b.height);
-  const ImageRGBA8 ea = linear_to_srgb8(a.rgba, a.width, a.height);
-  const ImageRGBA8 eb = linear_to_srgb8(b.rgba, b.width, b.height);
+  return compare_images(linear_to_srgb8(a.rgba, a.width, a.height),
+                        linear_to_srgb8(b.rgba, b.width, b.height));
+}
+
+ImageDifference compare_images(const ImageRGBA8& ea, const ImageRGBA8& eb) {
+  if (ea.width != eb.width || ea.height != eb.height)
+    throw make_error("compare_images: ", ea.width, "x", ea.height, " against ", eb.width, "x",
+                     eb.height);
   double squares = 0, sum = 0;
   int most = 0;
   std::size_t n = 0;

@@ -3,6 +3,7 @@
 // (insitu/png_image.h), over the RGB channels of every pixel.
 #pragma once
 
+#include "insitu/png_image.h"
 #include "render/float_image.h"
 
 namespace voxspan::test {
@@ -15,5 +16,6 @@ struct ImageDifference {
 
 // Throws voxspan::Error when the sizes differ.
 ImageDifference compare_images(const FloatImage& a, const FloatImage& b);
+ImageDifference compare_images(const ImageRGBA8& a, const ImageRGBA8& b);
 
 }  // namespace voxspan::test

@@ -1,0 +1,82 @@
+#!/bin/bash
+# tools/device-check.sh BUNDLE[.tar.gz] OUT [--debs DIR] [--quick]
+# Everything docs/benchmarks.md wants from a GPU machine, in one run of about 5 minutes, from a
+# bundle made by tools/make-bundle.sh (the GPU machine needs no compiler or package manager):
+#   insitu-info        the renderer, GL version and limits (issue: NVIDIA EGL works);
+#   pictures/          render_pictures of the Ritter dam break at 960x540, to compare with the
+#                      llvmpipe pictures made here:
+#                        build/tools/render_pictures --ritter --out /tmp/llvmpipe --compare OUT/pictures
+#   voxelize_*.txt     bench_voxelize: the llvmpipe rows' settings, then 1920x1080x16384 with
+#                      about 7 M voxelized particles (two tile budgets);
+#   shading_*.txt      bench_shading: the same two scales, every mode, with and without deep AO;
+#   insitu.txt         bench_insitu: the in-situ cost against the WCSPH solver at the main job's
+#                      settings, one render every 10 steps (when the bundle carries it).
+# Each step writes OUT/<step>.txt; a failing step is reported and the others still run.
+# --debs DIR: unpack these .deb files (the GL vendor-neutral dispatch, libglvnd, for a machine
+#             whose driver comes without it) into / first.
+# --quick:    small sizes only, to check the script itself (here, on llvmpipe).
+set -uo pipefail
+if (($# < 2)); then
+  sed -n 2,18p "$0" | sed 's/^# \{0,1\}//'
+  exit 2
+fi
+bundle=$(realpath "$1")
+out=$(realpath -m "$2")
+if [[ $bundle == *.tar.gz ]]; then
+  unpacked=$(mktemp -d)
+  tar -C "$unpacked" -xzf "$bundle"
+  bundle=$(echo "$unpacked"/*)
+fi
+shift 2
+quick=0
+while (($#)); do
+  case $1 in
+    --debs) for f in "$2"/*.deb; do dpkg -x "$f" /; done; ldconfig; shift 2 ;;
+    --quick) quick=1; shift ;;
+    *) echo "device-check: unknown argument $1" >&2; exit 2 ;;
+  esac
+done
+mkdir -p "$out"
+failed=0
+
+# step NAME COMMAND...: runs COMMAND with its output in OUT/NAME.txt, timed.
+step() {
+  local name=$1
+  shift
+  local start=$SECONDS
+  echo "device-check: $name: $*"
+  if "$@" >"$out/$name.txt" 2>&1; then
+    echo "device-check: $name done in $((SECONDS - start)) s"
+  else
+    echo "device-check: $name FAILED (exit $?) after $((SECONDS - start)) s; last lines:"
+    tail -5 "$out/$name.txt"
+    failed=1
+  fi
+}
+
+bin=$bundle/bin
+step insitu-info "$bin/insitu-info"
+if ((quick)); then
+  step pictures "$bin/render_pictures" --ritter --particles 2e4 --size 320x180 --out "$out/pictures"
+  step voxelize_small "$bin/bench_voxelize" --particles 2e4 --size 320x180 --frames 2 --json
+  step shading_small "$bin/bench_shading" --ritter --particles 2e4 --size 320x180 --frames 2
+  [[ -x $bin/bench_insitu ]] &&
+    step insitu "$bin/bench_insitu" --particles 5000 --start 0.1 --steps 20 --render-every 10 \
+      --vdb-every 20
+else
+  step pictures "$bin/render_pictures" --ritter --out "$out/pictures"
+  step voxelize_llvmpipe_rows "$bin/bench_voxelize" --frames 5 --budget-mib 1024 --budget-mib 16 \
+    --budget-mib 4 --json
+  step shading_llvmpipe_rows "$bin/bench_shading" --ritter --particles 1e6 --time 0.25 --frames 3
+  step voxelize_7m "$bin/bench_voxelize" --particles 7e6 --all-particles --size 1920x1080 \
+    --alpha 1 --max-layers 16384 --budget-mib 1024 --budget-mib 256 --frames 10 --json
+  step shading_7m "$bin/bench_shading" --ritter --all-particles --particles 7e6 --size 1920x1080 \
+    --alpha 1 --max-layers 16384 --budget-mib 1024 --frames 10 --json
+  step shading_7m_ao "$bin/bench_shading" --ritter --all-particles --particles 7e6 \
+    --size 1920x1080 --alpha 1 --max-layers 16384 --budget-mib 1024 --frames 10 --ao \
+    --modes translucent
+  [[ -x $bin/bench_insitu ]] &&
+    step insitu "$bin/bench_insitu" --steps 300 --render-every 10 --vdb-every 100
+fi
+echo "device-check: outputs in $out"
+exit "$failed"
