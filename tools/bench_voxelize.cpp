@@ -13,8 +13,12 @@
 //   bench_voxelize [--particles N] [--time T] [--size WxH] [--alpha DEG] [--max-layers L]
 //                  [--budget-mib M]... [--frames F] [--threads per_pixel|per_particle|both]
 //                  [--no-resplat] [--all-particles] [--accuracy] [--json] [--pgm FILE]
+//                  [--save-spans FILE] [--compare-spans FILE]
 //                  [--platform auto|nvidia|device|surfaceless]
 // --pgm writes the inside length per pixel as a grey image (a check of what was timed).
+// --save-spans writes the span image of one more frame (the first budget's tiles); on another
+// machine --compare-spans compares its own with it (an NVIDIA GPU against llvmpipe: the same
+// spans, ideally bit for bit).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -53,6 +57,7 @@ struct Args {
   bool accuracy = false;
   bool json = false;
   std::string pgm;
+  std::string save_spans, compare_spans;
   gl::ContextOptions context;
 };
 
@@ -63,7 +68,8 @@ int usage(FILE* out) {
                "usage: bench_voxelize [--particles N] [--time T] [--size WxH] [--alpha DEG]\n"
                "         [--max-layers L] [--budget-mib M]... [--frames F]\n"
                "         [--threads per_pixel|per_particle|both] [--no-resplat] [--all-particles]\n"
-               "         [--accuracy] [--json] [--pgm FILE] [--platform auto|nvidia|device|surfaceless]\n");
+               "         [--accuracy] [--json] [--pgm FILE] [--save-spans FILE] [--compare-spans FILE]\n"
+               "         [--platform auto|nvidia|device|surfaceless]\n");
   return out == stdout ? 0 : 2;
 }
 
@@ -89,6 +95,8 @@ bool parse(int argc, char** argv, Args& a) {
     else if (k == "--accuracy") a.accuracy = true;
     else if (k == "--json") a.json = true;
     else if (k == "--pgm" && has_value) a.pgm = argv[++i];
+    else if (k == "--save-spans" && has_value) a.save_spans = argv[++i];
+    else if (k == "--compare-spans" && has_value) a.compare_spans = argv[++i];
     else if (k == "--platform" && has_value) {
       if (!gl::parse_platform(argv[++i], a.context.platform)) return false;
     } else return false;
@@ -226,12 +234,20 @@ int run(const Args& a) {
       }
     }
   }
-  if (a.accuracy || !a.pgm.empty()) {
+  if (a.accuracy || !a.pgm.empty() || !a.save_spans.empty() || !a.compare_spans.empty()) {
     VoxelizeOptions o = base;
+    o.tiles.memory_budget = static_cast<std::size_t>(a.budgets_mib.front() * (1 << 20));
     gl::PassTimer timer(context.has_gpu_timers());
     FrameStats stats;
     const SpanImage gpu = voxelizer.run(camera, input, view, o, timer, stats).download();
     if (!a.pgm.empty()) write_inside_pgm(gpu, a.pgm);
+    if (!a.save_spans.empty()) test::save_spans(gpu, a.save_spans);
+    if (!a.compare_spans.empty()) {
+      const SpanImage other = test::load_spans(a.compare_spans, gpu.grid);
+      std::printf("\nagainst %s: %s; %s\n", a.compare_spans.c_str(),
+                  test::identical(gpu, other) ? "identical, bit for bit" : "not identical",
+                  test::compare_spans(gpu, other, 1e-3).summary().c_str());
+    }
     if (!a.accuracy) return 0;
     const auto r0 = std::chrono::steady_clock::now();
     const SpanImage ref = exact_spans(gpu.grid, input, view, {o.gap_bridging, o.max_spans});

@@ -8,6 +8,9 @@
 #                        build/tools/render_pictures --ritter --out /tmp/llvmpipe --compare OUT/pictures
 #   voxelize_*.txt     bench_voxelize: the llvmpipe rows' settings, then 1920x1080x16384 with
 #                      about 7 M voxelized particles (two tile budgets);
+#   spans.bin          the span image of the llvmpipe rows' scene, to compare with llvmpipe's:
+#                        build/tools/bench_voxelize --frames 1 --no-resplat --budget-mib 1024 \
+#                          --threads per_particle --compare-spans OUT/spans.bin
 #   shading_*.txt      bench_shading: the same two scales, every mode, with and without deep AO;
 #   insitu.txt         bench_insitu: the in-situ cost against the WCSPH solver at the main job's
 #                      settings, one render every 10 steps (when the bundle carries it).
@@ -24,6 +27,7 @@ bundle=$(realpath "$1")
 out=$(realpath -m "$2")
 if [[ $bundle == *.tar.gz ]]; then
   unpacked=$(mktemp -d)
+  trap 'rm -rf "$unpacked"' EXIT
   tar -C "$unpacked" -xzf "$bundle"
   bundle=$(echo "$unpacked"/*)
 fi
@@ -58,7 +62,8 @@ bin=$bundle/bin
 step insitu-info "$bin/insitu-info"
 if ((quick)); then
   step pictures "$bin/render_pictures" --ritter --particles 2e4 --size 320x180 --out "$out/pictures"
-  step voxelize_small "$bin/bench_voxelize" --particles 2e4 --size 320x180 --frames 2 --json
+  step voxelize_small "$bin/bench_voxelize" --particles 2e4 --size 320x180 --frames 2 --json \
+    --save-spans "$out/spans.bin"
   step shading_small "$bin/bench_shading" --ritter --particles 2e4 --size 320x180 --frames 2
   [[ -x $bin/bench_insitu ]] &&
     step insitu "$bin/bench_insitu" --particles 5000 --start 0.1 --steps 20 --render-every 10 \
@@ -66,7 +71,7 @@ if ((quick)); then
 else
   step pictures "$bin/render_pictures" --ritter --out "$out/pictures"
   step voxelize_llvmpipe_rows "$bin/bench_voxelize" --frames 5 --budget-mib 1024 --budget-mib 16 \
-    --budget-mib 4 --json
+    --budget-mib 4 --json --save-spans "$out/spans.bin"
   step shading_llvmpipe_rows "$bin/bench_shading" --ritter --particles 1e6 --time 0.25 --frames 3
   step voxelize_7m "$bin/bench_voxelize" --particles 7e6 --all-particles --size 1920x1080 \
     --alpha 1 --max-layers 16384 --budget-mib 1024 --budget-mib 256 --frames 10 --json

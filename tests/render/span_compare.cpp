@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <sstream>
+
+#include "voxspan/error.h"
 
 namespace voxspan::test {
 
@@ -94,6 +97,58 @@ bool identical(const SpanImage& a, const SpanImage& b) {
       return false;
   }
   return true;
+}
+
+namespace {
+
+constexpr char kSpansMagic[8] = {'v', 'o', 'x', 's', 'p', 'a', 'n', '1'};
+
+template <typename T>
+void write_array(std::ofstream& out, const std::vector<T>& v) {
+  const std::uint64_t n = v.size();
+  out.write(reinterpret_cast<const char*>(&n), sizeof n);
+  out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
+}
+
+template <typename T>
+std::vector<T> read_array(std::ifstream& in, std::uint64_t most, const std::filesystem::path& path) {
+  std::uint64_t n = 0;
+  in.read(reinterpret_cast<char*>(&n), sizeof n);
+  if (!in || n > most) throw make_error(path.string(), ": not a span file or truncated");
+  std::vector<T> v(n);
+  in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
+  if (!in) throw make_error(path.string(), ": truncated");
+  return v;
+}
+
+}  // namespace
+
+void save_spans(const SpanImage& image, const std::filesystem::path& path) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(kSpansMagic, sizeof kSpansMagic);
+  write_array(out, image.pixels);
+  write_array(out, image.spans);
+  out.close();
+  if (!out) throw make_error("cannot write ", path.string());
+}
+
+SpanImage load_spans(const std::filesystem::path& path, const PerspectiveGrid& grid) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[sizeof kSpansMagic] = {};
+  in.read(magic, sizeof magic);
+  if (!in || std::memcmp(magic, kSpansMagic, sizeof magic) != 0)
+    throw make_error(path.string(), ": cannot be read or is not a span file");
+  SpanImage image;
+  image.grid = grid;
+  const std::uint64_t pixels = std::uint64_t(grid.width()) * std::uint64_t(grid.height());
+  image.pixels = read_array<PixelSpans>(in, std::uint64_t(1) << 32, path);
+  if (image.pixels.size() != pixels)
+    throw make_error(path.string(), ": ", image.pixels.size(), " pixels, the grid has ", pixels);
+  image.spans = read_array<Span>(in, std::uint64_t(1) << 34, path);
+  for (const PixelSpans& p : image.pixels)
+    if (std::uint64_t(p.offset) + p.count > image.spans.size())
+      throw make_error(path.string(), ": a pixel's spans lie past the end of the file's spans");
+  return image;
 }
 
 }  // namespace voxspan::test

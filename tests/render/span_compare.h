@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 
 #include "render/span_image.h"
@@ -38,5 +39,12 @@ std::string describe_mismatches(const SpanImage& test, const SpanImage& referenc
 
 // True when both images hold exactly the same records and spans (bit for bit).
 bool identical(const SpanImage& a, const SpanImage& b);
+
+// A span image's pixels and spans in a file, to compare two renderers' voxelizations of the
+// same scene on different machines (an NVIDIA GPU against llvmpipe). The grid is not stored:
+// load_spans takes the loading side's, and throws voxspan::Error when the file cannot be read
+// or its pixel count does not match the grid.
+void save_spans(const SpanImage& image, const std::filesystem::path& path);
+SpanImage load_spans(const std::filesystem::path& path, const PerspectiveGrid& grid);
 
 }  // namespace voxspan::test
