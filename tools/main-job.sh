@@ -3,7 +3,8 @@
 # solver, and runs it with the in-situ pipeline (examples/dambreak/main-job.yaml: two views,
 # VDB snapshots, stats) on the default renderer (an NVIDIA GPU if present, else llvmpipe), then
 # makes a video of the frames with ffmpeg. Outputs go to main-job-output/ (replaced each run):
-#   frames/<view>_<step>.png  snapshots/fluid_<step>.vdb  stats.jsonl  main-job.mp4  log.txt
+#   frames/<view>_<step>.png  snapshots/fluid_<step>.vdb  stats.jsonl  stats.png  main-job.mp4
+#   log.txt
 # Extra arguments go to the solver (e.g. --particles 50000 --until 1.5 for a quicker look).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -49,6 +50,14 @@ if ((${#views[@]} > 0)); then
   fi
 fi
 
+# The chart of the per-step stats: in-situ time per pass, particles and spans (the system's
+# python3, which the apt package python3-matplotlib serves).
+chart="$out/stats.png"
+if ! /usr/bin/python3 tools/plot_stats.py "$out/stats.jsonl" "$chart" >/dev/null 2>"$out/chart.txt"; then
+  echo "main job: no chart (see $out/chart.txt)"
+  chart=""
+fi
+
 frames=$(find "$out/frames" -name '*.png' | wc -l)
 snapshots=$(find "$out/snapshots" -name '*.vdb' 2>/dev/null | wc -l)
 echo
@@ -57,5 +66,6 @@ echo "  frames       $frames PNG (${views[*]:-no views}) in $out/frames"
 echo "  snapshots    $snapshots VDB in $out/snapshots (inspect: build/tools/inspect_snapshot FILE.vdb)"
 grep -E "^time: " "$out/log.txt" | sed 's/^time: /  time         /'
 echo "  stats        $(wc -l <"$out/stats.jsonl") lines in $out/stats.jsonl"
+[[ -n $chart ]] && echo "  chart        $chart (in-situ time per pass and step)"
 [[ -n $video ]] && echo "  video        $video"
 echo "  wall time    run ${run_seconds} s, build ${build_seconds} s, whole job $((SECONDS - start)) s"
