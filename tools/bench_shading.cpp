@@ -12,12 +12,14 @@
 // Accuracy (--accuracy FILE.csv): the voxelization's accuracy scenes (tests/shading/
 // accuracy_scenes.h) at 160x120, filter off, for each angle resolution of --alphas: PSNR of the
 // GPU's picture against the exact reference with the same (Sobel) normals and with exact sphere
-// normals, per mode; printed and written as CSV for tools/plot_psnr.py.
+// normals, per mode; printed and written as CSV for tools/plot_psnr.py. The shading is the
+// tests' (test::test_shading); --bounces sets refraction's bounces (default: ShadeOptions').
 //
 //   bench_shading [--particles N] [--time T] [--state FILE] [--ritter] [--all-particles]
 //                 [--size WxH] [--alpha DEG] [--max-layers L] [--budget-mib M] [--frames F]
 //                 [--modes opaque,translucent,refractive] [--ao] [--accuracy FILE.csv]
-//                 [--alphas 14,7,3.5,2,1] [--json] [--platform auto|nvidia|device|surfaceless]
+//                 [--alphas 14,7,3.5,2,1] [--bounces N] [--json]
+//                 [--platform auto|nvidia|device|surfaceless]
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -58,6 +60,7 @@ struct Args {
   bool ao = false;
   std::string accuracy;
   std::vector<double> alphas = {14, 7, 3.5, 2, 1};
+  int bounces = -1;  // refraction's bounces in the accuracy figures; < 0: the default
   bool json = false;
   gl::ContextOptions context;
 };
@@ -70,7 +73,7 @@ int usage(FILE* out) {
                "usage: bench_shading [--particles N] [--time T] [--state FILE] [--ritter]\n"
                "         [--all-particles] [--size WxH] [--alpha DEG] [--max-layers L]\n"
                "         [--budget-mib M] [--frames F] [--modes opaque,translucent,refractive]\n"
-               "         [--ao] [--accuracy FILE.csv] [--alphas 14,7,3.5,2,1] [--json]\n"
+               "         [--ao] [--accuracy FILE.csv] [--alphas 14,7,3.5,2,1] [--bounces N] [--json]\n"
                "         [--platform auto|nvidia|device|surfaceless]\n");
   return out == stdout ? 0 : 2;
 }
@@ -107,6 +110,7 @@ bool parse(int argc, char** argv, Args& a) {
       }
     } else if (k == "--ao") a.ao = true;
     else if (k == "--accuracy" && has_value) a.accuracy = argv[++i];
+    else if (k == "--bounces" && has_value) a.bounces = std::atoi(argv[++i]);
     else if (k == "--alphas" && has_value) {
       a.alphas.clear();
       for (const std::string& v : split(argv[++i])) a.alphas.push_back(std::atof(v.c_str()));
@@ -213,11 +217,8 @@ void accuracy(const Args& a, const gl::Context& context, Renderer& renderer) {
       const std::vector<glm::uvec2> sphere = encode_exact_normals(exact_normals, sobel);
       std::printf("%-18s %6.2f %6d", scene.name.c_str(), alpha, spans.grid.layers());
       for (ShadeMode mode : {ShadeMode::opaque, ShadeMode::translucent, ShadeMode::refractive}) {
-        ShadeOptions shade;
-        shade.mode = mode;
-        shade.material.absorption = {3.0, 1.2, 0.5};
-        shade.material.scatter_color = {0.04, 0.1, 0.16};
-        shade.environment.ground_tile = scene.ground_tile;
+        ShadeOptions shade = test::test_shading(mode, scene.ground_tile);
+        if (a.bounces >= 0) shade.bounces = a.bounces;
         const FloatImage image = renderer.shade(gpu, {}, shade, timer, stats).download();
         const double same = test::compare_images(image, reference_shading(exact, shade, &sobel)).psnr;
         const double exact_n = test::compare_images(image, reference_shading(exact, shade, &sphere)).psnr;

@@ -36,4 +36,13 @@ std::vector<AccuracyScene> accuracy_scenes(int width, int height) {
   return scenes;
 }
 
+ShadeOptions test_shading(ShadeMode mode, double tile) {
+  ShadeOptions o;
+  o.mode = mode;
+  o.material.absorption = {3.0, 1.2, 0.5};
+  o.material.scatter_color = {0.04, 0.1, 0.16};
+  o.environment.ground_tile = tile;
+  return o;
+}
+
 }  // namespace voxspan::test

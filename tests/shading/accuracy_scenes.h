@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "render/shade_options.h"
 #include "render/voxelizer.h"
 #include "scenes.h"
 
@@ -22,5 +23,9 @@ struct AccuracyScene {
 
 // Images of width x height (the cameras keep their framing at any size).
 std::vector<AccuracyScene> accuracy_scenes(int width, int height);
+
+// Shading options for the tests and the accuracy figures of bench_shading: a fluid that absorbs
+// enough to show its depth (a few world units of it go dark), ground tiles of `tile`.
+ShadeOptions test_shading(ShadeMode mode, double tile = 0.1);
 
 }  // namespace voxspan::test

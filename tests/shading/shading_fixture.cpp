@@ -53,16 +53,3 @@ GpuResult shade_on_gpu(const SpanImage& spans, const SurfaceOptions& surfaces,
 }
 
 }  // namespace voxspan::test
-
-namespace voxspan::test {
-
-ShadeOptions test_shading(ShadeMode mode, double tile) {
-  ShadeOptions o;
-  o.mode = mode;
-  o.material.absorption = {3.0, 1.2, 0.5};
-  o.material.scatter_color = {0.04, 0.1, 0.16};
-  o.environment.ground_tile = tile;
-  return o;
-}
-
-}  // namespace voxspan::test

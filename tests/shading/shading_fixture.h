@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "../gl/gl_fixture.h"
+#include "accuracy_scenes.h"  // test_shading
 #include "render/float_image.h"
 #include "render/renderer.h"
 #include "render/span_image.h"
@@ -33,13 +34,5 @@ struct GpuResult {
 // Uploads `spans` and runs connect, filter, normals, (deep AO) and the shading on the GPU.
 GpuResult shade_on_gpu(const SpanImage& spans, const SurfaceOptions& surfaces,
                        const ShadeOptions& shade);
-
-}  // namespace voxspan::test
-
-namespace voxspan::test {
-
-// Shading options for the tests: a fluid that absorbs enough to show its depth (a few world
-// units of it go dark), ground tiles of `tile`.
-ShadeOptions test_shading(ShadeMode mode, double tile = 0.1);
 
 }  // namespace voxspan::test
