@@ -33,26 +33,22 @@
 #include "dambreak_state.h"
 #include "image_compare.h"
 #include "render/gl/context.h"
-#include "render/gl/info.h"
 #include "render/gl/pass_timer.h"
 #include "render/gl/shader_library.h"
 #include "render/reference/exact_spans.h"
 #include "render/reference/reference_shading.h"
 #include "render/renderer.h"
+#include "tool_args.h"
 #include "voxspan/error.h"
 
 namespace {
 
 using namespace voxspan;
 
-struct Args {
-  double particles = 1e5;
-  double time = -1;
+struct Args : tools::SceneArgs {
   std::string state = "build/dambreak_state.bin";
   bool ritter = !tools::have_solver();
   bool all_particles = false;
-  int width = 960, height = 540;
-  double alpha = 14;
   int max_layers = 16384;
   double budget_mib = 512;
   int frames = 3;
@@ -62,7 +58,6 @@ struct Args {
   std::vector<double> alphas = {14, 7, 3.5, 2, 1};
   int bounces = -1;  // refraction's bounces in the accuracy figures; < 0: the default
   bool json = false;
-  gl::ContextOptions context;
 };
 
 const char* kPasses[] = {"frame", "upload", "bin", "clear", "splat", "compress",
@@ -87,16 +82,14 @@ std::vector<std::string> split(const std::string& text) {
 
 bool parse(int argc, char** argv, Args& a) {
   for (int i = 1; i < argc; ++i) {
+    const tools::Flag shared = tools::read_scene_flag(argc, argv, i, a);
+    if (shared == tools::Flag::bad) return false;
+    if (shared == tools::Flag::read) continue;
     const std::string k = argv[i];
     const bool has_value = i + 1 < argc;
-    if (k == "--particles" && has_value) a.particles = std::atof(argv[++i]);
-    else if (k == "--time" && has_value) a.time = std::atof(argv[++i]);
-    else if (k == "--state" && has_value) a.state = argv[++i];
+    if (k == "--state" && has_value) a.state = argv[++i];
     else if (k == "--ritter") a.ritter = true;
     else if (k == "--all-particles") a.all_particles = true;
-    else if (k == "--size" && has_value) {
-      if (std::sscanf(argv[++i], "%dx%d", &a.width, &a.height) != 2) return false;
-    } else if (k == "--alpha" && has_value) a.alpha = std::atof(argv[++i]);
     else if (k == "--max-layers" && has_value) a.max_layers = std::atoi(argv[++i]);
     else if (k == "--budget-mib" && has_value) a.budget_mib = std::atof(argv[++i]);
     else if (k == "--frames" && has_value) a.frames = std::max(1, std::atoi(argv[++i]));
@@ -115,21 +108,13 @@ bool parse(int argc, char** argv, Args& a) {
       a.alphas.clear();
       for (const std::string& v : split(argv[++i])) a.alphas.push_back(std::atof(v.c_str()));
     } else if (k == "--json") a.json = true;
-    else if (k == "--platform" && has_value) {
-      if (!gl::parse_platform(argv[++i], a.context.platform)) return false;
-    } else return false;
+    else return false;
   }
-  return a.width > 0 && a.height > 0 && a.particles > 0 && !a.modes.empty();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v[v.size() / 2];
+  return a.particles > 0 && !a.modes.empty();
 }
 
 void time_modes(const Args& a, const gl::Context& context, Renderer& renderer) {
-  tools::DamBreakState s = a.ritter ? tools::ritter_dam_break(a.particles, a.time < 0 ? 0.3 : a.time)
-                                    : tools::solver_dam_break(a.particles, a.time < 0 ? 5.0 : a.time, a.state);
+  tools::DamBreakState s = tools::dam_break_state(a.ritter, a.particles, a.time, a.state);
   const Classification& c = s.classification;
   std::vector<ParticleSphere> all;
   if (a.all_particles)
@@ -183,8 +168,8 @@ void time_modes(const Args& a, const gl::Context& context, Renderer& renderer) {
     char label[64];
     std::snprintf(label, sizeof label, "%s%s", shade_mode_name(mode), a.ao ? " + deep AO" : "");
     std::printf("%-22s", label);
-    for (const char* p : kPasses) std::printf(" %8.1f", median(samples[p]));
-    std::printf(" %8.1f %8.0f\n", median(samples["total"]), double(last.gpu_peak_bytes) / (1 << 20));
+    for (const char* p : kPasses) std::printf(" %8.1f", tools::median(samples[p]));
+    std::printf(" %8.1f %8.0f\n", tools::median(samples["total"]), double(last.gpu_peak_bytes) / (1 << 20));
     if (mode == ShadeMode::refractive)
       std::printf("  refraction: %lld march dispatches, %lld rays unfinished, %.1f column events "
                   "per pixel, %lld at most\n",
@@ -235,9 +220,7 @@ void accuracy(const Args& a, const gl::Context& context, Renderer& renderer) {
 
 int run(const Args& a) {
   gl::Context context(a.context);
-  const gl::Info info = gl::query_info(context);
-  std::printf("renderer: %s (%s), GPU timers: %s\n", info.renderer.c_str(), info.version.c_str(),
-              context.has_gpu_timers() ? "yes" : "no, glFinish + wall clock");
+  tools::print_renderer(context);
   gl::ShaderLibrary shaders;
   Renderer renderer(shaders);
   if (!a.accuracy.empty()) accuracy(a, context, renderer);
@@ -248,14 +231,5 @@ int run(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Args a;
-  for (int i = 1; i < argc; ++i)
-    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") return usage(stdout);
-  if (!parse(argc, argv, a)) return usage(stderr);
-  try {
-    return run(a);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench_shading: error: %s\n", e.what());
-    return 1;
-  }
+  return voxspan::tools::tool_main<Args>("bench_shading", argc, argv, usage, parse, run);
 }

@@ -29,7 +29,6 @@
 #include <vector>
 
 #include "render/gl/context.h"
-#include "render/gl/info.h"
 #include "render/gl/pass_timer.h"
 #include "render/gl/shader_library.h"
 #include "render/reference/exact_spans.h"
@@ -37,17 +36,15 @@
 #include "scene_cell_states.h"
 #include "scenes.h"
 #include "span_compare.h"
+#include "tool_args.h"
 #include "voxspan/error.h"
 
 namespace {
 
 using namespace voxspan;
 
-struct Args {
-  double particles = 1e6;
-  double time = 0.25;
-  int width = 960, height = 540;
-  double alpha = 14;
+struct Args : tools::SceneArgs {
+  Args() { particles = 1e6, time = 0.25; }
   int max_layers = 16384;
   std::vector<double> budgets_mib;
   int frames = 3;
@@ -58,7 +55,6 @@ struct Args {
   bool json = false;
   std::string pgm;
   std::string save_spans, compare_spans;
-  gl::ContextOptions context;
 };
 
 const char* kPasses[] = {"frame", "upload", "bin", "clear", "splat", "compress"};
@@ -75,14 +71,12 @@ int usage(FILE* out) {
 
 bool parse(int argc, char** argv, Args& a) {
   for (int i = 1; i < argc; ++i) {
+    const tools::Flag shared = tools::read_scene_flag(argc, argv, i, a);
+    if (shared == tools::Flag::bad) return false;
+    if (shared == tools::Flag::read) continue;
     const std::string k = argv[i];
     const bool has_value = i + 1 < argc;
-    if (k == "--particles" && has_value) a.particles = std::atof(argv[++i]);
-    else if (k == "--time" && has_value) a.time = std::atof(argv[++i]);
-    else if (k == "--size" && has_value) {
-      if (std::sscanf(argv[++i], "%dx%d", &a.width, &a.height) != 2) return false;
-    } else if (k == "--alpha" && has_value) a.alpha = std::atof(argv[++i]);
-    else if (k == "--max-layers" && has_value) a.max_layers = std::atoi(argv[++i]);
+    if (k == "--max-layers" && has_value) a.max_layers = std::atoi(argv[++i]);
     else if (k == "--budget-mib" && has_value) a.budgets_mib.push_back(std::atof(argv[++i]));
     else if (k == "--frames" && has_value) a.frames = std::max(1, std::atoi(argv[++i]));
     else if (k == "--threads" && has_value) {
@@ -97,17 +91,10 @@ bool parse(int argc, char** argv, Args& a) {
     else if (k == "--pgm" && has_value) a.pgm = argv[++i];
     else if (k == "--save-spans" && has_value) a.save_spans = argv[++i];
     else if (k == "--compare-spans" && has_value) a.compare_spans = argv[++i];
-    else if (k == "--platform" && has_value) {
-      if (!gl::parse_platform(argv[++i], a.context.platform)) return false;
-    } else return false;
+    else return false;
   }
   if (a.budgets_mib.empty()) a.budgets_mib = {1024, 16};
   return true;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v[v.size() / 2];
 }
 
 struct Result {
@@ -133,8 +120,8 @@ Result time_frames(Voxelizer& voxelizer, const gl::Context& context, const Camer
     totals.push_back(stats.total_ms());
     r.last = stats;
   }
-  for (auto& [pass, v] : samples) r.ms[pass] = median(v);
-  r.total_ms = median(totals);
+  for (auto& [pass, v] : samples) r.ms[pass] = tools::median(v);
+  r.total_ms = tools::median(totals);
   return r;
 }
 
@@ -162,9 +149,7 @@ void write_inside_pgm(const SpanImage& image, const std::string& path) {
 
 int run(const Args& a) {
   gl::Context context(a.context);
-  const gl::Info info = gl::query_info(context);
-  std::printf("renderer: %s (%s), GPU timers: %s\n", info.renderer.c_str(), info.version.c_str(),
-              context.has_gpu_timers() ? "yes" : "no, glFinish + wall clock");
+  tools::print_renderer(context);
 
   test::DamBreak shape;
   shape.spacing = test::dam_break_spacing(shape, a.particles);
@@ -261,14 +246,5 @@ int run(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Args a;
-  for (int i = 1; i < argc; ++i)
-    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return usage(stdout);
-  if (!parse(argc, argv, a)) return usage(stderr);
-  try {
-    return run(a);
-  } catch (const voxspan::Error& e) {
-    std::fprintf(stderr, "bench_voxelize: error: %s\n", e.what());
-    return 1;
-  }
+  return voxspan::tools::tool_main<Args>("bench_voxelize", argc, argv, usage, parse, run);
 }

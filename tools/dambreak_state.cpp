@@ -140,4 +140,9 @@ DamBreakState ritter_dam_break(double particles, double t) {
   return s;
 }
 
+DamBreakState dam_break_state(bool ritter, double particles, double time, const std::string& cache) {
+  return ritter ? ritter_dam_break(particles, time < 0 ? 0.3 : time)
+                : solver_dam_break(particles, time < 0 ? 5.0 : time, cache);
+}
+
 }  // namespace voxspan::tools

@@ -34,4 +34,8 @@ DamBreakState ritter_dam_break(double particles, double t);
 
 bool have_solver();
 
+// The shading tools' scene: the Ritter profile at `time` seconds (< 0: 0.3) when `ritter`, else
+// the solver at T = `time` (< 0: 5, the run-up on the far wall), cached in `cache`.
+DamBreakState dam_break_state(bool ritter, double particles, double time, const std::string& cache);
+
 }  // namespace voxspan::tools

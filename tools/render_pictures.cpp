@@ -29,23 +29,19 @@
 #include "render/reference/exact_spans.h"
 #include "render/reference/reference_shading.h"
 #include "render/renderer.h"
+#include "tool_args.h"
 #include "voxspan/error.h"
 
 namespace {
 
 using namespace voxspan;
 
-struct Args {
+struct Args : tools::SceneArgs {
   std::string out = "docs/images";
-  double particles = 1e5;
-  double time = -1;  // default: T = 5 (solver: the run-up on the far wall), t = 0.3 s (Ritter)
   std::string state = "build/dambreak_state.bin";  // cache of the solver state
   bool ritter = !tools::have_solver();
-  int width = 960, height = 540;
-  double alpha = 14;
   bool reference = false;
   std::string compare;  // folder of pictures to compare with; empty: none
-  gl::ContextOptions context;
 };
 
 int usage(FILE* out) {
@@ -58,23 +54,19 @@ int usage(FILE* out) {
 
 bool parse(int argc, char** argv, Args& a) {
   for (int i = 1; i < argc; ++i) {
+    const tools::Flag shared = tools::read_scene_flag(argc, argv, i, a);
+    if (shared == tools::Flag::bad) return false;
+    if (shared == tools::Flag::read) continue;
     const std::string k = argv[i];
     const bool has_value = i + 1 < argc;
     if (k == "--out" && has_value) a.out = argv[++i];
-    else if (k == "--particles" && has_value) a.particles = std::atof(argv[++i]);
-    else if (k == "--time" && has_value) a.time = std::atof(argv[++i]);
     else if (k == "--state" && has_value) a.state = argv[++i];
     else if (k == "--ritter") a.ritter = true;
-    else if (k == "--size" && has_value) {
-      if (std::sscanf(argv[++i], "%dx%d", &a.width, &a.height) != 2) return false;
-    } else if (k == "--alpha" && has_value) a.alpha = std::atof(argv[++i]);
     else if (k == "--reference") a.reference = true;
     else if (k == "--compare" && has_value) a.compare = argv[++i];
-    else if (k == "--platform" && has_value) {
-      if (!gl::parse_platform(argv[++i], a.context.platform)) return false;
-    } else return false;
+    else return false;
   }
-  return a.width > 0 && a.height > 0 && a.particles > 0;
+  return a.particles > 0;
 }
 
 struct Picture {
@@ -132,8 +124,7 @@ int run(const Args& a) {
   gl::ShaderLibrary shaders;
   Renderer renderer(shaders);
 
-  tools::DamBreakState s = a.ritter ? tools::ritter_dam_break(a.particles, a.time < 0 ? 0.3 : a.time)
-                                    : tools::solver_dam_break(a.particles, a.time < 0 ? 5.0 : a.time, a.state);
+  tools::DamBreakState s = tools::dam_break_state(a.ritter, a.particles, a.time, a.state);
   const Classification& c = s.classification;
   std::printf("%s: %zu boundary particles of %zu, %zu inner-full cells\n", s.description.c_str(),
               c.boundary.size(), s.x.size(), c.counts.cells_inner_full);
@@ -174,13 +165,5 @@ int run(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Args a;
-  if (argc > 1 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help")) return usage(stdout);
-  if (!parse(argc, argv, a)) return usage(stderr);
-  try {
-    return run(a);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "render_pictures: %s\n", e.what());
-    return 1;
-  }
+  return voxspan::tools::tool_main<Args>("render_pictures", argc, argv, usage, parse, run);
 }
