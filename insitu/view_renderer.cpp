@@ -82,12 +82,8 @@ void ViewRenderer::render(const ViewRenderSettings& settings, const Camera& came
   if (!fluid_box.empty())
     options_.shade.environment.ground_height = lowest(fluid_box, options_.shade.environment.up);
   const GpuFloatImage& image = renderer_.render(camera, boundary, cells, options_, timer, stats);
-  out.width = image.width();
-  out.height = image.height();
-  out.rgba.resize(std::size_t(out.width) * std::size_t(out.height) * 4);
   auto t = timer.gpu("readback");
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the shade pass wrote it in a shader
-  image.buffer().download(out.rgba.data(), out.rgba.size() * sizeof(float));
+  image.download(out);
 }
 
 }  // namespace voxspan

@@ -16,6 +16,7 @@
 #include "insitu/config.h"
 #include "insitu/view_framing.h"
 #include "render/camera.h"
+#include "render/float_image.h"
 #include "render/frame_stats.h"
 #include "render/gl/pass_timer.h"
 #include "render/gl/shader_library.h"
@@ -25,11 +26,7 @@
 namespace voxspan {
 
 // Linear RGBA floats, row 0 at the top.
-struct ViewImage {
-  int width = 0;
-  int height = 0;
-  std::vector<float> rgba;  // width * height * 4
-};
+using ViewImage = FloatImage;
 
 // What a view's settings become for the renderer; made once per view. Only the ground plane's
 // height follows the fluid from step to step (render()).

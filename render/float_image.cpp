@@ -11,10 +11,17 @@ void GpuFloatImage::resize(int width, int height) {
 }
 
 FloatImage GpuFloatImage::download() const {
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  FloatImage image(width_, height_);
-  if (!image.rgba.empty()) buffer_.download(image.rgba.data(), image.rgba.size() * sizeof(float));
+  FloatImage image;
+  download(image);
   return image;
+}
+
+void GpuFloatImage::download(FloatImage& out) const {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the shade pass wrote it in a shader
+  out.width = width_;
+  out.height = height_;
+  out.rgba.resize(std::size_t(width_) * std::size_t(height_) * 4);
+  if (!out.rgba.empty()) buffer_.download(out.rgba.data(), out.rgba.size() * sizeof(float));
 }
 
 }  // namespace voxspan

@@ -38,6 +38,8 @@ class GpuFloatImage {
   int height() const { return height_; }
   const gl::Buffer& buffer() const { return buffer_; }
   FloatImage download() const;
+  // Into `out`, reusing its storage (no allocation once it has held an image this size).
+  void download(FloatImage& out) const;
 
  private:
   int width_ = 0, height_ = 0;
