@@ -21,12 +21,14 @@
 namespace voxspan {
 namespace {
 
-// In memory, raw appended binary (no base64: a third smaller and faster), zlib-compressed.
+// In memory, inline binary (base64), zlib-compressed, 64-bit block headers. Not appended data:
+// ParaView 5.11's XML reader fails on any appended section (raw or base64) with Debian 12's
+// current expat (2.5.0-1+deb12u5); docs/runtime.md has the check and the size cost.
 template <class Writer>
 std::string write_to_string(Writer& writer, vtkDataObject* data, const char* what) {
   writer->SetInputData(data);
-  writer->SetDataModeToAppended();
-  writer->EncodeAppendedDataOff();
+  writer->SetDataModeToBinary();
+  writer->SetHeaderTypeToUInt64();
   writer->SetCompressorTypeToZLib();
   writer->WriteToOutputStringOn();
   if (writer->Write() != 1) throw make_error("VTK could not encode the ", what);

@@ -115,8 +115,15 @@ VdbContents read_vdb(const std::filesystem::path& path) {
   return out;
 }
 
+bool has_appended_data(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  return text.find("<AppendedData") != std::string::npos;
+}
+
 VtpContents read_vtp(const std::filesystem::path& path) {
   VtpContents out;
+  out.appended_data = has_appended_data(path);
   vtkNew<vtkXMLPolyDataReader> reader;
   if (!reader->CanReadFile(path.c_str())) return out;
   reader->SetFileName(path.c_str());
@@ -132,6 +139,7 @@ VtpContents read_vtp(const std::filesystem::path& path) {
 
 VtiContents read_vti(const std::filesystem::path& path) {
   VtiContents out;
+  out.appended_data = has_appended_data(path);
   vtkNew<vtkXMLImageDataReader> reader;
   if (!reader->CanReadFile(path.c_str())) return out;
   reader->SetFileName(path.c_str());

@@ -40,8 +40,13 @@ struct VdbContents {
 };
 VdbContents read_vdb(const std::filesystem::path& path);
 
+// True when the file has an <AppendedData> section, which ParaView 5.11's XML reader fails to
+// parse with Debian 12's current expat although VTK 9.1's reads it (docs/runtime.md, "ParaView").
+bool has_appended_data(const std::filesystem::path& path);
+
 struct VtpContents {
   bool ok = false;
+  bool appended_data = false;
   std::int64_t points = 0;
   std::vector<std::string> arrays;  // point-data array names
 };
@@ -49,6 +54,7 @@ VtpContents read_vtp(const std::filesystem::path& path);
 
 struct VtiContents {
   bool ok = false;
+  bool appended_data = false;
   int dims[3] = {0, 0, 0};  // points per axis (cells + 1)
   bool has_state = false;
 };

@@ -108,6 +108,7 @@ TEST(RenderParticles, RendersEveryFileWithTheConfig) {
   EXPECT_GT(counter(stats[0], "boundary"), 1000);
   const test::VtpContents vtp = test::read_vtp(out / "vtk" / "particles_00000000.vtp");
   ASSERT_TRUE(vtp.ok);
+  EXPECT_FALSE(vtp.appended_data);
   EXPECT_EQ(vtp.points, counter(stats[0], "boundary"));
   EXPECT_NE(std::find(vtp.arrays.begin(), vtp.arrays.end(), "radius"), vtp.arrays.end());
 }
