@@ -79,8 +79,10 @@ MapReader::MapReader(Checker& checker, const YAML::Node& node, std::string path,
     checker_.error(node, path_, "expected a map of settings; got " + describe(node));
     return;
   }
+  // By value: yaml-cpp's iterator returns its (key, value) pair as a temporary, so a reference
+  // to it->first dangles by the next line (AddressSanitizer: stack-use-after-scope).
   for (auto it = node.begin(); it != node.end(); ++it) {
-    const YAML::Node& key_node = it->first;
+    const YAML::Node key_node = it->first;
     if (!key_node.IsScalar()) {
       checker_.error(key_node, path_, "keys must be plain names; got " + describe(key_node));
       continue;
