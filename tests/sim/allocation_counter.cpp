@@ -13,14 +13,32 @@ std::atomic<long> g_allocations{0};
 thread_local long t_allocations = 0;
 }  // namespace
 
-void* operator new(std::size_t size) {
+// Every form that a non-replaced default would pair with another allocator is replaced, so
+// that each block is freed by the allocator that made it (AddressSanitizer checks: a nothrow
+// new left to the runtime and freed here is an alloc-dealloc mismatch).
+namespace {
+void* counted_malloc(std::size_t size) noexcept {
   ++g_allocations;
   ++t_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
+  return std::malloc(size ? size : 1);
+}
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (void* p = counted_malloc(size)) return p;
   throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return ::operator new(size); }
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return counted_malloc(size); }
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+  return counted_malloc(size);
 }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 
 namespace voxspan::test {
 long allocations() { return g_allocations.load(); }
