@@ -177,6 +177,9 @@ Program Program::compute(std::string_view name, const std::string& source) {
   if (!ok)
     throw make_error("linking ", name, " failed:\n",
                      info_log(program.id(), glGetProgramiv, glGetProgramInfoLog));
+  GLint size[3] = {0, 0, 0};
+  glGetProgramiv(program.id(), GL_COMPUTE_WORK_GROUP_SIZE, size);
+  program.work_group_size_ = glm::uvec3(size[0], size[1], size[2]);
   return program;
 }
 
@@ -220,13 +223,6 @@ void Program::set(const char* n, glm::uvec3 v) const {
 }
 void Program::set(const char* n, const glm::mat4& v) const {
   glProgramUniformMatrix4fv(id(), uniform(n), 1, GL_FALSE, glm::value_ptr(v));
-}
-
-glm::uvec3 Program::work_group_size() const {
-  GLint size[3] = {0, 0, 0};
-  glGetProgramiv(id(), GL_COMPUTE_WORK_GROUP_SIZE, size);
-  return {static_cast<unsigned>(size[0]), static_cast<unsigned>(size[1]),
-          static_cast<unsigned>(size[2])};
 }
 
 // --- Texture3D --------------------------------------------------------------------------------

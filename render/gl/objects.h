@@ -158,8 +158,8 @@ class Program {
   void set(const char* name, glm::uvec3 v) const;
   void set(const char* name, const glm::mat4& v) const;
 
-  // Work-group size declared by the shader (local_size_x/y/z).
-  glm::uvec3 work_group_size() const;
+  // Work-group size declared by the shader (local_size_x/y/z), queried once at link time.
+  glm::uvec3 work_group_size() const { return work_group_size_; }
 
  private:
   // Looked up by the caller's string without making a std::string: setting uniforms every
@@ -170,6 +170,7 @@ class Program {
   };
   Handle<DeleteProgram> handle_;
   std::string name_;
+  glm::uvec3 work_group_size_{0};
   mutable std::unordered_map<std::string, GLint, NameHash, std::equal_to<>> locations_;
 };
 
