@@ -6,12 +6,12 @@
 #include "render/gl/info.h"
 #include "render/grid_uniforms.h"
 #include "render/passes/depth_bounds.h"
+#include "render/passes/dispatch.h"
 
 namespace voxspan {
 namespace {
 
 constexpr int kSharedTiles = 1024;  // tallies per work group in shared memory (4 KiB each)
-constexpr GLuint kMaxGroups = 65535;
 constexpr GLbitfield kBarriers = GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
 
 }  // namespace
@@ -35,7 +35,6 @@ const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
   const int variant = !tile_lists ? 0 : (shared ? 2 : 1);
   const gl::Program& count_pass = programs_[variant][0];
   const gl::Program& scatter_pass = programs_[variant][1];
-  const auto groups = static_cast<GLuint>(std::clamp<std::size_t>((count + 255) / 256, 1, kMaxGroups));
   for (const gl::Program* p : {&count_pass, &scatter_pass}) {
     set_grid_uniforms(*p, grid);
     p->set("u_count", static_cast<unsigned>(count));
@@ -61,7 +60,7 @@ const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
   lists_.reserve(4);
   large_list_.reserve(4);
   bind_all();
-  count_pass.dispatch(groups);
+  dispatch_strided(count_pass, count);
   glMemoryBarrier(kBarriers);
 
   bins_.offsets.clear();
@@ -75,7 +74,7 @@ const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
   lists_.reserve(std::max<std::size_t>(tile_lists ? bins_.offsets.back() : 0, 1) * 4);
   large_list_.reserve(std::max<std::size_t>(bins_.large, 1) * 4);
   bind_all();
-  scatter_pass.dispatch(groups);
+  dispatch_strided(scatter_pass, count);
   glMemoryBarrier(kBarriers);
   return bins_;
 }

@@ -1,9 +1,8 @@
 #include "render/passes/clear_columns.h"
 
-#include <algorithm>
-
 #include "render/grid_uniforms.h"
 #include "render/passes/depth_bounds.h"
+#include "render/passes/dispatch.h"
 
 namespace voxspan {
 
@@ -22,7 +21,7 @@ void ClearColumnsPass::run(const gl::Buffer& bits, const gl::Buffer& depth_bound
   program_.set("u_tile", glm::ivec4(tile.x0, tile.y0, tile.width, tile.height));
   bits.bind_range(GL_SHADER_STORAGE_BUFFER, 0, 0, layout.column_bytes * pixels);
   depth_bounds.bind(GL_SHADER_STORAGE_BUFFER, 1);
-  program_.dispatch(static_cast<GLuint>(std::clamp<std::size_t>((pixels + 63) / 64, 1, 65535)));
+  dispatch_strided(program_, pixels);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

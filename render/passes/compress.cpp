@@ -1,13 +1,11 @@
 #include "render/passes/compress.h"
 
-#include <algorithm>
-
 #include "render/grid_uniforms.h"
 #include "render/passes/depth_bounds.h"
+#include "render/passes/dispatch.h"
 
 namespace voxspan {
 namespace {
-constexpr GLuint kMaxGroups = 65535;
 // Bindings of compress.comp (the span image takes 0 and 1).
 constexpr GLuint kBits = 2, kScratchSpans = 3, kScratchCounts = 4, kScratchExits = 5, kStats = 6,
                  kDepthBounds = 7, kRescan = 8;
@@ -56,7 +54,6 @@ std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_
   scratch_exits_.fit(most * 4);
   rescan_list_.fit((most + 1) * 4);
   rescan_list_.clear(0, 4);
-  const auto groups = static_cast<GLuint>(std::clamp<std::size_t>((pixels + 63) / 64, 1, kMaxGroups));
   const auto bind_all = [&] {
     image.bind(0, 1);
     bits.bind_range(GL_SHADER_STORAGE_BUFFER, kBits, 0, layout.column_bytes * pixels);
@@ -70,7 +67,7 @@ std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_
 
   set_uniforms(count_, layout, tile, cells, settings, image);
   bind_all();
-  count_.dispatch(groups);
+  dispatch_strided(count_, pixels);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
   prefix_sum.run(scratch_counts_, pixels);
@@ -83,7 +80,7 @@ std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_
   set_uniforms(copy_, layout, tile, cells, settings, image);
   copy_.set("u_span_base", span_base);
   bind_all();
-  copy_.dispatch(groups);
+  dispatch_strided(copy_, pixels);
   std::uint32_t rescans = 0;
   rescan_list_.download(&rescans, 4);
   if (rescans != 0) {
@@ -91,7 +88,7 @@ std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_
     rescan_.set("u_span_base", span_base);
     rescan_.set("u_rescan_count", rescans);
     bind_all();
-    rescan_.dispatch(static_cast<GLuint>(std::clamp<std::size_t>((rescans + 63) / 64, 1, kMaxGroups)));
+    dispatch_strided(rescan_, rescans);
   }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   return total;

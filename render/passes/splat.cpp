@@ -4,15 +4,9 @@
 
 #include "render/gl/info.h"
 #include "render/grid_uniforms.h"
+#include "render/passes/dispatch.h"
 
 namespace voxspan {
-namespace {
-constexpr GLuint kMaxGroups = 65535;
-
-GLuint groups_of_64(std::size_t threads) {
-  return static_cast<GLuint>(std::clamp<std::size_t>((threads + 63) / 64, 1, kMaxGroups));
-}
-}  // namespace
 
 SplatPass::SplatPass(const gl::ShaderLibrary& shaders)
     : large_items_(shaders.compute("render/passes/splat_large.comp", "#define LARGE_ITEMS 1")),
@@ -53,7 +47,7 @@ void SplatPass::run(const gl::Buffer& bits, const SplatInput& input, const Persp
     p.set("u_list_offset", input.list_offset);
     input.particles->bind(GL_SHADER_STORAGE_BUFFER, 1);
     if (from_list) input.list->bind(GL_SHADER_STORAGE_BUFFER, 2);
-    p.dispatch(groups_of_64(count));
+    dispatch_strided(p, count);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
   if (input.large_count != 0) run_large(bits, input, grid, layout, tile, settings, prefix_sum);
@@ -67,8 +61,8 @@ void SplatPass::run_large(const gl::Buffer& bits, const SplatInput& input,
   const std::size_t blocks = (std::size_t(grid.words_per_column()) + 2 + 31) / 32;
   const std::size_t batch = std::clamp<std::size_t>(
       (std::size_t(1) << 32) / (std::size_t(tile.pixels()) * blocks + 1), 1, 1 << 16);
-  // Items per dispatch: at most 8 per thread of 65535 groups of 64, so loops stay short.
-  constexpr std::size_t kItemsPerDispatch = std::size_t(kMaxGroups) * 64 * 8;
+  // Items per dispatch: at most 8 per thread of the most groups, so loops stay short.
+  const std::size_t items_per_dispatch = strided_threads(large_splat_) * 8;
   items_.reserve((batch + 1) * 4);
   const auto bind_all = [&] {
     bits.bind_range(GL_SHADER_STORAGE_BUFFER, 0, 0, layout.column_bytes * tile.pixels());
@@ -85,17 +79,17 @@ void SplatPass::run_large(const gl::Buffer& bits, const SplatInput& input,
       p->set("u_large", large);
     }
     bind_all();
-    large_items_.dispatch(groups_of_64(large));
+    dispatch_strided(large_items_, large);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     prefix_sum.run(items_, large);
     std::uint32_t total = 0;
     items_.download(&total, 4, std::size_t(large) * 4);
-    for (std::size_t item = 0; item < total; item += kItemsPerDispatch) {
-      const auto items = static_cast<std::uint32_t>(std::min<std::size_t>(kItemsPerDispatch, total - item));
+    for (std::size_t item = 0; item < total; item += items_per_dispatch) {
+      const auto items = static_cast<std::uint32_t>(std::min(items_per_dispatch, total - item));
       large_splat_.set("u_item_first", static_cast<unsigned>(item));
       large_splat_.set("u_items", items);
       bind_all();
-      large_splat_.dispatch(groups_of_64(items));
+      dispatch_strided(large_splat_, items);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
