@@ -14,16 +14,25 @@ namespace {
 constexpr int kSharedTiles = 1024;  // tallies per work group in shared memory (4 KiB each)
 constexpr GLbitfield kBarriers = GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
 
+enum Binding : GLuint { kParticles, kTileCounts, kTileLists, kLarge, kLargeList, kDepthBounds };
+
 }  // namespace
 
 BinPass::BinPass(const gl::ShaderLibrary& shaders)
     : automatic_(gl::software_renderer() ? BinTallies::global : BinTallies::shared) {
+  const std::string bindings = gl::defines({{"PARTICLES_BINDING", kParticles},
+                                            {"TILE_COUNTS_BINDING", kTileCounts},
+                                            {"TILE_LISTS_BINDING", kTileLists},
+                                            {"LARGE_BINDING", kLarge},
+                                            {"LARGE_LIST_BINDING", kLargeList},
+                                            {"DEPTH_BOUNDS_BINDING", kDepthBounds}});
   const std::string variant[3] = {"#define BIN_LARGE_ONLY 1\n", "",
-                                  "#define BIN_SHARED_TILES " + std::to_string(kSharedTiles) + "\n"};
+                                  gl::defines({{"BIN_SHARED_TILES", kSharedTiles}})};
   for (int v = 0; v < 3; ++v)
     for (int scatter = 0; scatter < 2; ++scatter)
-      programs_[v][scatter] = shaders.compute(
-          "render/passes/bin.comp", variant[v] + (scatter ? "#define BIN_SCATTER 1\n" : ""));
+      programs_[v][scatter] =
+          shaders.compute("render/passes/bin.comp",
+                          bindings + variant[v] + (scatter ? "#define BIN_SCATTER 1" : ""));
 }
 
 const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
@@ -43,12 +52,12 @@ const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
     set_depth_block_uniforms(*p, grid);
   }
   const auto bind_all = [&] {
-    particles.bind(GL_SHADER_STORAGE_BUFFER, 0);
-    counts_.bind(GL_SHADER_STORAGE_BUFFER, 1);
-    lists_.bind(GL_SHADER_STORAGE_BUFFER, 2);
-    large_.bind(GL_SHADER_STORAGE_BUFFER, 3);
-    large_list_.bind(GL_SHADER_STORAGE_BUFFER, 4);
-    depth_bounds_.bind(GL_SHADER_STORAGE_BUFFER, 5);
+    particles.bind(GL_SHADER_STORAGE_BUFFER, kParticles);
+    counts_.bind(GL_SHADER_STORAGE_BUFFER, kTileCounts);
+    lists_.bind(GL_SHADER_STORAGE_BUFFER, kTileLists);
+    large_.bind(GL_SHADER_STORAGE_BUFFER, kLarge);
+    large_list_.bind(GL_SHADER_STORAGE_BUFFER, kLargeList);
+    depth_bounds_.bind(GL_SHADER_STORAGE_BUFFER, kDepthBounds);
   };
   counts_.reserve((tile_count + 1) * 4);
   counts_.clear(0, (tile_count + 1) * 4);

@@ -8,10 +8,12 @@
 namespace voxspan {
 namespace {
 constexpr std::size_t kMaxBinding = std::size_t(1) << 30;
+enum Binding : GLuint { kWords };
 }  // namespace
 
 ClearPass::ClearPass(const gl::ShaderLibrary& shaders)
-    : program_(shaders.compute("render/passes/clear.comp")) {
+    : program_(shaders.compute("render/passes/clear.comp",
+                               gl::defines({{"WORDS_BINDING", kWords}}))) {
   GLint alignment = 0;
   glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
   offset_alignment_ = static_cast<std::size_t>(std::max(alignment, 1));
@@ -25,7 +27,7 @@ void ClearPass::run(const gl::Buffer& buffer, std::size_t offset, std::size_t by
   for (std::size_t done = 0; done < bytes; done += kMaxBinding) {
     const std::size_t chunk = std::min(kMaxBinding, bytes - done);
     const std::size_t words = chunk / 16;
-    buffer.bind_range(GL_SHADER_STORAGE_BUFFER, 0, offset + done, chunk);
+    buffer.bind_range(GL_SHADER_STORAGE_BUFFER, kWords, offset + done, chunk);
     program_.set("u_count", static_cast<unsigned>(words));
     dispatch_strided(program_, words);
   }

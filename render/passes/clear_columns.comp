@@ -9,10 +9,9 @@ layout(local_size_x = 64) in;
 #include "render/perspective_grid.glsl"
 #include "render/passes/bits.glsl"
 #include "render/passes/cell_march.glsl"
-#define DEPTH_BOUNDS_BINDING 1
 #include "render/passes/column_range.glsl"
 
-layout(std430, binding = 0) writeonly buffer Bits { uvec4 bits[]; };
+layout(std430, binding = BITS_BINDING) writeonly buffer Bits { uvec4 bits[]; };
 
 uniform ivec4 u_tile;  // x0, y0, width, height
 

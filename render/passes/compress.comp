@@ -21,12 +21,20 @@ layout(local_size_x = 64) in;
 #include "render/passes/column_scan.glsl"
 #include "render/passes/column_range.glsl"
 
-layout(std430, binding = 2) readonly buffer Bits { uvec4 bits[]; };
-layout(std430, binding = 3) buffer ScratchSpans { vec2 scratch_spans[]; };  // [k * pixels + p]
-layout(std430, binding = 4) buffer ScratchCounts { uint scratch_counts[]; }; // count, then offset
-layout(std430, binding = 5) buffer ScratchExits { float scratch_last_exit[]; };
-layout(std430, binding = 6) buffer Stats { uint stats[]; };  // capped pixels, spans past caps
-layout(std430, binding = 8) buffer Rescan { uint rescan[]; };  // count, then tile pixels
+layout(std430, binding = BITS_BINDING) readonly buffer Bits { uvec4 bits[]; };
+layout(std430, binding = SCRATCH_SPANS_BINDING) buffer ScratchSpans {
+  vec2 scratch_spans[];  // [k * pixels + p]
+};
+layout(std430, binding = SCRATCH_COUNTS_BINDING) buffer ScratchCounts {
+  uint scratch_counts[];  // count, then offset
+};
+layout(std430, binding = SCRATCH_EXITS_BINDING) buffer ScratchExits { float scratch_last_exit[]; };
+layout(std430, binding = STATS_BINDING) buffer Stats {
+  uint stats[];  // capped pixels, spans past caps
+};
+layout(std430, binding = RESCAN_BINDING) buffer Rescan {
+  uint rescan[];  // count, then tile pixels
+};
 
 uniform ivec4 u_tile;            // x0, y0, width, height
 uniform uint u_cap;              // stored spans per pixel; 0 = no cap

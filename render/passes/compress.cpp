@@ -1,20 +1,45 @@
 #include "render/passes/compress.h"
 
+#include <string>
+
+#include "render/bindings.h"
 #include "render/grid_uniforms.h"
 #include "render/passes/depth_bounds.h"
 #include "render/passes/dispatch.h"
 
 namespace voxspan {
 namespace {
-// Bindings of compress.comp (the span image takes 0 and 1).
-constexpr GLuint kBits = 2, kScratchSpans = 3, kScratchCounts = 4, kScratchExits = 5, kStats = 6,
-                 kDepthBounds = 7, kRescan = 8;
+
+constexpr const char* kShader = "render/passes/compress.comp";
+
+// compress.comp's own buffers, after the span image's.
+enum Binding : GLuint {
+  kBits = binding::kSpanImageEnd,
+  kScratchSpans,
+  kScratchCounts,
+  kScratchExits,
+  kStats,
+  kDepthBounds,
+  kRescan,
+};
+
+std::string binding_defines() {
+  return binding::span_image_defines() + binding::cell_state_defines() +
+         gl::defines({{"BITS_BINDING", kBits},
+                      {"SCRATCH_SPANS_BINDING", kScratchSpans},
+                      {"SCRATCH_COUNTS_BINDING", kScratchCounts},
+                      {"SCRATCH_EXITS_BINDING", kScratchExits},
+                      {"STATS_BINDING", kStats},
+                      {"DEPTH_BOUNDS_BINDING", kDepthBounds},
+                      {"RESCAN_BINDING", kRescan}});
+}
+
 }  // namespace
 
 CompressPass::CompressPass(const gl::ShaderLibrary& shaders)
-    : count_(shaders.compute("render/passes/compress.comp")),
-      copy_(shaders.compute("render/passes/compress.comp", "#define COMPRESS_COPY 1")),
-      rescan_(shaders.compute("render/passes/compress.comp", "#define COMPRESS_RESCAN 1")),
+    : count_(shaders.compute(kShader, binding_defines())),
+      copy_(shaders.compute(kShader, binding_defines() + "#define COMPRESS_COPY 1")),
+      rescan_(shaders.compute(kShader, binding_defines() + "#define COMPRESS_RESCAN 1")),
       stats_(16) {}
 
 void CompressPass::begin_frame() { stats_.clear(); }
@@ -55,7 +80,7 @@ std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_
   rescan_list_.fit((most + 1) * 4);
   rescan_list_.clear(0, 4);
   const auto bind_all = [&] {
-    image.bind(0, 1);
+    image.bind();
     bits.bind_range(GL_SHADER_STORAGE_BUFFER, kBits, 0, layout.column_bytes * pixels);
     scratch_spans_.bind(GL_SHADER_STORAGE_BUFFER, kScratchSpans);
     scratch_counts_.bind(GL_SHADER_STORAGE_BUFFER, kScratchCounts);

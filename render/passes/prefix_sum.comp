@@ -7,8 +7,8 @@
 // Reads and writes: values, sums. Cost: one read and one write per value per pass.
 layout(local_size_x = 256) in;
 
-layout(std430, binding = 0) buffer Values { uint values[]; };
-layout(std430, binding = 1) buffer Sums { uint sums[]; };
+layout(std430, binding = VALUES_BINDING) buffer Values { uint values[]; };
+layout(std430, binding = SUMS_BINDING) buffer Sums { uint sums[]; };
 
 uniform uint u_count;
 uniform uint u_sum_base;

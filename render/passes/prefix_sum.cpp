@@ -13,7 +13,12 @@ constexpr unsigned kPerThread = 16;   // values each scan thread sums
 constexpr std::size_t kMaxLevels = 3;  // 4096^3 values: more than a uint can count
 constexpr GLbitfield kBarriers = GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
 
-std::string shader_defines() { return gl::defines({{"PREFIX_PER_THREAD", kPerThread}}); }
+enum Binding : GLuint { kValues, kSums };
+
+std::string shader_defines() {
+  return gl::defines(
+      {{"VALUES_BINDING", kValues}, {"SUMS_BINDING", kSums}, {"PREFIX_PER_THREAD", kPerThread}});
+}
 
 }  // namespace
 
@@ -35,11 +40,11 @@ void PrefixSumPass::scan_level(gl::Buffer& values, std::size_t count, std::size_
   const std::size_t blocks = (count + block_ - 1) / block_;
   if (blocks > kMaxGroups || level >= kMaxLevels)
     throw make_error("PrefixSumPass: ", count, " values exceed what one scan handles");
-  values.bind(GL_SHADER_STORAGE_BUFFER, 0);
+  values.bind(GL_SHADER_STORAGE_BUFFER, kValues);
   scan_.set("u_count", static_cast<unsigned>(count));
   if (blocks <= 1) {
     // One block: its total is the grand total, written straight after the values.
-    values.bind(GL_SHADER_STORAGE_BUFFER, 1);
+    values.bind(GL_SHADER_STORAGE_BUFFER, kSums);
     scan_.set("u_sum_base", static_cast<unsigned>(count));
     scan_.dispatch(1);
     glMemoryBarrier(kBarriers);
@@ -47,14 +52,14 @@ void PrefixSumPass::scan_level(gl::Buffer& values, std::size_t count, std::size_
   }
   gl::Buffer& sums = level_sums_[level];
   sums.reserve((blocks + 1) * 4);
-  sums.bind(GL_SHADER_STORAGE_BUFFER, 1);
+  sums.bind(GL_SHADER_STORAGE_BUFFER, kSums);
   scan_.set("u_sum_base", 0u);
   scan_.dispatch(static_cast<GLuint>(blocks));
   glMemoryBarrier(kBarriers);
   scan_level(sums, blocks, level + 1);
   // Level buffers may have been rebound by the recursion.
-  values.bind(GL_SHADER_STORAGE_BUFFER, 0);
-  sums.bind(GL_SHADER_STORAGE_BUFFER, 1);
+  values.bind(GL_SHADER_STORAGE_BUFFER, kValues);
+  sums.bind(GL_SHADER_STORAGE_BUFFER, kSums);
   add_.set("u_count", static_cast<unsigned>(count));
   dispatch_strided(add_, count);
   values.copy_from(sums, 4, blocks * 4, count * 4);

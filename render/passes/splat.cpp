@@ -1,19 +1,35 @@
 #include "render/passes/splat.h"
 
 #include <algorithm>
+#include <string>
 
 #include "render/gl/info.h"
 #include "render/grid_uniforms.h"
 #include "render/passes/dispatch.h"
 
 namespace voxspan {
+namespace {
+
+constexpr const char* kLargeShader = "render/passes/splat_large.comp";
+
+// Bindings of splat.comp and splat_large.comp; `kList`: the tile's list or the large list.
+enum Binding : GLuint { kBits, kParticles, kList, kItems };
+
+std::string binding_defines() {
+  return gl::defines({{"BITS_BINDING", kBits},
+                      {"PARTICLES_BINDING", kParticles},
+                      {"LIST_BINDING", kList},
+                      {"ITEMS_BINDING", kItems}});
+}
+
+}  // namespace
 
 SplatPass::SplatPass(const gl::ShaderLibrary& shaders)
-    : large_items_(shaders.compute("render/passes/splat_large.comp", "#define LARGE_ITEMS 1")),
-      large_splat_(shaders.compute("render/passes/splat_large.comp")) {
+    : large_items_(shaders.compute(kLargeShader, binding_defines() + "#define LARGE_ITEMS 1")),
+      large_splat_(shaders.compute(kLargeShader, binding_defines())) {
   for (int list = 0; list < 2; ++list)
     for (int per_pixel = 0; per_pixel < 2; ++per_pixel) {
-      std::string defines;
+      std::string defines = binding_defines();
       if (list) defines += "#define SPLAT_FROM_LIST 1\n";
       if (per_pixel) defines += "#define SPLAT_PER_PIXEL 1\n";
       programs_[list][per_pixel] = shaders.compute("render/passes/splat.comp", defines);
@@ -35,7 +51,7 @@ void SplatPass::set_uniforms(const gl::Program& p, const PerspectiveGrid& grid,
 void SplatPass::run(const gl::Buffer& bits, const SplatInput& input, const PerspectiveGrid& grid,
                     const TileLayout& layout, const TileRect& tile, const SplatSettings& settings,
                     PrefixSumPass& prefix_sum) {
-  bits.bind_range(GL_SHADER_STORAGE_BUFFER, 0, 0, layout.column_bytes * tile.pixels());
+  bits.bind_range(GL_SHADER_STORAGE_BUFFER, kBits, 0, layout.column_bytes * tile.pixels());
   const bool from_list = input.list != nullptr;
   const std::uint32_t count = from_list ? input.list_count : input.particle_count;
   if (count != 0) {
@@ -45,8 +61,8 @@ void SplatPass::run(const gl::Buffer& bits, const SplatInput& input, const Persp
     set_uniforms(p, grid, layout, tile, settings);
     p.set("u_count", count);
     p.set("u_list_offset", input.list_offset);
-    input.particles->bind(GL_SHADER_STORAGE_BUFFER, 1);
-    if (from_list) input.list->bind(GL_SHADER_STORAGE_BUFFER, 2);
+    input.particles->bind(GL_SHADER_STORAGE_BUFFER, kParticles);
+    if (from_list) input.list->bind(GL_SHADER_STORAGE_BUFFER, kList);
     dispatch_strided(p, count);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
@@ -65,10 +81,10 @@ void SplatPass::run_large(const gl::Buffer& bits, const SplatInput& input,
   const std::size_t items_per_dispatch = strided_threads(large_splat_) * 8;
   items_.reserve((batch + 1) * 4);
   const auto bind_all = [&] {
-    bits.bind_range(GL_SHADER_STORAGE_BUFFER, 0, 0, layout.column_bytes * tile.pixels());
-    input.particles->bind(GL_SHADER_STORAGE_BUFFER, 1);
-    input.large_list->bind(GL_SHADER_STORAGE_BUFFER, 2);
-    items_.bind(GL_SHADER_STORAGE_BUFFER, 3);
+    bits.bind_range(GL_SHADER_STORAGE_BUFFER, kBits, 0, layout.column_bytes * tile.pixels());
+    input.particles->bind(GL_SHADER_STORAGE_BUFFER, kParticles);
+    input.large_list->bind(GL_SHADER_STORAGE_BUFFER, kList);
+    items_.bind(GL_SHADER_STORAGE_BUFFER, kItems);
   };
   set_uniforms(large_items_, grid, layout, tile, settings);
   set_uniforms(large_splat_, grid, layout, tile, settings);
