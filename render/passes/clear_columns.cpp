@@ -2,6 +2,7 @@
 
 #include "render/bindings.h"
 #include "render/grid_uniforms.h"
+#include "render/passes/bits.h"
 #include "render/passes/depth_bounds.h"
 #include "render/passes/dispatch.h"
 
@@ -23,9 +24,7 @@ void ClearColumnsPass::run(const gl::Buffer& bits, const gl::Buffer& depth_bound
   set_grid_uniforms(program_, grid);
   set_depth_block_uniforms(program_, grid);
   cells.bind(program_);
-  program_.set("u_chunks", static_cast<unsigned>(layout.column_bytes / 16));
-  program_.set("u_tile_pixels", static_cast<unsigned>(pixels));
-  program_.set("u_tile", glm::ivec4(tile.x0, tile.y0, tile.width, tile.height));
+  set_bit_uniforms(program_, layout, tile);
   bits.bind_range(GL_SHADER_STORAGE_BUFFER, kBits, 0, layout.column_bytes * pixels);
   depth_bounds.bind(GL_SHADER_STORAGE_BUFFER, kDepthBounds);
   dispatch_strided(program_, pixels);

@@ -36,7 +36,6 @@ layout(std430, binding = RESCAN_BINDING) buffer Rescan {
   uint rescan[];  // count, then tile pixels
 };
 
-uniform ivec4 u_tile;            // x0, y0, width, height
 uniform uint u_cap;              // stored spans per pixel; 0 = no cap
 uniform uint u_scratch_spans;    // spans per pixel the scratch holds
 uniform uint u_span_base;        // copy, rescan: this tile's first span in the image
@@ -105,7 +104,7 @@ void compress_pixel(ivec2 pixel) {
 
 void run_pixel(uint p) {
   g_pixel = p;
-  ivec2 pixel = u_tile.xy + ivec2(p % uint(u_tile.z), p / uint(u_tile.z));
+  ivec2 pixel = tile_image_pixel(p);
   g_image_pixel = uint(pixel.x) + uint(pixel.y) * uint(u_image.x);
   compress_pixel(pixel);
 }

@@ -4,6 +4,7 @@
 
 #include "render/bindings.h"
 #include "render/grid_uniforms.h"
+#include "render/passes/bits.h"
 #include "render/passes/depth_bounds.h"
 #include "render/passes/dispatch.h"
 
@@ -55,9 +56,7 @@ void CompressPass::set_uniforms(const gl::Program& p, const TileLayout& layout,
                                 const CompressSettings& settings, const GpuSpanImage& image) const {
   set_grid_uniforms(p, image.grid());
   cells.bind(p);
-  p.set("u_chunks", static_cast<unsigned>(layout.column_bytes / 16));
-  p.set("u_tile_pixels", static_cast<unsigned>(tile.pixels()));
-  p.set("u_tile", glm::ivec4(tile.x0, tile.y0, tile.width, tile.height));
+  set_bit_uniforms(p, layout, tile);
   p.set("u_gap", float(settings.gap_bridging));
   p.set("u_center_gap_scale", float(1 + image.grid().k_d() / 2));
   p.set("u_cap", settings.max_spans);

@@ -5,6 +5,7 @@
 
 #include "render/gl/info.h"
 #include "render/grid_uniforms.h"
+#include "render/passes/bits.h"
 #include "render/passes/dispatch.h"
 
 namespace voxspan {
@@ -41,9 +42,7 @@ void SplatPass::set_uniforms(const gl::Program& p, const PerspectiveGrid& grid,
                              const TileLayout& layout, const TileRect& tile,
                              const SplatSettings& settings) const {
   set_grid_uniforms(p, grid);
-  p.set("u_chunks", static_cast<unsigned>(layout.column_bytes / 16));
-  p.set("u_tile_pixels", static_cast<unsigned>(tile.pixels()));
-  p.set("u_tile", glm::ivec4(tile.x0, tile.y0, tile.width, tile.height));
+  set_bit_uniforms(p, layout, tile);
   p.set("u_gap", float(settings.gap_bridging));
   p.set("u_surface_only", settings.surface_only && settings.gap_bridging > 0 ? 1u : 0u);
 }

@@ -5,7 +5,6 @@
 
 layout(std430, binding = BITS_BINDING) buffer Bits { uint bits[]; };
 
-uniform ivec4 u_tile;          // x0, y0, width, height
 uniform float u_gap;           // g (world units)
 uniform uint u_surface_only;   // 1: entry and exit voxels only, where the gap allows
 
