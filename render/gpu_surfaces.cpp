@@ -26,11 +26,11 @@ const gl::Buffer& GpuSurfaces::depths(const GpuSpanImage& image) const {
 
 void GpuSurfaces::bind(const GpuSpanImage& image) const {
   image.bind();
-  owners_.bind(GL_SHADER_STORAGE_BUFFER, binding::kSpanOwners);
-  links_.bind(GL_SHADER_STORAGE_BUFFER, binding::kSpanLinks);
-  depths(image).bind(GL_SHADER_STORAGE_BUFFER, binding::kSurfaceDepths);
-  normals_.bind(GL_SHADER_STORAGE_BUFFER, binding::kSpanNormals);
-  ao_.bind(GL_SHADER_STORAGE_BUFFER, binding::kPixelAo);
+  gl::bind_storage({{owners_, binding::kSpanOwners},
+                    {links_, binding::kSpanLinks},
+                    {depths(image), binding::kSurfaceDepths},
+                    {normals_, binding::kSpanNormals},
+                    {ao_, binding::kPixelAo}});
 }
 
 std::vector<glm::uvec2> GpuSurfaces::download_links(std::size_t spans) const {

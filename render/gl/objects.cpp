@@ -153,6 +153,10 @@ void Buffer::bind_range(GLenum target, GLuint index, std::size_t offset, std::si
                     static_cast<GLsizeiptr>(bytes));
 }
 
+void bind_storage(std::initializer_list<StorageBinding> bindings) {
+  for (const StorageBinding& b : bindings) b.buffer.bind(GL_SHADER_STORAGE_BUFFER, b.index);
+}
+
 // --- Program ----------------------------------------------------------------------------------
 
 Program Program::compute(std::string_view name, const std::string& source) {

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -128,6 +129,15 @@ class Buffer {
   std::size_t size_ = 0;
   MemoryTicket ticket_;
 };
+
+// One buffer bound whole to a shader-storage binding, for bind_storage().
+struct StorageBinding {
+  const Buffer& buffer;
+  GLuint index;
+};
+
+// Binds each buffer whole at its GL_SHADER_STORAGE_BUFFER index, so a pass lists its buffers once.
+void bind_storage(std::initializer_list<StorageBinding> bindings);
 
 // A linked compute program. Uniforms are set by name with direct state access.
 class Program {

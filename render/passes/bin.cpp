@@ -52,12 +52,12 @@ const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
     set_depth_block_uniforms(*p, grid);
   }
   const auto bind_all = [&] {
-    particles.bind(GL_SHADER_STORAGE_BUFFER, kParticles);
-    counts_.bind(GL_SHADER_STORAGE_BUFFER, kTileCounts);
-    lists_.bind(GL_SHADER_STORAGE_BUFFER, kTileLists);
-    large_.bind(GL_SHADER_STORAGE_BUFFER, kLarge);
-    large_list_.bind(GL_SHADER_STORAGE_BUFFER, kLargeList);
-    depth_bounds_.bind(GL_SHADER_STORAGE_BUFFER, kDepthBounds);
+    gl::bind_storage({{particles, kParticles},
+                      {counts_, kTileCounts},
+                      {lists_, kTileLists},
+                      {large_, kLarge},
+                      {large_list_, kLargeList},
+                      {depth_bounds_, kDepthBounds}});
   };
   counts_.reserve((tile_count + 1) * 4);
   counts_.clear(0, (tile_count + 1) * 4);

@@ -81,12 +81,12 @@ std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_
   const auto bind_all = [&] {
     image.bind();
     bits.bind_range(GL_SHADER_STORAGE_BUFFER, kBits, 0, layout.column_bytes * pixels);
-    scratch_spans_.bind(GL_SHADER_STORAGE_BUFFER, kScratchSpans);
-    scratch_counts_.bind(GL_SHADER_STORAGE_BUFFER, kScratchCounts);
-    scratch_exits_.bind(GL_SHADER_STORAGE_BUFFER, kScratchExits);
-    stats_.bind(GL_SHADER_STORAGE_BUFFER, kStats);
-    depth_bounds.bind(GL_SHADER_STORAGE_BUFFER, kDepthBounds);
-    rescan_list_.bind(GL_SHADER_STORAGE_BUFFER, kRescan);
+    gl::bind_storage({{scratch_spans_, kScratchSpans},
+                      {scratch_counts_, kScratchCounts},
+                      {scratch_exits_, kScratchExits},
+                      {stats_, kStats},
+                      {depth_bounds, kDepthBounds},
+                      {rescan_list_, kRescan}});
   };
 
   set_uniforms(count_, layout, tile, cells, settings, image);

@@ -43,10 +43,10 @@ RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfac
   blocks_.clear(0, blocks * 8);
   const auto bind = [&] {
     surfaces.bind(image);
-    out.buffer().bind(GL_SHADER_STORAGE_BUFFER, binding::kShadedImage);
-    rays_.bind(GL_SHADER_STORAGE_BUFFER, kRays);
-    active_.bind(GL_SHADER_STORAGE_BUFFER, kMarchTally);
-    blocks_.bind(GL_SHADER_STORAGE_BUFFER, kBlockBounds);
+    gl::bind_storage({{out.buffer(), binding::kShadedImage},
+                      {rays_, kRays},
+                      {active_, kMarchTally},
+                      {blocks_, kBlockBounds}});
   };
   for (const gl::Program* p : {&begin_, &march_, &resolve_}) {
     set_grid_uniforms(*p, image.grid());

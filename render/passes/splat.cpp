@@ -81,9 +81,8 @@ void SplatPass::run_large(const gl::Buffer& bits, const SplatInput& input,
   items_.reserve((batch + 1) * 4);
   const auto bind_all = [&] {
     bits.bind_range(GL_SHADER_STORAGE_BUFFER, kBits, 0, layout.column_bytes * tile.pixels());
-    input.particles->bind(GL_SHADER_STORAGE_BUFFER, kParticles);
-    input.large_list->bind(GL_SHADER_STORAGE_BUFFER, kList);
-    items_.bind(GL_SHADER_STORAGE_BUFFER, kItems);
+    gl::bind_storage(
+        {{*input.particles, kParticles}, {*input.large_list, kList}, {items_, kItems}});
   };
   set_uniforms(large_items_, grid, layout, tile, settings);
   set_uniforms(large_splat_, grid, layout, tile, settings);
