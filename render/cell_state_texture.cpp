@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "render/bindings.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
@@ -34,7 +35,7 @@ void CellStateTexture::upload(const CellStatesView& cells) {
 }
 
 void CellStateTexture::bind(const gl::Program& program) const {
-  (on_ ? texture_ : none_).bind_unit(0);
+  (on_ ? texture_ : none_).bind_unit(binding::kCellStatesUnit);
   program.set("u_cells_on", on_ ? 1u : 0u);
   program.set("u_cells_origin", glm::vec3(float(view_.origin[0]), float(view_.origin[1]),
                                           float(view_.origin[2])));

@@ -16,7 +16,7 @@ class CellStateTexture {
   // 3D texture size); an empty view switches the cells off.
   void upload(const CellStatesView& cells);
   bool on() const { return on_; }
-  // Binds the texture to unit 0 and sets u_cells_*.
+  // Binds the texture to its unit (render/bindings.h) and sets u_cells_*.
   void bind(const gl::Program& program) const;
 
  private:

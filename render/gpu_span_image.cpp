@@ -2,13 +2,14 @@
 
 #include <algorithm>
 
+#include "render/bindings.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
 
-void GpuSpanImage::bind(GLuint pixels_binding, GLuint spans_binding) const {
-  pixels_.bind(GL_SHADER_STORAGE_BUFFER, pixels_binding);
-  spans_.bind(GL_SHADER_STORAGE_BUFFER, spans_binding);
+void GpuSpanImage::bind() const {
+  pixels_.bind(GL_SHADER_STORAGE_BUFFER, binding::kSpanPixels);
+  spans_.bind(GL_SHADER_STORAGE_BUFFER, binding::kSpanDepths);
 }
 
 SpanImage GpuSpanImage::download() const {

@@ -4,7 +4,7 @@
 //             inside;}, pixel p = x + y * width, row 0 at the top;
 //   spans():  Span = vec2(entry, exit) view depths, span_count() of them in use.
 // render/span_image.glsl declares the same buffers for shaders; bind() puts them at the
-// bindings it expects (0 and 1 unless the pass chose others).
+// bindings render/bindings.h reserves.
 #pragma once
 
 #include <cstddef>
@@ -25,7 +25,7 @@ class GpuSpanImage {
   const gl::Buffer& spans() const { return spans_; }
   std::size_t span_count() const { return span_count_; }
 
-  void bind(GLuint pixels_binding = 0, GLuint spans_binding = 1) const;
+  void bind() const;
   // Reads the whole image back (tests, the CPU paths, file output).
   SpanImage download() const;
   // Replaces the image with one made on the CPU (a composited or hand-made span image, or the

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "render/bindings.h"
+
 namespace voxspan {
 namespace {
 // Every buffer holds at least this much, so a frame without spans still binds real storage.
@@ -23,12 +25,12 @@ const gl::Buffer& GpuSurfaces::depths(const GpuSpanImage& image) const {
 }
 
 void GpuSurfaces::bind(const GpuSpanImage& image) const {
-  image.bind(0, 1);
-  owners_.bind(GL_SHADER_STORAGE_BUFFER, 2);
-  links_.bind(GL_SHADER_STORAGE_BUFFER, 3);
-  depths(image).bind(GL_SHADER_STORAGE_BUFFER, 4);
-  normals_.bind(GL_SHADER_STORAGE_BUFFER, 5);
-  ao_.bind(GL_SHADER_STORAGE_BUFFER, 6);
+  image.bind();
+  gl::bind_storage({{owners_, binding::kSpanOwners},
+                    {links_, binding::kSpanLinks},
+                    {depths(image), binding::kSurfaceDepths},
+                    {normals_, binding::kSpanNormals},
+                    {ao_, binding::kPixelAo}});
 }
 
 std::vector<glm::uvec2> GpuSurfaces::download_links(std::size_t spans) const {

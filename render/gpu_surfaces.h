@@ -10,7 +10,7 @@
 //            (normals; render/model/octahedral.glsl)
 //   ao       float per pixel: deep ambient occlusion of the front surface (deep AO)
 // render/passes/surface_data.glsl declares the same buffers for shaders; bind() puts them and
-// the span image at those bindings.
+// the span image at the bindings render/bindings.h reserves.
 #pragma once
 
 #include <cstddef>
@@ -29,7 +29,7 @@ class GpuSurfaces {
   // depths.
   void prepare(const GpuSpanImage& image);
 
-  // Binds the span image (0, 1) and the surface buffers (2..6) for a pass.
+  // Binds the span image and the surface buffers for a pass.
   void bind(const GpuSpanImage& image) const;
 
   const gl::Buffer& owners() const { return owners_; }

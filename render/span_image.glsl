@@ -2,17 +2,11 @@
 // contract): per pixel p = x + y * width a PixelSpans record, and its spans
 // span_depths[offset .. offset + count) as vec2(entry, exit) view depths in world units.
 // `inside` is the fluid length along the ray (world units), exact past a span cap.
-// Before including, a pass may define SPAN_PIXELS_BINDING / SPAN_DEPTHS_BINDING (default 0, 1)
-// and SPAN_IMAGE_ACCESS (default: read and write; e.g. `readonly`).
+// The pass hands the bindings in (binding::span_image_defines(), render/bindings.h); before
+// including, it may define SPAN_IMAGE_ACCESS (default: read and write; e.g. `readonly`).
 
 #include "render/perspective_grid.glsl"
 
-#ifndef SPAN_PIXELS_BINDING
-#define SPAN_PIXELS_BINDING 0
-#endif
-#ifndef SPAN_DEPTHS_BINDING
-#define SPAN_DEPTHS_BINDING 1
-#endif
 #ifndef SPAN_IMAGE_ACCESS
 #define SPAN_IMAGE_ACCESS
 #endif

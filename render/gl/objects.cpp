@@ -26,6 +26,17 @@ const char* gl_error_name(GLenum e) {
   }
 }
 
+// The driver's compile log of a shader or link log of a program: `get_iv` and `get_log` are
+// glGetShaderiv and glGetShaderInfoLog, or the Program pair.
+template <class GetIv, class GetLog>
+std::string info_log(GLuint id, GetIv get_iv, GetLog get_log) {
+  GLint length = 0;
+  get_iv(id, GL_INFO_LOG_LENGTH, &length);
+  std::string info(static_cast<std::size_t>(length > 0 ? length : 1), '\0');
+  get_log(id, length, nullptr, info.data());
+  return info.c_str();  // up to the terminating NUL the driver wrote
+}
+
 std::atomic<std::int64_t> g_memory_current{0};
 std::atomic<std::int64_t> g_memory_peak{0};
 
@@ -142,6 +153,10 @@ void Buffer::bind_range(GLenum target, GLuint index, std::size_t offset, std::si
                     static_cast<GLsizeiptr>(bytes));
 }
 
+void bind_storage(std::initializer_list<StorageBinding> bindings) {
+  for (const StorageBinding& b : bindings) b.buffer.bind(GL_SHADER_STORAGE_BUFFER, b.index);
+}
+
 // --- Program ----------------------------------------------------------------------------------
 
 Program Program::compute(std::string_view name, const std::string& source) {
@@ -152,12 +167,9 @@ Program Program::compute(std::string_view name, const std::string& source) {
   GLint ok = GL_FALSE;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
   if (!ok) {
-    GLint length = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-    std::string info(static_cast<std::size_t>(length > 0 ? length : 1), '\0');
-    glGetShaderInfoLog(shader, length, nullptr, info.data());
+    const std::string log = info_log(shader, glGetShaderiv, glGetShaderInfoLog);
     glDeleteShader(shader);
-    throw make_error("compiling ", name, " failed:\n", info.c_str());
+    throw make_error("compiling ", name, " failed:\n", log);
   }
   Program program;
   program.handle_ = Handle<DeleteProgram>(glCreateProgram());
@@ -166,13 +178,12 @@ Program Program::compute(std::string_view name, const std::string& source) {
   glLinkProgram(program.id());
   glDeleteShader(shader);  // freed with the program
   glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
-  if (!ok) {
-    GLint length = 0;
-    glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
-    std::string info(static_cast<std::size_t>(length > 0 ? length : 1), '\0');
-    glGetProgramInfoLog(program.id(), length, nullptr, info.data());
-    throw make_error("linking ", name, " failed:\n", info.c_str());
-  }
+  if (!ok)
+    throw make_error("linking ", name, " failed:\n",
+                     info_log(program.id(), glGetProgramiv, glGetProgramInfoLog));
+  GLint size[3] = {0, 0, 0};
+  glGetProgramiv(program.id(), GL_COMPUTE_WORK_GROUP_SIZE, size);
+  program.work_group_size_ = glm::uvec3(size[0], size[1], size[2]);
   return program;
 }
 
@@ -216,13 +227,6 @@ void Program::set(const char* n, glm::uvec3 v) const {
 }
 void Program::set(const char* n, const glm::mat4& v) const {
   glProgramUniformMatrix4fv(id(), uniform(n), 1, GL_FALSE, glm::value_ptr(v));
-}
-
-glm::uvec3 Program::work_group_size() const {
-  GLint size[3] = {0, 0, 0};
-  glGetProgramiv(id(), GL_COMPUTE_WORK_GROUP_SIZE, size);
-  return {static_cast<unsigned>(size[0]), static_cast<unsigned>(size[1]),
-          static_cast<unsigned>(size[2])};
 }
 
 // --- Texture3D --------------------------------------------------------------------------------

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -129,6 +130,15 @@ class Buffer {
   MemoryTicket ticket_;
 };
 
+// One buffer bound whole to a shader-storage binding, for bind_storage().
+struct StorageBinding {
+  const Buffer& buffer;
+  GLuint index;
+};
+
+// Binds each buffer whole at its GL_SHADER_STORAGE_BUFFER index, so a pass lists its buffers once.
+void bind_storage(std::initializer_list<StorageBinding> bindings);
+
 // A linked compute program. Uniforms are set by name with direct state access.
 class Program {
  public:
@@ -158,8 +168,8 @@ class Program {
   void set(const char* name, glm::uvec3 v) const;
   void set(const char* name, const glm::mat4& v) const;
 
-  // Work-group size declared by the shader (local_size_x/y/z).
-  glm::uvec3 work_group_size() const;
+  // Work-group size declared by the shader (local_size_x/y/z), queried once at link time.
+  glm::uvec3 work_group_size() const { return work_group_size_; }
 
  private:
   // Looked up by the caller's string without making a std::string: setting uniforms every
@@ -170,6 +180,7 @@ class Program {
   };
   Handle<DeleteProgram> handle_;
   std::string name_;
+  glm::uvec3 work_group_size_{0};
   mutable std::unordered_map<std::string, GLint, NameHash, std::equal_to<>> locations_;
 };
 

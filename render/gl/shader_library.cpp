@@ -6,6 +6,16 @@
 
 namespace voxspan::gl {
 
+std::string defines(std::initializer_list<Define> list) {
+  std::string out;
+  for (const Define& d : list) {
+    out += "#define ";
+    out += d.name;
+    out += ' ' + std::to_string(d.value) + '\n';
+  }
+  return out;
+}
+
 ShaderLibrary::ShaderLibrary(std::initializer_list<std::span<const EmbeddedFile>> extra) {
   auto add = [this](std::span<const EmbeddedFile> set) {
     files_.insert(files_.end(), set.begin(), set.end());

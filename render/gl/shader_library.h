@@ -4,7 +4,8 @@
 // #defines, and expands `#include "path"` lines (paths relative to the repository root, each
 // file included once), so passes share helpers instead of copying them. Each expanded file
 // starts with `#line 1 <n>`: a compiler message "n:line" names file n of the list the error
-// message prints.
+// message prints. Numbers a pass hands its shader (binding points, sizes) go in as #defines built
+// by defines(), so the shader never writes them itself.
 #pragma once
 
 #include <initializer_list>
@@ -17,6 +18,15 @@
 #include "render/gl/objects.h"
 
 namespace voxspan::gl {
+
+// One constant for a shader: `#define name value`.
+struct Define {
+  std::string_view name;
+  unsigned value;
+};
+
+// "#define name value\n" per entry, for ShaderLibrary::compute().
+std::string defines(std::initializer_list<Define> list);
 
 class ShaderLibrary {
  public:

@@ -18,12 +18,14 @@ layout(local_size_x = 256) in;
 #include "render/passes/sphere_work.glsl"
 #include "render/passes/depth_bounds.glsl"
 
-layout(std430, binding = 0) readonly buffer Particles { vec4 particles[]; };
-layout(std430, binding = 1) buffer TileCounts { uint tile_counts[]; };
-layout(std430, binding = 2) writeonly buffer TileLists { uint tile_lists[]; };
-layout(std430, binding = 3) buffer Large { uint large[]; };  // count, cursor
-layout(std430, binding = 4) writeonly buffer LargeList { uint large_list[]; };
-layout(std430, binding = 5) buffer DepthBounds { uvec2 depth_bounds[]; };
+layout(std430, binding = PARTICLES_BINDING) readonly buffer Particles { vec4 particles[]; };
+layout(std430, binding = TILE_COUNTS_BINDING) buffer TileCounts { uint tile_counts[]; };
+layout(std430, binding = TILE_LISTS_BINDING) writeonly buffer TileLists { uint tile_lists[]; };
+layout(std430, binding = LARGE_BINDING) buffer Large {
+  uint large[];  // count, cursor
+};
+layout(std430, binding = LARGE_LIST_BINDING) writeonly buffer LargeList { uint large_list[]; };
+layout(std430, binding = DEPTH_BOUNDS_BINDING) buffer DepthBounds { uvec2 depth_bounds[]; };
 
 uniform uint u_count;       // particles
 uniform ivec2 u_tile_size;  // largest tile, pixels

@@ -6,24 +6,33 @@
 #include "render/gl/info.h"
 #include "render/grid_uniforms.h"
 #include "render/passes/depth_bounds.h"
+#include "render/passes/dispatch.h"
 
 namespace voxspan {
 namespace {
 
 constexpr int kSharedTiles = 1024;  // tallies per work group in shared memory (4 KiB each)
-constexpr GLuint kMaxGroups = 65535;
 constexpr GLbitfield kBarriers = GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
+
+enum Binding : GLuint { kParticles, kTileCounts, kTileLists, kLarge, kLargeList, kDepthBounds };
 
 }  // namespace
 
 BinPass::BinPass(const gl::ShaderLibrary& shaders)
     : automatic_(gl::software_renderer() ? BinTallies::global : BinTallies::shared) {
+  const std::string bindings = gl::defines({{"PARTICLES_BINDING", kParticles},
+                                            {"TILE_COUNTS_BINDING", kTileCounts},
+                                            {"TILE_LISTS_BINDING", kTileLists},
+                                            {"LARGE_BINDING", kLarge},
+                                            {"LARGE_LIST_BINDING", kLargeList},
+                                            {"DEPTH_BOUNDS_BINDING", kDepthBounds}});
   const std::string variant[3] = {"#define BIN_LARGE_ONLY 1\n", "",
-                                  "#define BIN_SHARED_TILES " + std::to_string(kSharedTiles) + "\n"};
+                                  gl::defines({{"BIN_SHARED_TILES", kSharedTiles}})};
   for (int v = 0; v < 3; ++v)
     for (int scatter = 0; scatter < 2; ++scatter)
-      programs_[v][scatter] = shaders.compute(
-          "render/passes/bin.comp", variant[v] + (scatter ? "#define BIN_SCATTER 1\n" : ""));
+      programs_[v][scatter] =
+          shaders.compute("render/passes/bin.comp",
+                          bindings + variant[v] + (scatter ? "#define BIN_SCATTER 1" : ""));
 }
 
 const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
@@ -35,7 +44,6 @@ const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
   const int variant = !tile_lists ? 0 : (shared ? 2 : 1);
   const gl::Program& count_pass = programs_[variant][0];
   const gl::Program& scatter_pass = programs_[variant][1];
-  const auto groups = static_cast<GLuint>(std::clamp<std::size_t>((count + 255) / 256, 1, kMaxGroups));
   for (const gl::Program* p : {&count_pass, &scatter_pass}) {
     set_grid_uniforms(*p, grid);
     p->set("u_count", static_cast<unsigned>(count));
@@ -44,12 +52,12 @@ const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
     set_depth_block_uniforms(*p, grid);
   }
   const auto bind_all = [&] {
-    particles.bind(GL_SHADER_STORAGE_BUFFER, 0);
-    counts_.bind(GL_SHADER_STORAGE_BUFFER, 1);
-    lists_.bind(GL_SHADER_STORAGE_BUFFER, 2);
-    large_.bind(GL_SHADER_STORAGE_BUFFER, 3);
-    large_list_.bind(GL_SHADER_STORAGE_BUFFER, 4);
-    depth_bounds_.bind(GL_SHADER_STORAGE_BUFFER, 5);
+    gl::bind_storage({{particles, kParticles},
+                      {counts_, kTileCounts},
+                      {lists_, kTileLists},
+                      {large_, kLarge},
+                      {large_list_, kLargeList},
+                      {depth_bounds_, kDepthBounds}});
   };
   counts_.reserve((tile_count + 1) * 4);
   counts_.clear(0, (tile_count + 1) * 4);
@@ -61,7 +69,7 @@ const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
   lists_.reserve(4);
   large_list_.reserve(4);
   bind_all();
-  count_pass.dispatch(groups);
+  dispatch_strided(count_pass, count);
   glMemoryBarrier(kBarriers);
 
   bins_.offsets.clear();
@@ -75,7 +83,7 @@ const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
   lists_.reserve(std::max<std::size_t>(tile_lists ? bins_.offsets.back() : 0, 1) * 4);
   large_list_.reserve(std::max<std::size_t>(bins_.large, 1) * 4);
   bind_all();
-  scatter_pass.dispatch(groups);
+  dispatch_strided(scatter_pass, count);
   glMemoryBarrier(kBarriers);
   return bins_;
 }

@@ -2,9 +2,10 @@
 // (3D DDA) and yields the runs of inner cells, for the compress pass to skip inner-empty and
 // fill inner-full stretches (paper 001, sec. 4.3). Same cell rule as render/cell_march.h.
 // The cell states are an R8UI 3D texture (bits 0-1 occupancy, bit 2 inner:
-// voxspan/cell_states.h); outside the grid is empty air.
+// voxspan/cell_states.h); outside the grid is empty air. Its texture unit:
+// binding::cell_state_defines().
 
-layout(binding = 0) uniform usampler3D u_cells;
+layout(binding = CELL_STATES_UNIT) uniform usampler3D u_cells;
 uniform uint u_cells_on;        // 0: no cell states this frame
 uniform vec3 u_cells_origin;    // world position of cell (0, 0, 0)'s corner
 uniform float u_cells_size;     // cell edge length

@@ -3,7 +3,7 @@
 // the 65535 that GL guarantees.
 layout(local_size_x = 256) in;
 
-layout(std430, binding = 0) writeonly buffer Words { uvec4 words[]; };
+layout(std430, binding = WORDS_BINDING) writeonly buffer Words { uvec4 words[]; };
 
 uniform uint u_count;
 

@@ -2,16 +2,18 @@
 
 #include <algorithm>
 
+#include "render/passes/dispatch.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
 namespace {
 constexpr std::size_t kMaxBinding = std::size_t(1) << 30;
-constexpr GLuint kMaxGroups = 65535;
+enum Binding : GLuint { kWords };
 }  // namespace
 
 ClearPass::ClearPass(const gl::ShaderLibrary& shaders)
-    : program_(shaders.compute("render/passes/clear.comp")) {
+    : program_(shaders.compute("render/passes/clear.comp",
+                               gl::defines({{"WORDS_BINDING", kWords}}))) {
   GLint alignment = 0;
   glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
   offset_alignment_ = static_cast<std::size_t>(std::max(alignment, 1));
@@ -22,14 +24,12 @@ void ClearPass::run(const gl::Buffer& buffer, std::size_t offset, std::size_t by
     throw make_error("ClearPass: range [", offset, ", +", bytes, ") of a ", buffer.size(),
                      "-byte buffer is not 16-byte sized, aligned to ", offset_alignment_,
                      " and inside the buffer");
-  const GLuint group = program_.work_group_size().x;
   for (std::size_t done = 0; done < bytes; done += kMaxBinding) {
     const std::size_t chunk = std::min(kMaxBinding, bytes - done);
     const std::size_t words = chunk / 16;
-    buffer.bind_range(GL_SHADER_STORAGE_BUFFER, 0, offset + done, chunk);
+    buffer.bind_range(GL_SHADER_STORAGE_BUFFER, kWords, offset + done, chunk);
     program_.set("u_count", static_cast<unsigned>(words));
-    const auto groups = static_cast<GLuint>(std::min<std::size_t>(kMaxGroups, (words + group - 1) / group));
-    program_.dispatch(groups);
+    dispatch_strided(program_, words);
   }
 }
 

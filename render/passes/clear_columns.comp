@@ -9,16 +9,13 @@ layout(local_size_x = 64) in;
 #include "render/perspective_grid.glsl"
 #include "render/passes/bits.glsl"
 #include "render/passes/cell_march.glsl"
-#define DEPTH_BOUNDS_BINDING 1
 #include "render/passes/column_range.glsl"
 
-layout(std430, binding = 0) writeonly buffer Bits { uvec4 bits[]; };
-
-uniform ivec4 u_tile;  // x0, y0, width, height
+layout(std430, binding = BITS_BINDING) writeonly buffer Bits { uvec4 bits[]; };
 
 void main() {
   for (uint p = gl_GlobalInvocationID.x; p < u_tile_pixels; p += gl_NumWorkGroups.x * 64u) {
-    ivec2 pixel = u_tile.xy + ivec2(p % uint(u_tile.z), p / uint(u_tile.z));
+    ivec2 pixel = tile_image_pixel(p);
     uint first, last;
     if (!column_chunks(pixel, first, last)) continue;
     for (uint c = first; c <= last; ++c) bits[c * u_tile_pixels + p] = uvec4(0u);

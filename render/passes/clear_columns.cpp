@@ -1,14 +1,21 @@
 #include "render/passes/clear_columns.h"
 
-#include <algorithm>
-
+#include "render/bindings.h"
 #include "render/grid_uniforms.h"
+#include "render/passes/bits.h"
 #include "render/passes/depth_bounds.h"
+#include "render/passes/dispatch.h"
 
 namespace voxspan {
+namespace {
+enum Binding : GLuint { kBits, kDepthBounds };
+}  // namespace
 
 ClearColumnsPass::ClearColumnsPass(const gl::ShaderLibrary& shaders)
-    : program_(shaders.compute("render/passes/clear_columns.comp")) {}
+    : program_(shaders.compute("render/passes/clear_columns.comp",
+                               binding::cell_state_defines() +
+                                   gl::defines({{"BITS_BINDING", kBits},
+                                                {"DEPTH_BOUNDS_BINDING", kDepthBounds}}))) {}
 
 void ClearColumnsPass::run(const gl::Buffer& bits, const gl::Buffer& depth_bounds,
                            const PerspectiveGrid& grid, const TileLayout& layout,
@@ -17,12 +24,10 @@ void ClearColumnsPass::run(const gl::Buffer& bits, const gl::Buffer& depth_bound
   set_grid_uniforms(program_, grid);
   set_depth_block_uniforms(program_, grid);
   cells.bind(program_);
-  program_.set("u_chunks", static_cast<unsigned>(layout.column_bytes / 16));
-  program_.set("u_tile_pixels", static_cast<unsigned>(pixels));
-  program_.set("u_tile", glm::ivec4(tile.x0, tile.y0, tile.width, tile.height));
-  bits.bind_range(GL_SHADER_STORAGE_BUFFER, 0, 0, layout.column_bytes * pixels);
-  depth_bounds.bind(GL_SHADER_STORAGE_BUFFER, 1);
-  program_.dispatch(static_cast<GLuint>(std::clamp<std::size_t>((pixels + 63) / 64, 1, 65535)));
+  set_bit_uniforms(program_, layout, tile);
+  bits.bind_range(GL_SHADER_STORAGE_BUFFER, kBits, 0, layout.column_bytes * pixels);
+  depth_bounds.bind(GL_SHADER_STORAGE_BUFFER, kDepthBounds);
+  dispatch_strided(program_, pixels);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

@@ -3,16 +3,14 @@
 // near plane on when the ray starts inside inner-full cells. The column clear zeroes exactly
 // these chunks and the compress pass reads exactly these, so the rest of the grid is never
 // touched. A margin of a layer and of 1e-5 of the depth on each side absorbs float rounding
-// between the bounds and the splat's chords. Needs render/perspective_grid.glsl and render/passes/cell_march.glsl; the
-// bounds buffer sits at DEPTH_BOUNDS_BINDING (default 7).
+// between the bounds and the splat's chords. Needs render/perspective_grid.glsl and
+// render/passes/cell_march.glsl; the pass defines DEPTH_BOUNDS_BINDING, the bounds buffer's.
 
 #include "render/passes/depth_bounds.glsl"
 
-#ifndef DEPTH_BOUNDS_BINDING
-#define DEPTH_BOUNDS_BINDING 7
-#endif
-
-layout(std430, binding = DEPTH_BOUNDS_BINDING) readonly buffer DepthBounds { uvec2 depth_bounds[]; };
+layout(std430, binding = DEPTH_BOUNDS_BINDING) readonly buffer DepthBounds {
+  uvec2 depth_bounds[];
+};
 
 bool column_chunks(ivec2 pixel, out uint first, out uint last) {
   uvec2 block = depth_bounds[depth_block(pixel)];

@@ -21,14 +21,21 @@ layout(local_size_x = 64) in;
 #include "render/passes/column_scan.glsl"
 #include "render/passes/column_range.glsl"
 
-layout(std430, binding = 2) readonly buffer Bits { uvec4 bits[]; };
-layout(std430, binding = 3) buffer ScratchSpans { vec2 scratch_spans[]; };  // [k * pixels + p]
-layout(std430, binding = 4) buffer ScratchCounts { uint scratch_counts[]; }; // count, then offset
-layout(std430, binding = 5) buffer ScratchExits { float scratch_last_exit[]; };
-layout(std430, binding = 6) buffer Stats { uint stats[]; };  // capped pixels, spans past caps
-layout(std430, binding = 8) buffer Rescan { uint rescan[]; };  // count, then tile pixels
+layout(std430, binding = BITS_BINDING) readonly buffer Bits { uvec4 bits[]; };
+layout(std430, binding = SCRATCH_SPANS_BINDING) buffer ScratchSpans {
+  vec2 scratch_spans[];  // [k * pixels + p]
+};
+layout(std430, binding = SCRATCH_COUNTS_BINDING) buffer ScratchCounts {
+  uint scratch_counts[];  // count, then offset
+};
+layout(std430, binding = SCRATCH_EXITS_BINDING) buffer ScratchExits { float scratch_last_exit[]; };
+layout(std430, binding = STATS_BINDING) buffer Stats {
+  uint stats[];  // capped pixels, spans past caps
+};
+layout(std430, binding = RESCAN_BINDING) buffer Rescan {
+  uint rescan[];  // count, then tile pixels
+};
 
-uniform ivec4 u_tile;            // x0, y0, width, height
 uniform uint u_cap;              // stored spans per pixel; 0 = no cap
 uniform uint u_scratch_spans;    // spans per pixel the scratch holds
 uniform uint u_span_base;        // copy, rescan: this tile's first span in the image
@@ -97,7 +104,7 @@ void compress_pixel(ivec2 pixel) {
 
 void run_pixel(uint p) {
   g_pixel = p;
-  ivec2 pixel = u_tile.xy + ivec2(p % uint(u_tile.z), p / uint(u_tile.z));
+  ivec2 pixel = tile_image_pixel(p);
   g_image_pixel = uint(pixel.x) + uint(pixel.y) * uint(u_image.x);
   compress_pixel(pixel);
 }

@@ -1,22 +1,46 @@
 #include "render/passes/compress.h"
 
-#include <algorithm>
+#include <string>
 
+#include "render/bindings.h"
 #include "render/grid_uniforms.h"
+#include "render/passes/bits.h"
 #include "render/passes/depth_bounds.h"
+#include "render/passes/dispatch.h"
 
 namespace voxspan {
 namespace {
-constexpr GLuint kMaxGroups = 65535;
-// Bindings of compress.comp (the span image takes 0 and 1).
-constexpr GLuint kBits = 2, kScratchSpans = 3, kScratchCounts = 4, kScratchExits = 5, kStats = 6,
-                 kDepthBounds = 7, kRescan = 8;
+
+constexpr const char* kShader = "render/passes/compress.comp";
+
+// compress.comp's own buffers, after the span image's.
+enum Binding : GLuint {
+  kBits = binding::kSpanImageEnd,
+  kScratchSpans,
+  kScratchCounts,
+  kScratchExits,
+  kStats,
+  kDepthBounds,
+  kRescan,
+};
+
+std::string binding_defines() {
+  return binding::span_image_defines() + binding::cell_state_defines() +
+         gl::defines({{"BITS_BINDING", kBits},
+                      {"SCRATCH_SPANS_BINDING", kScratchSpans},
+                      {"SCRATCH_COUNTS_BINDING", kScratchCounts},
+                      {"SCRATCH_EXITS_BINDING", kScratchExits},
+                      {"STATS_BINDING", kStats},
+                      {"DEPTH_BOUNDS_BINDING", kDepthBounds},
+                      {"RESCAN_BINDING", kRescan}});
+}
+
 }  // namespace
 
 CompressPass::CompressPass(const gl::ShaderLibrary& shaders)
-    : count_(shaders.compute("render/passes/compress.comp")),
-      copy_(shaders.compute("render/passes/compress.comp", "#define COMPRESS_COPY 1")),
-      rescan_(shaders.compute("render/passes/compress.comp", "#define COMPRESS_RESCAN 1")),
+    : count_(shaders.compute(kShader, binding_defines())),
+      copy_(shaders.compute(kShader, binding_defines() + "#define COMPRESS_COPY 1")),
+      rescan_(shaders.compute(kShader, binding_defines() + "#define COMPRESS_RESCAN 1")),
       stats_(16) {}
 
 void CompressPass::begin_frame() { stats_.clear(); }
@@ -32,9 +56,7 @@ void CompressPass::set_uniforms(const gl::Program& p, const TileLayout& layout,
                                 const CompressSettings& settings, const GpuSpanImage& image) const {
   set_grid_uniforms(p, image.grid());
   cells.bind(p);
-  p.set("u_chunks", static_cast<unsigned>(layout.column_bytes / 16));
-  p.set("u_tile_pixels", static_cast<unsigned>(tile.pixels()));
-  p.set("u_tile", glm::ivec4(tile.x0, tile.y0, tile.width, tile.height));
+  set_bit_uniforms(p, layout, tile);
   p.set("u_gap", float(settings.gap_bridging));
   p.set("u_center_gap_scale", float(1 + image.grid().k_d() / 2));
   p.set("u_cap", settings.max_spans);
@@ -56,21 +78,20 @@ std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_
   scratch_exits_.fit(most * 4);
   rescan_list_.fit((most + 1) * 4);
   rescan_list_.clear(0, 4);
-  const auto groups = static_cast<GLuint>(std::clamp<std::size_t>((pixels + 63) / 64, 1, kMaxGroups));
   const auto bind_all = [&] {
-    image.bind(0, 1);
+    image.bind();
     bits.bind_range(GL_SHADER_STORAGE_BUFFER, kBits, 0, layout.column_bytes * pixels);
-    scratch_spans_.bind(GL_SHADER_STORAGE_BUFFER, kScratchSpans);
-    scratch_counts_.bind(GL_SHADER_STORAGE_BUFFER, kScratchCounts);
-    scratch_exits_.bind(GL_SHADER_STORAGE_BUFFER, kScratchExits);
-    stats_.bind(GL_SHADER_STORAGE_BUFFER, kStats);
-    depth_bounds.bind(GL_SHADER_STORAGE_BUFFER, kDepthBounds);
-    rescan_list_.bind(GL_SHADER_STORAGE_BUFFER, kRescan);
+    gl::bind_storage({{scratch_spans_, kScratchSpans},
+                      {scratch_counts_, kScratchCounts},
+                      {scratch_exits_, kScratchExits},
+                      {stats_, kStats},
+                      {depth_bounds, kDepthBounds},
+                      {rescan_list_, kRescan}});
   };
 
   set_uniforms(count_, layout, tile, cells, settings, image);
   bind_all();
-  count_.dispatch(groups);
+  dispatch_strided(count_, pixels);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
   prefix_sum.run(scratch_counts_, pixels);
@@ -83,7 +104,7 @@ std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_
   set_uniforms(copy_, layout, tile, cells, settings, image);
   copy_.set("u_span_base", span_base);
   bind_all();
-  copy_.dispatch(groups);
+  dispatch_strided(copy_, pixels);
   std::uint32_t rescans = 0;
   rescan_list_.download(&rescans, 4);
   if (rescans != 0) {
@@ -91,7 +112,7 @@ std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_
     rescan_.set("u_span_base", span_base);
     rescan_.set("u_rescan_count", rescans);
     bind_all();
-    rescan_.dispatch(static_cast<GLuint>(std::clamp<std::size_t>((rescans + 63) / 64, 1, kMaxGroups)));
+    dispatch_strided(rescan_, rescans);
   }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   return total;

@@ -11,7 +11,7 @@ layout(local_size_x = 64) in;
 #include "render/passes/thread_index.glsl"
 #include "render/model/links.glsl"
 
-layout(std430, binding = 7) buffer ConnectTally { uint unlinkable_spans; };
+layout(std430, binding = TALLY_BINDING) buffer ConnectTally { uint unlinkable_spans; };
 
 void main() {
   uint i = thread_index();

@@ -1,13 +1,28 @@
 #include "render/passes/connect.h"
 
+#include <string>
+
+#include "render/bindings.h"
 #include "render/grid_uniforms.h"
 #include "render/passes/dispatch.h"
 
 namespace voxspan {
+namespace {
+
+constexpr const char* kShader = "render/passes/connect.comp";
+
+// connect.comp's own buffer, after the surface data.
+enum Binding : GLuint { kTally = binding::kSurfacesEnd };
+
+std::string binding_defines() {
+  return binding::surface_defines() + gl::defines({{"TALLY_BINDING", kTally}});
+}
+
+}  // namespace
 
 ConnectPass::ConnectPass(const gl::ShaderLibrary& shaders)
-    : owners_(shaders.compute("render/passes/connect.comp", "#define CONNECT_OWNERS 1")),
-      connect_(shaders.compute("render/passes/connect.comp")),
+    : owners_(shaders.compute(kShader, binding_defines() + "#define CONNECT_OWNERS 1")),
+      connect_(shaders.compute(kShader, binding_defines())),
       tally_(16) {}
 
 std::uint32_t ConnectPass::run(const GpuSpanImage& image, GpuSurfaces& surfaces) {
@@ -15,7 +30,7 @@ std::uint32_t ConnectPass::run(const GpuSpanImage& image, GpuSurfaces& surfaces)
   if (image.span_count() == 0) return 0;
   tally_.clear();
   surfaces.bind(image);
-  tally_.bind(GL_SHADER_STORAGE_BUFFER, 7);
+  tally_.bind(GL_SHADER_STORAGE_BUFFER, kTally);
   set_grid_uniforms(owners_, image.grid());
   dispatch_threads(owners_, std::size_t(image.width()) * std::size_t(image.height()));
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

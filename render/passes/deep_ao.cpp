@@ -1,12 +1,13 @@
 #include "render/passes/deep_ao.h"
 
+#include "render/bindings.h"
 #include "render/grid_uniforms.h"
 #include "render/passes/dispatch.h"
 
 namespace voxspan {
 
 DeepAoPass::DeepAoPass(const gl::ShaderLibrary& shaders)
-    : program_(shaders.compute("render/passes/deep_ao.comp")) {}
+    : program_(shaders.compute("render/passes/deep_ao.comp", binding::surface_defines())) {}
 
 void DeepAoPass::run(const GpuSpanImage& image, const GpuSurfaces& surfaces,
                      const model::ShadeUniforms& uniforms) {

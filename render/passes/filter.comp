@@ -15,7 +15,9 @@ layout(local_size_x = 64) in;
 #include "render/model/octahedral.glsl"
 #include "render/model/surface_geometry.glsl"
 
-layout(std430, binding = 7) writeonly buffer FilteredDepths { vec2 filtered_depths[]; };
+layout(std430, binding = FILTERED_DEPTHS_BINDING) writeonly buffer FilteredDepths {
+  vec2 filtered_depths[];
+};
 
 uniform uint u_iteration;       // 0-based
 uniform uint u_max_iterations;

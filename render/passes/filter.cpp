@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/bindings.h"
 #include "render/grid_uniforms.h"
 #include "render/passes/dispatch.h"
 
 namespace voxspan {
 namespace {
+
+// filter.comp's own buffer, after the surface data.
+enum Binding : GLuint { kFilteredDepths = binding::kSurfacesEnd };
 
 // 2 (radius / pixel(z))^2 = scale / z^2, pixel(z) = 2 tan(fov_y / 2) / height * z.
 double iteration_scale(const PerspectiveGrid& grid, double radius) {
@@ -19,7 +23,9 @@ double iteration_scale(const PerspectiveGrid& grid, double radius) {
 }  // namespace
 
 FilterPass::FilterPass(const gl::ShaderLibrary& shaders)
-    : program_(shaders.compute("render/passes/filter.comp")) {}
+    : program_(shaders.compute("render/passes/filter.comp",
+                               binding::surface_defines() +
+                                   gl::defines({{"FILTERED_DEPTHS_BINDING", kFilteredDepths}}))) {}
 
 double FilterPass::iterations_at(const PerspectiveGrid& grid, double radius, double depth) {
   return std::ceil(iteration_scale(grid, radius) / (depth * depth));
@@ -42,7 +48,7 @@ int FilterPass::run(const GpuSpanImage& image, GpuSurfaces& surfaces, const Surf
   program_.set("u_iteration_scale", float(iteration_scale(image.grid(), options.filter_radius)));
   for (int i = 0; i < iterations; ++i) {
     surfaces.bind(image);
-    surfaces.filter_buffer(i % 2).bind(GL_SHADER_STORAGE_BUFFER, 7);
+    surfaces.filter_buffer(i % 2).bind(GL_SHADER_STORAGE_BUFFER, kFilteredDepths);
     program_.set("u_iteration", static_cast<unsigned>(i));
     dispatch_threads(program_, spans);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

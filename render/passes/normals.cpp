@@ -1,12 +1,13 @@
 #include "render/passes/normals.h"
 
+#include "render/bindings.h"
 #include "render/grid_uniforms.h"
 #include "render/passes/dispatch.h"
 
 namespace voxspan {
 
 NormalsPass::NormalsPass(const gl::ShaderLibrary& shaders)
-    : program_(shaders.compute("render/passes/normals.comp")) {}
+    : program_(shaders.compute("render/passes/normals.comp", binding::surface_defines())) {}
 
 void NormalsPass::run(const GpuSpanImage& image, const GpuSurfaces& surfaces) {
   if (image.span_count() == 0) return;

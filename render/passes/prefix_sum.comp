@@ -1,19 +1,20 @@
 // render/passes/prefix_sum.comp - exclusive prefix sum of uints in blocks of 4096 (256 threads
-// x 16 values), the building block of PrefixSumPass (render/passes/prefix_sum.h).
+// x 16 values: PREFIX_PER_THREAD), the building block of PrefixSumPass
+// (render/passes/prefix_sum.h).
 //   scan (default): scans each block of values[0, u_count) in place and writes the block's total
 //     to sums[u_sum_base + block];
-//   PREFIX_ADD: values[i] += sums[i / 4096], after the block totals were scanned in turn.
+//   PREFIX_ADD: values[i] += sums[i / kBlock], after the block totals were scanned in turn.
 // Reads and writes: values, sums. Cost: one read and one write per value per pass.
 layout(local_size_x = 256) in;
 
-layout(std430, binding = 0) buffer Values { uint values[]; };
-layout(std430, binding = 1) buffer Sums { uint sums[]; };
+layout(std430, binding = VALUES_BINDING) buffer Values { uint values[]; };
+layout(std430, binding = SUMS_BINDING) buffer Sums { uint sums[]; };
 
 uniform uint u_count;
 uniform uint u_sum_base;
 
-const uint kPerThread = 16u;
-const uint kBlock = 256u * kPerThread;  // values per work group (PrefixSumPass's kBlock)
+const uint kPerThread = PREFIX_PER_THREAD;
+const uint kBlock = gl_WorkGroupSize.x * kPerThread;  // values per work group
 
 #ifndef PREFIX_ADD
 shared uint s_sum[256];

@@ -26,6 +26,7 @@ class PrefixSumPass {
 
   gl::Program scan_;
   gl::Program add_;
+  std::size_t block_;  // values one scan work group sums
   std::vector<gl::Buffer> level_sums_;
 };
 

@@ -1,6 +1,6 @@
 // render/passes/shade_common.glsl - what every shading pass includes: the span image and the
 // surface data (read only), the shading uniforms, the shared model files, and the output image
-// (vec4 linear RGBA per pixel, binding 7, row 0 at the top).
+// (vec4 linear RGBA per pixel, row 0 at the top); bindings: binding::shade_defines().
 #define SPAN_IMAGE_ACCESS readonly
 #include "render/span_image.glsl"
 #include "render/passes/surface_data.glsl"
@@ -13,6 +13,6 @@
 #include "render/model/lighting.glsl"
 #include "render/model/shade_modes.glsl"
 
-layout(std430, binding = 7) writeonly buffer ShadedImage { vec4 shaded[]; };
+layout(std430, binding = SHADED_IMAGE_BINDING) writeonly buffer ShadedImage { vec4 shaded[]; };
 
 ivec2 thread_pixel(uint i) { return ivec2(int(i % uint(u_image.x)), int(i / uint(u_image.x))); }

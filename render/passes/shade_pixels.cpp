@@ -1,18 +1,19 @@
 #include "render/passes/shade_pixels.h"
 
+#include "render/bindings.h"
 #include "render/grid_uniforms.h"
 #include "render/passes/dispatch.h"
 
 namespace voxspan {
 
 ShadePixelsPass::ShadePixelsPass(const gl::ShaderLibrary& shaders, std::string_view shader)
-    : program_(shaders.compute(shader)) {}
+    : program_(shaders.compute(shader, binding::shade_defines())) {}
 
 void ShadePixelsPass::run(const GpuSpanImage& image, const GpuSurfaces& surfaces,
                           const model::ShadeUniforms& uniforms, GpuFloatImage& out) {
   out.resize(image.width(), image.height());
   surfaces.bind(image);
-  out.buffer().bind(GL_SHADER_STORAGE_BUFFER, 7);
+  out.buffer().bind(GL_SHADER_STORAGE_BUFFER, binding::kShadedImage);
   set_grid_uniforms(program_, image.grid());
   model::set_shade_uniforms(program_, uniforms);
   dispatch_threads(program_, std::size_t(image.width()) * std::size_t(image.height()));

@@ -11,7 +11,7 @@ layout(local_size_x = 64) in;
 // Per block of 8 x 8 columns (VX_BLOCK): the largest ~bits of its nearest entry depth and the
 // largest bits of its farthest exit depth (positive floats order as their bits), both 0 when
 // the block holds no span; REFRACT_BEGIN gathers them.
-layout(std430, binding = 10) buffer BlockBounds { uint block_bounds[]; };
+layout(std430, binding = BLOCK_BOUNDS_BINDING) buffer BlockBounds { uint block_bounds[]; };
 uniform int u_blocks_x;
 
 vec2 sd_block_bounds(ivec2 block) {
@@ -31,8 +31,8 @@ struct RayRecord {
   ivec4 ints;       // pixel x, pixel y, hint, bounces | inside << 16 | marching << 17
   ivec4 last;       // last_pixel x, y, last_span, last_end
 };
-layout(std430, binding = 8) buffer Rays { RayRecord rays[]; };
-layout(std430, binding = 9) buffer MarchTally {
+layout(std430, binding = RAYS_BINDING) buffer Rays { RayRecord rays[]; };
+layout(std430, binding = MARCH_TALLY_BINDING) buffer MarchTally {
   uint active_rays;  // still marching after this dispatch
   uint events;       // column events in this dispatch, all rays
   uint most_events;  // by one ray

@@ -1,20 +1,34 @@
 #include "render/passes/shade_refractive.h"
 
 #include <algorithm>
+#include <string>
 
+#include "render/bindings.h"
 #include "render/grid_uniforms.h"
 #include "render/passes/dispatch.h"
 
 namespace voxspan {
 namespace {
+
+constexpr const char* kShader = "render/passes/shade_refractive.comp";
 constexpr std::size_t kRayRecordBytes = 96;  // RayRecord in shade_refractive.comp
 constexpr int kBlock = 8;                       // VX_BLOCK in render/model/column_march.glsl
+
+// shade_refractive.comp's own buffers, after the shaded image.
+enum Binding : GLuint { kRays = binding::kShadeEnd, kMarchTally, kBlockBounds };
+
+std::string binding_defines() {
+  return binding::shade_defines() + gl::defines({{"RAYS_BINDING", kRays},
+                                                 {"MARCH_TALLY_BINDING", kMarchTally},
+                                                 {"BLOCK_BOUNDS_BINDING", kBlockBounds}});
+}
+
 }  // namespace
 
 ShadeRefractivePass::ShadeRefractivePass(const gl::ShaderLibrary& shaders)
-    : begin_(shaders.compute("render/passes/shade_refractive.comp", "#define REFRACT_BEGIN 1")),
-      march_(shaders.compute("render/passes/shade_refractive.comp", "#define REFRACT_MARCH 1")),
-      resolve_(shaders.compute("render/passes/shade_refractive.comp", "#define REFRACT_RESOLVE 1")),
+    : begin_(shaders.compute(kShader, binding_defines() + "#define REFRACT_BEGIN 1")),
+      march_(shaders.compute(kShader, binding_defines() + "#define REFRACT_MARCH 1")),
+      resolve_(shaders.compute(kShader, binding_defines() + "#define REFRACT_RESOLVE 1")),
       active_(16) {}
 
 RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfaces& surfaces,
@@ -29,10 +43,10 @@ RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfac
   blocks_.clear(0, blocks * 8);
   const auto bind = [&] {
     surfaces.bind(image);
-    out.buffer().bind(GL_SHADER_STORAGE_BUFFER, 7);
-    rays_.bind(GL_SHADER_STORAGE_BUFFER, 8);
-    active_.bind(GL_SHADER_STORAGE_BUFFER, 9);
-    blocks_.bind(GL_SHADER_STORAGE_BUFFER, 10);
+    gl::bind_storage({{out.buffer(), binding::kShadedImage},
+                      {rays_, kRays},
+                      {active_, kMarchTally},
+                      {blocks_, kBlockBounds}});
   };
   for (const gl::Program* p : {&begin_, &march_, &resolve_}) {
     set_grid_uniforms(*p, image.grid());

@@ -18,9 +18,9 @@ layout(local_size_x = 64) in;
 #include "render/passes/sphere_work.glsl"
 #include "render/passes/splat_common.glsl"
 
-layout(std430, binding = 1) readonly buffer Particles { vec4 particles[]; };
+layout(std430, binding = PARTICLES_BINDING) readonly buffer Particles { vec4 particles[]; };
 #ifdef SPLAT_FROM_LIST
-layout(std430, binding = 2) readonly buffer TileList { uint tile_list[]; };
+layout(std430, binding = LIST_BINDING) readonly buffer TileList { uint tile_list[]; };
 #endif
 
 uniform uint u_count;          // spheres to splat

@@ -1,11 +1,10 @@
 // render/passes/splat_common.glsl - marking one sphere's chord in one pixel's column, shared by
 // the small-sphere splat (splat.comp) and the large-sphere splat (splat_large.comp), so both
 // set exactly the same bits (paper 001, sec. 4.1, 4.4). Needs render/perspective_grid.glsl and
-// render/passes/bits.glsl.
+// render/passes/bits.glsl; the pass defines BITS_BINDING.
 
-layout(std430, binding = 0) buffer Bits { uint bits[]; };
+layout(std430, binding = BITS_BINDING) buffer Bits { uint bits[]; };
 
-uniform ivec4 u_tile;          // x0, y0, width, height
 uniform float u_gap;           // g (world units)
 uniform uint u_surface_only;   // 1: entry and exit voxels only, where the gap allows
 

@@ -17,9 +17,11 @@ layout(local_size_x = 64) in;
 #include "render/passes/sphere_work.glsl"
 #include "render/passes/splat_common.glsl"
 
-layout(std430, binding = 1) readonly buffer Particles { vec4 particles[]; };
-layout(std430, binding = 2) readonly buffer LargeList { uint large_list[]; };
-layout(std430, binding = 3) buffer Items { uint items[]; };  // per sphere; then its first item
+layout(std430, binding = PARTICLES_BINDING) readonly buffer Particles { vec4 particles[]; };
+layout(std430, binding = LIST_BINDING) readonly buffer LargeList { uint large_list[]; };
+layout(std430, binding = ITEMS_BINDING) buffer Items {
+  uint items[];  // per sphere; then its first item
+};
 
 uniform uint u_large_first;  // first large sphere of this batch in the large list
 uniform uint u_large;        // large spheres in this batch

@@ -1,19 +1,19 @@
 // render/passes/surface_data.glsl - the per-span surface data the passes after the voxelization
 // keep beside the span image (render/gpu_surfaces.h), and the sd_* accessors through which the
-// shared model files (render/model/*.glsl) read it. Bindings (render/passes/surface_bindings.h):
-//   0, 1 the span image (render/span_image.glsl): pixel records, (entry, exit) depths
-//   2 span_owner[span]     pixel index x + y * width of each span
-//   3 span_links[span]     (entry word, exit word), render/model/links.glsl
-//   4 surface_depths[span] (entry, exit) after the filter (the span depths when it is off)
-//   5 span_normals[span]   (entry, exit) octahedral words, render/model/octahedral.glsl
-//   6 pixel_ao[pixel]      deep ambient occlusion of the front surface
+// shared model files (render/model/*.glsl) read it, after the span image (render/span_image.glsl)
+// at the bindings render/bindings.h reserves (binding::surface_defines()):
+//   span_owner[span]     pixel index x + y * width of each span
+//   span_links[span]     (entry word, exit word), render/model/links.glsl
+//   surface_depths[span] (entry, exit) after the filter (the span depths when it is off)
+//   span_normals[span]   (entry, exit) octahedral words, render/model/octahedral.glsl
+//   pixel_ao[pixel]      deep ambient occlusion of the front surface
 // Include after render/span_image.glsl.
 
-layout(std430, binding = 2) buffer SpanOwners { uint span_owner[]; };
-layout(std430, binding = 3) buffer SpanLinks { uvec2 span_links[]; };
-layout(std430, binding = 4) buffer SurfaceDepths { vec2 surface_depths[]; };
-layout(std430, binding = 5) buffer SpanNormals { uvec2 span_normals[]; };
-layout(std430, binding = 6) buffer PixelAo { float pixel_ao[]; };
+layout(std430, binding = SPAN_OWNERS_BINDING) buffer SpanOwners { uint span_owner[]; };
+layout(std430, binding = SPAN_LINKS_BINDING) buffer SpanLinks { uvec2 span_links[]; };
+layout(std430, binding = SURFACE_DEPTHS_BINDING) buffer SurfaceDepths { vec2 surface_depths[]; };
+layout(std430, binding = SPAN_NORMALS_BINDING) buffer SpanNormals { uvec2 span_normals[]; };
+layout(std430, binding = PIXEL_AO_BINDING) buffer PixelAo { float pixel_ao[]; };
 
 uint sd_count(ivec2 p) { return span_pixels[span_pixel_index(p)].count; }
 uint sd_offset(ivec2 p) { return span_pixels[span_pixel_index(p)].offset; }

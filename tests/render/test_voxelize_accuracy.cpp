@@ -3,6 +3,7 @@
 // checkerboard, random clouds with mixed radii. Bounds (in local layer thicknesses): span
 // counts equal on >= 99.5 % of hit pixels, boundaries within one layer for >= 99.5 %, inside
 // length per pixel within one layer per boundary, and summed over the image within 1 %.
+#include "render/bindings.h"
 #include "render/grid_uniforms.h"
 #include "render/reference/exact_spans.h"
 #include "render_fixture.h"
@@ -82,9 +83,10 @@ TEST(VoxelizeAccuracy, TwentyFourLayersCappedAtSeven) {
   // length there agrees with the CPU's, and stored lengths minus the gap give `inside`.
   const GpuSpanImage& image = test::voxelizer().image();
   gl::Buffer probe(std::size_t(gpu.width()) * gpu.height() * 8);
-  gl::Program program = test::shaders().compute("tests/render/span_image_probe.comp");
+  gl::Program program =
+      test::shaders().compute("tests/render/span_image_probe.comp", binding::span_image_defines());
   set_grid_uniforms(program, image.grid());
-  image.bind(0, 1);
+  image.bind();
   probe.bind(GL_SHADER_STORAGE_BUFFER, 2);
   program.dispatch(static_cast<GLuint>((gpu.width() * gpu.height() + 63) / 64));
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
