@@ -9,7 +9,7 @@
 // frames after one warm-up (glFinish + wall clock on llvmpipe, GPU timer queries on NVIDIA);
 // "frame" is the whole frame from particles to the float image, no read-back, no disk.
 //
-// Accuracy (--accuracy FILE.csv): the voxelization's accuracy scenes (tests/shading/
+// Accuracy (--accuracy FILE.csv): the voxelization's accuracy scenes (tools/scenes/
 // accuracy_scenes.h) at 160x120, filter off, for each angle resolution of --alphas: PSNR of the
 // GPU's picture against the exact reference with the same (Sobel) normals and with exact sphere
 // normals, per mode; printed and written as CSV for tools/plot_psnr.py. The shading is the
@@ -29,9 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "accuracy_scenes.h"
 #include "dambreak_state.h"
-#include "image_compare.h"
 #include "render/gl/context.h"
 #include "render/gl/pass_timer.h"
 #include "render/gl/shader_library.h"
@@ -39,6 +37,8 @@
 #include "render/reference/reference_shading.h"
 #include "render/renderer.h"
 #include "tool_args.h"
+#include "tools/scenes/accuracy_scenes.h"
+#include "tools/scenes/image_compare.h"
 #include "voxspan/error.h"
 
 namespace {

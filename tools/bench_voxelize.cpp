@@ -6,7 +6,7 @@
 // The scene: a water column (0.3 x 0.6 x 0.3) of about --particles lattice particles collapsing
 // along a tank (Ritter's dam-break profile at --time seconds), with a little spray. Cells of two
 // particle spacings are classified by the solver side's classifier (voxspan/classify.h, through
-// tests/render/scene_cell_states.h): only the boundary shell (particles of cells that
+// tools/scenes/scene_cell_states.h): only the boundary shell (particles of cells that
 // are not inner: within about one cell of the surface) is voxelized, with the cell states
 // skipping inner-empty and filling inner-full cells; --all-particles voxelizes every particle.
 //
@@ -33,10 +33,10 @@
 #include "render/gl/shader_library.h"
 #include "render/reference/exact_spans.h"
 #include "render/voxelizer.h"
-#include "scene_cell_states.h"
-#include "scenes.h"
-#include "span_compare.h"
 #include "tool_args.h"
+#include "tools/scenes/scene_cell_states.h"
+#include "tools/scenes/scenes.h"
+#include "tools/scenes/span_compare.h"
 #include "voxspan/error.h"
 
 namespace {

@@ -5,7 +5,7 @@
 #include <cstring>
 #include <fstream>
 
-#include "scenes.h"
+#include "tools/scenes/scenes.h"
 #include "voxspan/error.h"
 #ifdef VOXSPAN_HAVE_DAMBREAK
 #include "sph.h"
@@ -126,7 +126,8 @@ DamBreakState ritter_dam_break(double particles, double t) {
   }
   s.spacing = shape.spacing;
   char text[160];
-  std::snprintf(text, sizeof text, "Ritter-profile dam break (tests/render/scenes.h), %zu particles, t = %.2f s",
+  std::snprintf(text, sizeof text,
+                "Ritter-profile dam break (tools/scenes/scenes.h), %zu particles, t = %.2f s",
                 s.x.size(), t);
   s.description = text;
   s.up = {0, 1, 0};

@@ -4,7 +4,7 @@
 // The fluid: the WCSPH dam-break solver of examples/dambreak run to Martin & Moyce's
 // T = t sqrt(2 g / a) (--time) with about --particles fluid particles, its state cached in
 // --state (reaching the splash takes minutes on two cores); or, with --ritter (or without the
-// examples), the Ritter-profile test scene of tests/render/scenes.h at t = --time seconds.
+// examples), the Ritter-profile test scene of tools/scenes/scenes.h at t = --time seconds.
 // The adapter's classifier (voxspan/classify.h) keeps only the boundary particles, the cell
 // states fill the inside. Gap bridging one particle spacing, filter radius 1.5 spacings.
 // --reference also writes the exact CPU reference's pictures (exact spans, Sobel normals).
@@ -21,7 +21,6 @@
 #include <string>
 
 #include "dambreak_state.h"
-#include "image_compare.h"
 #include "insitu/png_image.h"
 #include "render/gl/context.h"
 #include "render/gl/pass_timer.h"
@@ -30,6 +29,7 @@
 #include "render/reference/reference_shading.h"
 #include "render/renderer.h"
 #include "tool_args.h"
+#include "tools/scenes/image_compare.h"
 #include "voxspan/error.h"
 
 namespace {
