@@ -24,7 +24,7 @@
 #include "insitu/png_image.h"
 #include "insitu/schedule.h"
 #include "insitu/vdb_snapshot.h"
-#include "lattice.h"
+#include "tools/scenes/lattice.h"
 
 namespace {
 

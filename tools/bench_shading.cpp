@@ -9,7 +9,7 @@
 // frames after one warm-up (glFinish + wall clock on llvmpipe, GPU timer queries on NVIDIA);
 // "frame" is the whole frame from particles to the float image, no read-back, no disk.
 //
-// Accuracy (--accuracy FILE.csv): the voxelization's accuracy scenes (tests/shading/
+// Accuracy (--accuracy FILE.csv): the voxelization's accuracy scenes (tools/scenes/
 // accuracy_scenes.h) at 160x120, filter off, for each angle resolution of --alphas: PSNR of the
 // GPU's picture against the exact reference with the same (Sobel) normals and with exact sphere
 // normals, per mode; printed and written as CSV for tools/plot_psnr.py. The shading is the
@@ -29,9 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "accuracy_scenes.h"
 #include "dambreak_state.h"
-#include "image_compare.h"
 #include "render/gl/context.h"
 #include "render/gl/pass_timer.h"
 #include "render/gl/shader_library.h"
@@ -39,39 +37,34 @@
 #include "render/reference/reference_shading.h"
 #include "render/renderer.h"
 #include "tool_args.h"
+#include "tools/scenes/accuracy_scenes.h"
+#include "tools/scenes/image_compare.h"
 #include "voxspan/error.h"
 
 namespace {
 
 using namespace voxspan;
 
-struct Args : tools::SceneArgs {
+struct Args : tools::BenchArgs {
   std::string state = "build/dambreak_state.bin";
   bool ritter = !tools::have_solver();
-  bool all_particles = false;
-  int max_layers = 16384;
   double budget_mib = 512;
-  int frames = 3;
   std::vector<ShadeMode> modes = {ShadeMode::opaque, ShadeMode::translucent, ShadeMode::refractive};
   bool ao = false;
   std::string accuracy;
   std::vector<double> alphas = {14, 7, 3.5, 2, 1};
   int bounces = -1;  // refraction's bounces in the accuracy figures; < 0: the default
-  bool json = false;
 };
 
 const char* kPasses[] = {"frame", "upload", "bin", "clear", "splat", "compress",
                          "connect", "filter", "normals", "deep_ao", "shade"};
 
-int usage(FILE* out) {
-  std::fprintf(out,
-               "usage: bench_shading [--particles N] [--time T] [--state FILE] [--ritter]\n"
-               "         [--all-particles] [--size WxH] [--alpha DEG] [--max-layers L]\n"
-               "         [--budget-mib M] [--frames F] [--modes opaque,translucent,refractive]\n"
-               "         [--ao] [--accuracy FILE.csv] [--alphas 14,7,3.5,2,1] [--bounces N] [--json]\n"
-               "         [--platform auto|nvidia|device|surfaceless]\n");
-  return out == stdout ? 0 : 2;
-}
+constexpr char kUsage[] =
+    "usage: bench_shading [--particles N] [--time T] [--state FILE] [--ritter]\n"
+    "         [--all-particles] [--size WxH] [--alpha DEG] [--max-layers L]\n"
+    "         [--budget-mib M] [--frames F] [--modes opaque,translucent,refractive]\n"
+    "         [--ao] [--accuracy FILE.csv] [--alphas 14,7,3.5,2,1] [--bounces N] [--json]\n"
+    "         [--platform auto|nvidia|device|surfaceless]\n";
 
 std::vector<std::string> split(const std::string& text) {
   std::vector<std::string> items;
@@ -80,37 +73,34 @@ std::vector<std::string> split(const std::string& text) {
   return items;
 }
 
-bool parse(int argc, char** argv, Args& a) {
-  for (int i = 1; i < argc; ++i) {
-    const tools::Flag shared = tools::read_scene_flag(argc, argv, i, a);
-    if (shared == tools::Flag::bad) return false;
-    if (shared == tools::Flag::read) continue;
-    const std::string k = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (k == "--state" && has_value) a.state = argv[++i];
-    else if (k == "--ritter") a.ritter = true;
-    else if (k == "--all-particles") a.all_particles = true;
-    else if (k == "--max-layers" && has_value) a.max_layers = std::atoi(argv[++i]);
-    else if (k == "--budget-mib" && has_value) a.budget_mib = std::atof(argv[++i]);
-    else if (k == "--frames" && has_value) a.frames = std::max(1, std::atoi(argv[++i]));
-    else if (k == "--modes" && has_value) {
-      a.modes.clear();
-      for (const std::string& m : split(argv[++i])) {
-        if (m == "opaque") a.modes.push_back(ShadeMode::opaque);
-        else if (m == "translucent") a.modes.push_back(ShadeMode::translucent);
-        else if (m == "refractive") a.modes.push_back(ShadeMode::refractive);
-        else return false;
-      }
-    } else if (k == "--ao") a.ao = true;
-    else if (k == "--accuracy" && has_value) a.accuracy = argv[++i];
-    else if (k == "--bounces" && has_value) a.bounces = std::atoi(argv[++i]);
-    else if (k == "--alphas" && has_value) {
-      a.alphas.clear();
-      for (const std::string& v : split(argv[++i])) a.alphas.push_back(std::atof(v.c_str()));
-    } else if (k == "--json") a.json = true;
+// --modes opaque,translucent,refractive: false for another name.
+bool read_modes(const std::string& list, std::vector<ShadeMode>& modes) {
+  modes.clear();
+  for (const std::string& m : split(list)) {
+    if (m == "opaque") modes.push_back(ShadeMode::opaque);
+    else if (m == "translucent") modes.push_back(ShadeMode::translucent);
+    else if (m == "refractive") modes.push_back(ShadeMode::refractive);
     else return false;
   }
-  return a.particles > 0 && !a.modes.empty();
+  return true;
+}
+
+// The flags beyond the scene's.
+bool read_flag(tools::Arg& arg, Args& a) {
+  if (const char* v = arg.value("--modes")) return read_modes(v, a.modes);
+  if (const char* v = arg.value("--alphas")) {
+    a.alphas.clear();
+    for (const std::string& alpha : split(v)) a.alphas.push_back(std::atof(alpha.c_str()));
+    return true;
+  }
+  return tools::read_bench_flag(arg, a) || arg.value("--state", a.state) ||
+         arg.flag("--ritter", a.ritter) || arg.value("--budget-mib", a.budget_mib) ||
+         arg.flag("--ao", a.ao) || arg.value("--accuracy", a.accuracy) ||
+         arg.value("--bounces", a.bounces);
+}
+
+bool parse(int argc, char** argv, Args& a) {
+  return tools::read_args(argc, argv, a, read_flag) && a.particles > 0 && !a.modes.empty();
 }
 
 void time_modes(const Args& a, const gl::Context& context, Renderer& renderer) {
@@ -231,5 +221,5 @@ int run(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return voxspan::tools::tool_main<Args>("bench_shading", argc, argv, usage, parse, run);
+  return voxspan::tools::tool_main<Args>("bench_shading", argc, argv, kUsage, parse, run);
 }

@@ -6,7 +6,7 @@
 // The scene: a water column (0.3 x 0.6 x 0.3) of about --particles lattice particles collapsing
 // along a tank (Ritter's dam-break profile at --time seconds), with a little spray. Cells of two
 // particle spacings are classified by the solver side's classifier (voxspan/classify.h, through
-// tests/render/scene_cell_states.h): only the boundary shell (particles of cells that
+// tools/scenes/scene_cell_states.h): only the boundary shell (particles of cells that
 // are not inner: within about one cell of the surface) is voxelized, with the cell states
 // skipping inner-empty and filling inner-full cells; --all-particles voxelizes every particle.
 //
@@ -33,66 +33,57 @@
 #include "render/gl/shader_library.h"
 #include "render/reference/exact_spans.h"
 #include "render/voxelizer.h"
-#include "scene_cell_states.h"
-#include "scenes.h"
-#include "span_compare.h"
 #include "tool_args.h"
+#include "tools/scenes/scene_cell_states.h"
+#include "tools/scenes/scenes.h"
+#include "tools/scenes/span_compare.h"
 #include "voxspan/error.h"
 
 namespace {
 
 using namespace voxspan;
 
-struct Args : tools::SceneArgs {
+struct Args : tools::BenchArgs {
   Args() { particles = 1e6, time = 0.25; }
-  int max_layers = 16384;
   std::vector<double> budgets_mib;
-  int frames = 3;
   std::vector<SplatThreads> threads = {SplatThreads::per_pixel, SplatThreads::per_particle};
   bool resplat = true;
-  bool all_particles = false;
   bool accuracy = false;
-  bool json = false;
   std::string pgm;
   std::string save_spans, compare_spans;
 };
 
 const char* kPasses[] = {"frame", "upload", "bin", "clear", "splat", "compress"};
 
-int usage(FILE* out) {
-  std::fprintf(out,
-               "usage: bench_voxelize [--particles N] [--time T] [--size WxH] [--alpha DEG]\n"
-               "         [--max-layers L] [--budget-mib M]... [--frames F]\n"
-               "         [--threads per_pixel|per_particle|both] [--no-resplat] [--all-particles]\n"
-               "         [--accuracy] [--json] [--pgm FILE] [--save-spans FILE] [--compare-spans FILE]\n"
-               "         [--platform auto|nvidia|device|surfaceless]\n");
-  return out == stdout ? 0 : 2;
+constexpr char kUsage[] =
+    "usage: bench_voxelize [--particles N] [--time T] [--size WxH] [--alpha DEG]\n"
+    "         [--max-layers L] [--budget-mib M]... [--frames F]\n"
+    "         [--threads per_pixel|per_particle|both] [--no-resplat] [--all-particles]\n"
+    "         [--accuracy] [--json] [--pgm FILE] [--save-spans FILE] [--compare-spans FILE]\n"
+    "         [--platform auto|nvidia|device|surfaceless]\n";
+
+// --threads per_pixel|per_particle|both (both: the default list).
+bool read_threads(const std::string& v, std::vector<SplatThreads>& threads) {
+  if (v == "per_pixel") threads = {SplatThreads::per_pixel};
+  else if (v == "per_particle") threads = {SplatThreads::per_particle};
+  else return v == "both";
+  return true;
+}
+
+// The flags beyond the scene's.
+bool read_flag(tools::Arg& arg, Args& a) {
+  if (const char* v = arg.value("--budget-mib")) {
+    a.budgets_mib.push_back(std::atof(v));
+    return true;
+  }
+  if (const char* v = arg.value("--threads")) return read_threads(v, a.threads);
+  return tools::read_bench_flag(arg, a) || arg.flag("--no-resplat", a.resplat, false) ||
+         arg.flag("--accuracy", a.accuracy) || arg.value("--pgm", a.pgm) ||
+         arg.value("--save-spans", a.save_spans) || arg.value("--compare-spans", a.compare_spans);
 }
 
 bool parse(int argc, char** argv, Args& a) {
-  for (int i = 1; i < argc; ++i) {
-    const tools::Flag shared = tools::read_scene_flag(argc, argv, i, a);
-    if (shared == tools::Flag::bad) return false;
-    if (shared == tools::Flag::read) continue;
-    const std::string k = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (k == "--max-layers" && has_value) a.max_layers = std::atoi(argv[++i]);
-    else if (k == "--budget-mib" && has_value) a.budgets_mib.push_back(std::atof(argv[++i]));
-    else if (k == "--frames" && has_value) a.frames = std::max(1, std::atoi(argv[++i]));
-    else if (k == "--threads" && has_value) {
-      const std::string v = argv[++i];
-      if (v == "per_pixel") a.threads = {SplatThreads::per_pixel};
-      else if (v == "per_particle") a.threads = {SplatThreads::per_particle};
-      else if (v != "both") return false;
-    } else if (k == "--no-resplat") a.resplat = false;
-    else if (k == "--all-particles") a.all_particles = true;
-    else if (k == "--accuracy") a.accuracy = true;
-    else if (k == "--json") a.json = true;
-    else if (k == "--pgm" && has_value) a.pgm = argv[++i];
-    else if (k == "--save-spans" && has_value) a.save_spans = argv[++i];
-    else if (k == "--compare-spans" && has_value) a.compare_spans = argv[++i];
-    else return false;
-  }
+  if (!tools::read_args(argc, argv, a, read_flag)) return false;
   if (a.budgets_mib.empty()) a.budgets_mib = {1024, 16};
   return true;
 }
@@ -246,5 +237,5 @@ int run(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return voxspan::tools::tool_main<Args>("bench_voxelize", argc, argv, usage, parse, run);
+  return voxspan::tools::tool_main<Args>("bench_voxelize", argc, argv, kUsage, parse, run);
 }

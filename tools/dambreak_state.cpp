@@ -5,7 +5,7 @@
 #include <cstring>
 #include <fstream>
 
-#include "scenes.h"
+#include "tools/scenes/scenes.h"
 #include "voxspan/error.h"
 #ifdef VOXSPAN_HAVE_DAMBREAK
 #include "sph.h"
@@ -29,6 +29,19 @@ void classify(DamBreakState& s) {
   Classifier classifier;
   classifier.run(view, GridView(), options);
   s.classification = classifier.take_result();
+}
+
+// What both states do once their particles are in: a description (`format` takes the particle
+// count and the time), a camera of 40 degrees with the state's up, the classification.
+void finish(DamBreakState& s, const char* format, double time, glm::dvec3 eye, glm::dvec3 target) {
+  char text[160];
+  std::snprintf(text, sizeof text, format, s.x.size(), time);
+  s.description = text;
+  s.camera.eye = eye;
+  s.camera.target = target;
+  s.camera.up = s.up;
+  s.camera.fov_y_degrees = 40;
+  classify(s);
 }
 
 bool load(const std::string& path, double particles, double time, DamBreakState& s, double& a) {
@@ -97,19 +110,10 @@ DamBreakState solver_dam_break(double particles, double time, const std::string&
                      " holds no state for ", particles, " particles at T = ", time);
 #endif
   }
-  char text[160];
-  std::snprintf(text, sizeof text, "WCSPH dam break (examples/dambreak), %zu fluid particles, T = %.2f",
-                s.x.size(), time);
-  s.description = text;
-  s.up = {0, 0, 1};
-  s.ground = 0;
-  s.length = a;
+  s.length = a;  // up (z) and ground (0): DamBreakState's defaults, the solver's
   // Tank [0, 4a] x [0, a] x [0, 3a]: from the front, above, looking down the tank.
-  s.camera.eye = {2.3 * a, -4.7 * a, 3.5 * a};
-  s.camera.target = {2.05 * a, 0.5 * a, 1.2 * a};
-  s.camera.up = {0, 0, 1};
-  s.camera.fov_y_degrees = 40;
-  classify(s);
+  finish(s, "WCSPH dam break (examples/dambreak), %zu fluid particles, T = %.2f", time,
+         {2.3 * a, -4.7 * a, 3.5 * a}, {2.05 * a, 0.5 * a, 1.2 * a});
   return s;
 }
 
@@ -125,18 +129,10 @@ DamBreakState ritter_dam_break(double particles, double t) {
     s.z.push_back(p.z);
   }
   s.spacing = shape.spacing;
-  char text[160];
-  std::snprintf(text, sizeof text, "Ritter-profile dam break (tests/render/scenes.h), %zu particles, t = %.2f s",
-                s.x.size(), t);
-  s.description = text;
   s.up = {0, 1, 0};
-  s.ground = 0;
   s.length = shape.width;
-  s.camera.eye = {1.55, 0.75, 1.15};
-  s.camera.target = {0.52, 0.12, 0.12};
-  s.camera.up = {0, 1, 0};
-  s.camera.fov_y_degrees = 40;
-  classify(s);
+  finish(s, "Ritter-profile dam break (tools/scenes/scenes.h), %zu particles, t = %.2f s", t,
+         {1.55, 0.75, 1.15}, {0.52, 0.12, 0.12});
   return s;
 }
 

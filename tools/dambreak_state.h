@@ -1,6 +1,6 @@
 // tools/dambreak_state.h - a dam-break state for the shading tools: the fluid particles of the
 // WCSPH solver (examples/dambreak) run to a time, or of the Ritter-profile test scene
-// (tests/render/scenes.h) when the examples are not built, classified into boundary particles
+// (tools/scenes/scenes.h) when the examples are not built, classified into boundary particles
 // and cell states by the adapter's classifier (voxspan/classify.h), with a camera, the ground
 // and the fluid's scale. Solver states are cached in a file, since reaching a splash takes
 // minutes on two cores.

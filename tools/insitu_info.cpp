@@ -8,6 +8,7 @@
 
 #include "render/gl/context.h"
 #include "render/gl/info.h"
+#include "usage.h"
 #include "voxspan/error.h"
 #include "voxspan/version.h"
 
@@ -41,18 +42,17 @@ void print(const voxspan::gl::Info& i) {
   std::printf("GPU timers      %s\n", i.gpu_timers ? "yes" : "no (wall clock after glFinish)");
 }
 
-int usage(FILE* out) {
-  std::fprintf(out, "usage: insitu-info [--platform auto|nvidia|device|surfaceless]\n"
-                    "  VOXSPAN_GL_PLATFORM overrides --platform when set.\n");
-  return out == stdout ? 0 : 2;
-}
+constexpr char kUsage[] =
+    "usage: insitu-info [--platform auto|nvidia|device|surfaceless]\n"
+    "  VOXSPAN_GL_PLATFORM overrides --platform when set.\n";
 
 }  // namespace
 
 int main(int argc, char** argv) {
   voxspan::gl::ContextOptions options;
   for (int a = 1; a < argc; ++a) {
-    if (!std::strcmp(argv[a], "--help") || !std::strcmp(argv[a], "-h")) return usage(stdout);
+    if (!std::strcmp(argv[a], "--help") || !std::strcmp(argv[a], "-h"))
+      return voxspan::tools::print_usage(stdout, kUsage);
     if (!std::strcmp(argv[a], "--platform") && a + 1 < argc) {
       if (!voxspan::gl::parse_platform(argv[++a], options.platform)) {
         std::fprintf(stderr, "insitu-info: error: --platform %s is not a platform (expected "
@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
       }
       continue;
     }
-    return usage(stderr);
+    return voxspan::tools::print_usage(stderr, kUsage);
   }
   try {
     voxspan::gl::Context context(options);

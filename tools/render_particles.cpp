@@ -26,6 +26,7 @@
 #include "insitu/config.h"
 #include "insitu/particle_data.h"
 #include "insitu/spacing_estimate.h"
+#include "usage.h"
 #include "voxspan/adapter.h"
 #include "voxspan/error.h"
 
@@ -40,13 +41,10 @@ struct Options {
   std::vector<std::filesystem::path> files;
 };
 
-int usage(FILE* out) {
-  std::fprintf(out,
-               "usage: render_particles [--config FILE] [--output DIR] [--spacing DX] "
-               "[--radius R] [--arrays NAME,...] FILE...\n"
-               "  FILE: .vtp .vtu .csv .xyz .hdf5/.h5 (PySPH); each file is one step\n");
-  return out == stdout ? 0 : 2;
-}
+constexpr char kUsage[] =
+    "usage: render_particles [--config FILE] [--output DIR] [--spacing DX] "
+    "[--radius R] [--arrays NAME,...] FILE...\n"
+    "  FILE: .vtp .vtu .csv .xyz .hdf5/.h5 (PySPH); each file is one step\n";
 
 bool parse(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
@@ -62,7 +60,7 @@ bool parse(int argc, char** argv, Options& o) {
         throw voxspan::make_error(a, " expects a positive number; got \"", text, "\"");
       return v;
     };
-    if (a == "--help" || a == "-h") std::exit(usage(stdout));
+    if (a == "--help" || a == "-h") std::exit(voxspan::tools::print_usage(stdout, kUsage));
     else if (a == "--config") o.config = value();
     else if (a == "--output") o.output = value();
     else if (a == "--spacing") o.spacing = positive(value());

@@ -4,7 +4,7 @@
 // The fluid: the WCSPH dam-break solver of examples/dambreak run to Martin & Moyce's
 // T = t sqrt(2 g / a) (--time) with about --particles fluid particles, its state cached in
 // --state (reaching the splash takes minutes on two cores); or, with --ritter (or without the
-// examples), the Ritter-profile test scene of tests/render/scenes.h at t = --time seconds.
+// examples), the Ritter-profile test scene of tools/scenes/scenes.h at t = --time seconds.
 // The adapter's classifier (voxspan/classify.h) keeps only the boundary particles, the cell
 // states fill the inside. Gap bridging one particle spacing, filter radius 1.5 spacings.
 // --reference also writes the exact CPU reference's pictures (exact spans, Sobel normals).
@@ -21,7 +21,6 @@
 #include <string>
 
 #include "dambreak_state.h"
-#include "image_compare.h"
 #include "insitu/png_image.h"
 #include "render/gl/context.h"
 #include "render/gl/pass_timer.h"
@@ -30,6 +29,7 @@
 #include "render/reference/reference_shading.h"
 #include "render/renderer.h"
 #include "tool_args.h"
+#include "tools/scenes/image_compare.h"
 #include "voxspan/error.h"
 
 namespace {
@@ -44,29 +44,20 @@ struct Args : tools::SceneArgs {
   std::string compare;  // folder of pictures to compare with; empty: none
 };
 
-int usage(FILE* out) {
-  std::fprintf(out,
-               "usage: render_pictures [--out DIR] [--particles N] [--time T] [--state FILE]\n"
-               "         [--ritter] [--size WxH] [--alpha DEG] [--reference] [--compare DIR]\n"
-               "         [--platform auto|nvidia|device|surfaceless]\n");
-  return out == stdout ? 0 : 2;
+constexpr char kUsage[] =
+    "usage: render_pictures [--out DIR] [--particles N] [--time T] [--state FILE]\n"
+    "         [--ritter] [--size WxH] [--alpha DEG] [--reference] [--compare DIR]\n"
+    "         [--platform auto|nvidia|device|surfaceless]\n";
+
+// The flags beyond the scene's.
+bool read_flag(tools::Arg& arg, Args& a) {
+  return arg.value("--out", a.out) || arg.value("--state", a.state) ||
+         arg.flag("--ritter", a.ritter) || arg.flag("--reference", a.reference) ||
+         arg.value("--compare", a.compare);
 }
 
 bool parse(int argc, char** argv, Args& a) {
-  for (int i = 1; i < argc; ++i) {
-    const tools::Flag shared = tools::read_scene_flag(argc, argv, i, a);
-    if (shared == tools::Flag::bad) return false;
-    if (shared == tools::Flag::read) continue;
-    const std::string k = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (k == "--out" && has_value) a.out = argv[++i];
-    else if (k == "--state" && has_value) a.state = argv[++i];
-    else if (k == "--ritter") a.ritter = true;
-    else if (k == "--reference") a.reference = true;
-    else if (k == "--compare" && has_value) a.compare = argv[++i];
-    else return false;
-  }
-  return a.particles > 0;
+  return tools::read_args(argc, argv, a, read_flag) && a.particles > 0;
 }
 
 struct Picture {
@@ -165,5 +156,5 @@ int run(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return voxspan::tools::tool_main<Args>("render_pictures", argc, argv, usage, parse, run);
+  return voxspan::tools::tool_main<Args>("render_pictures", argc, argv, kUsage, parse, run);
 }

@@ -1,7 +1,8 @@
 // tools/tool_args.h - what the rendering tools (bench_voxelize, bench_shading, render_pictures)
-// share: the scene and image flags of their command lines, main()'s frame (--help, usage on a
-// bad command line, one error line on failure), the renderer line their output starts with,
-// and the median of timed frames.
+// share: the scene and image flags of their command lines, the flags both benchmarks have, the
+// reading of each tool's own flags, main()'s frame (--help, usage on a bad command line, one
+// error line on failure), the renderer line their output starts with, and the median of timed
+// frames.
 #pragma once
 
 #include <algorithm>
@@ -10,10 +11,12 @@
 #include <cstdlib>
 #include <exception>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "render/gl/context.h"
 #include "render/gl/info.h"
+#include "usage.h"
 
 namespace voxspan::tools {
 
@@ -50,14 +53,81 @@ inline Flag read_scene_flag(int argc, char** argv, int& i, SceneArgs& a) {
   return end != value && *end == '\0' && std::isfinite(*number) ? Flag::read : Flag::bad;
 }
 
+// A tool's own flag at argv[i]. `flag` sets a switch; `value` takes the argument after the flag
+// and moves i past it: as text, or as a number read by atoi or atof (unchecked: a malformed
+// number reads as 0; the scene flags are the checked ones). Both return false when argv[i] is
+// another flag or its value is missing.
+class Arg {
+ public:
+  Arg(int argc, char** argv, int& i) : argc_(argc), argv_(argv), i_(i) {}
+
+  bool flag(const char* name, bool& on, bool set_to = true) {
+    if (std::string(argv_[i_]) != name) return false;
+    on = set_to;
+    return true;
+  }
+  const char* value(const char* name) {
+    if (std::string(argv_[i_]) != name || i_ + 1 >= argc_) return nullptr;
+    return argv_[++i_];
+  }
+  template <class T>
+  bool value(const char* name, T& v) {
+    const char* text = value(name);
+    if (text == nullptr) return false;
+    if constexpr (std::is_same_v<T, int>) v = std::atoi(text);
+    else if constexpr (std::is_same_v<T, double>) v = std::atof(text);
+    else v = text;
+    return true;
+  }
+
+ private:
+  int argc_;
+  char** argv_;
+  int& i_;
+};
+
+// The flags that both benchmarks (bench_voxelize, bench_shading) have beyond the scene's.
+struct BenchArgs : SceneArgs {
+  int max_layers = 16384;      // the grid's layer cap
+  int frames = 3;              // timed frames, after one warm-up; at least 1
+  bool all_particles = false;  // voxelize every particle, no cell states
+  bool json = false;           // each configuration's frame stats as JSON too
+};
+
+// Reads argv[i] when it is one of BenchArgs' flags; false for another.
+inline bool read_bench_flag(Arg& arg, BenchArgs& a) {
+  if (arg.value("--frames", a.frames)) {
+    a.frames = std::max(1, a.frames);
+    return true;
+  }
+  return arg.value("--max-layers", a.max_layers) ||
+         arg.flag("--all-particles", a.all_particles) || arg.flag("--json", a.json);
+}
+
+// Reads a command line into a tool's Args (a SceneArgs): the scene flags, and every other
+// argument through `own`, which returns false for one the tool does not know. False on a bad
+// scene flag or an unknown argument.
+template <class Args>
+bool read_args(int argc, char** argv, Args& a, bool (*own)(Arg&, Args&)) {
+  for (int i = 1; i < argc; ++i) {
+    const Flag shared = read_scene_flag(argc, argv, i, a);
+    if (shared == Flag::bad) return false;
+    if (shared == Flag::read) continue;
+    Arg arg(argc, argv, i);
+    if (!own(arg, a)) return false;
+  }
+  return true;
+}
+
 // --help or -h anywhere prints the usage; a command line `parse` refuses prints it to stderr
 // (exit 2); an exception from `run` is one line "name: error: what" (exit 1).
 template <class Args, class Parse, class Run>
-int tool_main(const char* name, int argc, char** argv, int (*usage)(FILE*), Parse parse, Run run) {
+int tool_main(const char* name, int argc, char** argv, const char* usage, Parse parse, Run run) {
   for (int i = 1; i < argc; ++i)
-    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") return usage(stdout);
+    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h")
+      return print_usage(stdout, usage);
   Args a;
-  if (!parse(argc, argv, a)) return usage(stderr);
+  if (!parse(argc, argv, a)) return print_usage(stderr, usage);
   try {
     return run(a);
   } catch (const std::exception& e) {

@@ -3,6 +3,7 @@
 
 #include <fstream>
 
+#include "error_message.h"
 #include "insitu/config.h"
 #include "temp_folder.h"
 #include "voxspan/error.h"
@@ -12,12 +13,7 @@ namespace {
 
 // The message of the Error the YAML raises ("" when it loads).
 std::string error_of(const std::string& yaml) {
-  try {
-    load_config_string(yaml, "test.yaml");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::error_message([&] { load_config_string(yaml, "test.yaml"); });
 }
 
 TEST(Config, EmptyFileGivesTheDefaults) {

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "child_process.h"
+#include "error_message.h"
 #include "insitu/output_folder.h"
 #include "temp_folder.h"
 #include "voxspan/error.h"
@@ -15,12 +16,7 @@ namespace voxspan {
 namespace {
 
 std::string error_of(const std::filesystem::path& folder) {
-  try {
-    prepare_output_folder(folder, "outputs.png");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::error_message([&] { prepare_output_folder(folder, "outputs.png"); });
 }
 
 TEST(OutputFolder, CreatesMissingFoldersAndLeavesNoProbe) {

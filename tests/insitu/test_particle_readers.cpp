@@ -6,20 +6,15 @@
 #include <cstring>
 #include <fstream>
 
+#include "error_message.h"
 #include "insitu/particle_data.h"
 #include "temp_folder.h"
-#include "voxspan/error.h"
 
 namespace voxspan {
 namespace {
 
 std::string error_of(const std::filesystem::path& path, const ParticleReadOptions& options = {}) {
-  try {
-    read_particles(path, options);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::error_message([&] { read_particles(path, options); });
 }
 
 TEST(CsvParticles, HeaderNamesPositionsRadiiScalarsAndVectors) {

@@ -10,8 +10,8 @@
 
 #include "insitu/vdb_inspect.h"
 #include "insitu/vdb_snapshot.h"
-#include "lattice.h"
 #include "temp_folder.h"
+#include "tools/scenes/lattice.h"
 #include "voxspan/error.h"
 
 namespace voxspan {

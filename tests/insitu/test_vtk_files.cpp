@@ -12,8 +12,8 @@
 #include <vtkXMLPolyDataReader.h>
 
 #include "insitu/vtk_files.h"
-#include "lattice.h"
 #include "temp_folder.h"
+#include "tools/scenes/lattice.h"
 #include "voxspan/error.h"
 
 namespace voxspan {

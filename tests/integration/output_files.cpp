@@ -121,35 +121,38 @@ bool has_appended_data(const std::filesystem::path& path) {
   return text.find("<AppendedData") != std::string::npos;
 }
 
-VtpContents read_vtp(const std::filesystem::path& path) {
-  VtpContents out;
+// The contents of a VTK XML file that `Reader` reads: `fill(contents, data set)`, and ok; only
+// appended_data when the reader refuses the file or fails on it.
+template <class Contents, class Reader, class Fill>
+Contents read_vtk_xml(const std::filesystem::path& path, Fill fill) {
+  Contents out;
   out.appended_data = has_appended_data(path);
-  vtkNew<vtkXMLPolyDataReader> reader;
+  vtkNew<Reader> reader;
   if (!reader->CanReadFile(path.c_str())) return out;
   reader->SetFileName(path.c_str());
   reader->Update();
-  vtkPolyData* poly = reader->GetOutput();
-  if (poly == nullptr || reader->GetErrorCode() != 0) return out;
-  out.points = poly->GetNumberOfPoints();
-  for (int i = 0; i < poly->GetPointData()->GetNumberOfArrays(); ++i)
-    out.arrays.push_back(poly->GetPointData()->GetArrayName(i));
+  auto* data = reader->GetOutput();
+  if (data == nullptr || reader->GetErrorCode() != 0) return out;
+  fill(out, *data);
   out.ok = true;
   return out;
 }
 
+VtpContents read_vtp(const std::filesystem::path& path) {
+  return read_vtk_xml<VtpContents, vtkXMLPolyDataReader>(
+      path, [](VtpContents& out, vtkPolyData& poly) {
+        out.points = poly.GetNumberOfPoints();
+        for (int i = 0; i < poly.GetPointData()->GetNumberOfArrays(); ++i)
+          out.arrays.push_back(poly.GetPointData()->GetArrayName(i));
+      });
+}
+
 VtiContents read_vti(const std::filesystem::path& path) {
-  VtiContents out;
-  out.appended_data = has_appended_data(path);
-  vtkNew<vtkXMLImageDataReader> reader;
-  if (!reader->CanReadFile(path.c_str())) return out;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  vtkImageData* image = reader->GetOutput();
-  if (image == nullptr || reader->GetErrorCode() != 0) return out;
-  image->GetDimensions(out.dims);
-  out.has_state = image->GetCellData()->GetArray("state") != nullptr;
-  out.ok = true;
-  return out;
+  return read_vtk_xml<VtiContents, vtkXMLImageDataReader>(
+      path, [](VtiContents& out, vtkImageData& image) {
+        image.GetDimensions(out.dims);
+        out.has_state = image.GetCellData()->GetArray("state") != nullptr;
+      });
 }
 
 std::vector<std::string> pvd_files(const std::filesystem::path& path) {

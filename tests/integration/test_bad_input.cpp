@@ -20,11 +20,11 @@
 
 #include "fresh_child.h"
 #include "dambreak_run.h"
+#include "error_message.h"
 #include "log_capture.h"
 #include "output_files.h"
 #include "temp_folder.h"
 #include "voxspan/adapter.h"
-#include "voxspan/error.h"
 #include "voxspan/voxspan.h"
 
 namespace voxspan {
@@ -32,12 +32,9 @@ namespace {
 
 std::string start_error(const std::string& yaml) {
   dambreak::DamBreak sim(test::small_dambreak());
-  try {
+  return test::error_message([&] {
     Adapter adapter = Adapter::from_config_text(yaml, test::solver_options(sim), "run.yaml");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  });
 }
 
 TEST(StartUp, UnknownConfigKeyIsNamedWithItsLine) {

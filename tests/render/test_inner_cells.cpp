@@ -4,9 +4,9 @@
 // particle spacing (so the tiny gaps between touching spheres inside the fluid close in both).
 #include "render/reference/exact_spans.h"
 #include "render_fixture.h"
-#include "scene_cell_states.h"
-#include "scenes.h"
-#include "span_compare.h"
+#include "tools/scenes/scene_cell_states.h"
+#include "tools/scenes/scenes.h"
+#include "tools/scenes/span_compare.h"
 
 namespace voxspan {
 namespace {

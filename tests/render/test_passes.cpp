@@ -11,7 +11,7 @@
 #include "render/passes/bin.h"
 #include "render/passes/prefix_sum.h"
 #include "render_fixture.h"
-#include "scenes.h"
+#include "tools/scenes/scenes.h"
 #include "voxspan/error.h"
 
 namespace voxspan {

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "render/perspective_grid.h"
-#include "scenes.h"
+#include "tools/scenes/scenes.h"
 #include "voxspan/error.h"
 
 namespace voxspan {

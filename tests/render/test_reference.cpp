@@ -8,7 +8,7 @@
 
 #include "render/cell_march.h"
 #include "render/reference/exact_spans.h"
-#include "scenes.h"
+#include "tools/scenes/scenes.h"
 
 namespace voxspan {
 namespace {

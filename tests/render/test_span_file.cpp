@@ -1,4 +1,4 @@
-// Span images in files (tests/render/span_compare.h), as bench_voxelize --save-spans and
+// Span images in files (tools/scenes/span_compare.h), as bench_voxelize --save-spans and
 // --compare-spans use them to compare two machines' voxelizations: a round trip is bit for
 // bit, and a truncated file, a foreign file or one made for another image size is an error
 // that names the file.
@@ -9,8 +9,8 @@
 #include <string>
 
 #include "render/reference/exact_spans.h"
-#include "scenes.h"
-#include "span_compare.h"
+#include "tools/scenes/scenes.h"
+#include "tools/scenes/span_compare.h"
 #include "voxspan/error.h"
 
 namespace voxspan {

@@ -9,8 +9,8 @@
 #include "render/reference/exact_spans.h"
 #include "render/tiling.h"
 #include "render_fixture.h"
-#include "scenes.h"
-#include "span_compare.h"
+#include "tools/scenes/scenes.h"
+#include "tools/scenes/span_compare.h"
 #include "voxspan/error.h"
 
 namespace voxspan {

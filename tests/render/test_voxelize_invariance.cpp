@@ -7,8 +7,8 @@
 #include <random>
 
 #include "render_fixture.h"
-#include "scenes.h"
-#include "span_compare.h"
+#include "tools/scenes/scenes.h"
+#include "tools/scenes/span_compare.h"
 
 namespace voxspan {
 namespace {

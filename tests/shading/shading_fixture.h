@@ -8,10 +8,10 @@
 #include <glm/glm.hpp>
 
 #include "../gl/gl_fixture.h"
-#include "accuracy_scenes.h"  // test_shading
 #include "render/float_image.h"
 #include "render/renderer.h"
 #include "render/span_image.h"
+#include "tools/scenes/accuracy_scenes.h"  // test_shading
 
 namespace voxspan::test {
 

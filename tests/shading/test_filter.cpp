@@ -9,8 +9,8 @@
 #include "render/passes/filter.h"
 #include "render/reference/reference_host.h"
 #include "render_fixture.h"
-#include "scenes.h"
 #include "shading_fixture.h"
+#include "tools/scenes/scenes.h"
 
 namespace voxspan {
 namespace {

@@ -5,12 +5,12 @@
 #include <cmath>
 #include <cstdio>
 
-#include "image_compare.h"
-#include "render/reference/reference_shading.h"
 #include "render/gl/pass_timer.h"
+#include "render/reference/reference_shading.h"
 #include "render_fixture.h"
-#include "scenes.h"
 #include "shading_fixture.h"
+#include "tools/scenes/image_compare.h"
+#include "tools/scenes/scenes.h"
 #include "voxspan/error.h"
 
 namespace voxspan {

@@ -6,8 +6,8 @@
 
 #include "render/reference/reference_shading.h"
 #include "render_fixture.h"
-#include "scenes.h"
 #include "shading_fixture.h"
+#include "tools/scenes/scenes.h"
 
 namespace voxspan {
 namespace {

@@ -17,13 +17,13 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "accuracy_scenes.h"
-#include "image_compare.h"
 #include "insitu/png_image.h"
 #include "render/reference/exact_spans.h"
 #include "render/reference/reference_shading.h"
 #include "render_fixture.h"
 #include "shading_fixture.h"
+#include "tools/scenes/accuracy_scenes.h"
+#include "tools/scenes/image_compare.h"
 
 namespace voxspan {
 namespace {

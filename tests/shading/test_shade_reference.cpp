@@ -3,11 +3,11 @@
 // difference between the GPU's picture and the exact reference's comes from the spans alone.
 #include <cstdio>
 
-#include "image_compare.h"
 #include "render/reference/reference_shading.h"
 #include "render_fixture.h"
-#include "scenes.h"
 #include "shading_fixture.h"
+#include "tools/scenes/image_compare.h"
+#include "tools/scenes/scenes.h"
 
 namespace voxspan {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "render/shade_options.h"
 #include "render/voxelizer.h"
-#include "scenes.h"
+#include "tools/scenes/scenes.h"
 
 namespace voxspan::test {
 

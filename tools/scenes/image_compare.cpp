@@ -1,4 +1,4 @@
-#include "image_compare.h"
+#include "tools/scenes/image_compare.h"
 
 #include <cmath>
 #include <cstdlib>

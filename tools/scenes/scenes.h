@@ -1,8 +1,8 @@
-// Test and benchmark scenes for the voxelization, made of particle spheres (x, y, z, radius):
-// one sphere, lattice blocks, a dam break (the shape of a collapsing water column at a given
-// time, filled at the solver's lattice density), stacked thin layers and a 3D checkerboard
-// (paper 001, sec. 5.4), random clouds with mixed radii. A TEST UTILITY, not the solver: the
-// dam-break shape follows Ritter's shallow-water solution, not a simulation.
+// Scenes for the voxelization's tests and benchmarks, made of particle spheres (x, y, z,
+// radius): one sphere, lattice blocks, a dam break (the shape of a collapsing water column at a
+// given time, filled at the solver's lattice density), stacked thin layers and a 3D
+// checkerboard (paper 001, sec. 5.4), random clouds with mixed radii. Made up, not simulated:
+// the dam-break shape follows Ritter's shallow-water solution, not the solver.
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "accuracy_scenes.h"
+#include "tools/scenes/accuracy_scenes.h"
 
 namespace voxspan::test {
 

@@ -1,4 +1,4 @@
-#include "scenes.h"
+#include "tools/scenes/scenes.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "scene_cell_states.h"
+#include "tools/scenes/scene_cell_states.h"
 
 #include <algorithm>
 #include <cmath>

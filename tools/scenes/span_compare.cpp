@@ -1,4 +1,4 @@
-#include "span_compare.h"
+#include "tools/scenes/span_compare.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,7 @@
 // A block of particles on a cubic lattice and its cell states, computed here from first
 // principles (count per cell; inner = the cell and its 26 neighbours agree), so that the
-// snapshot tests do not depend on the solver side's classification.
+// snapshot tests do not depend on the solver side's classification; bench_runtime times the
+// runtime on the same kind of block.
 #pragma once
 
 #include <array>

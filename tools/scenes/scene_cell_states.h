@@ -1,4 +1,4 @@
-// Cell states and boundary particles of a test scene, from the solver side's classifier
+// Cell states and boundary particles of a scene (scenes.h), from the solver side's classifier
 // (voxspan/classify.h) on a grid aligned with the origin: a cell is empty, full (>= full_count
 // particle centres) or partial, inner when it and its 26 neighbours are all empty or all full
 // (outside the grid is empty air); the particles of non-inner cells are the boundary particles
