@@ -1,5 +1,5 @@
-# The third-party packages of voxspan_insitu. Their imported targets are made global, so that
-# the tests and tools that link voxspan_insitu (whose private dependencies they are) and those
+# The third-party packages of the insitu/ libraries. Their imported targets are made global, so that
+# the tests and tools that link them (whose private dependencies they are) and those
 # that read its files back with VTK, OpenVDB or HDF5 see them too.
 set(CMAKE_FIND_PACKAGE_TARGETS_GLOBAL ON)
 find_package(yaml-cpp REQUIRED)
@@ -9,4 +9,5 @@ find_package(HDF5 REQUIRED COMPONENTS C)
 # Debian ships OpenVDB's find module (it needs Boost.Iostreams) beside its other CMake files.
 list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB /usr/lib/cmake/OpenVDB)
 find_package(OpenVDB REQUIRED)
+find_package(OpenEXR 3 REQUIRED)
 set(CMAKE_FIND_PACKAGE_TARGETS_GLOBAL OFF)

@@ -1,7 +1,7 @@
 // render/float_image.h - the shaded picture: linear RGBA floats per pixel, row 0 at the top,
 // as the shading passes write it on the GPU (GpuFloatImage: a buffer of vec4, pixel
 // x + y * width) and as tests compare it on the CPU (FloatImage). 8-bit sRGB PNG output is the
-// runtime's (insitu/png_image.h: linear_to_srgb8 and write_png).
+// runtime's (insitu/outputs/png_image.h: linear_to_srgb8 and write_png).
 #pragma once
 
 #include <cstddef>

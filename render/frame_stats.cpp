@@ -107,4 +107,12 @@ std::string FrameStats::json() const {
 
 void FrameStats::clear() { *this = FrameStats{}; }
 
+void FrameStats::zero() {
+  for (Pass& p : passes) p.ms = 0, p.runs = 0;
+  for (auto& entry : counts) entry.second = 0;
+  for (auto& entry : figures) entry.second = 0;
+  gpu_bytes = 0;
+  gpu_peak_bytes = 0;
+}
+
 }  // namespace voxspan

@@ -41,6 +41,9 @@ struct FrameStats {
   // "figures":{..},"gpu_bytes":..,"gpu_peak_bytes":..}.
   std::string json() const;
   void clear();
+  // Every value to 0, every name kept: a FrameStats refilled each step allocates nothing.
+  void zero();
+  bool empty() const { return passes.empty() && counts.empty() && figures.empty(); }
 };
 
 }  // namespace voxspan

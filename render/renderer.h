@@ -7,7 +7,7 @@
 //   voxspan::RenderOptions options;                     // voxelize, surfaces, shade
 //   const voxspan::GpuFloatImage& image =
 //       renderer.render(camera, boundary_particles, cell_states, options, timer, stats);
-//   voxspan::FloatImage pixels = image.download();      // for insitu/png_image.h
+//   voxspan::FloatImage pixels = image.download();      // for insitu/outputs/png_image.h
 //
 // Every pass is timed through the caller's gl::PassTimer (names: the voxelizer's, then
 // "connect", "filter", "normals", "deep_ao", "shade") and reports into FrameStats (counts

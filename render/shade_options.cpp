@@ -22,15 +22,6 @@ void check_direction(const char* name, glm::dvec3 v) {
 
 }  // namespace
 
-const char* shade_mode_name(ShadeMode mode) {
-  switch (mode) {
-    case ShadeMode::opaque: return "opaque";
-    case ShadeMode::translucent: return "translucent";
-    case ShadeMode::refractive: return "refractive";
-  }
-  return "?";
-}
-
 int refract_dispatch_limit(int width, int height, std::uint32_t most_spans, const ShadeOptions& o) {
   const long long events = 2LL * (width + height + 2LL * most_spans) * (o.bounces + 2);
   return static_cast<int>(std::min<long long>(events / std::max(o.march_budget, 1) + 8, 1 << 20));

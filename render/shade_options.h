@@ -7,6 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include "render/enum_names.h"
+
 namespace voxspan {
 
 // The filter of sec. 3.4 / 4.6: iterated 3x3 smoothing of reciprocal depth along the surface
@@ -23,7 +25,10 @@ struct SurfaceOptions {
 };
 
 enum class ShadeMode { opaque, translucent, refractive };
-const char* shade_mode_name(ShadeMode mode);
+inline constexpr EnumName<ShadeMode> kShadeModeNames[] = {{"opaque", ShadeMode::opaque},
+                                                          {"translucent", ShadeMode::translucent},
+                                                          {"refractive", ShadeMode::refractive}};
+inline const char* shade_mode_name(ShadeMode mode) { return name_of(kShadeModeNames, mode).data(); }
 
 // The fluid: Beer-Lambert absorption per world unit (RGB), refractive index, the light it
 // scatters towards the eye when deep (translucent and refractive modes) and its colour as an

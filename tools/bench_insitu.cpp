@@ -27,9 +27,10 @@
 #include <string>
 #include <vector>
 
-#include "insitu/adapter_config.h"
-#include "insitu/config.h"
-#include "insitu/insitu_pipeline.h"
+#include "insitu/runtime/adapter_config.h"
+#include "insitu/runtime/config_file.h"
+#include "insitu/runtime/pipeline.h"
+#include "insitu/views/surface_view.h"
 #include "sph.h"
 #include "voxspan/adapter.h"
 #include "voxspan/error.h"
@@ -74,13 +75,22 @@ voxspan::AdapterOptions adapter_options(const dambreak::DamBreak& sim) {
   return o;
 }
 
+// How a view looks: a surface view's shading, else its kind's settings type.
+std::string view_look(const voxspan::ViewSettings& v) {
+  if (const auto* s = dynamic_cast<const voxspan::SurfaceSettings*>(&v))
+    return voxspan::shade_mode_name(s->shading);
+  return "view";
+}
+
 // 1. A non-render step: the schedule says no, nothing else happens.
 void bench_non_render(const voxspan::Config& base, dambreak::DamBreak& sim, long steps) {
   voxspan::Config config = base;
   const voxspan::TriggerSpec far{1000000000000LL, 0, false, false};
-  config.trigger = config.outputs.png.trigger = config.outputs.stats.trigger = far;
-  config.outputs.vdb.trigger = config.outputs.vtk.trigger = far;
-  config.outputs.vdb.enabled = config.outputs.vtk.enabled = true;
+  config.trigger = far;
+  for (voxspan::ConfiguredOutput& out : config.outputs) {
+    out.settings->trigger = far;
+    if (out.kind == "vdb" || out.kind == "vtk") out.settings->enabled = true;
+  }
   voxspan::Adapter adapter = voxspan::make_insitu_adapter(config, adapter_options(sim));
   long failures = 0;
   // The call alone, on views made once...
@@ -138,17 +148,18 @@ void report(const char* name, const RunFigures& f, const RunFigures& alone, long
   std::printf("%-34s wall %7.1f s  solver %6.1f s  in situ on solver thread %6.1f s  "
               "+ finish %4.1f s  extra wall over solver alone %+7.1f s = %6.1f %%\n",
               name, f.wall, f.solver, f.in_situ, f.finish, extra, 100 * extra / alone.wall);
-  if (f.totals.render_steps == 0 && f.totals.written.vdb == 0) return;
+  if (f.totals.render_steps == 0 && f.totals.output("vdb").written == 0) return;
   const voxspan::PipelineTotals& t = f.totals;
   std::printf("    %lld render steps (%.2f s each on the solver's thread), %lld PNG, %lld VDB; "
               "writer thread %.1f s\n",
               static_cast<long long>(t.render_steps),
               t.render_steps ? t.seconds_process / double(t.render_steps) : 0.0,
-              static_cast<long long>(t.written.png), static_cast<long long>(t.written.vdb),
-              t.written.writer_seconds);
+              static_cast<long long>(t.output("png").written),
+              static_cast<long long>(t.output("vdb").written), t.writer_seconds());
   std::printf("    per render step, ms:");
-  for (const auto& [pass, ms] : t.passes.timings_ms)
-    std::printf(" %s %.1f", pass.c_str(), ms / double(std::max<std::int64_t>(t.render_steps, 1)));
+  for (const voxspan::FrameStats::Pass& pass : t.passes.passes)
+    std::printf(" %s %.1f", pass.name.c_str(),
+                pass.ms / double(std::max<std::int64_t>(t.render_steps, 1)));
   std::printf("; classify+compact+outputs %.1f\n",
               1e3 * (f.in_situ - t.seconds_render) / double(std::max<std::int64_t>(t.render_steps, 1)));
   (void)steps;
@@ -198,11 +209,11 @@ int main(int argc, char** argv) {
     config.output_folder = (std::filesystem::temp_directory_path() / "voxspan-bench-insitu").string();
     std::filesystem::remove_all(config.output_folder);
     if (!o.views.empty())
-      std::erase_if(config.views, [&](const voxspan::ViewConfig& v) {
-        return std::find(o.views.begin(), o.views.end(), v.name) == o.views.end();
+      std::erase_if(config.views, [&](const voxspan::ConfiguredView& v) {
+        return std::find(o.views.begin(), o.views.end(), v.settings->name) == o.views.end();
       });
-    for (voxspan::ViewConfig& v : config.views)
-      if (o.width > 0) v.width = o.width, v.height = o.height;
+    for (voxspan::ConfiguredView& v : config.views)
+      if (o.width > 0) v.settings->width = o.width, v.settings->height = o.height;
     dambreak::Config scene;
     scene.particles = o.particles;
     scene.tank_length = o.tank_length;
@@ -211,9 +222,9 @@ int main(int argc, char** argv) {
       dambreak::DamBreak& sim = start;
       std::printf("dam break: %zu fluid particles, dx %.4g m; config %s: %zu views", sim.fluid().size(),
                   sim.dx(), o.config.c_str(), config.views.size());
-      for (const voxspan::ViewConfig& v : config.views)
-        std::printf(" (%s %s %dx%d)", v.name.c_str(), voxspan::shading_mode_name(v.shading), v.width,
-                    v.height);
+      for (const voxspan::ConfiguredView& v : config.views)
+        std::printf(" (%s %s %dx%d)", v.settings->name.c_str(), view_look(*v.settings).c_str(),
+                    v.settings->width, v.settings->height);
       std::printf("\n");
       sim.step();
       bench_non_render(config, sim, o.non_render_steps);
@@ -226,12 +237,12 @@ int main(int argc, char** argv) {
 
     // Rendering every K steps (PNG and stats with it), no snapshots; then with snapshots.
     config.trigger = {o.render_every, 0, true, true};
-    config.outputs.png.trigger = config.outputs.stats.trigger = config.trigger;
-    config.outputs.vdb.enabled = false;
-    config.outputs.vtk.enabled = false;
+    config.output("png").trigger = config.output("stats").trigger = config.trigger;
+    config.output("vdb").enabled = false;
+    config.output("vtk").enabled = false;
     voxspan::Config with_vdb = config;
-    with_vdb.outputs.vdb.enabled = true;
-    with_vdb.outputs.vdb.trigger = {o.vdb_every, 0, false, false};
+    with_vdb.output("vdb").enabled = true;
+    with_vdb.output("vdb").trigger = {o.vdb_every, 0, false, false};
 
     std::printf("%ld solver steps per run; render every %ld steps; snapshots every %ld steps\n",
                 o.steps, o.render_every, o.vdb_every);

@@ -18,12 +18,12 @@
 #include <thread>
 #include <unistd.h>
 
-#include "insitu/atomic_file.h"
-#include "insitu/background_writer.h"
-#include "insitu/config.h"
-#include "insitu/png_image.h"
-#include "insitu/schedule.h"
-#include "insitu/vdb_snapshot.h"
+#include "insitu/outputs/atomic_file.h"
+#include "insitu/outputs/background_writer.h"
+#include "insitu/runtime/config_file.h"
+#include "insitu/outputs/png_image.h"
+#include "insitu/runtime/schedule.h"
+#include "insitu/outputs/vdb_snapshot.h"
 #include "tools/scenes/lattice.h"
 
 namespace {
@@ -142,7 +142,8 @@ void bench_vdb(const std::filesystem::path& folder, int side) {
               "cells, %llu voxels, %.1f MiB)\n",
               side, s, scene.all.size(), scene.boundary.size(), r.inner_full_cells,
               static_cast<unsigned long long>(r.level_set_voxels), double(r.bytes) / (1 << 20));
-  for (const auto& [stage, ms] : r.timings.timings_ms) std::printf("  %-16s %8.0f ms\n", stage.c_str(), ms);
+  for (const voxspan::FrameStats::Pass& stage : r.timings.passes)
+    std::printf("  %-16s %8.0f ms\n", stage.name.c_str(), stage.ms);
 }
 
 }  // namespace

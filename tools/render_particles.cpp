@@ -1,5 +1,5 @@
 // render_particles: the offline renderer. Particle files written by a solver (VTK .vtp/.vtu,
-// CSV, XYZ, PySPH HDF5: insitu/particle_data.h) go through the same runtime as an in-situ run,
+// CSV, XYZ, PySPH HDF5: insitu/io/particle_data.h) go through the same runtime as an in-situ run,
 // with the same YAML config: each file is one step, classified by the solver-side classifier
 // (voxspan/classify.h, the adapter sorting the particles into its own grid), every view
 // rendered and written as PNG, with the stats line and, where the config enables them, the
@@ -22,10 +22,10 @@
 #include <string>
 #include <vector>
 
-#include "insitu/adapter_config.h"
-#include "insitu/config.h"
-#include "insitu/particle_data.h"
-#include "insitu/spacing_estimate.h"
+#include "insitu/runtime/adapter_config.h"
+#include "insitu/runtime/config_file.h"
+#include "insitu/io/particle_data.h"
+#include "insitu/io/spacing_estimate.h"
 #include "usage.h"
 #include "voxspan/adapter.h"
 #include "voxspan/error.h"
@@ -82,10 +82,10 @@ bool parse(int argc, char** argv, Options& o) {
 // Every file is a render step: the config's render, PNG and stats triggers become "every
 // step"; the snapshots keep their own triggers, counted in files.
 voxspan::Config offline_config(const Options& o) {
-  voxspan::Config c = o.config.empty() ? voxspan::Config{} : voxspan::load_config_file(o.config);
+  voxspan::Config c = o.config.empty() ? voxspan::default_config() : voxspan::load_config_file(o.config);
   if (!o.output.empty()) c.output_folder = o.output;
   const voxspan::TriggerSpec every{1, 0, true, true};
-  c.trigger = c.outputs.png.trigger = c.outputs.stats.trigger = every;
+  c.trigger = c.output("png").trigger = c.output("stats").trigger = every;
   return c;
 }
 
@@ -95,7 +95,7 @@ voxspan::ParticleView view_of(const voxspan::ParticleData& d) {
   auto view = voxspan::ParticleView::aos(d.positions.empty() ? nullptr : d.positions[0].data(),
                                          d.size());
   if (!d.radii.empty()) view.with_radii(d.radii.data());
-  for (const voxspan::NamedAttribute& a : d.attributes) {
+  for (const voxspan::Attribute& a : d.attributes) {
     if (a.components == 3)
       view.with_vector(a.name, a.values.data());
     else

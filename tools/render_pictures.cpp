@@ -21,7 +21,7 @@
 #include <string>
 
 #include "dambreak_state.h"
-#include "insitu/png_image.h"
+#include "insitu/outputs/png_image.h"
 #include "render/gl/context.h"
 #include "render/gl/pass_timer.h"
 #include "render/gl/shader_library.h"

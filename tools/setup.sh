@@ -10,6 +10,7 @@ packages=(
   libglm-dev libtbb-dev libyaml-cpp-dev libpng-dev   # math, threads, config, images
   libopenvdb-dev libboost-iostreams-dev              # snapshots (OpenVDB's CMake needs boost-iostreams)
   libvtk9-dev                                        # .vtp/.vtu/.vti/.pvd files
+  libopenexr-dev                                     # depth (and deep) images
   libhdf5-dev                                        # PySPH's HDF5 particle files (offline tools)
   libopenmpi-dev openmpi-bin                         # many ranks
   libgtest-dev gfortran                              # tests (gfortran: the Fortran bindings)

@@ -16,6 +16,7 @@
 
 #include <voxspan/adapter.h>
 #include <voxspan/error.h>
+#include <voxspan/insitu.h>
 
 #include "sph.h"
 
@@ -128,7 +129,7 @@ int main(int argc, char** argv) {
     adapter = o.insitu_config.empty()
                   ? std::make_unique<voxspan::Adapter>(ao)
                   : std::make_unique<voxspan::Adapter>(
-                        voxspan::Adapter::from_config_file(o.insitu_config, ao));
+                        voxspan::adapter_from_config_file(o.insitu_config, ao));
   } catch (const voxspan::Error& e) {
     std::fprintf(stderr, "dambreak: %s\n", e.what());
     return 1;

@@ -187,25 +187,12 @@ EGLContext create_core_context(EGLDisplay display, bool debug, std::string& fail
 
 }  // namespace
 
-const char* platform_name(Platform platform) {
-  switch (platform) {
-    case Platform::automatic: return "auto";
-    case Platform::nvidia: return "nvidia";
-    case Platform::device: return "device";
-    case Platform::surfaceless: return "surfaceless";
-  }
-  return "?";
-}
+const char* platform_name(Platform platform) { return name_of(kPlatformNames, platform).data(); }
 
 bool parse_platform(std::string_view text, Platform& platform) {
-  for (Platform p : {Platform::automatic, Platform::nvidia, Platform::device,
-                     Platform::surfaceless}) {
-    if (text == platform_name(p)) {
-      platform = p;
-      return true;
-    }
-  }
-  return false;
+  const std::optional<Platform> p = value_of(kPlatformNames, text);
+  if (p) platform = *p;
+  return p.has_value();
 }
 
 Context::Context(const ContextOptions& options) {

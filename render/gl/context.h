@@ -13,12 +13,18 @@
 #include <string>
 #include <string_view>
 
+#include "render/enum_names.h"
+
 namespace voxspan::gl {
 
 enum class Platform { automatic, nvidia, device, surfaceless };
+inline constexpr EnumName<Platform> kPlatformNames[] = {{"auto", Platform::automatic},
+                                                        {"nvidia", Platform::nvidia},
+                                                        {"device", Platform::device},
+                                                        {"surfaceless", Platform::surfaceless}};
 
 const char* platform_name(Platform platform);
-// Accepts the names above ("auto" for automatic); false for anything else.
+// Accepts the names above; false for anything else.
 bool parse_platform(std::string_view text, Platform& platform);
 
 struct ContextOptions {

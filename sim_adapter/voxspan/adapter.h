@@ -9,10 +9,10 @@
 //     adapter.execute(step, time, ParticleView::soa(x, y, z, n), GridView::offsets(g, offsets));
 //   }
 //
-// Or with the in-situ runtime behind it, configured by a YAML file (docs/runtime.md): views,
-// triggers, PNG frames, stats, OpenVDB and VTK snapshots:
+// Or with the in-situ runtime behind it, configured by a YAML file (voxspan/insitu.h,
+// docs/runtime.md): views, triggers, PNG frames, stats, OpenVDB and VTK snapshots:
 //
-//   voxspan::Adapter adapter = voxspan::Adapter::from_config_file("insitu.yaml", options);
+//   voxspan::Adapter adapter = voxspan::adapter_from_config_file("insitu.yaml", options);
 //   for (step...) adapter.execute(step, time, particles, grid);   // last: execute_last(...)
 //   adapter.finish();                                               // waits for the files
 //
@@ -70,7 +70,7 @@ struct StepData {
   double time = 0;
   std::span<const ParticleSphere> boundary;       // the boundary particles, packed float4
   CellStatesView cells;                           // one state byte per cell
-  std::span<const CompactedAttribute> attributes; // in boundary order
+  std::span<const Attribute> attributes;          // in boundary order
   const ParticleView* particles = nullptr;        // all particles, for outputs that want them
   const GridView* grid = nullptr;                 // the grid as the solver passed it
 };
@@ -99,16 +99,6 @@ class Adapter {
  public:
   // Throws voxspan::Error naming the bad option (e.g. no spacing and no full count).
   explicit Adapter(AdapterOptions options);
-  // An adapter with the in-situ runtime behind it, configured by a YAML file (docs/runtime.md).
-  // The config's triggers decide the render steps (options.render_every is set to 1); its
-  // classification section overrides the options it sets; the attributes its snapshots ask
-  // for are added to options.classify.attributes. Everything that can fail before step 1
-  // throws voxspan::Error here, naming the problem: an unknown key or bad value (with the file
-  // and line), an output folder that cannot be written, no usable GL platform, a pass that
-  // does not compile.
-  static Adapter from_config_file(const std::string& path, AdapterOptions options);
-  static Adapter from_config_text(const std::string& yaml, AdapterOptions options,
-                                  const std::string& source_name = "<config>");
   ~Adapter();
   Adapter(const Adapter&) = delete;
   Adapter& operator=(const Adapter&) = delete;

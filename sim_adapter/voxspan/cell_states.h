@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace voxspan {
 
@@ -40,6 +41,28 @@ struct CellStatesView {
     return std::size_t(dims[0]) * std::size_t(dims[1]) * std::size_t(dims[2]);
   }
   bool empty() const { return states == nullptr || cell_count() == 0; }
+};
+
+// Cell states owned (what an output keeps of a step for its writer job); view() is the
+// CellStatesView of them. assign() copies a view in, keeping this storage's capacity.
+struct CellStates {
+  std::array<double, 3> origin{0, 0, 0};
+  double cell_size = 0;
+  std::array<int, 3> dims{0, 0, 0};
+  std::vector<std::uint8_t> states;
+
+  CellStatesView view() const {
+    return {origin, cell_size, dims, states.empty() ? nullptr : states.data()};
+  }
+  void assign(const CellStatesView& v) {
+    origin = v.origin;
+    cell_size = v.cell_size;
+    dims = v.dims;
+    if (v.empty())
+      states.clear();
+    else
+      states.assign(v.states, v.states + v.cell_count());
+  }
 };
 
 // The boundary particles handed to the renderer: packed float4 (x, y, z, radius), 16 bytes per

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "voxspan/attribute.h"
 #include "voxspan/cell_states.h"
 #include "voxspan/grid.h"
 #include "voxspan/particles.h"
@@ -67,17 +68,12 @@ struct ClassifyCounts {
 };
 
 // A compacted attribute: `components` floats per boundary particle, in boundary order.
-struct CompactedAttribute {
-  std::string name;
-  int components = 1;
-  std::vector<float> values;
-};
 
 struct Classification {
   GridGeometry geometry;
   std::vector<std::uint8_t> states;       // one byte per cell, voxspan::cell
   std::vector<ParticleSphere> boundary;   // in cell order, then grid order within a cell
-  std::vector<CompactedAttribute> attributes;
+  std::vector<Attribute> attributes;  // the requested ones, in boundary order
   ClassifyCounts counts;
   double seconds_classify = 0;  // counting (and sorting) and the cell states
   double seconds_compact = 0;   // the boundary spheres and attributes

@@ -4,12 +4,19 @@
 #include <fstream>
 
 #include "error_message.h"
-#include "insitu/config.h"
+#include "insitu/outputs/vdb_output.h"
+#include "insitu/outputs/vtk_output.h"
+#include "insitu/runtime/config_file.h"
+#include "insitu/views/surface_view.h"
 #include "temp_folder.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
 namespace {
+
+SurfaceSettings& view(Config& c, std::size_t i) {
+  return dynamic_cast<SurfaceSettings&>(*c.views.at(i).settings);
+}
 
 // The message of the Error the YAML raises ("" when it loads).
 std::string error_of(const std::string& yaml) {
@@ -18,23 +25,24 @@ std::string error_of(const std::string& yaml) {
 
 TEST(Config, EmptyFileGivesTheDefaults) {
   Config c = load_config_string("", "empty.yaml");
-  EXPECT_EQ(c, Config{});
+  EXPECT_EQ(c, default_config());
   ASSERT_EQ(c.views.size(), 1u);
-  EXPECT_EQ(c.views[0].name, "main");
-  EXPECT_EQ(c.views[0].width, 960);
-  EXPECT_EQ(c.views[0].height, 540);
-  EXPECT_EQ(c.views[0].shading, ShadingMode::translucent);
-  EXPECT_TRUE(c.views[0].camera.automatic);
-  EXPECT_EQ(c.views[0].max_layers, 16384);
-  EXPECT_DOUBLE_EQ(c.views[0].alpha_degrees, 14);
+  EXPECT_EQ(c.views[0].kind, "surface");
+  EXPECT_EQ(view(c, 0).name, "main");
+  EXPECT_EQ(view(c, 0).width, 960);
+  EXPECT_EQ(view(c, 0).height, 540);
+  EXPECT_EQ(view(c, 0).shading, ShadeMode::translucent);
+  EXPECT_TRUE(view(c, 0).camera.automatic);
+  EXPECT_EQ(view(c, 0).max_layers, 16384);
+  EXPECT_DOUBLE_EQ(view(c, 0).alpha_degrees, 14);
   EXPECT_EQ(c.trigger, (TriggerSpec{10, 0, true, true}));
-  EXPECT_TRUE(c.outputs.png.enabled);
-  EXPECT_TRUE(c.outputs.stats.enabled);
-  EXPECT_FALSE(c.outputs.vdb.enabled);
-  EXPECT_FALSE(c.outputs.vtk.enabled);
+  EXPECT_TRUE(c.output("png").enabled);
+  EXPECT_TRUE(c.output("stats").enabled);
+  EXPECT_FALSE(c.output("vdb").enabled);
+  EXPECT_FALSE(c.output("vtk").enabled);
   EXPECT_EQ(c.writer.when_full, QueuePolicy::wait);
   // A comment-only file is empty too.
-  EXPECT_EQ(load_config_string("# nothing here\n"), Config{});
+  EXPECT_EQ(load_config_string("# nothing here\n"), default_config());
 }
 
 TEST(Config, ReadsEverySection) {
@@ -82,10 +90,10 @@ writer: {queue_size: 3, when_full: drop, fsync: false}
   EXPECT_EQ(c.log_level, "info");
   EXPECT_EQ(c.trigger, (TriggerSpec{5, 0.25, false, true}));
   ASSERT_EQ(c.views.size(), 2u);
-  const ViewConfig& side = c.views[0];
+  const SurfaceSettings& side = view(c, 0);
   EXPECT_EQ(side.name, "side");
   EXPECT_EQ(side.width, 640);
-  EXPECT_EQ(side.shading, ShadingMode::refractive);
+  EXPECT_EQ(side.shading, ShadeMode::refractive);
   EXPECT_TRUE(side.deep_ao);
   EXPECT_FALSE(side.camera.automatic);
   EXPECT_EQ(side.camera.eye, (Vec3d{3, -4, 2}));
@@ -99,36 +107,36 @@ writer: {queue_size: 3, when_full: drop, fsync: false}
   EXPECT_EQ(side.absorption, (Vec3d{0.5, 0.2, 0.1}));
   EXPECT_DOUBLE_EQ(side.ior, 1.5);
   EXPECT_EQ(side.bounces, 4);
-  const ViewConfig& top = c.views[1];
-  EXPECT_EQ(top.shading, ShadingMode::opaque);
+  const SurfaceSettings& top = view(c, 1);
+  EXPECT_EQ(top.shading, ShadeMode::opaque);
   EXPECT_TRUE(top.camera.automatic);
   EXPECT_EQ(top.camera.direction, (Vec3d{0, 0, -1}));
   EXPECT_DOUBLE_EQ(top.camera.margin, 1.2);
   EXPECT_FALSE(top.gap.has_value());  // auto
-  EXPECT_EQ(c.renderer.platform, GlPlatformChoice::surfaceless);
+  EXPECT_EQ(c.renderer.platform, gl::Platform::surfaceless);
   EXPECT_TRUE(c.renderer.debug);
   EXPECT_DOUBLE_EQ(c.renderer.gpu_memory_mib, 128);
   EXPECT_EQ(c.classification.full_count, 10);
   EXPECT_EQ(c.classification.particle_spacing, 0.005);
   EXPECT_TRUE(c.classification.validate_grid);
-  EXPECT_EQ(c.outputs.png.folder, "pictures");
-  EXPECT_FALSE(c.outputs.stats.enabled);
-  const VdbOutputConfig& vdb = c.outputs.vdb;
+  EXPECT_EQ(c.output("png").folder, "pictures");
+  EXPECT_FALSE(c.output("stats").enabled);
+  const VdbSettings& vdb = c.output<VdbSettings>();
   EXPECT_TRUE(vdb.enabled);
   EXPECT_EQ(vdb.trigger, (TriggerSpec{0, 1.0, false, false}));
-  EXPECT_EQ(vdb.voxel_size, 0.002);
-  EXPECT_EQ(vdb.half_width, 4);
-  EXPECT_EQ(vdb.closing, 0.0);
-  EXPECT_FALSE(vdb.fill_inner);
-  EXPECT_FALSE(vdb.cell_states);
+  EXPECT_EQ(vdb.snapshot.voxel_size, 0.002);
+  EXPECT_EQ(vdb.snapshot.half_width, 4);
+  EXPECT_EQ(vdb.snapshot.closing, 0.0);
+  EXPECT_FALSE(vdb.snapshot.fill_inner);
+  EXPECT_FALSE(vdb.snapshot.cell_states);
   EXPECT_EQ(vdb.attributes, (std::vector<std::string>{"velocity", "pressure"}));
-  EXPECT_TRUE(c.outputs.vtk.particles);
-  EXPECT_FALSE(c.outputs.vtk.cells);
+  EXPECT_TRUE(c.output<VtkSettings>().particles);
+  EXPECT_FALSE(c.output<VtkSettings>().cells);
   EXPECT_EQ(c.writer.queue_size, 3);
   EXPECT_EQ(c.writer.when_full, QueuePolicy::drop);
   EXPECT_FALSE(c.writer.fsync);
-  EXPECT_EQ(c.folder_of(c.outputs.png), std::filesystem::path("/tmp/run42/pictures"));
-  EXPECT_EQ(c.folder_of(c.outputs.vdb), std::filesystem::path("/scratch/snap"));
+  EXPECT_EQ(c.folder_of(c.output("png")), std::filesystem::path("/tmp/run42/pictures"));
+  EXPECT_EQ(c.folder_of(c.output("vdb")), std::filesystem::path("/scratch/snap"));
 }
 
 TEST(Config, PngAndStatsFollowTheRenderTriggerUnlessGiven) {
@@ -137,8 +145,8 @@ trigger: {every_steps: 7}
 outputs:
   stats: {trigger: {every_steps: 1}}
 )");
-  EXPECT_EQ(c.outputs.png.trigger, (TriggerSpec{7, 0, false, false}));
-  EXPECT_EQ(c.outputs.stats.trigger, (TriggerSpec{1, 0, false, false}));
+  EXPECT_EQ(c.output("png").trigger, (TriggerSpec{7, 0, false, false}));
+  EXPECT_EQ(c.output("stats").trigger, (TriggerSpec{1, 0, false, false}));
 }
 
 TEST(Config, UnknownKeyNamesThePathTheLineAndTheNearestKey) {
@@ -212,23 +220,24 @@ TEST(Config, DuplicateKeysAreErrors) {
 }
 
 TEST(Config, EmittedYamlLoadsBackToTheSameConfig) {
-  Config c;
+  Config c = default_config();
   EXPECT_EQ(load_config_string(to_yaml(c)), c);
   c.output_folder = "out dir";
   c.log_level = "debug";
   c.trigger = {3, 0.125, false, true};
-  c.views[0].camera.automatic = false;
-  c.views[0].camera.eye = {1, 2, 3};
-  c.views[0].camera.target = {0.1, 0.2, 0.3};
-  c.views[0].gap = 0.0123456789012345;
+  view(c, 0).camera.automatic = false;
+  view(c, 0).camera.eye = {1, 2, 3};
+  view(c, 0).camera.target = {0.1, 0.2, 0.3};
+  view(c, 0).gap = 0.0123456789012345;
   c.views.push_back(c.views[0]);
-  c.views[1].name = "second";
-  c.views[1].camera = CameraConfig{};
-  c.views[1].shading = ShadingMode::refractive;
+  view(c, 1).name = "second";
+  view(c, 1).camera = CameraConfig{};
+  view(c, 1).shading = ShadeMode::refractive;
   c.classification.full_count = 9;
-  c.outputs.vdb.enabled = true;
-  c.outputs.vdb.attributes = {"velocity"};
-  c.outputs.vtk.enabled = true;
+  c.output<VdbSettings>().enabled = true;
+  c.output<VdbSettings>().attributes = {"velocity"};
+  c.output("vtk").enabled = true;
+  c.output("depth").enabled = true;
   c.writer.when_full = QueuePolicy::drop;
   std::string yaml = to_yaml(c);
   EXPECT_EQ(load_config_string(yaml), c) << yaml;
@@ -237,7 +246,7 @@ TEST(Config, EmittedYamlLoadsBackToTheSameConfig) {
 TEST(Config, LoadsFilesAndNamesThemInErrors) {
   test::TempFolder dir;
   std::ofstream(dir / "good.yaml") << "views:\n  - width: 320\n";
-  EXPECT_EQ(load_config_file(dir / "good.yaml").views[0].width, 320);
+  EXPECT_EQ(load_config_file(dir / "good.yaml").views[0].settings->width, 320);
   std::ofstream(dir / "bad.yaml") << "\n\nwriter: {queue: 3}\n";
   try {
     load_config_file(dir / "bad.yaml");

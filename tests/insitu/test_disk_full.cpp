@@ -14,10 +14,10 @@
 #include <map>
 #include <sstream>
 
-#include "insitu/atomic_file.h"
-#include "insitu/background_writer.h"
-#include "insitu/stats.h"
-#include "insitu/stats_log.h"
+#include "insitu/outputs/atomic_file.h"
+#include "insitu/outputs/background_writer.h"
+#include "insitu/outputs/stats_record.h"
+#include "insitu/outputs/stats_log.h"
 #include "child_process.h"
 #include "log_capture.h"
 #include "temp_folder.h"

@@ -8,7 +8,8 @@
 
 #include "child_process.h"
 #include "error_message.h"
-#include "insitu/output_folder.h"
+#include "insitu/runtime/config_file.h"
+#include "insitu/runtime/output_folder.h"
 #include "temp_folder.h"
 #include "voxspan/error.h"
 
@@ -76,7 +77,7 @@ TEST(OutputFolder, ChecksTheFolderOfEveryEnabledOutput) {
     EXPECT_NE(std::string(e.what()).find("cannot use outputs.vdb folder " + (dir / "blocker/snap").string()),
               std::string::npos) << e.what();
   }
-  c.outputs.vdb.folder = "snap";
+  c.output("vdb").folder = "snap";
   std::vector<std::filesystem::path> folders = prepare_output_folders(c);
   EXPECT_EQ(folders.size(), 3u);  // png, stats, vdb
   EXPECT_TRUE(std::filesystem::is_directory(dir / "frames"));

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "error_message.h"
-#include "insitu/particle_data.h"
+#include "insitu/io/particle_data.h"
 #include "temp_folder.h"
 
 namespace voxspan {
@@ -167,7 +167,7 @@ TEST(PySphParticles, ReadsEveryArrayWithTimeStepAndCommonProperties) {
   EXPECT_NE(d.attribute("m"), nullptr);
   EXPECT_EQ(d.attribute("p"), nullptr);   // only the fluid has it
   EXPECT_EQ(d.attribute("au"), nullptr);  // not stored
-  const NamedAttribute* vel = d.attribute("velocity");
+  const Attribute* vel = d.attribute("velocity");
   ASSERT_NE(vel, nullptr);
   EXPECT_EQ(vel->components, 3);
   EXPECT_EQ(std::vector<float>(vel->values.begin(), vel->values.begin() + 6),

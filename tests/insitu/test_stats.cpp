@@ -5,10 +5,11 @@
 #include <fstream>
 #include <thread>
 
-#include "insitu/host_memory.h"
-#include "insitu/stats.h"
-#include "insitu/stats_log.h"
+#include "insitu/runtime/host_memory.h"
+#include "insitu/outputs/stats_record.h"
+#include "insitu/outputs/stats_log.h"
 #include "temp_folder.h"
+#include "voxspan/stopwatch.h"
 
 namespace voxspan {
 namespace {
@@ -33,7 +34,7 @@ TEST(Stats, JsonLineHasTotalsMemoryAndViews) {
             "\"views\":{\"main\":{\"timings_ms\":{\"splat\":42},\"counters\":{\"spans\":1203311}},"
             "\"side \\\"2\\\"\":{\"timings_ms\":{\"shade\":null},\"counters\":{}}}}\n");
   EXPECT_EQ(r.view("main").count("spans"), 1203311);
-  EXPECT_EQ(r.totals.time("nothing"), 0);
+  EXPECT_EQ(r.totals.ms("nothing"), 0);
 }
 
 TEST(Stats, ClearKeepsViewsForTheNextStep) {
@@ -45,13 +46,10 @@ TEST(Stats, ClearKeepsViewsForTheNextStep) {
   EXPECT_TRUE(r.totals.empty());
 }
 
-TEST(Stats, ScopedTimingAddsItsWallTime) {
-  StatsSection s;
-  {
-    ScopedTiming t(s, "sleep");
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  EXPECT_GE(s.time("sleep"), 4.5);
+TEST(Stats, StopwatchMeasuresItsWallTime) {
+  const Stopwatch watch;
+  std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_GE(watch.ms(), 4.5);
 }
 
 TEST(Stats, HostMemoryIsReported) {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <random>
 
-#include "insitu/config.h"
-#include "insitu/schedule.h"
-#include "insitu/trigger.h"
+#include "insitu/runtime/config_file.h"
+#include "insitu/runtime/schedule.h"
+#include "insitu/config/trigger.h"
 
 namespace voxspan {
 namespace {
@@ -116,15 +116,17 @@ outputs:
   stats: {enabled: false}
   vdb: {enabled: true, trigger: {every_steps: 6}}
 )");
+  const std::size_t png = c.output_index("png"), vdb = c.output_index("vdb");
+  const std::size_t stats_out = c.output_index("stats"), vtk = c.output_index("vtk");
   Schedule s(c);
   int renders = 0, pngs = 0, vdbs = 0, stats = 0, vtks = 0;
   for (std::int64_t step = 1; step <= 24; ++step) {
     StepPlan p = s.plan(step, 0);
-    EXPECT_EQ(p.png, step % 4 == 0) << step;
+    EXPECT_EQ(p.outputs[png], step % 4 == 0) << step;
     EXPECT_EQ(p.render, step % 10 == 0 || step % 4 == 0) << step;
-    EXPECT_EQ(p.vdb, step % 6 == 0) << step;
-    EXPECT_EQ(p.needs_classification(), p.render || p.vdb);
-    renders += p.render, pngs += p.png, vdbs += p.vdb, stats += p.stats, vtks += p.vtk;
+    EXPECT_EQ(p.outputs[vdb], step % 6 == 0) << step;
+    renders += p.render, pngs += p.outputs[png], vdbs += p.outputs[vdb];
+    stats += p.outputs[stats_out], vtks += p.outputs[vtk];
   }
   EXPECT_EQ(renders, 7);  // 4 8 10 12 16 20 24
   EXPECT_EQ(pngs, 6);
@@ -138,16 +140,16 @@ TEST(Schedule, NoViewsMeansNoRendering) {
   Schedule s(c);
   StepPlan p = s.plan(10, 0);
   EXPECT_FALSE(p.render);
-  EXPECT_FALSE(p.png);
-  EXPECT_TRUE(p.vdb);
-  EXPECT_TRUE(p.needs_classification());
+  EXPECT_FALSE(p.outputs[c.output_index("png")]);
+  EXPECT_TRUE(p.outputs[c.output_index("vdb")]);
 }
 
 TEST(Schedule, NothingDueOnOrdinarySteps) {
-  Schedule s{Config{}};
+  const Config c = default_config();
+  Schedule s{c};
   EXPECT_TRUE(s.plan(0, 0).render);  // first
   EXPECT_FALSE(s.plan(1, 0.1).any());
-  EXPECT_TRUE(s.plan(10, 1).png);
+  EXPECT_TRUE(s.plan(10, 1).outputs[c.output_index("png")]);
   EXPECT_TRUE(s.plan(11, 1.1, true).render);  // last
 }
 

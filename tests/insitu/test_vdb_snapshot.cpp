@@ -8,8 +8,8 @@
 
 #include <iostream>
 
-#include "insitu/vdb_inspect.h"
-#include "insitu/vdb_snapshot.h"
+#include "insitu/io/vdb_inspect.h"
+#include "insitu/outputs/vdb_snapshot.h"
 #include "temp_folder.h"
 #include "tools/scenes/lattice.h"
 #include "voxspan/error.h"

@@ -6,13 +6,14 @@
 #include <cmath>
 #include <vector>
 
-#include "insitu/view_framing.h"
+#include "insitu/views/surface_view.h"
+#include "insitu/views/view_framing.h"
 
 namespace voxspan {
 namespace {
 
-ViewConfig view_looking(Vec3d direction, Framing framing = Framing::grow) {
-  ViewConfig v;
+SurfaceSettings view_looking(Vec3d direction, Framing framing = Framing::grow) {
+  SurfaceSettings v;
   v.width = 960;
   v.height = 540;
   v.camera.direction = direction;
@@ -51,7 +52,7 @@ std::vector<ParticleSphere> block(float x0, float x1, float z1) {
 TEST(ViewFraming, TheFluidsBoxJustFitsTheView) {
   for (Vec3d direction : {Vec3d{0.3, 1, -0.45}, Vec3d{-1, 2, -0.8}, Vec3d{0, 0.01, -1},
                           Vec3d{1, 0, 0}}) {
-    ViewConfig v = view_looking(direction);
+    SurfaceSettings v = view_looking(direction);
     if (std::abs(direction[2]) > 0.99) v.camera.up = {0, 1, 0};
     const std::vector<ParticleSphere> spheres = block(0, 1, 0.5);
     const Bounds box = Bounds::of_spheres(spheres);
@@ -83,7 +84,7 @@ TEST(ViewFraming, GrowEachStepAndFirstFollowTheFluidDifferently) {
 }
 
 TEST(ViewFraming, ManualCameraIsAsGivenAndStillTracksTheBox) {
-  ViewConfig v;
+  SurfaceSettings v;
   v.width = 320;
   v.height = 200;
   v.camera.automatic = false;

@@ -11,7 +11,8 @@
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLPolyDataReader.h>
 
-#include "insitu/vtk_files.h"
+#include "insitu/io/particle_data.h"
+#include "insitu/outputs/vtk_files.h"
 #include "temp_folder.h"
 #include "tools/scenes/lattice.h"
 #include "voxspan/error.h"

@@ -25,6 +25,7 @@
 #include "output_files.h"
 #include "temp_folder.h"
 #include "voxspan/adapter.h"
+#include "voxspan/insitu.h"
 #include "voxspan/voxspan.h"
 
 namespace voxspan {
@@ -33,7 +34,7 @@ namespace {
 std::string start_error(const std::string& yaml) {
   dambreak::DamBreak sim(test::small_dambreak());
   return test::error_message([&] {
-    Adapter adapter = Adapter::from_config_text(yaml, test::solver_options(sim), "run.yaml");
+    Adapter adapter = adapter_from_config_text(yaml, test::solver_options(sim), "run.yaml");
   });
 }
 
@@ -113,7 +114,7 @@ outputs:
 )";
   std::ostringstream r;
   {
-    Adapter adapter = Adapter::from_config_text(yaml, test::solver_options(sim), "disk.yaml");
+    Adapter adapter = adapter_from_config_text(yaml, test::solver_options(sim), "disk.yaml");
     const test::RunResult run = test::run_dambreak(sim, adapter, 30);
     r << "steps=" << run.steps << "\nfailed=" << run.failed << "\n";
     r << "summary=" << adapter.summary() << "\n";
@@ -212,7 +213,7 @@ outputs:
 )";
   AdapterOptions options;
   options.classify.particle_spacing = 0.01;
-  Adapter adapter = Adapter::from_config_text(yaml, options, "empty.yaml");
+  Adapter adapter = adapter_from_config_text(yaml, options, "empty.yaml");
   EXPECT_TRUE(adapter.execute(1, 0.0, ParticleView()).ok()) << adapter.last_stats().status.message;
   std::vector<float> xyz;
   for (int i = 0; i < 64; ++i) xyz.insert(xyz.end(), {0.01f * float(i % 4), 0.01f * float(i / 4 % 4), 0.01f * float(i / 16)});
@@ -255,7 +256,7 @@ writer: {queue_size: 1, when_full: drop, fsync: true}
   const int steps = 12;
   std::string summary;
   {
-    Adapter adapter = Adapter::from_config_text(yaml, test::solver_options(sim), "drop.yaml");
+    Adapter adapter = adapter_from_config_text(yaml, test::solver_options(sim), "drop.yaml");
     const test::RunResult run = test::run_dambreak(sim, adapter, steps);
     EXPECT_EQ(run.steps, steps);
     EXPECT_EQ(run.failed, 0) << run.first_failure;

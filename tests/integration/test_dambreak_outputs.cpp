@@ -14,6 +14,7 @@
 #include "output_files.h"
 #include "temp_folder.h"
 #include "voxspan/adapter.h"
+#include "voxspan/insitu.h"
 #include "voxspan/error.h"
 #include "voxspan/voxspan.h"
 
@@ -59,7 +60,7 @@ class DamBreakRun : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = new test::TempFolder;
     sim_ = new dambreak::DamBreak(test::small_dambreak());
-    Adapter adapter = Adapter::from_config_text(config_for(dir_->path()),
+    Adapter adapter = adapter_from_config_text(config_for(dir_->path()),
                                                 test::solver_options(*sim_), "test.yaml");
     result_ = test::run_dambreak(*sim_, adapter, kSteps);
     summary_ = adapter.summary();

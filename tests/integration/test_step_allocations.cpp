@@ -9,6 +9,7 @@
 #include "dambreak_run.h"
 #include "temp_folder.h"
 #include "voxspan/adapter.h"
+#include "voxspan/insitu.h"
 
 namespace voxspan {
 namespace {
@@ -27,7 +28,7 @@ outputs:
   vtk: {enabled: true, trigger: {every_steps: 4}, attributes: [velocity]}
 writer: {queue_size: 64, fsync: false}
 )";
-  Adapter adapter = Adapter::from_config_text(yaml, test::solver_options(sim), "alloc.yaml");
+  Adapter adapter = adapter_from_config_text(yaml, test::solver_options(sim), "alloc.yaml");
   const dambreak::Fluid& f = sim.fluid();
   const dambreak::GridShape& g = sim.fluid_grid().shape();
   auto execute = [&](std::int64_t step) {

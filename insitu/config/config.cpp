@@ -1,0 +1,389 @@
+// The config schema of the top level, triggers, cameras, the renderer, classification and the
+// writer; the views' and outputs' own keys come from their kinds (insitu/views/,
+// insitu/outputs/). The mechanism is insitu/config/schema.h.
+#include "insitu/config/config.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "insitu/config/yaml_reader.h"
+#include "voxspan/error.h"
+#include "voxspan/log.h"
+
+namespace voxspan {
+namespace {
+
+using schema::Key;
+using schema::Section;
+using yaml::Checker;
+using yaml::MapReader;
+
+constexpr std::int64_t kNoLimit = std::numeric_limits<std::int64_t>::max();
+
+double length(const Vec3d& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+// sin of the angle between a and b is |a x b| / (|a| |b|).
+bool parallel(const Vec3d& a, const Vec3d& b) {
+  Vec3d c{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  return length(c) <= 1e-6 * length(a) * length(b);
+}
+
+void check_camera(MapReader& r, CameraConfig& c) {
+  const bool manual_keys = r.has("eye") || r.has("target");
+  if (!r.has("auto")) c.automatic = !manual_keys;
+  Checker& ch = r.checker();
+  if (length(c.up) == 0) ch.error(r.find("up"), r.path("up"), "must not be zero");
+  if (c.automatic) {
+    if (manual_keys) {
+      const char* key = r.has("eye") ? "eye" : "target";
+      ch.error(r.find(key), r.path(key),
+               "automatic framing (auto: true) chooses the eye and target itself; remove it or "
+               "set auto: false");
+    }
+    if (length(c.direction) == 0)
+      ch.error(r.find("direction"), r.path("direction"), "must not be zero");
+    else if (length(c.up) > 0 && parallel(c.direction, c.up))
+      ch.error(r.find("direction"), r.path("direction"), "must not be parallel to camera.up");
+    return;
+  }
+  for (const char* key : {"direction", "margin", "framing"})
+    if (r.has(key))
+      ch.error(r.find(key), r.path(key),
+               "is for automatic framing; a camera with eye and target looks at the target");
+  if (!r.has("eye") || !r.has("target")) {
+    ch.error(r.node(), r.path(), "a manual camera needs both eye and target");
+    return;
+  }
+  const Vec3d d{c.target[0] - c.eye[0], c.target[1] - c.eye[1], c.target[2] - c.eye[2]};
+  if (length(d) == 0)
+    ch.error(r.find("target"), r.path("target"), "must differ from camera.eye");
+  else if (length(c.up) > 0 && parallel(d, c.up))
+    ch.error(r.find("up"), r.path("up"), "must not be parallel to the viewing direction");
+}
+
+bool manual(const CameraConfig& c) { return !c.automatic; }
+bool automatic(const CameraConfig& c) { return c.automatic; }
+
+const Section<RendererConfig>& renderer_section() {
+  using R = RendererConfig;
+  static const Section<R> s{
+      "renderer",
+      {schema::choice("gl_platform", &R::platform, gl::kPlatformNames,
+                      "as `VOXSPAN_GL_PLATFORM` (which overrides it)"),
+       schema::flag("debug", &R::debug, "GL debug context"),
+       schema::number("gpu_memory_mib", &R::gpu_memory_mib, schema::between(1, 1 << 24),
+                      "budget for the tiled bit grid and span buffers")}};
+  return s;
+}
+
+const Section<ClassificationConfig>& classification_section() {
+  using C = ClassificationConfig;
+  static const Section<C> s{
+      "classification",
+      {schema::integer_or_auto("full_count", &C::full_count, 1, 1 << 20,
+                               "particles in a full cell; `auto` = from the particle spacing"),
+       schema::number_or_auto("particle_spacing", &C::particle_spacing, schema::above(0),
+                              "world units; `auto` = as the solver reports it"),
+       schema::flag("validate_grid", &C::validate_grid,
+                    "check each particle lies in the cell the grid claims")}};
+  return s;
+}
+
+const Section<WriterConfig>& writer_section() {
+  using W = WriterConfig;
+  static const Section<W> s{
+      "writer",
+      {schema::integer("queue_size", &W::queue_size, 1, 4096, "jobs waiting for the writer thread"),
+       schema::choice("when_full", &W::when_full, kQueuePolicyNames,
+                      "`wait` blocks the solver until a slot frees; `drop` skips the file and "
+                      "counts it (a warning at the 1st, 10th, 100th... drop, a summary at the end)"),
+       schema::flag("fsync", &W::fsync, "files are fsynced before they get their final name")}};
+  return s;
+}
+
+// ---- views: a list, each item read by its kind's section
+
+const ViewConfigKind* find_kind(const std::vector<ViewConfigKind>& kinds, std::string_view name) {
+  for (const ViewConfigKind& k : kinds)
+    if (k.name == name) return &k;
+  return nullptr;
+}
+
+std::string kind_names(const std::vector<ViewConfigKind>& kinds) {
+  std::string text;
+  for (const ViewConfigKind& k : kinds) text += (text.empty() ? "" : ", ") + std::string(k.name);
+  return text;
+}
+
+std::optional<ConfiguredView> read_view(Checker& checker, const YAML::Node& node,
+                                        const std::string& path, std::size_t index,
+                                        const std::vector<ViewConfigKind>& kinds) {
+  const ViewConfigKind* kind = &kinds.front();
+  if (node.IsMap() && node["kind"]) {
+    const YAML::Node k = node["kind"];
+    kind = k.IsScalar() ? find_kind(kinds, k.Scalar()) : nullptr;
+    if (kind == nullptr) {
+      checker.error(k, path + ".kind",
+                    "expected one of " + kind_names(kinds) + "; got " + yaml::describe(k));
+      return std::nullopt;
+    }
+  }
+  ConfiguredView view{std::string(kind->name), kind->defaults()};
+  ViewSettings& v = *view.settings;
+  v.name = "view" + std::to_string(index);
+  kind->read(checker, node, path, v);
+  if (!schema::is_plain_name(v.name))
+    checker.error(node.IsMap() && node["name"] ? node["name"] : node, path + ".name",
+                  "must be letters, digits, '_', '-' or '.' (it names files); got \"" + v.name +
+                      "\"");
+  return view;
+}
+
+void read_views(MapReader& top, std::vector<ConfiguredView>& views,
+                const std::vector<ViewConfigKind>& kinds) {
+  if (!top.has("views")) return;
+  const YAML::Node node = top.find("views");
+  Checker& checker = top.checker();
+  views.clear();
+  if (node.IsNull()) return;
+  if (!node.IsSequence()) {
+    checker.error(node, "views", "expected a list of views (\"- name: ...\"); got " +
+                                     yaml::describe(node));
+    return;
+  }
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string path = "views[" + std::to_string(i) + "]";
+    std::optional<ConfiguredView> view = read_view(checker, node[i], path, i, kinds);
+    if (!view) continue;
+    if (!names.insert(view->settings->name).second)
+      checker.error(node[i], path + ".name", "\"" + view->settings->name + "\" names two views");
+    views.push_back(std::move(*view));
+  }
+}
+
+// ---- outputs: a map of the output kinds, each read by its kind's section
+
+void read_output(MapReader& outs, const OutputConfigKind& kind, const TriggerSpec& render_trigger,
+                 OutputSettings& out) {
+  const std::string name(kind.name);
+  const YAML::Node node = outs.find(name);
+  if (out.follows_render_trigger) out.trigger = render_trigger;
+  kind.read(outs.checker(), node, outs.path(name), out);
+  if (out.enabled && out.trigger.never_fires()) {
+    const YAML::Node trigger = node.IsMap() && node["trigger"] ? node["trigger"] : node;
+    outs.checker().error(trigger, outs.path(name) + ".trigger",
+                         "never fires while the output is enabled: set every_steps, "
+                         "every_time, first or last, or enabled: false");
+  }
+  if (out.folder.empty())
+    outs.checker().error(node, outs.path(name) + ".folder", "must not be empty");
+}
+
+void read_outputs(MapReader& top, Config& c, const std::vector<OutputConfigKind>& kinds) {
+  std::vector<std::string_view> names;
+  for (const OutputConfigKind& k : kinds) names.push_back(k.name);
+  MapReader outs(top.checker(), top.find("outputs"), "outputs", names);
+  for (std::size_t i = 0; i < kinds.size(); ++i)
+    read_output(outs, kinds[i], c.trigger, *c.outputs[i].settings);
+}
+
+// ---- the top level
+
+Key<Config> custom_key(std::string name, std::string type, std::string help,
+                       std::string shown_default, std::function<void(MapReader&, Config&)> read,
+                       std::function<void(YAML::Emitter&, const Config&)> emit) {
+  Key<Config> k;
+  k.name = std::move(name);
+  k.type = std::move(type);
+  k.help = std::move(help);
+  k.shown_default = std::move(shown_default);
+  k.read = std::move(read);
+  k.emit = std::move(emit);
+  return k;
+}
+
+std::vector<Key<Config>> top_keys(const ConfigKinds& kinds) {
+  std::vector<Key<Config>> keys;
+  keys.push_back(schema::text("output_folder", &Config::output_folder,
+                              "base folder; outputs' relative folders are inside it"));
+  keys.push_back(schema::text("log_level", &Config::log_level, "the library's log level")
+                     .default_shown_as("(keep `VOXSPAN_LOG_LEVEL`)")
+                     .only_when([](const Config& c) { return !c.log_level.empty(); }));
+  keys.back().type = "`error` `warning` `info` `debug`";
+  keys.push_back(schema::map("trigger", &Config::trigger, trigger_section(), "the render steps",
+                             true));
+  keys.back().shown_default = "`{every_steps: 10, first: true, last: true}`";
+  keys.push_back(custom_key(
+      "views", "list of views",
+      "the views rendered on each render step (`views[i]` of each kind below); `[]` renders "
+      "nothing",
+      "one view `main`",
+      [&kinds](MapReader& r, Config& c) { read_views(r, c.views, kinds.views); },
+      [&kinds](YAML::Emitter& e, const Config& c) {
+        e << YAML::BeginSeq;
+        for (const ConfiguredView& v : c.views)
+          for (const ViewConfigKind& k : kinds.views)
+            if (k.name == v.kind) k.emit(e, *v.settings);
+        e << YAML::EndSeq;
+      }));
+  keys.push_back(schema::map("renderer", &Config::renderer, renderer_section(),
+                             "GL platform and GPU budget"));
+  keys.push_back(schema::map("classification", &Config::classification,
+                             classification_section(), "how cells are classified"));
+  std::string output_names;
+  for (const OutputConfigKind& k : kinds.outputs)
+    output_names += (output_names.empty() ? "`" : ", `") + std::string(k.name) + "`";
+  keys.push_back(custom_key(
+      "outputs", "map", "the files written: " + output_names, "see `outputs.<kind>`",
+      [&kinds](MapReader& r, Config& c) { read_outputs(r, c, kinds.outputs); },
+      [&kinds](YAML::Emitter& e, const Config& c) {
+        e << YAML::BeginMap;
+        for (std::size_t i = 0; i < kinds.outputs.size(); ++i) {
+          e << YAML::Key << std::string(kinds.outputs[i].name) << YAML::Value;
+          kinds.outputs[i].emit(e, *c.outputs[i].settings);
+        }
+        e << YAML::EndMap;
+      }));
+  keys.push_back(schema::map("writer", &Config::writer, writer_section(), "the background writer"));
+  return keys;
+}
+
+void check_top(MapReader& top, Config& c) {
+  Checker& checker = top.checker();
+  if (top.has("output_folder") && c.output_folder.empty())
+    checker.error(top.find("output_folder"), "output_folder", "must not be empty");
+  LogLevel level;
+  if (top.has("log_level") && !parse_log_level(c.log_level, level))
+    checker.error(top.find("log_level"), "log_level",
+                  "expected one of error, warning, info, debug; got \"" + c.log_level + "\"");
+}
+
+Section<Config> top_section(const ConfigKinds& kinds) {
+  return Section<Config>("", top_keys(kinds), check_top);
+}
+
+}  // namespace
+
+const Section<TriggerSpec>& trigger_section() {
+  using T = TriggerSpec;
+  static const Section<T> s{
+      "trigger",
+      {schema::integer("every_steps", &T::every_steps, std::int64_t{0}, kNoLimit,
+                       "on the first step at or past each multiple of N; 0: off"),
+       schema::number("every_time", &T::every_time, schema::at_least(0),
+                      "on the first step whose simulated time reaches each multiple of T "
+                      "(variable time steps: never misses a multiple, never fires twice for "
+                      "one; 1e-9 T of slack for sums of dt); 0: off"),
+       schema::flag("first", &T::first, "the first step the runtime sees"),
+       schema::flag("last", &T::last, "the step the solver marks as its last")}};
+  return s;
+}
+
+const Section<CameraConfig>& camera_section() {
+  using C = CameraConfig;
+  static const Section<C> s{
+      "views[i].camera",
+      {schema::flag("auto", &C::automatic, "automatic framing")
+           .default_shown_as("true unless `eye`/`target` given"),
+       schema::vec3("eye", &C::eye, "manual only, with `target`").only_when(manual),
+       schema::vec3("target", &C::target, "manual only, with `eye`; not the eye")
+           .only_when(manual),
+       schema::vec3("up", &C::up, "not parallel to the viewing direction"),
+       schema::number("fov", &C::fov_degrees, schema::above_up_to(0, 179),
+                      "vertical field of view, degrees"),
+       schema::vec3("direction", &C::direction,
+                    "automatic only: the camera looks along it at the fluid's box")
+           .only_when(automatic),
+       schema::number("margin", &C::margin, schema::above_up_to(0, 100),
+                      "automatic only: the box, grown about its centre by this, just fits the "
+                      "view (all eight corners inside)")
+           .only_when(automatic),
+       schema::choice("framing", &C::framing, kFramingNames,
+                      "automatic only: the box is the union over all render steps so far (the "
+                      "camera only backs away: a steady video), each step's own, or the first "
+                      "step's")
+           .only_when(automatic)},
+      check_camera};
+  return s;
+}
+
+std::filesystem::path Config::folder_of(const OutputSettings& output) const {
+  std::filesystem::path folder(output.folder);
+  return folder.is_absolute() ? folder : std::filesystem::path(output_folder) / folder;
+}
+
+std::size_t Config::output_index(std::string_view kind) const {
+  for (std::size_t i = 0; i < outputs.size(); ++i)
+    if (outputs[i].kind == kind) return i;
+  throw make_error("the config has no output \"", kind, "\"");
+}
+
+OutputSettings& Config::output(std::string_view kind) { return *outputs[output_index(kind)].settings; }
+
+const OutputSettings& Config::output(std::string_view kind) const {
+  return const_cast<Config&>(*this).output(kind);
+}
+
+std::vector<std::string> Config::output_attributes() const {
+  std::vector<std::string> names;
+  for (const ConfiguredOutput& o : outputs) {
+    if (!o.settings->enabled) continue;
+    for (const std::string& n : o.settings->needed_attributes())
+      if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+  }
+  return names;
+}
+
+Config default_config(const ConfigKinds& kinds) {
+  Config c;
+  if (!kinds.views.empty()) {
+    c.views.push_back({std::string(kinds.views.front().name), kinds.views.front().defaults()});
+    c.views.back().settings->name = "main";
+  }
+  for (const OutputConfigKind& k : kinds.outputs) c.outputs.push_back({std::string(k.name), k.defaults()});
+  for (ConfiguredOutput& o : c.outputs)
+    if (o.settings->follows_render_trigger) o.settings->trigger = c.trigger;
+  return c;
+}
+
+Config read_config(std::string_view yaml, std::string_view source_name, const ConfigKinds& kinds) {
+  Checker checker{std::string(source_name)};
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(yaml));
+  } catch (const YAML::Exception& e) {
+    checker.error(e.mark, "", "not valid YAML: " + e.msg);
+    checker.throw_if_errors();
+  }
+  Config config = default_config(kinds);
+  top_section(kinds).read(checker, root, "", config);
+  checker.throw_if_errors();
+  return config;
+}
+
+std::string write_config(const Config& config, const ConfigKinds& kinds) {
+  YAML::Emitter e;
+  e.SetDoublePrecision(17);
+  top_section(kinds).emit(e, config);
+  return std::string(e.c_str()) + "\n";
+}
+
+std::string config_reference(const ConfigKinds& kinds) {
+  const Config defaults = default_config(kinds);
+  std::string s = "### Top level\n\n" + top_section(kinds).reference(defaults);
+  s += "\n### `trigger` (every trigger)\n\n" + trigger_section().reference();
+  for (const ViewConfigKind& k : kinds.views)
+    s += "\n### `views[i]` of kind `" + std::string(k.name) + "`\n\n" + k.reference();
+  s += "\n### `views[i].camera`\n\n" + camera_section().reference();
+  s += "\n### `renderer`\n\n" + renderer_section().reference();
+  s += "\n### `classification`\n\n" + classification_section().reference();
+  for (const OutputConfigKind& k : kinds.outputs)
+    s += "\n### `outputs." + std::string(k.name) + "`\n\n" + k.reference();
+  s += "\n### `writer`\n\n" + writer_section().reference();
+  return s;
+}
+
+}  // namespace voxspan

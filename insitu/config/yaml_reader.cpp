@@ -1,0 +1,251 @@
+#include "insitu/config/yaml_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "voxspan/error.h"
+
+namespace voxspan::yaml {
+namespace {
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string closest(std::string_view key, std::span<const std::string_view> allowed) {
+  std::string best;
+  std::size_t best_distance = 3;  // suggest only near misses
+  for (std::string_view candidate : allowed) {
+    std::size_t d = edit_distance(key, candidate);
+    if (d < best_distance) best_distance = d, best = std::string(candidate);
+  }
+  return best;
+}
+
+std::string number_text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+void Checker::error(const YAML::Mark& mark, const std::string& path, const std::string& message) {
+  std::ostringstream s;
+  s << source_;
+  if (!mark.is_null()) s << ":" << mark.line + 1 << ":" << mark.column + 1;
+  s << ": " << (path.empty() ? "(top level)" : path) << ": " << message;
+  errors_.push_back(s.str());
+}
+
+void Checker::throw_if_errors() const {
+  if (errors_.empty()) return;
+  std::string text = errors_.size() == 1 ? "invalid configuration: "
+                                         : "invalid configuration (" +
+                                               std::to_string(errors_.size()) + " errors):\n  ";
+  for (std::size_t i = 0; i < errors_.size(); ++i) text += (i ? "\n  " : "") + errors_[i];
+  throw Error(text);
+}
+
+std::string describe(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar: return "\"" + node.Scalar() + "\"";
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Map: return "a map";
+    case YAML::NodeType::Null: return "nothing";
+    case YAML::NodeType::Undefined: break;
+  }
+  return "nothing";
+}
+
+bool Range::contains(double v) const {
+  return std::isfinite(v) && (min_open ? v > min : v >= min) && v <= max;
+}
+
+std::string Range::text() const {
+  if (std::isinf(max)) return (min_open ? "number above " : "number of at least ") + number_text(min);
+  return "number in " + std::string(min_open ? "(" : "[") + number_text(min) + ", " +
+         number_text(max) + "]";
+}
+
+MapReader::MapReader(Checker& checker, const YAML::Node& node, std::string path,
+                     std::span<const std::string_view> allowed)
+    : checker_(checker), node_(node), path_(std::move(path)) {
+  if (!node || node.IsNull()) return;
+  mark_ = node.Mark();
+  if (!node.IsMap()) {
+    checker_.error(node, path_, "expected a map of settings; got " + describe(node));
+    return;
+  }
+  // By value: yaml-cpp's iterator returns its (key, value) pair as a temporary, so a reference
+  // to it->first dangles by the next line (AddressSanitizer: stack-use-after-scope).
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    const YAML::Node key_node = it->first;
+    if (!key_node.IsScalar()) {
+      checker_.error(key_node, path_, "keys must be plain names; got " + describe(key_node));
+      continue;
+    }
+    const std::string& key = key_node.Scalar();
+    std::string key_path = path_.empty() ? key : path_ + "." + key;
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+      std::string hint = closest(key, allowed);
+      std::string known;
+      for (std::string_view k : allowed) known += (known.empty() ? "" : ", ") + std::string(k);
+      checker_.error(key_node, key_path,
+                     "unknown key" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)") +
+                         "; known keys here: " + known);
+      continue;
+    }
+    bool duplicate = std::any_of(entries_.begin(), entries_.end(),
+                                 [&](const auto& e) { return e.first == key; });
+    if (duplicate) {
+      checker_.error(key_node, key_path, "given twice");
+      continue;
+    }
+    entries_.emplace_back(key, it->second);
+  }
+}
+
+YAML::Node MapReader::find(std::string_view key) const {
+  for (const auto& [k, v] : entries_)
+    if (k == key) return v;
+  return YAML::Node(YAML::NodeType::Undefined);
+}
+
+std::string MapReader::path(std::string_view key) const {
+  return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
+bool MapReader::scalar(std::string_view key, YAML::Node& value, const char* expected) {
+  value = find(key);
+  if (!value.IsDefined()) return false;
+  if (!value.IsScalar()) {
+    checker_.error(value, path(key), std::string("expected ") + expected + "; got " +
+                                         describe(value));
+    return false;
+  }
+  return true;
+}
+
+bool MapReader::get(std::string_view key, bool& out) {
+  YAML::Node value;
+  if (!scalar(key, value, "true or false")) return false;
+  bool b = false;
+  if (!YAML::convert<bool>::decode(value, b)) {
+    checker_.error(value, path(key), "expected true or false; got " + describe(value));
+    return false;
+  }
+  out = b;
+  return true;
+}
+
+bool MapReader::get(std::string_view key, std::string& out) {
+  YAML::Node value;
+  if (!scalar(key, value, "a text")) return false;
+  out = value.Scalar();
+  return true;
+}
+
+bool MapReader::get_int(std::string_view key, std::int64_t& out, std::int64_t min,
+                        std::int64_t max) {
+  YAML::Node value;
+  if (!scalar(key, value, "an integer")) return false;
+  std::int64_t v = 0;
+  std::string range = "an integer from " + std::to_string(min) + " to " + std::to_string(max);
+  if (!YAML::convert<std::int64_t>::decode(value, v) || v < min || v > max) {
+    checker_.error(value, path(key), "expected " + range + "; got " + describe(value));
+    return false;
+  }
+  out = v;
+  return true;
+}
+
+bool MapReader::get_double(std::string_view key, double& out, const Range& range) {
+  YAML::Node value;
+  if (!scalar(key, value, "a number")) return false;
+  double v = 0;
+  if (!YAML::convert<double>::decode(value, v) || !range.contains(v)) {
+    checker_.error(value, path(key), "expected a " + range.text() + "; got " + describe(value));
+    return false;
+  }
+  out = v;
+  return true;
+}
+
+bool MapReader::get_auto_double(std::string_view key, std::optional<double>& out,
+                                const Range& range) {
+  YAML::Node value = find(key);
+  if (value.IsDefined() && value.IsScalar() && value.Scalar() == "auto") {
+    out.reset();
+    return true;
+  }
+  double v = 0;
+  if (!get_double(key, v, range)) return false;
+  out = v;
+  return true;
+}
+
+bool MapReader::get_auto_int(std::string_view key, std::optional<std::int64_t>& out,
+                             std::int64_t min, std::int64_t max) {
+  YAML::Node value = find(key);
+  if (value.IsDefined() && value.IsScalar() && value.Scalar() == "auto") {
+    out.reset();
+    return true;
+  }
+  std::int64_t v = 0;
+  if (!get_int(key, v, min, max)) return false;
+  out = v;
+  return true;
+}
+
+bool MapReader::get_vec3(std::string_view key, std::array<double, 3>& out) {
+  YAML::Node value = find(key);
+  if (!value.IsDefined()) return false;
+  std::array<double, 3> v{};
+  bool ok = value.IsSequence() && value.size() == 3;
+  for (std::size_t i = 0; ok && i < 3; ++i)
+    ok = value[i].IsScalar() && YAML::convert<double>::decode(value[i], v[i]) &&
+         std::isfinite(v[i]);
+  if (!ok) {
+    checker_.error(value, path(key), "expected three numbers [x, y, z]; got " + describe(value));
+    return false;
+  }
+  out = v;
+  return true;
+}
+
+bool MapReader::get_names(std::string_view key, std::vector<std::string>& out) {
+  YAML::Node value = find(key);
+  if (!value.IsDefined()) return false;
+  std::vector<std::string> v;
+  bool ok = value.IsSequence() || value.IsNull();
+  for (std::size_t i = 0; ok && value.IsSequence() && i < value.size(); ++i) {
+    ok = value[i].IsScalar() && !value[i].Scalar().empty();
+    if (ok) v.push_back(value[i].Scalar());
+  }
+  if (!ok) {
+    checker_.error(value, path(key), "expected a list of names; got " + describe(value));
+    return false;
+  }
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (std::find(v.begin(), v.begin() + i, v[i]) != v.begin() + i) {
+      checker_.error(value, path(key), "\"" + v[i] + "\" given twice");
+      return false;
+    }
+  out = std::move(v);
+  return true;
+}
+
+}  // namespace voxspan::yaml

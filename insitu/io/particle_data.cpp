@@ -1,0 +1,60 @@
+#include "insitu/io/particle_data.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "voxspan/error.h"
+
+namespace voxspan {
+
+const Attribute* ParticleData::attribute(std::string_view name) const {
+  for (const Attribute& a : attributes)
+    if (a.name == name) return &a;
+  return nullptr;
+}
+
+std::vector<AttributeSpan> ParticleData::attribute_views() const {
+  std::vector<AttributeSpan> views;
+  views.reserve(attributes.size());
+  for (const Attribute& a : attributes) views.push_back(a.view());
+  return views;
+}
+
+std::vector<ParticleSphere> ParticleData::spheres(float default_radius) const {
+  std::vector<ParticleSphere> out(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    out[i] = {float(positions[i][0]), float(positions[i][1]), float(positions[i][2]),
+              radii.empty() ? default_radius : radii[i]};
+  return out;
+}
+
+bool is_radius_name(std::string_view name) {
+  std::string lower(name);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return lower == "radius" || lower == "radii" || lower == "r";
+}
+
+void adopt_radius_attribute(ParticleData& data) {
+  auto it = std::find_if(data.attributes.begin(), data.attributes.end(), [](const auto& a) {
+    return a.components == 1 && is_radius_name(a.name);
+  });
+  if (it == data.attributes.end()) return;
+  data.radii = std::move(it->values);
+  data.attributes.erase(it);
+}
+
+ParticleData read_particles(const std::filesystem::path& path,
+                            const ParticleReadOptions& options) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".vtp" || ext == ".vtu") return read_vtk_particles(path);
+  if (ext == ".csv") return read_csv_particles(path);
+  if (ext == ".xyz") return read_xyz_particles(path);
+  if (ext == ".hdf5" || ext == ".h5") return read_pysph_hdf5(path, options);
+  throw make_error("cannot read particles from ", path.string(), ": unknown extension \"", ext,
+                   "\" (known: .vtp .vtu .csv .xyz .hdf5 .h5)");
+}
+
+}  // namespace voxspan

@@ -1,0 +1,55 @@
+// insitu/io/particle_data.h - particles read from files, as the offline tools get them.
+//
+// Attributes are named float arrays with 1 (scalar) or 3 (vector) interleaved components,
+// one tuple per particle, in the particles' order.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "voxspan/attribute.h"
+#include "voxspan/cell_states.h"
+
+namespace voxspan {
+
+struct ParticleData {
+  std::vector<std::array<double, 3>> positions;
+  std::vector<float> radii;  // empty when the file has no radius
+  std::vector<Attribute> attributes;
+  std::optional<double> time;         // simulated time, when the file says
+  std::optional<std::int64_t> step;   // step/iteration, when the file says
+
+  std::size_t size() const { return positions.size(); }
+  const Attribute* attribute(std::string_view name) const;
+  std::vector<AttributeSpan> attribute_views() const;
+  // Packed spheres for the renderer; default_radius where the file has none.
+  std::vector<ParticleSphere> spheres(float default_radius) const;
+};
+
+struct ParticleReadOptions {
+  // PySPH: the particle arrays to read (e.g. {"fluid"}); empty = every array in the file.
+  std::vector<std::string> arrays;
+};
+
+// By extension: .vtp/.vtu (VTK XML), .csv, .xyz, .hdf5/.h5 (PySPH). Throws voxspan::Error
+// naming the file and what is wrong with it.
+ParticleData read_particles(const std::filesystem::path& path,
+                            const ParticleReadOptions& options = {});
+ParticleData read_vtk_particles(const std::filesystem::path& path);
+ParticleData read_csv_particles(const std::filesystem::path& path);
+ParticleData read_xyz_particles(const std::filesystem::path& path);
+ParticleData read_pysph_hdf5(const std::filesystem::path& path,
+                             const ParticleReadOptions& options = {});
+
+// Names the files use for radii (first match wins): radius, radii, r.
+bool is_radius_name(std::string_view name);
+// Moves a radius attribute (scalar, named as above) into data.radii. Called by every reader.
+void adopt_radius_attribute(ParticleData& data);
+
+}  // namespace voxspan

@@ -1,0 +1,188 @@
+// Particles from PySPH's HDF5 output (pysph.solver.utils.dump with the .hdf5 extension):
+//   /solver_data            attributes t (time), dt, count (iteration)
+//   /particles/<array>/arrays/<property>   one dataset per property, N values (N * stride
+//                           for strided properties); properties not stored are empty datasets
+//   /particles/<array>/constants/...       (not read)
+// Positions are x, y, z (z = 0 for 2D runs); u, v, w become the vector attribute "velocity";
+// every other stored per-particle property is a scalar attribute. Several arrays (fluid,
+// boundary...) are concatenated, keeping the attributes all of them have.
+#include <hdf5.h>
+
+#include <algorithm>
+#include <map>
+
+#include "insitu/io/particle_data.h"
+#include "voxspan/error.h"
+
+namespace voxspan {
+namespace {
+
+// Owns one HDF5 identifier.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  ~Handle() {
+    if (id_ >= 0) closer_(id_);
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+
+ private:
+  hid_t id_;
+  Closer closer_;
+};
+
+// HDF5 prints its error stack to stderr by default; our errors name the problem instead.
+class QuietHdf5 {
+ public:
+  QuietHdf5() {
+    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~QuietHdf5() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+
+ private:
+  H5E_auto2_t func_ = nullptr;
+  void* data_ = nullptr;
+};
+
+std::vector<std::string> member_names(hid_t group) {
+  H5G_info_t info{};
+  std::vector<std::string> names;
+  if (H5Gget_info(group, &info) < 0) return names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    ssize_t size = H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0,
+                                      H5P_DEFAULT);
+    if (size < 0) continue;
+    std::string name(static_cast<std::size_t>(size) + 1, '\0');
+    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(),
+                       H5P_DEFAULT);
+    name.resize(static_cast<std::size_t>(size));
+    names.push_back(name);
+  }
+  return names;
+}
+
+// A numeric attribute of an object, if present.
+template <class T>
+bool read_scalar_attribute(hid_t object, const char* name, hid_t type, T& out) {
+  if (H5Aexists(object, name) <= 0) return false;
+  Handle attr(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
+  return attr.valid() && H5Aread(attr.get(), type, &out) >= 0;
+}
+
+// One particle array's stored properties, as doubles.
+struct ArrayData {
+  std::size_t count = 0;
+  std::map<std::string, std::vector<double>> properties;  // 1 value per particle
+};
+
+ArrayData read_array(hid_t particles, const std::string& name, const std::string& file) {
+  Handle arrays(H5Gopen2(particles, (name + "/arrays").c_str(), H5P_DEFAULT), H5Gclose);
+  if (!arrays.valid())
+    throw make_error(file, ": particle array \"", name, "\" has no \"arrays\" group");
+  ArrayData out;
+  bool counted = false;
+  for (const std::string& prop : member_names(arrays.get())) {
+    Handle set(H5Dopen2(arrays.get(), prop.c_str(), H5P_DEFAULT), H5Dclose);
+    if (!set.valid()) continue;
+    Handle space(H5Dget_space(set.get()), H5Sclose);
+    Handle type(H5Dget_type(set.get()), H5Tclose);
+    H5T_class_t cls = H5Tget_class(type.get());
+    if (cls != H5T_INTEGER && cls != H5T_FLOAT) continue;
+    hssize_t n = H5Sget_simple_extent_npoints(space.get());
+    if (n <= 0) continue;  // not stored
+    int stride = 1;
+    read_scalar_attribute(set.get(), "stride", H5T_NATIVE_INT, stride);
+    if (stride != 1) continue;  // per-particle tensors and the like: not an attribute we draw
+    std::vector<double> values(static_cast<std::size_t>(n));
+    if (H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
+      throw make_error(file, ": cannot read /particles/", name, "/arrays/", prop);
+    if (!counted) out.count = values.size(), counted = true;
+    if (values.size() != out.count) continue;  // not per particle
+    out.properties.emplace(prop, std::move(values));
+  }
+  for (const char* axis : {"x", "y"})
+    if (!out.properties.count(axis))
+      throw make_error(file, ": particle array \"", name, "\" has no stored \"", axis,
+                       "\" property");
+  return out;
+}
+
+}  // namespace
+
+ParticleData read_pysph_hdf5(const std::filesystem::path& path,
+                             const ParticleReadOptions& options) {
+  QuietHdf5 quiet;
+  const std::string file = path.string();
+  if (H5Fis_hdf5(path.c_str()) <= 0)
+    throw make_error("cannot read particles from ", file, ": not an HDF5 file");
+  Handle h5(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!h5.valid()) throw make_error("cannot open ", file);
+  Handle particles(H5Gopen2(h5.get(), "particles", H5P_DEFAULT), H5Gclose);
+  if (!particles.valid())
+    throw make_error(file, ": no /particles group (not a PySPH output file)");
+
+  std::vector<std::string> available = member_names(particles.get());
+  std::vector<std::string> names = options.arrays.empty() ? available : options.arrays;
+  for (const std::string& n : names)
+    if (std::find(available.begin(), available.end(), n) == available.end()) {
+      std::string list;
+      for (const auto& a : available) list += (list.empty() ? "" : ", ") + a;
+      throw make_error(file, ": no particle array \"", n, "\" (the file has: ", list, ")");
+    }
+  if (names.empty()) throw make_error(file, ": no particle arrays under /particles");
+
+  std::vector<ArrayData> arrays;
+  for (const std::string& n : names) arrays.push_back(read_array(particles.get(), n, file));
+
+  ParticleData data;
+  // Properties every array has, except the positions and velocities handled below.
+  std::vector<std::string> common;
+  for (const auto& [prop, values] : arrays.front().properties) {
+    if (prop == "x" || prop == "y" || prop == "z" || prop == "u" || prop == "v" || prop == "w")
+      continue;
+    bool everywhere = std::all_of(arrays.begin(), arrays.end(),
+                                  [&](const ArrayData& a) { return a.properties.count(prop); });
+    if (everywhere) common.push_back(prop);
+  }
+  bool velocity = std::all_of(arrays.begin(), arrays.end(), [](const ArrayData& a) {
+    return a.properties.count("u") && a.properties.count("v");
+  });
+  for (const std::string& prop : common) data.attributes.push_back({prop, 1, {}});
+  if (velocity) data.attributes.push_back({"velocity", 3, {}});
+
+  for (const ArrayData& a : arrays) {
+    const auto& x = a.properties.at("x");
+    const auto& y = a.properties.at("y");
+    auto z = a.properties.find("z");
+    for (std::size_t i = 0; i < a.count; ++i)
+      data.positions.push_back({x[i], y[i], z == a.properties.end() ? 0.0 : z->second[i]});
+    for (std::size_t c = 0; c < common.size(); ++c)
+      for (double v : a.properties.at(common[c])) data.attributes[c].values.push_back(float(v));
+    if (velocity) {
+      auto& vel = data.attributes.back().values;
+      auto w = a.properties.find("w");
+      for (std::size_t i = 0; i < a.count; ++i) {
+        vel.push_back(float(a.properties.at("u")[i]));
+        vel.push_back(float(a.properties.at("v")[i]));
+        vel.push_back(w == a.properties.end() ? 0.f : float(w->second[i]));
+      }
+    }
+  }
+
+  Handle solver(H5Gopen2(h5.get(), "solver_data", H5P_DEFAULT), H5Gclose);
+  if (solver.valid()) {
+    double t = 0;
+    if (read_scalar_attribute(solver.get(), "t", H5T_NATIVE_DOUBLE, t)) data.time = t;
+    long long count = 0;
+    if (read_scalar_attribute(solver.get(), "count", H5T_NATIVE_LLONG, count)) data.step = count;
+  }
+  adopt_radius_attribute(data);
+  return data;
+}
+
+}  // namespace voxspan

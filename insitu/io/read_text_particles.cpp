@@ -1,0 +1,229 @@
+// Particles from text files.
+//  .csv: a header row names the columns (ParaView's "Save Data" CSV works as is). Positions are
+//        x,y,z or Points:0,Points:1,Points:2 (any case); three consecutive columns named
+//        <base>_x/_y/_z, <base>:0/:1/:2 or <base>x/y/z become the vector attribute <base>; a
+//        column radius/radii/r gives the radii; every other column is a scalar attribute.
+//  .xyz: whitespace-separated "x y z [radius] [more...]" per line, '#' comments; the
+//        extended-XYZ header (a count line, then a comment line) and a leading element symbol
+//        on each line are accepted. Extra columns become attributes column4, column5...
+#include <charconv>
+#include <cctype>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "insitu/io/particle_data.h"
+#include "voxspan/error.h"
+
+namespace voxspan {
+namespace {
+
+std::string trim(std::string_view s) {
+  std::size_t b = 0, e = s.size();
+  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
+  return std::string(s.substr(b, e - b));
+}
+
+// A CSV field without its surrounding spaces and quotes.
+std::string field_text(std::string_view s) {
+  std::string out = trim(s);
+  if (out.size() >= 2 && out.front() == '"' && out.back() == '"') out = out.substr(1, out.size() - 2);
+  return out;
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+bool parse_number(std::string_view text, double& out) {
+  std::string t = field_text(text);
+  const char* b = t.data();
+  const char* e = b + t.size();
+  if (b != e && *b == '+') ++b;
+  auto [end, ec] = std::from_chars(b, e, out);
+  return ec == std::errc() && end == e && b != e;
+}
+
+std::vector<std::string> split(const std::string& line, char sep) {
+  std::vector<std::string> fields;
+  std::string field;
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"') quoted = !quoted;
+    if (c == sep && !quoted) {
+      fields.push_back(field);
+      field.clear();
+    } else {
+      field += c;
+    }
+  }
+  fields.push_back(field);
+  return fields;
+}
+
+std::vector<std::string> split_whitespace(const std::string& line) {
+  std::vector<std::string> fields;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    std::size_t b = i;
+    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i > b) fields.push_back(line.substr(b, i - b));
+  }
+  return fields;
+}
+
+// The base name when a, b, c are the x, y, z components of one vector; empty otherwise.
+std::string vector_base(const std::string& a, const std::string& b, const std::string& c) {
+  static const std::vector<std::array<std::string, 3>> suffixes = {
+      {"_x", "_y", "_z"}, {":0", ":1", ":2"}, {"[0]", "[1]", "[2]"}, {"_0", "_1", "_2"},
+      {"x", "y", "z"}};
+  std::string la = lower(a), lb = lower(b), lc = lower(c);
+  for (const auto& s : suffixes) {
+    auto ends = [](const std::string& t, const std::string& suffix) {
+      return t.size() > suffix.size() && t.compare(t.size() - suffix.size(), suffix.size(), suffix) == 0;
+    };
+    if (!ends(la, s[0]) || !ends(lb, s[1]) || !ends(lc, s[2])) continue;
+    std::string base = a.substr(0, a.size() - s[0].size());
+    if (lower(base) == lb.substr(0, lb.size() - s[1].size()) &&
+        lower(base) == lc.substr(0, lc.size() - s[2].size()))
+      return base;
+  }
+  return "";
+}
+
+bool is_position_base(const std::string& base) {
+  std::string b = lower(base);
+  return b == "points" || b == "position" || b == "positions" || b == "pos" || b == "coords";
+}
+
+// A column group of the CSV: a scalar (one column) or a vector (three).
+struct Column {
+  std::string name;
+  std::size_t first;
+  int components;
+};
+
+std::ifstream open_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw make_error("cannot read particles from ", path.string(), ": cannot open the file");
+  return in;
+}
+
+}  // namespace
+
+ParticleData read_csv_particles(const std::filesystem::path& path) {
+  std::ifstream in = open_text(path);
+  auto fail = [&](std::size_t line, const std::string& why) {
+    return make_error(path.string(), ":", line, ": ", why);
+  };
+  std::string line;
+  std::size_t line_no = 0;
+  std::vector<std::string> header;
+  while (header.empty() && std::getline(in, line)) {
+    ++line_no;
+    std::string t = trim(line);
+    if (t.empty() || t[0] == '#') continue;
+    for (const std::string& f : split(t, ',')) header.push_back(field_text(f));
+  }
+  if (header.empty()) throw fail(line_no, "no header row (the first row must name the columns)");
+  double probe = 0;
+  if (parse_number(header[0], probe))
+    throw fail(line_no, "the first row holds numbers; a header row must name the columns (x,y,z,...)");
+
+  std::vector<Column> columns;
+  int position = -1;  // index into columns
+  for (std::size_t i = 0; i < header.size();) {
+    std::string base = i + 2 < header.size() ? vector_base(header[i], header[i + 1], header[i + 2]) : "";
+    if (lower(header[i]) == "x" && i + 2 < header.size() && lower(header[i + 1]) == "y" &&
+        lower(header[i + 2]) == "z")
+      base = "position";
+    if (!base.empty()) {
+      if (position < 0 && is_position_base(base)) position = int(columns.size());
+      columns.push_back({base, i, 3});
+      i += 3;
+    } else {
+      columns.push_back({header[i], i, 1});
+      i += 1;
+    }
+  }
+  if (position < 0)
+    throw fail(line_no, "no position columns (x,y,z or Points:0,Points:1,Points:2)");
+
+  ParticleData data;
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    if (int(c) != position) data.attributes.push_back({columns[c].name, columns[c].components, {}});
+  std::vector<double> values(header.size());
+  while (std::getline(in, line)) {
+    ++line_no;
+    std::string t = trim(line);
+    if (t.empty() || t[0] == '#') continue;
+    std::vector<std::string> fields = split(t, ',');
+    if (fields.size() != header.size())
+      throw fail(line_no, std::to_string(fields.size()) + " fields; the header has " +
+                              std::to_string(header.size()));
+    for (std::size_t f = 0; f < fields.size(); ++f)
+      if (!parse_number(fields[f], values[f]))
+        throw fail(line_no, "column \"" + header[f] + "\" is not a number: \"" + field_text(fields[f]) + "\"");
+    const Column& p = columns[std::size_t(position)];
+    data.positions.push_back({values[p.first], values[p.first + 1], values[p.first + 2]});
+    std::size_t a = 0;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (int(c) == position) continue;
+      for (int k = 0; k < columns[c].components; ++k)
+        data.attributes[a].values.push_back(float(values[columns[c].first + std::size_t(k)]));
+      ++a;
+    }
+  }
+  adopt_radius_attribute(data);
+  return data;
+}
+
+ParticleData read_xyz_particles(const std::filesystem::path& path) {
+  std::ifstream in = open_text(path);
+  auto fail = [&](std::size_t line, const std::string& why) {
+    return make_error(path.string(), ":", line, ": ", why);
+  };
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  std::size_t start = 0;
+  // Extended XYZ: "N" alone on the first line, then a comment line.
+  std::vector<std::string> first = lines.empty() ? std::vector<std::string>{} : split_whitespace(lines[0]);
+  double count = 0;
+  if (first.size() == 1 && parse_number(first[0], count) && lines.size() >= 2) start = 2;
+
+  ParticleData data;
+  std::size_t columns = 0;
+  for (std::size_t l = start; l < lines.size(); ++l) {
+    std::string t = trim(lines[l]);
+    if (t.empty() || t[0] == '#') continue;
+    std::vector<std::string> fields = split_whitespace(t);
+    double probe = 0;
+    if (!fields.empty() && !parse_number(fields[0], probe)) fields.erase(fields.begin());  // element
+    if (fields.size() < 3) throw fail(l + 1, "expected at least x y z");
+    if (columns == 0) {
+      columns = fields.size();
+      if (columns >= 4) data.radii.reserve(lines.size());
+      for (std::size_t c = 4; c < columns; ++c)
+        data.attributes.push_back({"column" + std::to_string(c + 1), 1, {}});
+    } else if (fields.size() != columns) {
+      throw fail(l + 1, std::to_string(fields.size()) + " columns; earlier lines have " +
+                            std::to_string(columns));
+    }
+    std::vector<double> v(columns);
+    for (std::size_t c = 0; c < columns; ++c)
+      if (!parse_number(fields[c], v[c]))
+        throw fail(l + 1, "column " + std::to_string(c + 1) + " is not a number: \"" + fields[c] + "\"");
+    data.positions.push_back({v[0], v[1], v[2]});
+    if (columns >= 4) data.radii.push_back(float(v[3]));
+    for (std::size_t c = 4; c < columns; ++c) data.attributes[c - 4].values.push_back(float(v[c]));
+  }
+  if (start == 2 && data.positions.size() != std::size_t(count))
+    throw fail(1, "the header says " + first[0] + " particles; the file has " +
+                      std::to_string(data.positions.size()));
+  return data;
+}
+
+}  // namespace voxspan

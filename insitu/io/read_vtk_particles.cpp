@@ -1,0 +1,66 @@
+// Particles from VTK XML files (.vtp, .vtu): the points, a radius array if there is one, and
+// every 1- or 3-component point-data array as a named attribute.
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPointSet.h>
+#include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkPoints.h>
+#include <vtkSmartPointer.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <system_error>
+
+#include "insitu/io/particle_data.h"
+#include "voxspan/error.h"
+
+namespace voxspan {
+namespace {
+
+template <class Reader>
+vtkSmartPointer<vtkPointSet> read_point_set(const std::filesystem::path& path) {
+  vtkNew<Reader> reader;
+  reader->SetFileName(path.c_str());
+  if (!reader->CanReadFile(path.c_str()))
+    throw make_error("cannot read particles from ", path.string(),
+                     ": not a readable VTK XML file of this type");
+  reader->Update();
+  if (reader->GetErrorCode() != 0 || !reader->GetOutput())
+    throw make_error("cannot read particles from ", path.string(), ": VTK reader failed");
+  return vtkSmartPointer<vtkPointSet>(reader->GetOutput());
+}
+
+}  // namespace
+
+ParticleData read_vtk_particles(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw make_error("cannot read particles from ", path.string(), ": no such file");
+  vtkSmartPointer<vtkPointSet> set = path.extension() == ".vtu"
+                                         ? read_point_set<vtkXMLUnstructuredGridReader>(path)
+                                         : read_point_set<vtkXMLPolyDataReader>(path);
+  ParticleData data;
+  const vtkIdType n = set->GetNumberOfPoints();
+  data.positions.resize(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i) set->GetPoint(i, data.positions[std::size_t(i)].data());
+  vtkPointData* pd = set->GetPointData();
+  for (int a = 0; a < pd->GetNumberOfArrays(); ++a) {
+    vtkDataArray* array = pd->GetArray(a);  // null for non-numeric arrays
+    if (!array || !array->GetName()) continue;
+    int components = array->GetNumberOfComponents();
+    if (components != 1 && components != 3) continue;
+    Attribute attribute{array->GetName(), components, {}};
+    attribute.values.resize(static_cast<std::size_t>(n) * std::size_t(components));
+    for (vtkIdType i = 0; i < n; ++i)
+      for (int c = 0; c < components; ++c)
+        attribute.values[std::size_t(i) * std::size_t(components) + std::size_t(c)] =
+            static_cast<float>(array->GetComponent(i, c));
+    data.attributes.push_back(std::move(attribute));
+  }
+  adopt_radius_attribute(data);
+  return data;
+}
+
+}  // namespace voxspan

@@ -1,0 +1,45 @@
+// outputs.depth: each rendered view's first-entry distance as a 32-bit float OpenEXR image,
+// <folder>/<view>_<step>.exr, channel `Z`: per pixel the distance from the eye along the unit
+// ray through the pixel centre to where it first enters the fluid (the span image's first
+// entry, render/passes/first_hit.h), row 0 at the top; 0 where the ray misses. The camera
+// model is in docs/runtime.md ("Depth images").
+#include "insitu/outputs/exr_image.h"
+#include "insitu/outputs/output.h"
+#include "insitu/outputs/view_images.h"
+
+namespace voxspan {
+namespace {
+
+struct DepthSettings : CloneAs<DepthSettings, OutputSettings> {
+  DepthSettings() : CloneAs(false, "depth", TriggerSpec{100, 0, false, true}) {}
+  bool operator==(const DepthSettings&) const = default;
+};
+
+const schema::Section<DepthSettings>& depth_section() {
+  static const schema::Section<DepthSettings> s{"outputs.depth", output_keys<DepthSettings>()};
+  return s;
+}
+
+class DepthOutput final : public Output {
+ public:
+  DepthOutput(const DepthSettings&, const OutputContext& c)
+      : jobs_(c, "exr", "depth image",
+              [sync = c.fsync](const std::filesystem::path& path, const FloatImage& depth) {
+                write_exr_channel(path, depth, "Z", sync);
+              }) {}
+
+  void write(const OutputStep& step) override { jobs_.submit(step, &ViewResult::first_hit_depth); }
+  OutputTally tally() const override { return jobs_.tally(); }
+
+ private:
+  ViewImageJobs jobs_;
+};
+
+}  // namespace
+
+OutputKind depth_output_kind() {
+  return output_kind<DepthSettings, DepthOutput>("depth", "depth images", depth_section(),
+                                                 {.first_hit_depth = true});
+}
+
+}  // namespace voxspan

@@ -1,0 +1,45 @@
+// outputs.png: every rendered view as an 8-bit sRGB PNG, <folder>/<view>_<step>.png. The
+// picture is copied on the solver's thread; the sRGB conversion and the encoding run on the
+// writer's (insitu/outputs/png_image.h).
+#include "insitu/outputs/output.h"
+#include "insitu/outputs/png_image.h"
+#include "insitu/outputs/view_images.h"
+
+namespace voxspan {
+namespace {
+
+struct PngSettings : CloneAs<PngSettings, OutputSettings> {
+  PngSettings() : CloneAs(true, "frames", TriggerSpec{10, 0, true, true}) {
+    follows_render_trigger = true;
+  }
+  bool operator==(const PngSettings&) const = default;
+};
+
+const schema::Section<PngSettings>& png_section() {
+  static const schema::Section<PngSettings> s{"outputs.png",
+                                              output_keys<PngSettings>("the render trigger")};
+  return s;
+}
+
+class PngOutput final : public Output {
+ public:
+  PngOutput(const PngSettings&, const OutputContext& c)
+      : jobs_(c, "png", "PNG frame",
+              [sync = c.fsync](const std::filesystem::path& path, const FloatImage& picture) {
+                write_png(path, linear_to_srgb8(picture.rgba, picture.width, picture.height), sync);
+              }) {}
+
+  void write(const OutputStep& step) override { jobs_.submit(step, &ViewResult::picture); }
+  OutputTally tally() const override { return jobs_.tally(); }
+
+ private:
+  ViewImageJobs jobs_;
+};
+
+}  // namespace
+
+OutputKind png_output_kind() {
+  return output_kind<PngSettings, PngOutput>("png", "PNG", png_section(), {.picture = true});
+}
+
+}  // namespace voxspan

@@ -1,0 +1,142 @@
+#include "insitu/outputs/stats_record.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace voxspan {
+namespace {
+
+template <class T>
+T* find_named(std::vector<std::pair<std::string, T>>& items, std::string_view name) {
+  for (auto& [n, v] : items)
+    if (n == name) return &v;
+  return nullptr;
+}
+
+void append_string(std::string& out, std::string_view s) {
+  out += '"';
+  for (char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          out += buf;
+        } else {
+          out += c;
+        }
+    }
+  }
+  out += '"';
+}
+
+void append_number(std::string& out, double v) {
+  if (!std::isfinite(v)) {
+    out += "null";
+    return;
+  }
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  out += buf;
+}
+
+void append_number(std::string& out, std::int64_t v) {
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "%lld", static_cast<long long>(v));
+  out += buf;
+}
+
+template <class T>
+void append_object(std::string& out, std::string_view key,
+                   const std::vector<std::pair<std::string, T>>& items) {
+  append_string(out, key);
+  out += ":{";
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i) out += ',';
+    append_string(out, items[i].first);
+    out += ':';
+    append_number(out, items[i].second);
+  }
+  out += '}';
+}
+
+void append_section(std::string& out, const FrameStats& s) {
+  append_string(out, "timings_ms");
+  out += ":{";
+  for (std::size_t i = 0; i < s.passes.size(); ++i) {
+    if (i) out += ',';
+    append_string(out, s.passes[i].name);
+    out += ':';
+    append_number(out, s.passes[i].ms);
+  }
+  out += "},";
+  append_object(out, "counters", s.counts);
+}
+
+}  // namespace
+
+FrameStats& StatsRecord::view(std::string_view name) {
+  if (FrameStats* s = find_named(views, name)) return *s;
+  views.emplace_back(std::string(name), FrameStats{});
+  return views.back().second;
+}
+
+void StatsRecord::set_memory(std::string_view name, double mib) {
+  if (double* v = find_named(memory_mib, name))
+    *v = mib;
+  else
+    memory_mib.emplace_back(std::string(name), mib);
+}
+
+void StatsRecord::clear() {
+  step = 0;
+  time = 0;
+  totals.clear();
+  for (auto& [name, section] : views) section.clear();
+  memory_mib.clear();
+}
+
+void StatsRecord::zero() {
+  step = 0;
+  time = 0;
+  totals.zero();
+  for (auto& entry : views) entry.second.zero();
+  for (auto& entry : memory_mib) entry.second = 0;
+}
+
+std::string to_json_line(const StatsRecord& r) {
+  std::string out;
+  out.reserve(256);
+  append_json_line(r, out);
+  return out;
+}
+
+void append_json_line(const StatsRecord& r, std::string& out) {
+  out += "{\"step\":";
+  append_number(out, r.step);
+  out += ",\"time\":";
+  append_number(out, r.time);
+  out += ',';
+  append_section(out, r.totals);
+  out += ',';
+  append_object(out, "memory_mib", r.memory_mib);
+  out += ",\"views\":{";
+  bool first = true;
+  for (const auto& [name, section] : r.views) {
+    if (!first) out += ',';
+    first = false;
+    append_string(out, name);
+    out += ":{";
+    append_section(out, section);
+    out += '}';
+  }
+  out += "}}\n";
+}
+
+}  // namespace voxspan

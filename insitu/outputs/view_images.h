@@ -1,0 +1,73 @@
+// insitu/outputs/view_images.h - the outputs that write one image per view and step (PNG
+// pictures, EXR depth images): each view's image copied into a pooled slot on the solver's
+// thread (no allocation once the slots have held the largest view), written as
+// <folder>/<view>_<step>.<extension> on the writer's.
+#pragma once
+
+#include <algorithm>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "insitu/outputs/output.h"
+#include "insitu/outputs/pooled_jobs.h"
+
+namespace voxspan {
+
+class ViewImageJobs {
+ public:
+  using Write = std::function<void(const std::filesystem::path&, const FloatImage&)>;
+
+  ViewImageJobs(const OutputContext& c, std::string extension, const char* label, Write write)
+      : folder_(c.folder), view_names_(c.view_names.begin(), c.view_names.end()),
+        extension_(std::move(extension)), label_(label), largest_(largest_view_floats(c.config)),
+        write_(std::move(write)), jobs_(c.writer, c.slots, [this](Slot& s) { run(s); }) {}
+
+  // Hands over each view's `product` (ViewResult::picture or ::first_hit_depth); views without
+  // one (failed, or not asked) are skipped.
+  void submit(const OutputStep& step, const FloatImage* ViewResult::*product) {
+    for (std::size_t v = 0; v < step.views.size(); ++v) {
+      const FloatImage* image = step.views[v].*product;
+      if (image == nullptr) continue;
+      jobs_.submit(label_, [&](Slot& s) {
+        s.view = v;
+        s.step = step.data.step;
+        s.image.width = image->width;
+        s.image.height = image->height;
+        s.image.rgba.reserve(largest_);  // a pooled slot serves every view
+        s.image.rgba.assign(image->rgba.begin(), image->rgba.end());
+      });
+    }
+  }
+
+  OutputTally tally() const { return jobs_.tally(); }
+
+ private:
+  struct Slot {
+    FloatImage image;
+    std::size_t view = 0;
+    std::int64_t step = 0;
+  };
+
+  static std::size_t largest_view_floats(const Config& config) {
+    std::size_t most = 0;
+    for (const ConfiguredView& v : config.views)
+      most = std::max(most, 4 * std::size_t(v.settings->width) * std::size_t(v.settings->height));
+    return most;
+  }
+
+  void run(const Slot& s) const {
+    write_(folder_ / step_file_name(view_names_[s.view], s.step, extension_), s.image);
+  }
+
+  std::filesystem::path folder_;
+  std::vector<std::string> view_names_;
+  std::string extension_;
+  const char* label_;
+  std::size_t largest_;
+  Write write_;
+  PooledJobs<Slot> jobs_;
+};
+
+}  // namespace voxspan

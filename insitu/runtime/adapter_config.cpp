@@ -1,0 +1,42 @@
+// voxspan/insitu.h: an adapter with the in-situ runtime (insitu/runtime/pipeline.h) behind it,
+// set up from a YAML config.
+#include "insitu/runtime/adapter_config.h"
+
+#include <algorithm>
+#include <memory>
+
+#include "insitu/runtime/config_file.h"
+#include "insitu/runtime/pipeline.h"
+#include "voxspan/insitu.h"
+
+namespace voxspan {
+
+AdapterOptions adapter_options_for(const Config& config, AdapterOptions options) {
+  options.render_every = 1;  // the config's triggers decide
+  ClassifyOptions& c = options.classify;
+  if (config.classification.particle_spacing) c.particle_spacing = *config.classification.particle_spacing;
+  if (config.classification.full_count) c.full_count = int(*config.classification.full_count);
+  c.validate = c.validate || config.classification.validate_grid;
+  for (const std::string& n : config.output_attributes())
+    if (std::find(c.attributes.begin(), c.attributes.end(), n) == c.attributes.end())
+      c.attributes.push_back(n);
+  return options;
+}
+
+Adapter make_insitu_adapter(const Config& config, AdapterOptions options) {
+  Adapter adapter(adapter_options_for(config, std::move(options)));  // checked before GL
+  adapter.set_pipeline(
+      std::make_shared<InsituPipeline>(config, adapter.options().classify.particle_spacing));
+  return adapter;
+}
+
+Adapter adapter_from_config_file(const std::string& path, AdapterOptions options) {
+  return make_insitu_adapter(load_config_file(path), std::move(options));
+}
+
+Adapter adapter_from_config_text(const std::string& yaml, AdapterOptions options,
+                                 const std::string& source_name) {
+  return make_insitu_adapter(load_config_string(yaml, source_name), std::move(options));
+}
+
+}  // namespace voxspan

@@ -1,0 +1,42 @@
+#include "insitu/runtime/output_folder.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <system_error>
+
+#include "voxspan/error.h"
+
+namespace voxspan {
+
+void prepare_output_folder(const std::filesystem::path& folder, std::string_view what) {
+  auto fail = [&](const std::string& why) -> Error {
+    return make_error("cannot use ", what, " folder ", folder.string(), ": ", why);
+  };
+  if (folder.empty()) throw fail("the folder name is empty");
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw fail(ec.message());
+  if (!std::filesystem::is_directory(folder, ec)) throw fail("it exists but is not a folder");
+  // access(W_OK) says yes to root on a read-only mount; creating a file is the real test.
+  std::filesystem::path probe = folder / (".voxspan-probe." + std::to_string(::getpid()));
+  int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw fail(std::string("cannot create a file in it (") + std::strerror(errno) + ")");
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+std::vector<std::filesystem::path> prepare_output_folders(const Config& config) {
+  std::vector<std::filesystem::path> folders;
+  for (const ConfiguredOutput& o : config.outputs) {
+    if (!o.settings->enabled) continue;
+    std::filesystem::path folder = config.folder_of(*o.settings);
+    prepare_output_folder(folder, "outputs." + o.kind);
+    folders.push_back(folder);
+  }
+  return folders;
+}
+
+}  // namespace voxspan

@@ -1,0 +1,307 @@
+#include "insitu/runtime/pipeline.h"
+
+#include <algorithm>
+#include <limits>
+#include <sstream>
+#include <thread>
+
+#include "insitu/outputs/stats_record.h"
+#include "insitu/runtime/host_memory.h"
+#include "insitu/runtime/output_folder.h"
+#include "insitu/runtime/registry.h"
+#include "insitu/runtime/schedule.h"
+#include "insitu/runtime/step_record.h"
+#include "insitu/views/view.h"
+#include "insitu/views/view_framing.h"
+#include "render/gl/context.h"
+#include "render/gl/pass_timer.h"
+#include "render/gl/shader_library.h"
+#include "voxspan/error.h"
+#include "voxspan/log.h"
+#include "voxspan/stopwatch.h"
+
+namespace voxspan {
+namespace {
+
+// The log level from the config, before anything else logs.
+Config with_log_level(const Config& config) {
+  LogLevel level;
+  if (!config.log_level.empty() && parse_log_level(config.log_level, level)) set_log_level(level);
+  return config;
+}
+
+// Folders first: a bad folder is reported before the (slower) GL start-up.
+gl::ContextOptions prepared(const Config& config) {
+  prepare_output_folders(config);
+  return {config.renderer.platform, config.renderer.debug};
+}
+
+struct ViewState {
+  std::string name;
+  std::unique_ptr<View> view;
+  ViewFraming framing;
+  ViewProducts products;
+};
+
+struct OutputState {
+  const OutputKind* kind;
+  std::unique_ptr<Output> output;  // null when the output is disabled
+};
+
+}  // namespace
+
+struct InsituPipeline::Impl {
+  const Config config;
+  const double spacing;
+  Schedule schedule;
+  StepPlan plan;
+  std::int64_t planned_step = std::numeric_limits<std::int64_t>::min();
+  double planned_time = 0;
+  std::int64_t last_step = std::numeric_limits<std::int64_t>::min();
+
+  gl::Context context;
+  std::thread::id gl_thread = std::this_thread::get_id();
+  gl::ShaderLibrary shaders;
+  gl::PassTimer timer;
+  BackgroundWriter writer;  // before the outputs, whose jobs it runs; drained before they go
+  std::vector<std::string> view_names;
+  std::vector<ViewState> views;
+  std::vector<OutputState> outputs;
+  StatsRecord record;                // the views' sections are where their passes report
+  std::vector<ViewResult> results;   // per view, this step's products for the outputs
+  PipelineTotals totals;
+
+  Impl(const Config& c, double particle_spacing)
+      : config(with_log_level(c)), spacing(particle_spacing), schedule(config),
+        plan(schedule.blank()), context(prepared(config)), timer(context.has_gpu_timers()),
+        writer(config.writer) {
+    for (const ConfiguredView& v : config.views) view_names.push_back(v.settings->name);
+    const ViewContext view_context{shaders, config.renderer, spacing, {}};
+    views.reserve(config.views.size());
+    for (const ConfiguredView& v : config.views)
+      views.push_back({v.settings->name,
+                       registered_view_kind(v.kind).make(*v.settings, view_context),
+                       ViewFraming(*v.settings), {}});
+    record.views.reserve(views.size());
+    for (const ViewState& v : views) record.view(v.name);  // made once: their addresses stay
+    results.resize(views.size());
+    for (const ConfiguredOutput& o : config.outputs) make_output(o);
+  }
+
+  ~Impl() {
+    writer.drain();
+    for (OutputState& o : outputs)
+      if (o.output) o.output->close();
+  }
+
+  void make_output(const ConfiguredOutput& o) {
+    const OutputKind& kind = registered_output_kind(o.kind);
+    totals.outputs.push_back({o.kind, kind.noun, o.settings->enabled, {}});
+    if (!o.settings->enabled) {
+      outputs.push_back({&kind, nullptr});
+      return;
+    }
+    // Slots per pool: the queue's jobs, one running, one being filled.
+    const OutputContext c{config,           config.folder_of(*o.settings),
+                          view_names,       spacing,
+                          writer,           std::size_t(config.writer.queue_size) + 2,
+                          config.writer.fsync};
+    outputs.push_back({&kind, kind.make(*o.settings, c)});
+  }
+
+  void make_current() {
+    if (std::this_thread::get_id() == gl_thread) return;
+    context.make_current();
+    gl_thread = std::this_thread::get_id();
+  }
+
+  // What the outputs due on this step want from the views.
+  ViewNeeds needs(const StepPlan& p) const {
+    ViewNeeds n;
+    for (std::size_t i = 0; i < outputs.size(); ++i)
+      if (p.outputs[i]) n |= outputs[i].kind->needs;
+    return n;
+  }
+
+  // Renders every view; the first failure's message comes back (empty when all went well).
+  std::string render_views(const StepData& data, const ViewNeeds& needs) {
+    std::string failure;
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      ViewState& v = views[i];
+      FrameStats& stats = record.views[i].second;
+      stats.zero();
+      results[i] = {v.name, nullptr, nullptr};
+      try {
+        const Camera camera = v.framing.update(data.boundary);
+        v.view->render({data, camera, v.framing.box(), needs}, timer, stats, v.products);
+        timer.collect(stats);
+        for (const FrameStats::Pass& pass : stats.passes) totals.passes.add_time(pass.name, pass.ms);
+        ++totals.frames;
+        results[i].picture = &v.products.picture;
+        if (needs.first_hit_depth) results[i].first_hit_depth = &v.products.first_hit_depth;
+      } catch (const std::exception& e) {
+        timer.collect(stats);  // closes the scopes of the failed frame
+        ++totals.failed_views;
+        if (failure.empty()) failure = "view " + v.name + ": " + e.what();
+      }
+    }
+    return failure;
+  }
+
+  // Hands the step to every output due whose `reports_step` is as asked.
+  void write_outputs(const OutputStep& step, const StepPlan& p, bool reports_step,
+                     std::string& failure) {
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+      OutputState& o = outputs[i];
+      if (!p.outputs[i] || !o.output || o.kind->reports_step != reports_step) continue;
+      try {
+        o.output->write(step);
+      } catch (const std::exception& e) {
+        if (failure.empty()) failure = "outputs." + std::string(o.kind->config.name) + ": " + e.what();
+      }
+    }
+  }
+
+  bool any_reports_step(const StepPlan& p) const {
+    for (std::size_t i = 0; i < outputs.size(); ++i)
+      if (p.outputs[i] && outputs[i].output && outputs[i].kind->reports_step) return true;
+    return false;
+  }
+
+  void fill_record(const StepData& data, const StepStats& stats, double render_ms,
+                   double outputs_ms, const Stopwatch& process) {
+    const WriterStats writer_stats = writer.stats();
+    const StepRecordInput in{data.step, data.time,         &stats,        render_ms, outputs_ms,
+                             process.ms(), &writer_stats, host_memory()};
+    fill_step_record(in, record);
+  }
+};
+
+const OutputTally& PipelineTotals::output(std::string_view kind) const {
+  for (const OutputTotals& o : outputs)
+    if (o.kind == kind) return o.tally;
+  throw make_error("no output \"", kind, "\" in the totals");
+}
+
+double PipelineTotals::writer_seconds() const {
+  double s = 0;
+  for (const OutputTotals& o : outputs) s += o.tally.writer_seconds;
+  return s;
+}
+
+InsituPipeline::InsituPipeline(const Config& config, double particle_spacing)
+    : impl_(std::make_unique<Impl>(config, particle_spacing)) {
+  log_info("in situ: ", description());
+}
+
+InsituPipeline::~InsituPipeline() {
+  try {
+    finish();
+  } catch (...) {
+  }
+}
+
+bool InsituPipeline::wants_step(std::int64_t step, double time) {
+  Impl& m = *impl_;
+  // Idempotent per step: is_render_step() and execute() may both ask.
+  if (step != m.planned_step || time != m.planned_time) {
+    std::fill(m.plan.outputs.begin(), m.plan.outputs.end(), false);
+    m.plan.render = false;
+    m.schedule.plan(step, time, step == m.last_step, m.plan);
+    m.planned_step = step;
+    m.planned_time = time;
+  }
+  return m.plan.any();
+}
+
+void InsituPipeline::mark_last_step(std::int64_t step) {
+  Impl& m = *impl_;
+  m.last_step = step;
+  // Already planned without knowing it was the last: add the `last` conditions.
+  if (step == m.planned_step) m.schedule.plan(step, m.planned_time, true, m.plan);
+}
+
+Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
+  Impl& m = *impl_;
+  const Stopwatch process;
+  if (data.step != m.planned_step) wants_step(data.step, data.time);
+  const StepPlan& p = m.plan;
+  m.make_current();
+
+  std::string failure;
+  double render_ms = 0;
+  if (p.render) {
+    const Stopwatch render;
+    failure = m.render_views(data, m.needs(p));
+    ++m.totals.render_steps;
+    render_ms = render.ms();
+  } else {
+    for (std::size_t i = 0; i < m.results.size(); ++i) m.results[i] = {m.views[i].name};
+  }
+  const Stopwatch outputs;
+  OutputStep step{data, m.results, nullptr};
+  m.write_outputs(step, p, false, failure);
+  const double outputs_ms = outputs.ms();
+  if (m.any_reports_step(p)) {
+    m.fill_record(data, stats, render_ms, outputs_ms, process);
+    step.record = &m.record;
+    m.write_outputs(step, p, true, failure);
+  }
+
+  m.totals.seconds_render += 1e-3 * render_ms;
+  m.totals.seconds_outputs += outputs.seconds();
+  m.totals.seconds_process += process.seconds();
+  if (failure.empty()) return {};
+  return {StatusCode::pipeline_failed, failure};
+}
+
+void InsituPipeline::finish() { impl_->writer.drain(); }
+
+PipelineTotals InsituPipeline::totals() const {
+  PipelineTotals t = impl_->totals;
+  for (std::size_t i = 0; i < impl_->outputs.size(); ++i)
+    if (impl_->outputs[i].output) t.outputs[i].tally = impl_->outputs[i].output->tally();
+  t.writer = impl_->writer.stats();
+  return t;
+}
+
+const Config& InsituPipeline::config() const { return impl_->config; }
+
+std::string InsituPipeline::description() const {
+  const Impl& m = *impl_;
+  std::ostringstream s;
+  s << m.context.description() << ", " << m.views.size() << (m.views.size() == 1 ? " view" : " views");
+  for (std::size_t i = 0; i < m.views.size(); ++i)
+    s << (i ? ", " : " (") << m.views[i].name << " " << m.views[i].view->description()
+      << (i + 1 == m.views.size() ? ")" : "");
+  s << "; outputs in " << m.config.output_folder << ":";
+  for (const ConfiguredOutput& o : m.config.outputs)
+    if (o.settings->enabled) s << " " << o.kind;
+  return s.str();
+}
+
+std::string InsituPipeline::summary() const {
+  const PipelineTotals t = totals();
+  std::ostringstream s;
+  s.precision(3);
+  s << t.render_steps << " render steps, " << t.frames << " views rendered";
+  if (t.failed_views) s << " (" << t.failed_views << " failed)";
+  s << "; written:";
+  const char* separator = " ";
+  std::int64_t no_slot = 0;
+  for (const OutputTotals& o : t.outputs) {
+    if (!o.enabled && o.tally.written == 0) continue;
+    s << separator << o.tally.written << " " << o.noun;
+    separator = ", ";
+    no_slot += o.tally.no_slot;
+  }
+  if (t.writer.failed) s << "; " << t.writer.failed << " files failed (first: " << t.writer.first_error << ")";
+  if (t.writer.dropped) s << "; " << t.writer.dropped << " files dropped (writer queue full)";
+  if (no_slot) s << "; " << no_slot << " files not written (no free copy buffer)";
+  if (t.writer.waits) s << "; the solver waited " << t.writer.waits << " times for a full writer queue";
+  s << "; on the solver's thread " << t.seconds_process << " s (render " << t.seconds_render
+    << " s, outputs " << t.seconds_outputs << " s), writer thread " << t.writer_seconds() << " s";
+  return s.str();
+}
+
+}  // namespace voxspan

@@ -1,0 +1,79 @@
+// insitu/runtime/pipeline.h - the runtime behind the adapter (voxspan/adapter.h, Pipeline): on
+// each step the config's triggers choose the work (insitu/runtime/schedule.h); on a render step
+// every view is framed (insitu/views/view_framing.h) and rendered by its kind
+// (insitu/views/view.h), then every output that is due gets the step and the views' products
+// (insitu/outputs/output.h) and hands its files to the background writer; the stats output
+// comes last, with the step's record.
+//
+// Everything that can fail before step 1 fails in the constructor, with a voxspan::Error that
+// names the problem: the output folders are created and proved writable, the GL context is
+// made (renderer.gl_platform; VOXSPAN_GL_PLATFORM overrides it) and every pass is compiled.
+// After that nothing throws into the solver: a failed view or file is a Status or a counted
+// writer error, and the run goes on. Once sizes are stable a render step allocates no new
+// buffers: GPU buffers, read-back images, job slots and the stats record are reused.
+// GL: the context is current on the thread that made the pipeline; a step on another thread
+// makes it current there.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "insitu/config/config.h"
+#include "insitu/outputs/background_writer.h"
+#include "insitu/outputs/output.h"
+#include "render/frame_stats.h"
+#include "voxspan/adapter.h"
+
+namespace voxspan {
+
+// What one output did so far.
+struct OutputTotals {
+  std::string kind;
+  std::string_view noun;  // "PNG", "VTK sets"
+  bool enabled = false;
+  OutputTally tally;
+};
+
+// What the run did so far.
+struct PipelineTotals {
+  std::int64_t render_steps = 0;   // steps where the views were rendered
+  std::int64_t frames = 0;         // views rendered (all render steps)
+  std::int64_t failed_views = 0;   // view renders that threw
+  double seconds_render = 0;   // solver's thread: framing, rendering, read-back
+  double seconds_outputs = 0;  // solver's thread: copies into job slots, submits (and waits)
+  double seconds_process = 0;  // solver's thread: all of process()
+  FrameStats passes;           // milliseconds per pass, summed over all views and steps
+  std::vector<OutputTotals> outputs;  // every output kind, in the config's order
+  WriterStats writer;
+
+  // The output of that kind (every kind has one).
+  const OutputTally& output(std::string_view kind) const;
+  double writer_seconds() const;  // the writer thread's time in every output's jobs
+};
+
+class InsituPipeline final : public Pipeline {
+ public:
+  // `particle_spacing`: the solver's rest spacing (0 when unknown: then every view needs its
+  // gap and filter_radius set). Throws voxspan::Error (see above).
+  InsituPipeline(const Config& config, double particle_spacing);
+  ~InsituPipeline() override;
+
+  bool wants_step(std::int64_t step, double time) override;
+  void mark_last_step(std::int64_t step) override;
+  Status process(const StepData& data, const StepStats& stats) override;
+  void finish() override;
+  std::string summary() const override;
+
+  PipelineTotals totals() const;
+  const Config& config() const;
+  // One line: the GL platform and renderer, the views and the enabled outputs.
+  std::string description() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace voxspan

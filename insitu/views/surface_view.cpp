@@ -1,0 +1,166 @@
+#include "insitu/views/surface_view.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "insitu/views/view.h"
+#include "render/passes/first_hit.h"
+#include "render/renderer.h"
+#include "voxspan/error.h"
+
+namespace voxspan {
+namespace {
+
+constexpr double kMiB = 1024.0 * 1024.0;
+
+glm::dvec3 vec(const Vec3d& v) { return {v[0], v[1], v[2]}; }
+
+// Towards the sun: mostly up, a little to two sides, whatever axis is up.
+glm::dvec3 sun_direction(glm::dvec3 up) {
+  up = glm::normalize(up);
+  const glm::dvec3 other = std::abs(up.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 a = glm::normalize(glm::cross(up, other)), b = glm::cross(up, a);
+  return up + 0.35 * a + 0.45 * b;
+}
+
+// The lowest point of the box along `up`: the ground plane lies there.
+double lowest(const Bounds& box, glm::dvec3 up) {
+  up = glm::normalize(up);
+  double low = 1e300;
+  for (int k = 0; k < 8; ++k)
+    low = std::min(low, glm::dot(up, glm::dvec3(k & 1 ? box.hi[0] : box.lo[0],
+                                                 k & 2 ? box.hi[1] : box.lo[1],
+                                                 k & 4 ? box.hi[2] : box.lo[2])));
+  return low;
+}
+
+RenderOptions render_options(const SurfaceSettings& view, const RendererConfig& renderer,
+                             double spacing) {
+  if (!(spacing > 0) || !std::isfinite(spacing))
+    throw make_error("view ", view.name, ": the particle spacing (", spacing,
+                     ") is needed for the view's automatic settings; set "
+                     "classification.particle_spacing or pass it to the adapter");
+  RenderOptions o;
+  VoxelizeOptions& v = o.voxelize;
+  v.grid.alpha_degrees = view.alpha_degrees;
+  v.grid.max_layers = view.max_layers;
+  v.gap_bridging = view.gap.value_or(spacing);
+  v.max_spans = static_cast<std::uint32_t>(view.max_spans);
+  v.tiles.memory_budget = static_cast<std::size_t>(renderer.gpu_memory_mib * kMiB);
+  o.surfaces.filter_radius = view.filter_radius.value_or(spacing);
+  ShadeOptions& shade = o.shade;
+  shade.mode = view.shading;
+  shade.deep_ao = view.deep_ao;
+  shade.ao.radius = 4 * spacing;
+  shade.material.absorption = vec(view.absorption);
+  shade.material.ior = view.ior;
+  shade.bounces = view.bounces;
+  shade.environment.up = vec(view.camera.up);
+  shade.environment.sun_direction = sun_direction(shade.environment.up);
+  shade.environment.ground_tile = 12 * spacing;
+  validate(v);
+  validate(o.surfaces);
+  validate(shade);
+  return o;
+}
+
+void check_surface(yaml::MapReader& r, SurfaceSettings& v) {
+  if (r.has("max_layers") && v.max_layers % 32 != 0)
+    r.checker().error(r.find("max_layers"), r.path("max_layers"),
+                      "must be a multiple of 32 (a column's layers are stored in 32-bit words); "
+                      "got " + std::to_string(v.max_layers));
+  if (r.has("absorption") &&
+      (v.absorption[0] < 0 || v.absorption[1] < 0 || v.absorption[2] < 0))
+    r.checker().error(r.find("absorption"), r.path("absorption"), "must not be negative");
+}
+
+const schema::Section<SurfaceSettings>& surface_section() {
+  using S = SurfaceSettings;
+  static const schema::Section<S> s{
+      "views[i]",
+      [] {
+        std::vector<schema::Key<S>> keys = view_keys<S>("surface");
+        keys.push_back(schema::choice("shading", &S::shading, kShadeModeNames,
+                                      "shade pass (paper 001, sec. 3.5)"));
+        keys.push_back(schema::flag("deep_ao", &S::deep_ao,
+                                    "deep ambient occlusion over all stored layers (sec. 3.6)"));
+        keys.push_back(schema::number("alpha", &S::alpha_degrees, schema::above_up_to(0, 45),
+                                      "normal-angle resolution of the depth layers, degrees "
+                                      "(sec. 4.2; 14 degrees gives ~16 000 layers in the paper)"));
+        keys.push_back(schema::number_or_auto("gap", &S::gap, schema::at_least(0),
+                                              "gap-bridging distance, world units (sec. 3.2, "
+                                              "4.4); `auto` = the particle spacing"));
+        keys.push_back(schema::integer("max_spans", &S::max_spans, 0, 1 << 20,
+                                       "stored spans per pixel, 0: no cap; over the cap the last "
+                                       "span is extended and its empty length recorded (sec. 3.1)"));
+        keys.push_back(schema::number_or_auto("filter_radius", &S::filter_radius,
+                                              schema::at_least(0),
+                                              "world radius of the depth filter (sec. 3.4, "
+                                              "4.6); 0 = off; `auto` = the particle spacing"));
+        keys.push_back(schema::integer("max_layers", &S::max_layers, 32, 1 << 20,
+                                       "cap on depth layers, a multiple of 32"));
+        keys.push_back(schema::vec3("absorption", &S::absorption,
+                                    "Beer-Lambert absorption per world unit, RGB, >= 0"));
+        keys.push_back(schema::number("ior", &S::ior, schema::between(1, 4),
+                                      "refractive index (refractive mode)"));
+        keys.push_back(schema::integer("bounces", &S::bounces, 0, 16,
+                                       "refraction/reflection bounces (refractive mode)"));
+        return keys;
+      }(),
+      check_surface};
+  return s;
+}
+
+class SurfaceView final : public View {
+ public:
+  SurfaceView(const SurfaceSettings& s, const ViewContext& c)
+      : settings_(s), options_(render_options(s, c.renderer, c.particle_spacing)),
+        renderer_(c.shaders), first_hit_(c.shaders),
+        stages_(c.span_stages ? c.span_stages() : std::vector<std::unique_ptr<SpanStage>>{}) {}
+
+  void render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
+              ViewProducts& out) override {
+    RenderOptions& o = step_options_;
+    o = options_;
+    if (!step.fluid_box.empty())
+      o.shade.environment.ground_height = lowest(step.fluid_box, o.shade.environment.up);
+    // Options are checked before any GPU work, so a bad one costs nothing.
+    validate(o.surfaces);
+    validate(o.shade);
+    const GpuSpanImage* spans = &renderer_.voxelizer().run(
+        step.camera, step.data.boundary, step.data.cells, o.voxelize, timer, stats);
+    for (const std::unique_ptr<SpanStage>& stage : stages_) spans = &stage->run(*spans, timer, stats);
+    const GpuFloatImage& image = renderer_.shade(*spans, o.surfaces, o.shade, timer, stats);
+    {
+      auto t = timer.gpu("readback");
+      image.download(out.picture);
+    }
+    if (step.needs.first_hit_depth) {
+      auto t = timer.gpu("first_hit");
+      first_hit_.run(*spans, depth_);
+      depth_.download(out.first_hit_depth);
+    }
+  }
+
+  std::string description() const override {
+    return std::string(shade_mode_name(settings_.shading)) + " " + std::to_string(settings_.width) +
+           "x" + std::to_string(settings_.height);
+  }
+
+ private:
+  const SurfaceSettings settings_;
+  const RenderOptions options_;  // made once; only the ground follows the fluid
+  RenderOptions step_options_;
+  Renderer renderer_;
+  FirstHitPass first_hit_;
+  GpuFloatImage depth_;
+  std::vector<std::unique_ptr<SpanStage>> stages_;
+};
+
+}  // namespace
+
+ViewKind surface_view_kind() {
+  return view_kind<SurfaceSettings, SurfaceView>("surface", surface_section());
+}
+
+}  // namespace voxspan

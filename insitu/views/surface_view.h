@@ -1,0 +1,36 @@
+// insitu/views/surface_view.h - views[i] of kind `surface` (the default): the fluid's surfaces
+// from the span image, shaded opaque, translucent or refractive (paper 001). Its stages:
+//   voxelize (sec. 3.1-4.4) -> the span stages of the context (none in one process; MPI
+//   compositing) -> connect, filter, normals, deep AO (3.3-3.6) -> shade (3.5) -> read back,
+// and, when an output asks, the first-hit distance of every pixel (render/passes/first_hit.h).
+// Its settings, for the code that reads them by type (tests, tools).
+//
+// Reads: the step's boundary spheres and cell states, the camera, the fluid's box (the ground
+// plane lies under it). Writes: the picture (and depth) in host memory, storage reused.
+// Costs: the renderer's passes (render/README.md, render/SHADING.md) plus one read-back of
+// width x height x 16 bytes per image.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "insitu/config/settings.h"
+#include "render/shade_options.h"
+
+namespace voxspan {
+
+struct SurfaceSettings : CloneAs<SurfaceSettings, ViewSettings> {
+  ShadeMode shading = ShadeMode::translucent;
+  bool deep_ao = false;
+  double alpha_degrees = 14;  // normal-angle resolution of the depth layers (paper 001, 4.2)
+  std::optional<double> gap;  // gap-bridging distance, world units; nullopt = auto (spacing)
+  int max_spans = 0;          // stored spans per pixel; 0 = no cap (exact lists)
+  std::optional<double> filter_radius;  // world units; nullopt = auto; 0 = off
+  int max_layers = 16384;     // cap on depth layers, a multiple of 32 (paper: 16384)
+  Vec3d absorption{0.45, 0.12, 0.05};  // Beer-Lambert, per world unit, RGB
+  double ior = 1.33;                   // refractive index (refractive mode)
+  int bounces = 3;                     // refraction/reflection bounces (refractive mode)
+  bool operator==(const SurfaceSettings&) const = default;
+};
+
+}  // namespace voxspan

@@ -1,0 +1,78 @@
+// insitu/views/view.h - what a view is to the runtime: a kind of picture made from a render
+// step's particles and cell states with the view's own camera. The runtime frames the camera
+// (insitu/views/view_framing.h) and hands the step over; the view renders with its kind's
+// stages and leaves its products (the picture; a depth image when an output asks) in host
+// memory. Each kind is one file here and one line in insitu/runtime/registry.cpp
+// (docs/design.md, "A new view kind").
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "insitu/config/config.h"
+#include "insitu/views/view_products.h"
+#include "insitu/views/view_framing.h"
+#include "render/camera.h"
+#include "render/float_image.h"
+#include "render/frame_stats.h"
+#include "render/gl/pass_timer.h"
+#include "render/gl/shader_library.h"
+#include "render/gpu_span_image.h"
+#include "voxspan/adapter.h"
+
+namespace voxspan {
+
+// A stage between the voxelization and the surfaces of a span-image view: it takes the step's
+// span image and gives back the one the surfaces are built from (the same one, or another:
+// the composite of every rank's). Stages run in order.
+class SpanStage {
+ public:
+  virtual ~SpanStage() = default;
+  virtual const GpuSpanImage& run(const GpuSpanImage& spans, gl::PassTimer& timer,
+                                  FrameStats& stats) = 0;
+};
+
+// What a view is made with.
+struct ViewContext {
+  const gl::ShaderLibrary& shaders;
+  const RendererConfig& renderer;
+  double particle_spacing = 0;  // the solver's rest spacing; 0 when unknown
+  // The stages a span-image view runs between its voxelization and its surfaces (none in a
+  // single process).
+  std::function<std::vector<std::unique_ptr<SpanStage>>()> span_stages;
+};
+
+struct ViewStep {
+  const StepData& data;
+  const Camera& camera;
+  const Bounds& fluid_box;  // the box the framing follows (the ground lies under it)
+  ViewNeeds needs;          // what the due outputs want beyond the picture
+};
+
+class View {
+ public:
+  virtual ~View() = default;
+  // Renders the step into `out`. Throws voxspan::Error on bad input or a memory budget too
+  // small (the step fails, the run goes on).
+  virtual void render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
+                      ViewProducts& out) = 0;
+  // A few words for the start-up line: "translucent 640x360".
+  virtual std::string description() const = 0;
+};
+
+struct ViewKind {
+  ViewConfigKind config;
+  std::function<std::unique_ptr<View>(const ViewSettings&, const ViewContext&)> make;
+};
+
+template <class S, class V>
+ViewKind view_kind(std::string_view name, const schema::Section<S>& section) {
+  return {config_kind<ViewSettings>(name, section),
+          [](const ViewSettings& s, const ViewContext& c) -> std::unique_ptr<View> {
+            return std::make_unique<V>(dynamic_cast<const S&>(s), c);
+          }};
+}
+
+}  // namespace voxspan
