@@ -6,8 +6,11 @@ find_package(yaml-cpp REQUIRED)
 find_package(PNG REQUIRED)
 find_package(VTK 9.1 REQUIRED COMPONENTS CommonCore CommonDataModel IOXML IOXMLParser)
 find_package(HDF5 REQUIRED COMPONENTS C)
+# Imath first (OpenVDB and OpenEXR both need it), so that its target is made global here too.
+find_package(Imath 3 REQUIRED CONFIG)
 # Debian ships OpenVDB's find module (it needs Boost.Iostreams) beside its other CMake files.
 list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB /usr/lib/cmake/OpenVDB)
 find_package(OpenVDB REQUIRED)
-find_package(OpenEXR 3 REQUIRED)
+# CONFIG: OpenEXR's own package, not the find module beside OpenVDB's (which leaves out Imath).
+find_package(OpenEXR 3 REQUIRED CONFIG)
 set(CMAKE_FIND_PACKAGE_TARGETS_GLOBAL OFF)

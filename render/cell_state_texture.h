@@ -1,5 +1,5 @@
 // render/cell_state_texture.h - the simulation grid's cell states on the GPU (an R8UI 3D
-// texture, voxspan/cell_states.h layout) for the compress pass's march (paper 001, sec. 4.3),
+// texture, voxspan/cell_states.h layout) for the compress pass's march ([ZD15] sec. 4.3),
 // and the uniforms of render/passes/cell_march.glsl. The texture is reused while the grid's
 // dimensions stay the same.
 #pragma once

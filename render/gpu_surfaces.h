@@ -1,5 +1,5 @@
 // render/gpu_surfaces.h - the per-span surface data the passes after the voxelization build
-// beside the span image (paper 001, sec. 3.3-3.6, 4.5), on the GPU, indexed by span number like
+// beside the span image ([ZD15] sec. 3.3-3.6, 4.5), on the GPU, indexed by span number like
 // the span image's depths:
 //   owners   uint per span: its pixel x + y * width (connect)
 //   links    uvec2 per span: the entry's and the exit's link words (connect; the byte layout is

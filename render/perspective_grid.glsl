@@ -1,5 +1,5 @@
 // render/perspective_grid.glsl - the perspective grid of render/perspective_grid.h on the GPU:
-// camera frame, pixel rays, logarithmic layers (paper 001, sec. 4.2) and sphere footprints.
+// camera frame, pixel rays, logarithmic layers ([ZD15] sec. 4.2) and sphere footprints.
 // Every pass that reads or writes voxels or spans includes it; set_grid_uniforms()
 // (render/grid_uniforms.h) fills the uniforms. Depth = view z in world units; pixel row 0 is
 // the top of the image.

@@ -1,4 +1,4 @@
-// render/perspective_grid.h - the view-aligned voxel grid of paper 001, sec. 4.2: one column of
+// render/perspective_grid.h - the view-aligned voxel grid of [ZD15] sec. 4.2: one column of
 // voxels per pixel, depth layers spaced logarithmically, d_i = d_0 (1 + K_d)^i, with
 // K_d = tan(alpha) * 2 tan(fov_y / 2) / height, so that the steepest step one layer makes
 // between neighbouring columns is the normal-angle resolution alpha everywhere in depth.
@@ -23,7 +23,7 @@
 namespace voxspan {
 
 struct GridOptions {
-  double alpha_degrees = 14;  // normal-angle resolution (paper 001 sec. 5.1: 14 deg)
+  double alpha_degrees = 14;  // normal-angle resolution ([ZD15] sec. 5.1: 14 deg)
   int max_layers = 16384;     // cap on the layer count; a positive multiple of 32
   // The near plane is never closer than min_near (world units) nor than min_near_fraction of
   // the far depth: with the camera inside the fluid, the layers start there.

@@ -1,4 +1,4 @@
-// render/renderer.h - one full frame of paper 001 for one view: voxelize (sec. 3.1-3.2, 4.1-4.4)
+// render/renderer.h - one full frame of [ZD15] for one view: voxelize (sec. 3.1-3.2, 4.1-4.4)
 // -> connect (3.3) -> filter (3.4, 4.6) -> normals (3.4, 4.5) -> deep AO (3.6, optional) ->
 // shade (3.5: opaque, translucent or refractive) -> a float image (linear RGBA, row 0 at the
 // top), left on the GPU for the caller to read back or encode.

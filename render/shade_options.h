@@ -1,5 +1,5 @@
 // render/shade_options.h - how the passes after the voxelization turn spans into a picture
-// (paper 001, sec. 3.3-3.6): the surface filter, the shading mode, the fluid's material, the
+// ([ZD15] sec. 3.3-3.6): the surface filter, the shading mode, the fluid's material, the
 // environment around it and deep ambient occlusion. Units are world units throughout.
 #pragma once
 

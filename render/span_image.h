@@ -1,5 +1,5 @@
 // render/span_image.h - the span image: what the voxelization hands to every later stage
-// (paper 001, sec. 3.1-3.2). Per pixel an ordered list of spans, each the (entry, exit) depth of
+// ([ZD15] sec. 3.1-3.2). Per pixel an ordered list of spans, each the (entry, exit) depth of
 // one stretch of fluid along the pixel's ray, and the exact total length of fluid on the ray.
 //
 // Units and convention (render/perspective_grid.h): depths are view-space z in world units;

@@ -1,5 +1,5 @@
 // render/tiling.h - splits the image into screen tiles whose voxel subgrids fit a GPU memory
-// budget (paper 001, sec. 3.1): the full grid (1920x1080x16384 bits is 4.2 GB) never exists at
+// budget ([ZD15] sec. 3.1): the full grid (1920x1080x16384 bits is 4.2 GB) never exists at
 // once; each tile is cleared, splatted and compressed in turn.
 //
 // A tile column costs its bits (layers rounded up to whole uvec4s, 16 bytes per 128 layers) and

@@ -1,4 +1,4 @@
-// render/voxelizer.h - the voxelization stage of paper 001 (sec. 3.1, 3.2, 4.1-4.4) from
+// render/voxelizer.h - the voxelization stage of [ZD15] (sec. 3.1, 3.2, 4.1-4.4) from
 // boundary particles and cell states to the span image, on the GPU, tile by tile:
 //   frame (CPU): fit the perspective grid to the visible particles, count what is culled;
 //   upload: the particles (zero-copy layout) and the cell states;

@@ -1,5 +1,5 @@
 // cell_occupancy.h (internal) - per-cell occupancy and the inner bit from particle counts
-// (paper 001, sec. 4.3: "only inner full and empty cells may be skipped"), with a scratch
+// ([ZD15] sec. 4.3: "only inner full and empty cells may be skipped"), with a scratch
 // buffer the classifier reuses between steps.
 #pragma once
 

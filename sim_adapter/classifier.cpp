@@ -1,5 +1,5 @@
 // Classifier::run - the step from the solver's particles and grid to the cell states and the
-// compacted boundary particles (paper 001, sec. 3.1: "a fast reduction and compaction step
+// compacted boundary particles ([ZD15] sec. 3.1: "a fast reduction and compaction step
 // before voxelization"). Stages, each parallel over cells or particles:
 //   1. cell ranges: the solver's own (compact grid), or a counting sort of a per-particle cell
 //      index (the solver's, or computed from the positions);

@@ -1,4 +1,4 @@
-// bench_shading: times a whole frame, voxelization then the passes after it (paper 001, sec.
+// bench_shading: times a whole frame, voxelization then the passes after it ([ZD15] sec.
 // 3.3-3.6: connect, filter, normals, deep AO, shade) per shading mode, on the dam break, and
 // measures how close the shaded pictures come to the exact reference per angle resolution.
 //

@@ -1,4 +1,4 @@
-// render_pictures: renders the dam break in every shading mode (paper 001, sec. 3.5, 3.6) and
+// render_pictures: renders the dam break in every shading mode ([ZD15] sec. 3.5, 3.6) and
 // writes 8-bit sRGB PNGs: the pictures of docs/images/ and the README.
 //
 // The fluid: the WCSPH dam-break solver of examples/dambreak run to Martin & Moyce's

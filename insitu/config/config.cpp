@@ -366,23 +366,22 @@ Config read_config(std::string_view yaml, std::string_view source_name, const Co
 
 std::string write_config(const Config& config, const ConfigKinds& kinds) {
   YAML::Emitter e;
-  e.SetDoublePrecision(17);
   top_section(kinds).emit(e, config);
   return std::string(e.c_str()) + "\n";
 }
 
 std::string config_reference(const ConfigKinds& kinds) {
   const Config defaults = default_config(kinds);
-  std::string s = "### Top level\n\n" + top_section(kinds).reference(defaults);
-  s += "\n### `trigger` (every trigger)\n\n" + trigger_section().reference();
+  std::string s = "#### Top level\n\n" + top_section(kinds).reference(defaults);
+  s += "\n#### `trigger` (every trigger)\n\n" + trigger_section().reference();
   for (const ViewConfigKind& k : kinds.views)
-    s += "\n### `views[i]` of kind `" + std::string(k.name) + "`\n\n" + k.reference();
-  s += "\n### `views[i].camera`\n\n" + camera_section().reference();
-  s += "\n### `renderer`\n\n" + renderer_section().reference();
-  s += "\n### `classification`\n\n" + classification_section().reference();
+    s += "\n#### `views[i]` of kind `" + std::string(k.name) + "`\n\n" + k.reference();
+  s += "\n#### `views[i].camera`\n\n" + camera_section().reference();
+  s += "\n#### `renderer`\n\n" + renderer_section().reference();
+  s += "\n#### `classification`\n\n" + classification_section().reference();
   for (const OutputConfigKind& k : kinds.outputs)
-    s += "\n### `outputs." + std::string(k.name) + "`\n\n" + k.reference();
-  s += "\n### `writer`\n\n" + writer_section().reference();
+    s += "\n#### `outputs." + std::string(k.name) + "`\n\n" + k.reference();
+  s += "\n#### `writer`\n\n" + writer_section().reference();
   return s;
 }
 

@@ -8,11 +8,14 @@ namespace voxspan::schema {
 void emit_value(YAML::Emitter& e, bool v) { e << v; }
 void emit_value(YAML::Emitter& e, int v) { e << v; }
 void emit_value(YAML::Emitter& e, std::int64_t v) { e << v; }
-void emit_value(YAML::Emitter& e, double v) { e << v; }
+// Exact and short: a loaded config written again reads back as the same numbers.
+void emit_value(YAML::Emitter& e, double v) { e << yaml::number_text(v); }
 void emit_value(YAML::Emitter& e, const std::string& v) { e << v; }
 
 void emit_value(YAML::Emitter& e, const std::array<double, 3>& v) {
-  e << YAML::Flow << YAML::BeginSeq << v[0] << v[1] << v[2] << YAML::EndSeq;
+  e << YAML::Flow << YAML::BeginSeq;
+  for (double x : v) emit_value(e, x);
+  e << YAML::EndSeq;
 }
 
 void emit_value(YAML::Emitter& e, const std::vector<std::string>& v) {

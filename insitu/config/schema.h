@@ -132,7 +132,6 @@ void emit_value(YAML::Emitter& e, const std::optional<V>& v) {
 template <class F>
 std::string shown(F&& emit) {
   YAML::Emitter e;
-  e.SetDoublePrecision(6);
   e << YAML::Flow;
   emit(e);
   std::string text = "`";  // appended, not "`" + ...: GCC 12 warns falsely (-Wrestrict) there

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "voxspan/error.h"
@@ -34,11 +36,6 @@ std::string closest(std::string_view key, std::span<const std::string_view> allo
   return best;
 }
 
-std::string number_text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 }  // namespace
 
@@ -68,6 +65,15 @@ std::string describe(const YAML::Node& node) {
     case YAML::NodeType::Undefined: break;
   }
   return "nothing";
+}
+
+std::string number_text(double v) {
+  char text[32];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, v);
+    if (std::strtod(text, nullptr) == v) break;
+  }
+  return text;
 }
 
 bool Range::contains(double v) const {

@@ -40,6 +40,9 @@ class Checker {
 // A YAML node as text for messages: scalars quoted, maps and sequences by kind.
 std::string describe(const YAML::Node& node);
 
+// The shortest text that reads back as exactly v ("0.8", not "0.80000000000000004").
+std::string number_text(double v);
+
 // The numbers a key takes, as messages and the reference say it: "number in (0, 45]",
 // "number of at least 0", "number above 0".
 struct Range {

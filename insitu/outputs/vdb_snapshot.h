@@ -8,7 +8,7 @@
 //                 by it, erode the result by it: the gaps between neighbouring spheres close
 //                 and the outer surface stays where the spheres put it), with every inner-full
 //                 cell filled in, so the interior is solid although its particles were left
-//                 out (paper 001, sec. 3.1: only boundary particles leave the solver).
+//                 out ([ZD15] sec. 3.1: only boundary particles leave the solver).
 //   <attribute>   FloatGrid or Vec3SGrid per requested particle attribute, on the voxels near
 //                 the boundary particles, each voxel holding its closest particle's value.
 //   "cell_state"  Int32Grid, one voxel per simulation cell (voxel centres at cell centres),

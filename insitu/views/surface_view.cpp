@@ -81,7 +81,7 @@ const schema::Section<SurfaceSettings>& surface_section() {
       [] {
         std::vector<schema::Key<S>> keys = view_keys<S>("surface");
         keys.push_back(schema::choice("shading", &S::shading, kShadeModeNames,
-                                      "shade pass (paper 001, sec. 3.5)"));
+                                      "shade pass ([ZD15] sec. 3.5)"));
         keys.push_back(schema::flag("deep_ao", &S::deep_ao,
                                     "deep ambient occlusion over all stored layers (sec. 3.6)"));
         keys.push_back(schema::number("alpha", &S::alpha_degrees, schema::above_up_to(0, 45),

@@ -1,5 +1,5 @@
 // insitu/views/surface_view.h - views[i] of kind `surface` (the default): the fluid's surfaces
-// from the span image, shaded opaque, translucent or refractive (paper 001). Its stages:
+// from the span image, shaded opaque, translucent or refractive ([ZD15]). Its stages:
 //   voxelize (sec. 3.1-4.4) -> the span stages of the context (none in one process; MPI
 //   compositing) -> connect, filter, normals, deep AO (3.3-3.6) -> shade (3.5) -> read back,
 // and, when an output asks, the first-hit distance of every pixel (render/passes/first_hit.h).
@@ -22,7 +22,7 @@ namespace voxspan {
 struct SurfaceSettings : CloneAs<SurfaceSettings, ViewSettings> {
   ShadeMode shading = ShadeMode::translucent;
   bool deep_ao = false;
-  double alpha_degrees = 14;  // normal-angle resolution of the depth layers (paper 001, 4.2)
+  double alpha_degrees = 14;  // normal-angle resolution of the depth layers ([ZD15], 4.2)
   std::optional<double> gap;  // gap-bridging distance, world units; nullopt = auto (spacing)
   int max_spans = 0;          // stored spans per pixel; 0 = no cap (exact lists)
   std::optional<double> filter_radius;  // world units; nullopt = auto; 0 = off

@@ -1,5 +1,5 @@
 // render/model/column_march.glsl - refraction by screen-space ray marching through the voxel
-// columns (paper 001, sec. 3.5 and Listing 2), shared by the GPU pass
+// columns ([ZD15] sec. 3.5 and Listing 2), shared by the GPU pass
 // (render/passes/shade_refractive.comp) and the CPU reference (render/model/cpp_host.h).
 //
 // A ray starts at the eye through the pixel's centre and walks column by column (pixel by

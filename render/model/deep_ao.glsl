@@ -1,4 +1,4 @@
-// render/model/deep_ao.glsl - deep ambient occlusion (paper 001, sec. 3.6): the occlusion of a
+// render/model/deep_ao.glsl - deep ambient occlusion ([ZD15] sec. 3.6): the occlusion of a
 // pixel's front surface, sampled from the surface points of neighbouring columns within a world
 // radius, over ALL their stored spans, not only the front ones (after Mittring 2007's
 // screen-space AO). Shared by the GPU pass (render/passes/deep_ao.comp) and the CPU reference

@@ -1,6 +1,6 @@
 // render/model/environment.glsl - what surrounds the fluid: a sky gradient with a soft sun glow
 // and an infinite ground plane with a checker pattern fading into the horizon, so that
-// reflections and refractions show where the light comes from (paper 001, sec. 3.5).
+// reflections and refractions show where the light comes from ([ZD15] sec. 3.5).
 // Shared by the GPU shading passes and the CPU reference (render/model/cpp_host.h).
 // All world space.
 //

@@ -1,4 +1,4 @@
-// render/model/lighting.glsl - the fluid's optics, shared by the shading modes (paper 001,
+// render/model/lighting.glsl - the fluid's optics, shared by the shading modes ([ZD15],
 // sec. 3.5, 3.6) on the GPU and on the CPU reference (render/model/cpp_host.h): Fresnel
 // reflectance (Schlick), Beer-Lambert transmittance with an RGB absorption coefficient, the
 // light scattered out of the fluid towards the eye, and the opaque surface's lighting.

@@ -1,4 +1,4 @@
-// render/model/links.glsl - surface links between the spans of neighbouring pixels (paper 001,
+// render/model/links.glsl - surface links between the spans of neighbouring pixels ([ZD15],
 // sec. 3.3 and Listing 1), shared by the GPU passes and the CPU reference
 // (render/model/cpp_host.h).
 //

@@ -1,5 +1,5 @@
 // render/model/octahedral.glsl - unit normals in one 32-bit word: octahedral mapping to the
-// square [-1, 1]^2, two 16-bit signed normalized integers (paper 001 sec. 4.5, after Meyer et
+// square [-1, 1]^2, two 16-bit signed normalized integers ([ZD15] sec. 4.5, after Meyer et
 // al. 2010). Worst round-trip error about 0.003 degrees. Shared by the GPU passes and the CPU
 // reference (render/model/cpp_host.h).
 #ifndef VX_MODEL_OCTAHEDRAL

@@ -1,4 +1,4 @@
-// render/model/shade_modes.glsl - the opaque and translucent shading of one pixel (paper 001,
+// render/model/shade_modes.glsl - the opaque and translucent shading of one pixel ([ZD15],
 // sec. 3.5), shared by the GPU passes (render/passes/shade_opaque.comp,
 // shade_translucent.comp) and the CPU reference (render/model/cpp_host.h).
 //

@@ -1,5 +1,5 @@
 // render/model/surface_geometry.glsl - positions of surface points and the Sobel normal along
-// the surface links (paper 001, sec. 3.4: "Sobel operator on connected surface depths"),
+// the surface links ([ZD15] sec. 3.4: "Sobel operator on connected surface depths"),
 // shared by the GPU normals pass and the CPU reference (render/model/cpp_host.h).
 //
 // The 3x3 neighbourhood of a surface point is reached through its links: the four direct

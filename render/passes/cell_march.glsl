@@ -1,6 +1,6 @@
 // render/passes/cell_march.glsl - walks a pixel's ray through the simulation grid's cell states
 // (3D DDA) and yields the runs of inner cells, for the compress pass to skip inner-empty and
-// fill inner-full stretches (paper 001, sec. 4.3). Same cell rule as render/cell_march.h.
+// fill inner-full stretches ([ZD15] sec. 4.3). Same cell rule as render/cell_march.h.
 // The cell states are an R8UI 3D texture (bits 0-1 occupancy, bit 2 inner:
 // voxspan/cell_states.h); outside the grid is empty air. Its texture unit:
 // binding::cell_state_defines().

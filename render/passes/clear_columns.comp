@@ -1,7 +1,7 @@
 // render/passes/clear_columns.comp - zeroes, in each column of a tile, the chunks that can hold
 // fluid (render/passes/column_range.glsl) and nothing else: the splat writes and the compress
 // pass reads only those, so clearing the empty depth of the grid would be wasted bandwidth
-// (paper 001, sec. 3.1: the tile's grid is cleared before it is splatted).
+// ([ZD15] sec. 3.1: the tile's grid is cleared before it is splatted).
 // Reads: the depth bounds, the cell states at the near plane. Writes: the tile's bits.
 // Cost: one uvec4 store per chunk in range, coalesced across neighbouring columns.
 layout(local_size_x = 64) in;

@@ -1,4 +1,4 @@
-// render/passes/column_scan.glsl - turns one pixel's voxel column into spans (paper 001, sec.
+// render/passes/column_scan.glsl - turns one pixel's voxel column into spans ([ZD15] sec.
 // 3.1, 3.2, 4.3, 4.4). Shared by both compress passes so that they find the same spans.
 //   - words are scanned with findLSB on masked words, so a run costs O(1) however long it is;
 //   - a gap closes when it is shorter than u_gap along the ray, in world units, measured between

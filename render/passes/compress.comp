@@ -1,4 +1,4 @@
-// render/passes/compress.comp - compresses a tile's voxel columns into the span image (paper 001,
+// render/passes/compress.comp - compresses a tile's voxel columns into the span image ([ZD15],
 // sec. 3.1, 3.2, 4.3, 4.4), one thread per column, in passes around a prefix sum:
 //   count (default): scans the column (render/passes/column_scan.glsl) over the depth range
 //     its block's spheres cover; writes the pixel's count (capped), total and inside length,

@@ -1,5 +1,5 @@
 // render/passes/compress.h - compresses one tile's voxel columns into the span image
-// (render/passes/compress.comp; paper 001, sec. 3.1, 3.2, 4.3, 4.4): count pass, prefix sum of
+// (render/passes/compress.comp; [ZD15] sec. 3.1, 3.2, 4.3, 4.4): count pass, prefix sum of
 // the per-pixel counts, one read-back of the tile's span total to size the span buffer, copy
 // pass, and a re-scan of the few columns with more spans than the scratch holds. One thread per column; gaps shorter than g close; inner-empty cells are skipped and
 // inner-full cells count as inside when cell states are on.

@@ -1,4 +1,4 @@
-// Surface connection (paper 001, sec. 3.3, Listing 1; render/passes/connect.h).
+// Surface connection ([ZD15] sec. 3.3, Listing 1; render/passes/connect.h).
 // CONNECT_OWNERS: one thread per pixel writes its pixel number beside each of its spans and
 // tallies the spans past index 253, which links cannot name. Otherwise one thread per span
 // links its entry and exit to the overlapping spans of the four neighbour pixels

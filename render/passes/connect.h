@@ -1,4 +1,4 @@
-// render/passes/connect.h - surface connection (paper 001, sec. 3.3, Listing 1;
+// render/passes/connect.h - surface connection ([ZD15] sec. 3.3, Listing 1;
 // render/passes/connect.comp, the rule in render/model/links.glsl).
 // Reads: the span image. Writes: GpuSurfaces::owners() (each span's pixel) and links() (per
 // span the entry's and the exit's word: one byte per neighbour pixel).

@@ -1,4 +1,4 @@
-// Deep ambient occlusion (paper 001, sec. 3.6; render/passes/deep_ao.h): one thread per pixel
+// Deep ambient occlusion ([ZD15] sec. 3.6; render/passes/deep_ao.h): one thread per pixel
 // samples the spans of u_ao_samples neighbouring columns, all layers, around its front surface
 // point (render/model/deep_ao.glsl).
 layout(local_size_x = 64) in;

@@ -1,4 +1,4 @@
-// render/passes/deep_ao.h - deep ambient occlusion (paper 001, sec. 3.6;
+// render/passes/deep_ao.h - deep ambient occlusion ([ZD15] sec. 3.6;
 // render/passes/deep_ao.comp, the rule in render/model/deep_ao.glsl): per pixel, the occlusion
 // of its front surface by the spans of every layer of neighbouring columns within a world
 // radius.

@@ -1,4 +1,4 @@
-// One iteration of the surface filter (paper 001, sec. 3.4, 4.6; render/passes/filter.h): one
+// One iteration of the surface filter ([ZD15] sec. 3.4, 4.6; render/passes/filter.h): one
 // thread per span smooths the reciprocal depth of its entry and its exit with the 3x3 binomial
 // kernel over the points its links reach across (render/model/links.glsl), from
 // surface_depths (the previous iteration) into filtered_depths. A point stops after n(z)

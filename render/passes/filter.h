@@ -1,4 +1,4 @@
-// render/passes/filter.h - the surface filter (paper 001, sec. 3.4, 4.6;
+// render/passes/filter.h - the surface filter ([ZD15] sec. 3.4, 4.6;
 // render/passes/filter.comp): iterated 3x3 binomial smoothing of reciprocal depth along the
 // surface links, one dispatch per iteration, ping-ponging two depth buffers. The number of
 // iterations of a point follows its depth so the filter's world radius stays constant

@@ -1,4 +1,4 @@
-// Surface normals (paper 001, sec. 3.4, 4.5; render/passes/normals.h): one thread per span
+// Surface normals ([ZD15] sec. 3.4, 4.5; render/passes/normals.h): one thread per span
 // builds the Sobel normal of its entry and its exit along the links on the surface depths
 // (render/model/surface_geometry.glsl) and stores both octahedral-encoded.
 layout(local_size_x = 64) in;

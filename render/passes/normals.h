@@ -1,4 +1,4 @@
-// render/passes/normals.h - surface normals (paper 001, sec. 3.4, 4.5; render/passes/normals.comp,
+// render/passes/normals.h - surface normals ([ZD15] sec. 3.4, 4.5; render/passes/normals.comp,
 // the rule in render/model/surface_geometry.glsl): the Sobel operator along the links on the
 // surface depths (filtered or not), outward world normals, octahedral in 32 bits each.
 // Reads: the span image, GpuSurfaces owners, links, depths. Writes: GpuSurfaces normals.

@@ -1,4 +1,4 @@
-// Opaque shading (paper 001, sec. 3.5, "rendering the frontmost surface"; render/passes/shade_pixels.h):
+// Opaque shading ([ZD15] sec. 3.5, "rendering the frontmost surface"; render/passes/shade_pixels.h):
 // one thread per pixel lights its first entry (render/model/shade_modes.glsl).
 layout(local_size_x = 64) in;
 

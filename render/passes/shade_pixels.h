@@ -1,5 +1,5 @@
 // render/passes/shade_pixels.h - the shading passes with one thread per pixel and no state
-// between dispatches (paper 001, sec. 3.5): opaque (render/passes/shade_opaque.comp: the first
+// between dispatches ([ZD15] sec. 3.5): opaque (render/passes/shade_opaque.comp: the first
 // entry, lit) and translucent (render/passes/shade_translucent.comp: Fresnel at the first entry,
 // Beer-Lambert over every span, exact past a span cap); the rules in
 // render/model/shade_modes.glsl.

@@ -1,4 +1,4 @@
-// Refractive shading (paper 001, sec. 3.5, Listing 2; render/passes/shade_refractive.h): one thread per
+// Refractive shading ([ZD15] sec. 3.5, Listing 2; render/passes/shade_refractive.h): one thread per
 // pixel, its ray's state kept in `rays` between dispatches (render/model/column_march.glsl).
 // REFRACT_BEGIN starts every ray at the eye and gathers the depth bounds of each 8 x 8 block
 // (for skipping empty space); REFRACT_MARCH advances each marching ray by at most

@@ -1,4 +1,4 @@
-// render/passes/shade_refractive.h - refractive shading (paper 001, sec. 3.5, Listing 2;
+// render/passes/shade_refractive.h - refractive shading ([ZD15] sec. 3.5, Listing 2;
 // render/passes/shade_refractive.comp, the rule in render/model/column_march.glsl): each
 // pixel's ray marches through the columns, refracting at every surface it meets (several
 // bounces, total internal reflection), absorbed along the way, and leaves to the environment.

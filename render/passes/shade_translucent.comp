@@ -1,4 +1,4 @@
-// Translucent shading (paper 001, sec. 3.5; render/passes/shade_pixels.h): one thread per pixel,
+// Translucent shading ([ZD15] sec. 3.5; render/passes/shade_pixels.h): one thread per pixel,
 // Fresnel reflection at the first entry and Beer-Lambert absorption over every span
 // (render/model/shade_modes.glsl); one pass over the pixel's spans.
 layout(local_size_x = 64) in;

@@ -1,5 +1,5 @@
 // render/passes/splat.h - marks the voxels of one tile that the particle spheres cover
-// (render/passes/splat.comp; paper 001, sec. 3.1, 4.1, 4.4).
+// (render/passes/splat.comp; [ZD15] sec. 3.1, 4.1, 4.4).
 // Reads: particles (vec4), the tile's list from BinPass, or every particle (the paper's way),
 // and the large spheres' list. Writes: the tile's bits (layout render/passes/bits.glsl), atomic
 // OR. Small spheres are splatted by splat.comp, large ones (render/passes/sphere_work.glsl) by

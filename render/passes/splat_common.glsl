@@ -1,6 +1,6 @@
 // render/passes/splat_common.glsl - marking one sphere's chord in one pixel's column, shared by
 // the small-sphere splat (splat.comp) and the large-sphere splat (splat_large.comp), so both
-// set exactly the same bits (paper 001, sec. 4.1, 4.4). Needs render/perspective_grid.glsl and
+// set exactly the same bits ([ZD15] sec. 4.1, 4.4). Needs render/perspective_grid.glsl and
 // render/passes/bits.glsl; the pass defines BITS_BINDING.
 
 layout(std430, binding = BITS_BINDING) buffer Bits { uint bits[]; };

@@ -1,7 +1,7 @@
 // render/passes/splat_large.comp - splats the large spheres (render/passes/sphere_work.glsl:
 // spheres near or around the camera, spheres bigger than the screen) into one tile, with the
 // work cut into items of one pixel and at most kLargeBlockWords words of its chord, so every
-// thread's loops stay short however big the sphere (paper 001, sec. 4.1, 4.4).
+// thread's loops stay short however big the sphere ([ZD15] sec. 4.1, 4.4).
 //   LARGE_ITEMS: items[j] = the large sphere j's items in this tile (pixels in the tile x word
 //     blocks); a prefix sum then gives each sphere its first item;
 //   default: one thread per item: finds its sphere by binary search over the item offsets and

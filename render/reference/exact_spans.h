@@ -1,7 +1,7 @@
 // render/reference/exact_spans.h - the exact CPU reference for the span image: for each pixel's
 // centre ray, the exact depth intervals of the union of the particle spheres (analytic
 // ray-sphere, in double), with inner-full simulation cells counted as inside and the same gap
-// bridging and span cap as the GPU (paper 001, sec. 3.1, 3.2, 4.3, 4.4). It is the yardstick
+// bridging and span cap as the GPU ([ZD15] sec. 3.1, 3.2, 4.3, 4.4). It is the yardstick
 // for every accuracy figure: the GPU's spans differ from these by the voxelization alone.
 //
 // Same convention as the GPU (render/span_image.h): depths are view z, clipped to the grid's

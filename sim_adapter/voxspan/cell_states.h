@@ -1,5 +1,5 @@
 // voxspan/cell_states.h - the per-cell classification of the simulation grid, as the renderer
-// reads it (paper 001, sec. 3.1 and 4.3), and the layout of the boundary-particle upload.
+// reads it ([ZD15] sec. 3.1 and 4.3), and the layout of the boundary-particle upload.
 //
 // A cell is empty, partial or full ("full" = at least the particle count of a cell filled at
 // rest density). It is *inner* when it and its 26 neighbours are all empty or all full. Only

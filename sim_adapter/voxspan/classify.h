@@ -1,4 +1,4 @@
-// voxspan/classify.h - cell classification and boundary-particle compaction (paper 001,
+// voxspan/classify.h - cell classification and boundary-particle compaction ([ZD15],
 // sec. 3.1 and 4.3): per cell of the simulation grid empty, partial or full; a cell is inner
 // when it and its 26 neighbours are all empty or all full; the particles of non-inner cells
 // (boundary particles) are compacted, in cell order, into packed float spheres (and the named

@@ -26,6 +26,7 @@ views:
 outputs:
   vdb: {enabled: true, trigger: {every_steps: 4}, attributes: [velocity, density]}
   vtk: {enabled: true, trigger: {every_steps: 4}, attributes: [velocity]}
+  depth: {enabled: true, trigger: {every_steps: 2}}
 writer: {queue_size: 64, fsync: false}
 )";
   Adapter adapter = adapter_from_config_text(yaml, test::solver_options(sim), "alloc.yaml");

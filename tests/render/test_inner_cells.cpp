@@ -1,4 +1,4 @@
-// Skipping inner cells (paper 001, sec. 3.1, 4.3): the dam break voxelized from its boundary
+// Skipping inner cells ([ZD15] sec. 3.1, 4.3): the dam break voxelized from its boundary
 // particles plus the cell states (inner-empty skipped, inner-full counted as inside) gives the
 // spans of the run with every particle, within one layer, when gap bridging is at least the
 // particle spacing (so the tiny gaps between touching spheres inside the fluid close in both).

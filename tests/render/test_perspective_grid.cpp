@@ -1,4 +1,4 @@
-// The perspective grid (paper 001, sec. 4.2): layer spacing from alpha, layer count rounded to
+// The perspective grid ([ZD15] sec. 4.2): layer spacing from alpha, layer count rounded to
 // words and capped, near and far fitted to what the camera sees, culling counts, conservative
 // sphere footprints, and camera validation.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Tiles from a memory budget (paper 001, sec. 3.1): as few tiles as fit, evened out, covering
+// Tiles from a memory budget ([ZD15] sec. 3.1): as few tiles as fit, evened out, covering
 // the image exactly once; a budget below one tile row is a clear error naming the budget needed.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The surface filter (paper 001, sec. 3.4, 4.6): stable over 100 iterations on the dam break (no
+// The surface filter ([ZD15] sec. 3.4, 4.6): stable over 100 iterations on the dam break (no
 // NaN, no span lost or turned inside out, span order kept, no depth moved by more than the
 // radius) while it smooths the surface; a one-particle droplet and thin sheets survive;
 // silhouettes do not bleed into what lies behind them; the iteration count follows the depth.

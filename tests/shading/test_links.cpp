@@ -1,4 +1,4 @@
-// Surface links (paper 001, sec. 3.3, Listing 1) on the GPU, checked exactly against links
+// Surface links ([ZD15] sec. 3.3, Listing 1) on the GPU, checked exactly against links
 // worked out by hand on hand-made span images: a bubble, two touching blobs, an overhang, image
 // borders and a column with more spans than a link byte can name; and the CPU's implementation
 // of the rule (the reference's) against the GPU's on voxelized scenes.

@@ -1,4 +1,4 @@
-// The GPU's pictures against the exact reference's (paper 001, sec. 3.5 shading on exact spans),
+// The GPU's pictures against the exact reference's ([ZD15] sec. 3.5 shading on exact spans),
 // filter off, at the default angle resolution (14 degrees), on the voxelization's accuracy
 // scenes, against the reference whose normals are built the same way (Sobel along links on
 // the exact depths: the difference measures the voxelization alone):

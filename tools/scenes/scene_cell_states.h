@@ -2,7 +2,7 @@
 // (voxspan/classify.h) on a grid aligned with the origin: a cell is empty, full (>= full_count
 // particle centres) or partial, inner when it and its 26 neighbours are all empty or all full
 // (outside the grid is empty air); the particles of non-inner cells are the boundary particles
-// (paper 001, sec. 3.1, 5).
+// ([ZD15] sec. 3.1, 5).
 #pragma once
 
 #include <cstdint>

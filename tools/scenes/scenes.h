@@ -1,7 +1,7 @@
 // Scenes for the voxelization's tests and benchmarks, made of particle spheres (x, y, z,
 // radius): one sphere, lattice blocks, a dam break (the shape of a collapsing water column at a
 // given time, filled at the solver's lattice density), stacked thin layers and a 3D
-// checkerboard (paper 001, sec. 5.4), random clouds with mixed radii. Made up, not simulated:
+// checkerboard ([ZD15] sec. 5.4), random clouds with mixed radii. Made up, not simulated:
 // the dam-break shape follows Ritter's shallow-water solution, not the solver.
 #pragma once
 
