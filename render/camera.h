@@ -27,7 +27,7 @@ void validate(const Camera& camera);
 // z = depth along `forward` (positive in front of the eye).
 struct ViewFrame {
   glm::dvec3 eye{0}, right{1, 0, 0}, up{0, 1, 0}, forward{0, 0, -1};
-  double tan_half_x = 1, tan_half_y = 1;  // image-plane half extents at depth 1
+  double tan_half_x = 1, tan_half_y = 1;      // image-plane half extents at depth 1
   double side_scale_x = 1, side_scale_y = 1;  // 1 / |normal| of the side planes x, y = +-tan z
   int width = 1, height = 1;
 

@@ -54,10 +54,11 @@ void march_cells(const CellStatesView& cells, glm::dvec3 eye, glm::dvec3 ray, do
   while (z < z1) {
     const int a = next.x < next.y ? (next.x < next.z ? 0 : 2) : (next.y < next.z ? 1 : 2);
     const double z_out = std::min(next[a], z1);
-    const std::size_t index = static_cast<std::size_t>(cell.x) +
-                              static_cast<std::size_t>(dims.x) *
-                                  (static_cast<std::size_t>(cell.y) +
-                                   static_cast<std::size_t>(dims.y) * static_cast<std::size_t>(cell.z));
+    const std::size_t index =
+        static_cast<std::size_t>(cell.x) +
+        static_cast<std::size_t>(dims.x) *
+            (static_cast<std::size_t>(cell.y) +
+             static_cast<std::size_t>(dims.y) * static_cast<std::size_t>(cell.z));
     if (z_out > z) visit(cells.states[index], z, z_out);
     z = z_out;
     cell[a] += step[a];

@@ -37,8 +37,8 @@ void CellStateTexture::upload(const CellStatesView& cells) {
 void CellStateTexture::bind(const gl::Program& program) const {
   (on_ ? texture_ : none_).bind_unit(binding::kCellStatesUnit);
   program.set("u_cells_on", on_ ? 1u : 0u);
-  program.set("u_cells_origin", glm::vec3(float(view_.origin[0]), float(view_.origin[1]),
-                                          float(view_.origin[2])));
+  program.set("u_cells_origin",
+              glm::vec3(float(view_.origin[0]), float(view_.origin[1]), float(view_.origin[2])));
   program.set("u_cells_size", float(view_.cell_size));
   program.set("u_cells_dims", glm::ivec3(view_.dims[0], view_.dims[1], view_.dims[2]));
 }

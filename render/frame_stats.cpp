@@ -33,7 +33,8 @@ std::string quoted(std::string_view s) {
 }  // namespace
 
 void FrameStats::add_time(std::string_view pass, double ms) {
-  auto it = std::find_if(passes.begin(), passes.end(), [&](const Pass& p) { return p.name == pass; });
+  auto it =
+      std::find_if(passes.begin(), passes.end(), [&](const Pass& p) { return p.name == pass; });
   if (it == passes.end()) it = passes.insert(passes.end(), Pass{std::string(pass), 0, 0});
   it->ms += ms;
   ++it->runs;
@@ -41,20 +42,26 @@ void FrameStats::add_time(std::string_view pass, double ms) {
 
 void FrameStats::add_count(std::string_view name, std::int64_t value) {
   auto it = find_named(counts, name);
-  if (it == counts.end()) counts.emplace_back(std::string(name), value);
-  else it->second += value;
+  if (it == counts.end())
+    counts.emplace_back(std::string(name), value);
+  else
+    it->second += value;
 }
 
 void FrameStats::set_count(std::string_view name, std::int64_t value) {
   auto it = find_named(counts, name);
-  if (it == counts.end()) counts.emplace_back(std::string(name), value);
-  else it->second = value;
+  if (it == counts.end())
+    counts.emplace_back(std::string(name), value);
+  else
+    it->second = value;
 }
 
 void FrameStats::set_figure(std::string_view name, double value) {
   auto it = find_named(figures, name);
-  if (it == figures.end()) figures.emplace_back(std::string(name), value);
-  else it->second = value;
+  if (it == figures.end())
+    figures.emplace_back(std::string(name), value);
+  else
+    it->second = value;
 }
 
 double FrameStats::ms(std::string_view pass) const {
@@ -105,7 +112,9 @@ std::string FrameStats::json() const {
   return out.str();
 }
 
-void FrameStats::clear() { *this = FrameStats{}; }
+void FrameStats::clear() {
+  *this = FrameStats{};
+}
 
 void FrameStats::zero() {
   for (Pass& p : passes) p.ms = 0, p.runs = 0;

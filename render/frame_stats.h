@@ -18,9 +18,9 @@ struct FrameStats {
     double ms = 0;  // summed over runs (a pass runs once per tile)
     int runs = 0;
   };
-  std::vector<Pass> passes;                                   // in order of first run
-  std::vector<std::pair<std::string, std::int64_t>> counts;   // in order of first report
-  std::vector<std::pair<std::string, double>> figures;        // in order of first report
+  std::vector<Pass> passes;                                  // in order of first run
+  std::vector<std::pair<std::string, std::int64_t>> counts;  // in order of first report
+  std::vector<std::pair<std::string, double>> figures;       // in order of first report
   std::int64_t gpu_bytes = 0;       // held by GL buffers and textures when collected
   std::int64_t gpu_peak_bytes = 0;  // most held at once since the step began
 

@@ -46,7 +46,8 @@ void validate(const GridOptions& o) {
   if (!(o.min_near_fraction >= 0 && o.min_near_fraction < 1))
     throw make_error("grid min_near_fraction = ", o.min_near_fraction, " is outside [0, 1)");
   if (o.min_near == 0 && o.min_near_fraction == 0)
-    throw make_error("grid min_near and min_near_fraction are both 0: the near plane needs a floor");
+    throw make_error(
+        "grid min_near and min_near_fraction are both 0: the near plane needs a floor");
 }
 
 PerspectiveGrid PerspectiveGrid::with_frame(const Camera& camera, const GridOptions& options) {
@@ -71,7 +72,8 @@ void PerspectiveGrid::set_depth_range(double near, double far, const GridOptions
   near_ = near;
   far_ = far;
   // Sec. 4.2: c_d = c_w tan(alpha) with c_w = 2 tan(fov_y / 2) / R_y * d, so c_d = K_d d.
-  k_d_ = std::tan(options.alpha_degrees * std::numbers::pi / 180) * 2 * view_.tan_half_y / view_.height;
+  k_d_ = std::tan(options.alpha_degrees * std::numbers::pi / 180) * 2 * view_.tan_half_y /
+         view_.height;
   const double needed = std::ceil(std::log(far / near) / std::log1p(k_d_));
   layers_needed_ = static_cast<int>(std::min(needed, 1e9));
   layers_ = std::max(32, (std::max(layers_needed_, 1) + 31) / 32 * 32);
@@ -80,7 +82,8 @@ void PerspectiveGrid::set_depth_range(double near, double far, const GridOptions
     // Fewer layers over the same depth range: each layer grows, and alpha with it.
     layers_ = options.max_layers;
     k_d_ = std::expm1(std::log(far / near) / layers_);
-    alpha_degrees_ = std::atan(k_d_ * view_.height / (2 * view_.tan_half_y)) * 180 / std::numbers::pi;
+    alpha_degrees_ =
+        std::atan(k_d_ * view_.height / (2 * view_.tan_half_y)) * 180 / std::numbers::pi;
   }
   log2_step_ = std::log2(1 + k_d_);
 }
@@ -122,7 +125,8 @@ DepthRange PerspectiveGrid::survey(std::span<const ParticleSphere> particles, do
       });
 }
 
-PerspectiveGrid PerspectiveGrid::fit(const Camera& camera, std::span<const ParticleSphere> particles,
+PerspectiveGrid PerspectiveGrid::fit(const Camera& camera,
+                                     std::span<const ParticleSphere> particles,
                                      const GridOptions& options, CullCounts* counts) {
   PerspectiveGrid g = with_frame(camera, options);
   DepthRange range = g.survey(particles, 0);
@@ -131,11 +135,14 @@ PerspectiveGrid PerspectiveGrid::fit(const Camera& camera, std::span<const Parti
   const double near_floor = std::max(options.min_near, options.min_near_fraction * range.hi);
   if (range.counts.visible > 0 && range.lo < near_floor) range = g.survey(particles, near_floor);
   if (counts != nullptr) *counts = range.counts;
-  if (range.counts.visible > 0) g.set_depth_range(std::max(near_floor, range.lo), range.hi, options);
+  if (range.counts.visible > 0)
+    g.set_depth_range(std::max(near_floor, range.lo), range.hi, options);
   return g;
 }
 
-double PerspectiveGrid::layer_depth(double i) const { return near_ * std::exp2(i * log2_step_); }
+double PerspectiveGrid::layer_depth(double i) const {
+  return near_ * std::exp2(i * log2_step_);
+}
 
 double PerspectiveGrid::layer_of(double depth) const {
   return std::log2(depth / near_) / log2_step_;

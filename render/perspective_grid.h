@@ -74,10 +74,10 @@ class PerspectiveGrid {
   int height() const { return view_.height; }
 
   bool empty() const { return layers_ == 0; }
-  double near() const { return near_; }      // d_0
-  double far() const { return far_; }        // farthest depth of the visible spheres
+  double near() const { return near_; }                     // d_0
+  double far() const { return far_; }                       // farthest depth of the visible spheres
   double grid_far() const { return layer_depth(layers_); }  // d_L >= far
-  int layers() const { return layers_; }     // L, a multiple of 32
+  int layers() const { return layers_; }                    // L, a multiple of 32
   int words_per_column() const { return layers_ / 32; }
   double k_d() const { return k_d_; }
   double log2_step() const { return log2_step_; }  // log2(1 + K_d)
@@ -86,8 +86,8 @@ class PerspectiveGrid {
   int layers_needed() const { return layers_needed_; }  // before rounding and the cap
   bool layer_cap_hit() const { return layer_cap_hit_; }
 
-  double layer_depth(double i) const;       // d_i
-  double layer_of(double depth) const;      // fractional i with d_i = depth
+  double layer_depth(double i) const;   // d_i
+  double layer_of(double depth) const;  // fractional i with d_i = depth
   // Thickness of the layer that holds `depth` (clamped to the grid): d_{i+1} - d_i.
   double layer_thickness(double depth) const;
 

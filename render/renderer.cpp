@@ -3,17 +3,24 @@
 namespace voxspan {
 
 Renderer::Renderer(const gl::ShaderLibrary& shaders)
-    : voxelizer_(shaders), connect_(shaders), filter_(shaders), normals_(shaders),
-      deep_ao_(shaders), opaque_(shaders, "render/passes/shade_opaque.comp"),
-      translucent_(shaders, "render/passes/shade_translucent.comp"), refractive_(shaders) {}
+    : voxelizer_(shaders),
+      connect_(shaders),
+      filter_(shaders),
+      normals_(shaders),
+      deep_ao_(shaders),
+      opaque_(shaders, "render/passes/shade_opaque.comp"),
+      translucent_(shaders, "render/passes/shade_translucent.comp"),
+      refractive_(shaders) {}
 
-const GpuFloatImage& Renderer::render(const Camera& camera, std::span<const ParticleSphere> particles,
+const GpuFloatImage& Renderer::render(const Camera& camera,
+                                      std::span<const ParticleSphere> particles,
                                       const CellStatesView& cells, const RenderOptions& options,
                                       gl::PassTimer& timer, FrameStats& stats) {
   // Options are checked before any GPU work, so a bad one costs nothing.
   validate(options.surfaces);
   validate(options.shade);
-  const GpuSpanImage& spans = voxelizer_.run(camera, particles, cells, options.voxelize, timer, stats);
+  const GpuSpanImage& spans =
+      voxelizer_.run(camera, particles, cells, options.voxelize, timer, stats);
   return shade(spans, options.surfaces, options.shade, timer, stats);
 }
 
@@ -40,8 +47,12 @@ const GpuFloatImage& Renderer::shade(const GpuSpanImage& spans, const SurfaceOpt
   }
   auto t = timer.gpu("shade");
   switch (shade.mode) {
-    case ShadeMode::opaque: opaque_.run(spans, surfaces_, uniforms, image_); break;
-    case ShadeMode::translucent: translucent_.run(spans, surfaces_, uniforms, image_); break;
+    case ShadeMode::opaque:
+      opaque_.run(spans, surfaces_, uniforms, image_);
+      break;
+    case ShadeMode::translucent:
+      translucent_.run(spans, surfaces_, uniforms, image_);
+      break;
     case ShadeMode::refractive: {
       const RefractTally tally = refractive_.run(spans, surfaces_, uniforms, shade, image_);
       stats.set_count("refract.dispatches", tally.dispatches);

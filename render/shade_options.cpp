@@ -8,7 +8,9 @@
 namespace voxspan {
 namespace {
 
-bool finite(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(glm::dvec3 v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 void check_color(const char* name, glm::dvec3 v) {
   if (!finite(v) || v.x < 0 || v.y < 0 || v.z < 0)
@@ -17,7 +19,8 @@ void check_color(const char* name, glm::dvec3 v) {
 
 void check_direction(const char* name, glm::dvec3 v) {
   if (!finite(v) || !(glm::length(v) > 0))
-    throw make_error(name, " = (", v.x, ", ", v.y, ", ", v.z, ") must be a finite, non-zero vector");
+    throw make_error(name, " = (", v.x, ", ", v.y, ", ", v.z,
+                     ") must be a finite, non-zero vector");
 }
 
 }  // namespace
@@ -49,8 +52,10 @@ void validate(const ShadeOptions& o) {
     throw make_error("environment ground_tile = ", e.ground_tile, " must be > 0");
   if (!(e.ground_fade >= 0) || !std::isfinite(e.ground_fade))
     throw make_error("environment ground_fade = ", e.ground_fade, " must be >= 0 (0 = 40 tiles)");
-  for (auto [name, c] : {std::pair{"sky_zenith", e.sky_zenith}, {"sky_horizon", e.sky_horizon},
-                         {"ground_light", e.ground_light}, {"ground_dark", e.ground_dark},
+  for (auto [name, c] : {std::pair{"sky_zenith", e.sky_zenith},
+                         {"sky_horizon", e.sky_horizon},
+                         {"ground_light", e.ground_light},
+                         {"ground_dark", e.ground_dark},
                          {"sun_color", e.sun_color}})
     check_color(name, c);
   if (!(o.ao.radius > 0) || !std::isfinite(o.ao.radius))
@@ -59,7 +64,8 @@ void validate(const ShadeOptions& o) {
     throw make_error("ao strength = ", o.ao.strength, " must be >= 0");
   if (o.ao.samples < 1 || o.ao.samples > 64)
     throw make_error("ao samples = ", o.ao.samples, " is outside 1..64");
-  if (o.bounces < 0 || o.bounces > 16) throw make_error("bounces = ", o.bounces, " is outside 0..16");
+  if (o.bounces < 0 || o.bounces > 16)
+    throw make_error("bounces = ", o.bounces, " is outside 0..16");
   if (o.march_budget < 1 || o.march_budget > 1024)
     throw make_error("march_budget = ", o.march_budget, " is outside 1..1024");
 }

@@ -28,7 +28,9 @@ enum class ShadeMode { opaque, translucent, refractive };
 inline constexpr EnumName<ShadeMode> kShadeModeNames[] = {{"opaque", ShadeMode::opaque},
                                                           {"translucent", ShadeMode::translucent},
                                                           {"refractive", ShadeMode::refractive}};
-inline const char* shade_mode_name(ShadeMode mode) { return name_of(kShadeModeNames, mode).data(); }
+inline const char* shade_mode_name(ShadeMode mode) {
+  return name_of(kShadeModeNames, mode).data();
+}
 
 // The fluid: Beer-Lambert absorption per world unit (RGB), refractive index, the light it
 // scatters towards the eye when deep (translucent and refractive modes) and its colour as an
@@ -69,17 +71,18 @@ struct ShadeOptions {
   Environment environment;
   bool deep_ao = false;
   AoOptions ao;
-  int bounces = 3;              // refractive mode: hits past the first entry that bend the ray
-  int march_budget = 1024;      // refractive mode: column events per ray per dispatch, 1..1024
-                                // (an event loops at most ~30 times in binary searches, and
-                                // llvmpipe stops an invocation after 65535 loop iterations)
+  int bounces = 3;          // refractive mode: hits past the first entry that bend the ray
+  int march_budget = 1024;  // refractive mode: column events per ray per dispatch, 1..1024
+                            // (an event loops at most ~30 times in binary searches, and
+                            // llvmpipe stops an invocation after 65535 loop iterations)
 };
 
 // Refractive mode: march dispatches at most (each advances every ray by march_budget events):
 // enough for every path of the bounces to cross the image twice over and every boundary of the
 // fullest column (`most_spans` spans) twice; rays still marching then leave to the environment
 // (and are counted).
-int refract_dispatch_limit(int width, int height, std::uint32_t most_spans, const ShadeOptions& options);
+int refract_dispatch_limit(int width, int height, std::uint32_t most_spans,
+                           const ShadeOptions& options);
 
 // Throw voxspan::Error naming the option that is out of range.
 void validate(const SurfaceOptions& options);

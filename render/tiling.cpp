@@ -7,7 +7,9 @@
 namespace voxspan {
 namespace {
 
-int ceil_div(std::size_t a, std::size_t b) { return static_cast<int>((a + b - 1) / b); }
+int ceil_div(std::size_t a, std::size_t b) {
+  return static_cast<int>((a + b - 1) / b);
+}
 
 }  // namespace
 
@@ -50,7 +52,8 @@ TileLayout plan_tiles(int width, int height, int layers, int scratch_spans,
                      max_binding_bytes, "); narrow the tiles (max_width) or lower max_layers");
   std::size_t rows = std::min(options.memory_budget / row_bytes, max_binding_bytes / row_bits);
   rows = std::min<std::size_t>(rows, static_cast<std::size_t>(height));
-  if (options.max_height > 0) rows = std::min<std::size_t>(rows, static_cast<std::size_t>(options.max_height));
+  if (options.max_height > 0)
+    rows = std::min<std::size_t>(rows, static_cast<std::size_t>(options.max_height));
   // Even out: as few tiles as the limits allow, all of about the same size.
   t.columns = ceil_div(static_cast<std::size_t>(width), static_cast<std::size_t>(max_width));
   t.rows = ceil_div(static_cast<std::size_t>(height), rows);

@@ -15,7 +15,7 @@ namespace voxspan {
 
 struct TileOptions {
   std::size_t memory_budget = std::size_t(1) << 30;  // bytes for one tile's bits and scratch
-  int max_width = 0;   // pixels; 0 = the image width
+  int max_width = 0;                                 // pixels; 0 = the image width
   int max_height = 0;  // pixels; 0 = as many rows as the budget allows
 };
 

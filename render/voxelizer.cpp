@@ -40,11 +40,16 @@ void validate(const VoxelizeOptions& o) {
 }
 
 Voxelizer::Voxelizer(const gl::ShaderLibrary& shaders)
-    : clear_(shaders), clear_columns_(shaders), prefix_sum_(shaders), bin_(shaders),
-      splat_(shaders), compress_(shaders) {
+    : clear_(shaders),
+      clear_columns_(shaders),
+      prefix_sum_(shaders),
+      bin_(shaders),
+      splat_(shaders),
+      compress_(shaders) {
   GLint64 block = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
-  max_binding_ = std::min<std::size_t>(kBindingCap, static_cast<std::size_t>(std::max<GLint64>(block, 0)));
+  max_binding_ =
+      std::min<std::size_t>(kBindingCap, static_cast<std::size_t>(std::max<GLint64>(block, 0)));
 }
 
 const GpuSpanImage& Voxelizer::run(const Camera& camera, std::span<const ParticleSphere> particles,

@@ -37,8 +37,9 @@ void check_options(const AdapterOptions& options) {
   if (!(o.full_fraction > 0) || !std::isfinite(o.full_fraction))
     throw make_error("adapter option full_fraction = ", o.full_fraction, " must be > 0");
   if (o.full_count == 0 && o.particle_spacing == 0)
-    throw make_error("adapter options: set particle_spacing (the rest spacing of the "
-                     "particles) or full_count (particles in a full cell)");
+    throw make_error(
+        "adapter options: set particle_spacing (the rest spacing of the "
+        "particles) or full_count (particles in a full cell)");
   std::set<std::string> names;
   for (const std::string& name : o.attributes) {
     if (name.empty()) throw make_error("adapter option attributes: an empty attribute name");
@@ -76,8 +77,7 @@ struct Adapter::Impl {
   std::int64_t steps_seen = 0, render_steps = 0, failed_steps = 0;
   double seconds_in_situ = 0;
 
-  void render(std::int64_t step, double time, const ParticleView& particles,
-              const GridView& grid);
+  void render(std::int64_t step, double time, const ParticleView& particles, const GridView& grid);
 };
 
 void Adapter::Impl::render(std::int64_t step, double time, const ParticleView& particles,
@@ -118,7 +118,9 @@ Adapter::~Adapter() {
 Adapter::Adapter(Adapter&&) noexcept = default;
 Adapter& Adapter::operator=(Adapter&&) noexcept = default;
 
-void Adapter::set_pipeline(std::shared_ptr<Pipeline> pipeline) { impl_->pipeline = std::move(pipeline); }
+void Adapter::set_pipeline(std::shared_ptr<Pipeline> pipeline) {
+  impl_->pipeline = std::move(pipeline);
+}
 
 bool Adapter::is_render_step(std::int64_t step, double time) const noexcept {
   const std::int64_t every = impl_->options.render_every;
@@ -198,14 +200,30 @@ std::string Adapter::summary() const {
   return impl_->pipeline ? impl_->pipeline->summary() : std::string();
 }
 
-std::shared_ptr<Pipeline> Adapter::pipeline() const { return impl_->pipeline; }
-double Adapter::seconds_in_situ() const { return impl_->seconds_in_situ; }
+std::shared_ptr<Pipeline> Adapter::pipeline() const {
+  return impl_->pipeline;
+}
+double Adapter::seconds_in_situ() const {
+  return impl_->seconds_in_situ;
+}
 
-const StepStats& Adapter::last_stats() const { return impl_->stats; }
-const Classification& Adapter::last_classification() const { return impl_->classifier.result(); }
-const AdapterOptions& Adapter::options() const { return impl_->options; }
-std::int64_t Adapter::steps_seen() const { return impl_->steps_seen; }
-std::int64_t Adapter::render_steps() const { return impl_->render_steps; }
-std::int64_t Adapter::failed_steps() const { return impl_->failed_steps; }
+const StepStats& Adapter::last_stats() const {
+  return impl_->stats;
+}
+const Classification& Adapter::last_classification() const {
+  return impl_->classifier.result();
+}
+const AdapterOptions& Adapter::options() const {
+  return impl_->options;
+}
+std::int64_t Adapter::steps_seen() const {
+  return impl_->steps_seen;
+}
+std::int64_t Adapter::render_steps() const {
+  return impl_->render_steps;
+}
+std::int64_t Adapter::failed_steps() const {
+  return impl_->failed_steps;
+}
 
 }  // namespace voxspan

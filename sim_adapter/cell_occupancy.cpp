@@ -28,25 +28,24 @@ void erode_axis(const std::uint8_t* src, std::uint8_t* dst, std::size_t outer, s
                 std::size_t inner) {
   tbb::parallel_for(tbb::blocked_range2d<std::size_t>(0, outer, 16, 0, inner, 4096),
                     [&](const tbb::blocked_range2d<std::size_t>& r) {
-    for (std::size_t o = r.rows().begin(); o != r.rows().end(); ++o) {
-      const std::size_t base = o * n * inner;
-      for (std::size_t a = 0; a < n; ++a) {
-        const std::uint8_t* s = src + base + a * inner;
-        std::uint8_t* d = dst + base + a * inner;
-        const std::uint8_t* lo = a > 0 ? s - inner : nullptr;
-        const std::uint8_t* hi = a + 1 < n ? s + inner : nullptr;
-        for (std::size_t i = r.cols().begin(); i != r.cols().end(); ++i)
-          d[i] = s[i] & (lo ? lo[i] : kOutside) & (hi ? hi[i] : kOutside);
-      }
-    }
-  });
+                      for (std::size_t o = r.rows().begin(); o != r.rows().end(); ++o) {
+                        const std::size_t base = o * n * inner;
+                        for (std::size_t a = 0; a < n; ++a) {
+                          const std::uint8_t* s = src + base + a * inner;
+                          std::uint8_t* d = dst + base + a * inner;
+                          const std::uint8_t* lo = a > 0 ? s - inner : nullptr;
+                          const std::uint8_t* hi = a + 1 < n ? s + inner : nullptr;
+                          for (std::size_t i = r.cols().begin(); i != r.cols().end(); ++i)
+                            d[i] = s[i] & (lo ? lo[i] : kOutside) & (hi ? hi[i] : kOutside);
+                        }
+                      }
+                    });
 }
 
 }  // namespace
 
-void classify_cells(const GridGeometry& g, std::span<const std::uint32_t> counts,
-                    int full_count, std::span<std::uint8_t> states,
-                    std::vector<std::uint8_t>& scratch) {
+void classify_cells(const GridGeometry& g, std::span<const std::uint32_t> counts, int full_count,
+                    std::span<std::uint8_t> states, std::vector<std::uint8_t>& scratch) {
   const std::size_t cells = g.cell_count();
   if (counts.size() != cells || states.size() != cells)
     throw make_error("classify_cells: ", counts.size(), " counts and ", states.size(),
@@ -58,9 +57,9 @@ void classify_cells(const GridGeometry& g, std::span<const std::uint32_t> counts
   // Masks into states, eroded x -> scratch, y -> states, z -> scratch.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, 1 << 14),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t c = r.begin(); c != r.end(); ++c)
-      states[c] = counts[c] == 0 ? kAllEmpty : counts[c] >= full ? kAllFull : 0;
-  });
+                      for (std::size_t c = r.begin(); c != r.end(); ++c)
+                        states[c] = counts[c] == 0 ? kAllEmpty : counts[c] >= full ? kAllFull : 0;
+                    });
   scratch.resize(cells);
   const std::size_t nx = std::size_t(g.dims[0]), ny = std::size_t(g.dims[1]),
                     nz = std::size_t(g.dims[2]);
@@ -70,12 +69,13 @@ void classify_cells(const GridGeometry& g, std::span<const std::uint32_t> counts
 
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, 1 << 14),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t c = r.begin(); c != r.end(); ++c) {
-      const std::uint8_t occupancy =
-          counts[c] == 0 ? cell::kEmpty : counts[c] >= full ? cell::kFull : cell::kPartial;
-      states[c] = occupancy | (scratch[c] != 0 ? cell::kInner : 0);
-    }
-  });
+                      for (std::size_t c = r.begin(); c != r.end(); ++c) {
+                        const std::uint8_t occupancy = counts[c] == 0      ? cell::kEmpty
+                                                       : counts[c] >= full ? cell::kFull
+                                                                           : cell::kPartial;
+                        states[c] = occupancy | (scratch[c] != 0 ? cell::kInner : 0);
+                      }
+                    });
 }
 
 void tally_cells(std::span<const std::uint8_t> states, ClassifyCounts& counts) {
@@ -85,9 +85,9 @@ void tally_cells(std::span<const std::uint8_t> states, ClassifyCounts& counts) {
   tbb::combinable<Tally> tallies;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, states.size(), 1 << 15),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-    Tally& t = tallies.local();
-    for (std::size_t c = r.begin(); c != r.end(); ++c) ++t.n[states[c] & 7];
-  });
+                      Tally& t = tallies.local();
+                      for (std::size_t c = r.begin(); c != r.end(); ++c) ++t.n[states[c] & 7];
+                    });
   Tally sum;
   tallies.combine_each([&](const Tally& t) {
     for (int s = 0; s < 8; ++s) sum.n[s] += t.n[s];
@@ -111,8 +111,10 @@ void classify_cells(const GridGeometry& geometry, std::span<const std::uint32_t>
 int full_count_for(const ClassifyOptions& options, double cell_size) {
   if (options.full_count > 0) return options.full_count;
   if (!(options.particle_spacing > 0) || !(cell_size > 0))
-    throw make_error("the full count is unknown: set full_count or particle_spacing (got "
-                     "particle_spacing ", options.particle_spacing, ", cell size ", cell_size, ")");
+    throw make_error(
+        "the full count is unknown: set full_count or particle_spacing (got "
+        "particle_spacing ",
+        options.particle_spacing, ", cell size ", cell_size, ")");
   // A cell inside the fluid at rest holds at least floor(cell / spacing) lattice planes per
   // axis, whatever the lattice's offset: that many cubed is the count of a filled cell.
   const double planes = std::floor(cell_size / options.particle_spacing * (1 + 1e-9));

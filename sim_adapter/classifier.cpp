@@ -71,8 +71,8 @@ bool point_in_cell(const GridGeometry& g, std::size_t c, T x, T y, T z) {
   const double p[3] = {double(x), double(y), double(z)};
   for (int a = 0; a < 3; ++a) {
     const double lo = g.origin[std::size_t(a)] + double(idx[a]) * g.cell_size;
-    const double tol = 1e-4 * g.cell_size +
-                       8 * double(std::numeric_limits<T>::epsilon()) * std::abs(p[a]);
+    const double tol =
+        1e-4 * g.cell_size + 8 * double(std::numeric_limits<T>::epsilon()) * std::abs(p[a]);
     if (!(p[a] >= lo - tol && p[a] <= lo + g.cell_size + tol)) return false;
   }
   return true;
@@ -127,13 +127,12 @@ struct Classifier::Work {
   template <class T>
   Tallies cells_from_index(const detail::Positions<T>& pos, std::size_t n, const GridView& grid);
   template <class T>
-  Tallies count(const detail::Positions<T>& pos, const ParticleView& view,
-                const CellRanges& ranges, const ClassifyOptions& options,
-                const detail::Radii& radii);
+  Tallies count(const detail::Positions<T>& pos, const ParticleView& view, const CellRanges& ranges,
+                const ClassifyOptions& options, const detail::Radii& radii);
   template <class T>
-  void compact(const detail::Positions<T>& pos, const ParticleView& view,
-               const CellRanges& ranges, const ClassifyOptions& options,
-               const detail::Radii& radii, const std::vector<AttributeView>& attributes);
+  void compact(const detail::Positions<T>& pos, const ParticleView& view, const CellRanges& ranges,
+               const ClassifyOptions& options, const detail::Radii& radii,
+               const std::vector<AttributeView>& attributes);
 };
 
 namespace {
@@ -155,9 +154,10 @@ GridGeometry Classifier::Work::bounds_geometry(const detail::Positions<T>& pos, 
                                                const ClassifyOptions& options) {
   double cs = options.cell_size > 0 ? options.cell_size : 2 * options.particle_spacing;
   if (!(cs > 0) || !std::isfinite(cs))
-    throw make_error("no grid was given and the cell size is unknown: set cell_size or "
-                     "particle_spacing (got cell_size ", options.cell_size,
-                     ", particle_spacing ", options.particle_spacing, ")");
+    throw make_error(
+        "no grid was given and the cell size is unknown: set cell_size or "
+        "particle_spacing (got cell_size ",
+        options.cell_size, ", particle_spacing ", options.particle_spacing, ")");
   struct Box {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   };
@@ -209,20 +209,21 @@ Tallies assign_cells(const detail::Positions<T>& positions, std::size_t n,
                      std::vector<std::uint32_t>& cell_of, Place&& place) {
   cell_of.resize(n);
   tbb::combinable<Tallies> tallies;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kParticleGrain),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-    Tallies& t = tallies.local();
-    T x, y, z;
-    const detail::Positions<T> pos = positions;  // a local copy stays in registers
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      if (!pos.load(i, x, y, z)) {  // a NaN particle has no cell, whatever the solver says
-        ++t.nonfinite;
-        cell_of[i] = kNoCell;
-      } else {
-        cell_of[i] = place(i, x, y, z, t);
-      }
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, n, kParticleGrain),
+      [&](const tbb::blocked_range<std::size_t>& r) {
+        Tallies& t = tallies.local();
+        T x, y, z;
+        const detail::Positions<T> pos = positions;  // a local copy stays in registers
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          if (!pos.load(i, x, y, z)) {  // a NaN particle has no cell, whatever the solver says
+            ++t.nonfinite;
+            cell_of[i] = kNoCell;
+          } else {
+            cell_of[i] = place(i, x, y, z, t);
+          }
+        }
+      });
   return total(tallies);
 }
 
@@ -277,63 +278,64 @@ Tallies Classifier::Work::count(const detail::Positions<T>& positions, const Par
   const bool fast = !ranges.order.present() && !check_cells && !check_once && !radii.varies();
   detail::FirstError error;
   tbb::combinable<Tallies> tallies;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, kCellGrain),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-    Tallies& t = tallies.local();
-    T x, y, z;
-    const detail::Positions<T> pos = positions;  // a local copy stays in registers
-    for (std::size_t c = r.begin(); c != r.end(); ++c) {
-      counts[c] = emit[c] = 0;
-      const std::int64_t b = ranges.begin[c] - ranges.base, e = ranges.end[c] - ranges.base;
-      if (b == e) continue;
-      if (b < 0 || e < b || e > n64) {
-        error.offer(c, "grid cell ", CellName{g, c}, " lists particles [", b, ", ", e,
-                    "), outside the ", n, " particles");
-        continue;
-      }
-      t.entries += std::size_t(e - b);
-      std::uint32_t valid = 0, emitted = 0;
-      if (fast) {
-        for (std::int64_t k = b; k < e; ++k) {
-          if (!pos.load(std::size_t(k), x, y, z)) {
-            ++t.nonfinite;
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, cells, kCellGrain),
+      [&](const tbb::blocked_range<std::size_t>& r) {
+        Tallies& t = tallies.local();
+        T x, y, z;
+        const detail::Positions<T> pos = positions;  // a local copy stays in registers
+        for (std::size_t c = r.begin(); c != r.end(); ++c) {
+          counts[c] = emit[c] = 0;
+          const std::int64_t b = ranges.begin[c] - ranges.base, e = ranges.end[c] - ranges.base;
+          if (b == e) continue;
+          if (b < 0 || e < b || e > n64) {
+            error.offer(c, "grid cell ", CellName{g, c}, " lists particles [", b, ", ", e,
+                        "), outside the ", n, " particles");
             continue;
           }
-          ++valid;
-          emitted += options.include_ghosts || std::size_t(k) < owned ? 1 : 0;
+          t.entries += std::size_t(e - b);
+          std::uint32_t valid = 0, emitted = 0;
+          if (fast) {
+            for (std::int64_t k = b; k < e; ++k) {
+              if (!pos.load(std::size_t(k), x, y, z)) {
+                ++t.nonfinite;
+                continue;
+              }
+              ++valid;
+              emitted += options.include_ghosts || std::size_t(k) < owned ? 1 : 0;
+            }
+            counts[c] = valid;
+            emit[c] = emitted;
+            continue;
+          }
+          for (std::int64_t k = b; k < e; ++k) {
+            const std::int64_t idx = particle_at(ranges, k);
+            if (idx < 0 || idx >= n64) {
+              error.offer(c, "grid order entry ", k, " (in cell ", CellName{g, c}, ") is particle ",
+                          idx, ", not one of the ", n, " particles");
+              break;
+            }
+            const auto i = std::size_t(idx);
+            if (check_once && std::atomic_ref<std::uint8_t>(seen[i]).exchange(1) != 0)
+              error.offer(c, "particle ", i, " is listed twice by the grid (again in cell ",
+                          CellName{g, c}, ")");
+            if (!pos.load(i, x, y, z) || !detail::Radii::usable(radii.get(i))) {
+              ++t.nonfinite;
+              continue;
+            }
+            if (check_cells && !point_in_cell(g, c, x, y, z)) {
+              const auto ijk = cell_of_point(g, x, y, z);
+              error.offer(c, "particle ", i, " at (", x, ", ", y, ", ", z, ") lies in cell (",
+                          ijk[0], ", ", ijk[1], ", ", ijk[2], ") but the grid lists it in cell ",
+                          CellName{g, c}, " (-1: outside the grid)");
+            }
+            ++valid;
+            if (options.include_ghosts || i < owned) ++emitted;
+          }
+          counts[c] = valid;
+          emit[c] = emitted;
         }
-        counts[c] = valid;
-        emit[c] = emitted;
-        continue;
-      }
-      for (std::int64_t k = b; k < e; ++k) {
-        const std::int64_t idx = particle_at(ranges, k);
-        if (idx < 0 || idx >= n64) {
-          error.offer(c, "grid order entry ", k, " (in cell ", CellName{g, c}, ") is particle ",
-                      idx, ", not one of the ", n, " particles");
-          break;
-        }
-        const auto i = std::size_t(idx);
-        if (check_once && std::atomic_ref<std::uint8_t>(seen[i]).exchange(1) != 0)
-          error.offer(c, "particle ", i, " is listed twice by the grid (again in cell ",
-                      CellName{g, c}, ")");
-        if (!pos.load(i, x, y, z) || !detail::Radii::usable(radii.get(i))) {
-          ++t.nonfinite;
-          continue;
-        }
-        if (check_cells && !point_in_cell(g, c, x, y, z)) {
-          const auto ijk = cell_of_point(g, x, y, z);
-          error.offer(c, "particle ", i, " at (", x, ", ", y, ", ", z, ") lies in cell (",
-                      ijk[0], ", ", ijk[1], ", ", ijk[2], ") but the grid lists it in cell ",
-                      CellName{g, c}, " (-1: outside the grid)");
-        }
-        ++valid;
-        if (options.include_ghosts || i < owned) ++emitted;
-      }
-      counts[c] = valid;
-      emit[c] = emitted;
-    }
-  });
+      });
   error.throw_if_raised();
   if (check_once) {
     for (std::size_t i = 0; i < n; ++i)
@@ -350,9 +352,9 @@ void Classifier::Work::compact(const detail::Positions<T>& positions, const Part
   const std::size_t cells = result.geometry.cell_count(), owned = view.owned_count();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, 1 << 14),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t c = r.begin(); c != r.end(); ++c)
-      if (cell::is_inner(result.states[c])) emit[c] = 0;
-  });
+                      for (std::size_t c = r.begin(); c != r.end(); ++c)
+                        if (cell::is_inner(result.states[c])) emit[c] = 0;
+                    });
   emit_offsets.resize(cells + 1);
   const std::size_t total = detail::exclusive_scan(emit, emit_offsets);
   result.boundary.resize(total);
@@ -364,30 +366,31 @@ void Classifier::Work::compact(const detail::Positions<T>& positions, const Part
   }
   result.counts.boundary = total;
 
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, kCellGrain),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-    T x, y, z;
-    const detail::Positions<T> pos = positions;  // a local copy stays in registers
-    for (std::size_t c = r.begin(); c != r.end(); ++c) {
-      if (emit[c] == 0) continue;
-      std::size_t out = emit_offsets[c];
-      const std::int64_t b = ranges.begin[c] - ranges.base, e = ranges.end[c] - ranges.base;
-      for (std::int64_t k = b; k < e; ++k) {
-        const auto i = std::size_t(particle_at(ranges, k));
-        if (!options.include_ghosts && i >= owned) continue;
-        const float radius = radii.get(i);
-        if (!pos.load(i, x, y, z) || !detail::Radii::usable(radius)) continue;
-        result.boundary[out] = {float(x), float(y), float(z), radius};
-        for (std::size_t a = 0; a < attributes.size(); ++a) {
-          const AttributeView& src = attributes[a];
-          float* dst = result.attributes[a].values.data() + out * std::size_t(src.components);
-          for (int j = 0; j < src.components; ++j)
-            dst[j] = static_cast<float>(src.component[std::size_t(j)][i]);
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, cells, kCellGrain),
+      [&](const tbb::blocked_range<std::size_t>& r) {
+        T x, y, z;
+        const detail::Positions<T> pos = positions;  // a local copy stays in registers
+        for (std::size_t c = r.begin(); c != r.end(); ++c) {
+          if (emit[c] == 0) continue;
+          std::size_t out = emit_offsets[c];
+          const std::int64_t b = ranges.begin[c] - ranges.base, e = ranges.end[c] - ranges.base;
+          for (std::int64_t k = b; k < e; ++k) {
+            const auto i = std::size_t(particle_at(ranges, k));
+            if (!options.include_ghosts && i >= owned) continue;
+            const float radius = radii.get(i);
+            if (!pos.load(i, x, y, z) || !detail::Radii::usable(radius)) continue;
+            result.boundary[out] = {float(x), float(y), float(z), radius};
+            for (std::size_t a = 0; a < attributes.size(); ++a) {
+              const AttributeView& src = attributes[a];
+              float* dst = result.attributes[a].values.data() + out * std::size_t(src.components);
+              for (int j = 0; j < src.components; ++j)
+                dst[j] = static_cast<float>(src.component[std::size_t(j)][i]);
+            }
+            ++out;
+          }
         }
-        ++out;
-      }
-    }
-  });
+      });
 }
 
 template <class T>
@@ -407,8 +410,9 @@ void Classifier::Work::run(const detail::Positions<T>& pos, const ParticleView& 
                                                    : options.particle_spacing;
   radii.uniform = static_cast<float>(uniform);
   if (!radii.varies() && !(uniform > 0 && std::isfinite(uniform)))
-    throw make_error("no particle radius: give one in the particle view, or set radius or "
-                     "particle_spacing in the options");
+    throw make_error(
+        "no particle radius: give one in the particle view, or set radius or "
+        "particle_spacing in the options");
 
   // 1. Cell ranges.
   CellRanges ranges;
@@ -416,9 +420,8 @@ void Classifier::Work::run(const detail::Positions<T>& pos, const ParticleView& 
   switch (grid.layout()) {
     case GridView::Layout::none:
     case GridView::Layout::geometry_only:
-      result.geometry = grid.layout() == GridView::Layout::none
-                            ? bounds_geometry(pos, n, options)
-                            : grid.geometry();
+      result.geometry = grid.layout() == GridView::Layout::none ? bounds_geometry(pos, n, options)
+                                                                : grid.geometry();
       if (grid.layout() == GridView::Layout::geometry_only) check_geometry(result.geometry);
       built = cells_from_positions(pos, n, result.geometry);
       break;
@@ -450,7 +453,7 @@ void Classifier::Work::run(const detail::Positions<T>& pos, const ParticleView& 
   // 2. Count.
   const Tallies counted = cells > 0 ? count(pos, view, ranges, options, radii) : Tallies{};
   counts_out.dropped_nonfinite = built.nonfinite + counted.nonfinite;
-  counts_out.not_in_grid = ranges.built ? built.outside
+  counts_out.not_in_grid = ranges.built          ? built.outside
                            : counted.entries < n ? n - counted.entries
                                                  : 0;
 
@@ -477,9 +480,13 @@ Classifier::~Classifier() = default;
 Classifier::Classifier(Classifier&&) noexcept = default;
 Classifier& Classifier::operator=(Classifier&&) noexcept = default;
 
-const Classification& Classifier::result() const { return work_->result; }
+const Classification& Classifier::result() const {
+  return work_->result;
+}
 
-Classification Classifier::take_result() { return std::move(work_->result); }
+Classification Classifier::take_result() {
+  return std::move(work_->result);
+}
 
 const Classification& Classifier::run(const ParticleView& view, const GridView& grid,
                                       const ClassifyOptions& options) {

@@ -20,9 +20,7 @@ struct Positions {
       stride[a] = v.axis(a).stride;
     }
   }
-  T get(int a, std::size_t i) const {
-    return *reinterpret_cast<const T*>(base[a] + i * stride[a]);
-  }
+  T get(int a, std::size_t i) const { return *reinterpret_cast<const T*>(base[a] + i * stride[a]); }
   // Loads particle i; false when a coordinate is NaN or infinite.
   bool load(std::size_t i, T& x, T& y, T& z) const {
     x = get(0, i);

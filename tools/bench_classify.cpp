@@ -4,8 +4,8 @@
 //   bench_classify [--particles N[,N...]] [--steps S] [--repeats R] [--threads P] [--until T]
 //
 // For each size: builds the dam break (and runs it to Martin & Moyce's T = t sqrt(2g/a) with
-// --until, to measure a flowing state with more surface), times S solver steps, then classifies the solver's own
-// compact grid R times (the adapter's render-step work, with the velocity and density
+// --until, to measure a flowing state with more surface), times S solver steps, then classifies the
+// solver's own compact grid R times (the adapter's render-step work, with the velocity and density
 // attributes compacted too) and reports the median, the throughput in particles per second,
 // and the classification's cost as a fraction of one solver step. The same for the layout
 // where the solver shares no grid (the adapter's counting sort).
@@ -80,14 +80,20 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const char* v = i + 1 < argc ? argv[i + 1] : nullptr;
-    if (a == "--particles" && v) sizes = parse_sizes(argv[++i]);
-    else if (a == "--steps" && v) steps = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--repeats" && v) repeats = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--threads" && v) threads = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--until" && v) until = std::atof(argv[++i]);
+    if (a == "--particles" && v)
+      sizes = parse_sizes(argv[++i]);
+    else if (a == "--steps" && v)
+      steps = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--repeats" && v)
+      repeats = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--threads" && v)
+      threads = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--until" && v)
+      until = std::atof(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: bench_classify [--particles N[,N...]] [--steps S] "
-                           "[--repeats R] [--threads P] [--until T]\n");
+      std::fprintf(stderr,
+                   "usage: bench_classify [--particles N[,N...]] [--steps S] "
+                   "[--repeats R] [--threads P] [--until T]\n");
       return 2;
     }
   }
@@ -96,9 +102,9 @@ int main(int argc, char** argv) {
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                   std::size_t(threads));
 
-  std::printf("%10s %9s %10s %9s %11s %10s %9s %10s %11s %9s\n", "particles", "boundary",
-              "step_ms", "class_ms", "classify/s", "of_step", "nogrid_ms", "nogrid/s",
-              "count+cells", "compact");
+  std::printf("%10s %9s %10s %9s %11s %10s %9s %10s %11s %9s\n", "particles", "boundary", "step_ms",
+              "class_ms", "classify/s", "of_step", "nogrid_ms", "nogrid/s", "count+cells",
+              "compact");
   for (std::size_t n : sizes) {
     dambreak::Config config;
     config.particles = n;
@@ -130,8 +136,8 @@ int main(int argc, char** argv) {
     const double np = double(f.size());
     std::printf("%10zu %8.1f%% %10.1f %9.2f %11.3g %9.2f%% %9.2f %10.3g %8.2f ms %6.2f ms\n",
                 f.size(), 100.0 * double(own.counts.boundary) / np, 1e3 * step, 1e3 * own.seconds,
-                np / own.seconds, 100 * own.seconds / step, 1e3 * built.seconds,
-                np / built.seconds, 1e3 * own.classify, 1e3 * own.compact);
+                np / own.seconds, 100 * own.seconds / step, 1e3 * built.seconds, np / built.seconds,
+                1e3 * own.classify, 1e3 * own.compact);
     std::fflush(stdout);
   }
   return 0;

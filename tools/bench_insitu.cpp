@@ -53,7 +53,7 @@ struct Options {
   long vdb_every = 100;
   long non_render_steps = 20000000;
   bool runs = true;
-  int width = 0, height = 0;  // 0: the config's view sizes
+  int width = 0, height = 0;       // 0: the config's view sizes
   std::vector<std::string> views;  // keep only these views (all when empty)
 };
 
@@ -103,12 +103,14 @@ void bench_non_render(const voxspan::Config& base, dambreak::DamBreak& sim, long
   // ... and as a solver does it, the views made afresh every step.
   t0 = Clock::now();
   for (long step = steps + 1; step <= 2 * steps; ++step)
-    failures += !adapter.execute(step, 1e-5 * double(step), fluid_view(sim.fluid()), fluid_grid(sim)).ok();
+    failures +=
+        !adapter.execute(step, 1e-5 * double(step), fluid_view(sim.fluid()), fluid_grid(sim)).ok();
   const double with_views = seconds_since(t0);
-  std::printf("non-render step: Adapter::execute %.1f ns; with the particle and grid views made "
-              "each step %.1f ns (%ld steps each, %lld render steps, %ld failures)\n",
-              1e9 * call / double(steps), 1e9 * with_views / double(steps), steps,
-              static_cast<long long>(adapter.render_steps()), failures);
+  std::printf(
+      "non-render step: Adapter::execute %.1f ns; with the particle and grid views made "
+      "each step %.1f ns (%ld steps each, %lld render steps, %ld failures)\n",
+      1e9 * call / double(steps), 1e9 * with_views / double(steps), steps,
+      static_cast<long long>(adapter.render_steps()), failures);
 }
 
 struct RunFigures {
@@ -121,7 +123,8 @@ RunFigures run(const dambreak::DamBreak& start, long steps, const voxspan::Confi
   RunFigures f;
   std::unique_ptr<voxspan::Adapter> adapter;
   if (config)
-    adapter = std::make_unique<voxspan::Adapter>(voxspan::make_insitu_adapter(*config, adapter_options(sim)));
+    adapter = std::make_unique<voxspan::Adapter>(
+        voxspan::make_insitu_adapter(*config, adapter_options(sim)));
   const auto t0 = Clock::now();
   const std::int64_t first = sim.steps();
   for (long i = 1; i <= steps; ++i) {
@@ -145,23 +148,26 @@ RunFigures run(const dambreak::DamBreak& start, long steps, const voxspan::Confi
 
 void report(const char* name, const RunFigures& f, const RunFigures& alone, long steps) {
   const double extra = f.wall - alone.wall;
-  std::printf("%-34s wall %7.1f s  solver %6.1f s  in situ on solver thread %6.1f s  "
-              "+ finish %4.1f s  extra wall over solver alone %+7.1f s = %6.1f %%\n",
-              name, f.wall, f.solver, f.in_situ, f.finish, extra, 100 * extra / alone.wall);
+  std::printf(
+      "%-34s wall %7.1f s  solver %6.1f s  in situ on solver thread %6.1f s  "
+      "+ finish %4.1f s  extra wall over solver alone %+7.1f s = %6.1f %%\n",
+      name, f.wall, f.solver, f.in_situ, f.finish, extra, 100 * extra / alone.wall);
   if (f.totals.render_steps == 0 && f.totals.output("vdb").written == 0) return;
   const voxspan::PipelineTotals& t = f.totals;
-  std::printf("    %lld render steps (%.2f s each on the solver's thread), %lld PNG, %lld VDB; "
-              "writer thread %.1f s\n",
-              static_cast<long long>(t.render_steps),
-              t.render_steps ? t.seconds_process / double(t.render_steps) : 0.0,
-              static_cast<long long>(t.output("png").written),
-              static_cast<long long>(t.output("vdb").written), t.writer_seconds());
+  std::printf(
+      "    %lld render steps (%.2f s each on the solver's thread), %lld PNG, %lld VDB; "
+      "writer thread %.1f s\n",
+      static_cast<long long>(t.render_steps),
+      t.render_steps ? t.seconds_process / double(t.render_steps) : 0.0,
+      static_cast<long long>(t.output("png").written),
+      static_cast<long long>(t.output("vdb").written), t.writer_seconds());
   std::printf("    per render step, ms:");
   for (const voxspan::FrameStats::Pass& pass : t.passes.passes)
     std::printf(" %s %.1f", pass.name.c_str(),
                 pass.ms / double(std::max<std::int64_t>(t.render_steps, 1)));
-  std::printf("; classify+compact+outputs %.1f\n",
-              1e3 * (f.in_situ - t.seconds_render) / double(std::max<std::int64_t>(t.render_steps, 1)));
+  std::printf(
+      "; classify+compact+outputs %.1f\n",
+      1e3 * (f.in_situ - t.seconds_render) / double(std::max<std::int64_t>(t.render_steps, 1)));
   (void)steps;
 }
 
@@ -175,16 +181,26 @@ bool parse(int argc, char** argv, Options& o) {
       }
       return argv[++i];
     };
-    if (a == "--config") o.config = value();
-    else if (a == "--particles") o.particles = std::size_t(std::atof(value()));
-    else if (a == "--steps") o.steps = std::atol(value());
-    else if (a == "--tank-length") o.tank_length = std::atof(value());
-    else if (a == "--start") o.start = std::atof(value());
-    else if (a == "--render-every") o.render_every = std::atol(value());
-    else if (a == "--vdb-every") o.vdb_every = std::atol(value());
-    else if (a == "--non-render-steps") o.non_render_steps = std::atol(value());
-    else if (a == "--skip-runs") o.runs = false;
-    else if (a == "--view") o.views.push_back(value());
+    if (a == "--config")
+      o.config = value();
+    else if (a == "--particles")
+      o.particles = std::size_t(std::atof(value()));
+    else if (a == "--steps")
+      o.steps = std::atol(value());
+    else if (a == "--tank-length")
+      o.tank_length = std::atof(value());
+    else if (a == "--start")
+      o.start = std::atof(value());
+    else if (a == "--render-every")
+      o.render_every = std::atol(value());
+    else if (a == "--vdb-every")
+      o.vdb_every = std::atol(value());
+    else if (a == "--non-render-steps")
+      o.non_render_steps = std::atol(value());
+    else if (a == "--skip-runs")
+      o.runs = false;
+    else if (a == "--view")
+      o.views.push_back(value());
     else if (a == "--size") {
       if (std::sscanf(value(), "%dx%d", &o.width, &o.height) != 2) {
         std::fprintf(stderr, "bench_insitu: --size expects WxH\n");
@@ -206,7 +222,8 @@ int main(int argc, char** argv) {
   try {
     voxspan::Config config = voxspan::load_config_file(o.config);
     config.log_level = "warning";
-    config.output_folder = (std::filesystem::temp_directory_path() / "voxspan-bench-insitu").string();
+    config.output_folder =
+        (std::filesystem::temp_directory_path() / "voxspan-bench-insitu").string();
     std::filesystem::remove_all(config.output_folder);
     if (!o.views.empty())
       std::erase_if(config.views, [&](const voxspan::ConfiguredView& v) {
@@ -220,8 +237,8 @@ int main(int argc, char** argv) {
     dambreak::DamBreak start(scene);
     {
       dambreak::DamBreak& sim = start;
-      std::printf("dam break: %zu fluid particles, dx %.4g m; config %s: %zu views", sim.fluid().size(),
-                  sim.dx(), o.config.c_str(), config.views.size());
+      std::printf("dam break: %zu fluid particles, dx %.4g m; config %s: %zu views",
+                  sim.fluid().size(), sim.dx(), o.config.c_str(), config.views.size());
       for (const voxspan::ConfiguredView& v : config.views)
         std::printf(" (%s %s %dx%d)", v.settings->name.c_str(), view_look(*v.settings).c_str(),
                     v.settings->width, v.settings->height);
@@ -247,8 +264,8 @@ int main(int argc, char** argv) {
     std::printf("%ld solver steps per run; render every %ld steps; snapshots every %ld steps\n",
                 o.steps, o.render_every, o.vdb_every);
     const RunFigures alone = run(start, o.steps, nullptr);
-    std::printf("%-34s wall %7.1f s  solver %6.1f s (%.1f ms per step)\n", "solver alone", alone.wall,
-                alone.solver, 1e3 * alone.solver / double(o.steps));
+    std::printf("%-34s wall %7.1f s  solver %6.1f s (%.1f ms per step)\n", "solver alone",
+                alone.wall, alone.solver, 1e3 * alone.solver / double(o.steps));
     std::fflush(stdout);
     const RunFigures rendered = run(start, o.steps, &config);
     report("render, no snapshots", rendered, alone, o.steps);

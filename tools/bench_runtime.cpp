@@ -79,8 +79,8 @@ void bench_submit_when_full() {
   double s = seconds_since(t0);
   release = true;
   writer.drain();
-  std::printf("submit to a full queue (drop) %.0f ns per call (%d of %d accepted)\n",
-              1e9 * s / n, accepted, n);
+  std::printf("submit to a full queue (drop) %.0f ns per call (%d of %d accepted)\n", 1e9 * s / n,
+              accepted, n);
 }
 
 void bench_files(const std::filesystem::path& folder, bool sync) {
@@ -101,9 +101,10 @@ void bench_files(const std::filesystem::path& folder, bool sync) {
     writer.drain();
   }
   double s = seconds_since(t0);
-  std::printf("1 MiB files, fsync %-3s       %.0f MiB/s (%d files in %.2f s; the caller waited "
-              "%.2f s in submit)\n",
-              sync ? "on" : "off", files / s, files, s, submit_seconds);
+  std::printf(
+      "1 MiB files, fsync %-3s       %.0f MiB/s (%d files in %.2f s; the caller waited "
+      "%.2f s in submit)\n",
+      sync ? "on" : "off", files / s, files, s, submit_seconds);
 }
 
 void bench_png(const std::filesystem::path& folder) {
@@ -138,10 +139,11 @@ void bench_vdb(const std::filesystem::path& folder, int side) {
   voxspan::VdbSnapshotReport r = voxspan::write_vdb_snapshot(
       folder / "snap.vdb", {scene.boundary, scene.cells(), attributes, 0, 0}, {});
   double s = seconds_since(t0);
-  std::printf("VDB snapshot, %d^3 block      %.2f s (%zu particles, %zu boundary, %zu inner-full "
-              "cells, %llu voxels, %.1f MiB)\n",
-              side, s, scene.all.size(), scene.boundary.size(), r.inner_full_cells,
-              static_cast<unsigned long long>(r.level_set_voxels), double(r.bytes) / (1 << 20));
+  std::printf(
+      "VDB snapshot, %d^3 block      %.2f s (%zu particles, %zu boundary, %zu inner-full "
+      "cells, %llu voxels, %.1f MiB)\n",
+      side, s, scene.all.size(), scene.boundary.size(), r.inner_full_cells,
+      static_cast<unsigned long long>(r.level_set_voxels), double(r.bytes) / (1 << 20));
   for (const voxspan::FrameStats::Pass& stage : r.timings.passes)
     std::printf("  %-16s %8.0f ms\n", stage.name.c_str(), stage.ms);
 }
@@ -156,10 +158,14 @@ int main(int argc, char** argv) {
       std::filesystem::temp_directory_path() / numbered("voxspan-bench-", int(::getpid()), "");
   for (int i = 1; i + 1 < argc; i += 2) {
     std::string a = argv[i];
-    if (a == "--steps") steps = std::stoll(argv[i + 1]);
-    else if (a == "--folder") folder = argv[i + 1];
-    else if (a == "--block") block = std::stoi(argv[i + 1]);
-    else if (a == "--keep") keep = std::stoi(argv[i + 1]) != 0;
+    if (a == "--steps")
+      steps = std::stoll(argv[i + 1]);
+    else if (a == "--folder")
+      folder = argv[i + 1];
+    else if (a == "--block")
+      block = std::stoi(argv[i + 1]);
+    else if (a == "--keep")
+      keep = std::stoi(argv[i + 1]) != 0;
     else {
       std::cerr << "usage: bench_runtime [--steps N] [--folder DIR] [--block N] [--keep 1]\n";
       return 1;

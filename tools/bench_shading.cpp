@@ -56,7 +56,7 @@ struct Args : tools::BenchArgs {
   int bounces = -1;  // refraction's bounces in the accuracy figures; < 0: the default
 };
 
-const char* kPasses[] = {"frame", "upload", "bin", "clear", "splat", "compress",
+const char* kPasses[] = {"frame",   "upload", "bin",     "clear",   "splat", "compress",
                          "connect", "filter", "normals", "deep_ao", "shade"};
 
 constexpr char kUsage[] =
@@ -77,10 +77,14 @@ std::vector<std::string> split(const std::string& text) {
 bool read_modes(const std::string& list, std::vector<ShadeMode>& modes) {
   modes.clear();
   for (const std::string& m : split(list)) {
-    if (m == "opaque") modes.push_back(ShadeMode::opaque);
-    else if (m == "translucent") modes.push_back(ShadeMode::translucent);
-    else if (m == "refractive") modes.push_back(ShadeMode::refractive);
-    else return false;
+    if (m == "opaque")
+      modes.push_back(ShadeMode::opaque);
+    else if (m == "translucent")
+      modes.push_back(ShadeMode::translucent);
+    else if (m == "refractive")
+      modes.push_back(ShadeMode::refractive);
+    else
+      return false;
   }
   return true;
 }
@@ -146,11 +150,12 @@ void time_modes(const Args& a, const gl::Context& context, Renderer& renderer) {
       last = stats;
     }
     if (first) {
-      std::printf("grid: %dx%d x %lld layers (alpha %.2f deg), %lld spans stored, filter %lld "
-                  "iterations\n\n%-22s",
-                  a.width, a.height, static_cast<long long>(last.count("grid.layers")),
-                  last.figure("grid.alpha_degrees"), static_cast<long long>(last.count("spans.stored")),
-                  static_cast<long long>(last.count("filter.iterations")), "mode (median ms)");
+      std::printf(
+          "grid: %dx%d x %lld layers (alpha %.2f deg), %lld spans stored, filter %lld "
+          "iterations\n\n%-22s",
+          a.width, a.height, static_cast<long long>(last.count("grid.layers")),
+          last.figure("grid.alpha_degrees"), static_cast<long long>(last.count("spans.stored")),
+          static_cast<long long>(last.count("filter.iterations")), "mode (median ms)");
       for (const char* p : kPasses) std::printf(" %8s", p);
       std::printf(" %8s %8s\n", "total", "peak MiB");
       first = false;
@@ -159,14 +164,16 @@ void time_modes(const Args& a, const gl::Context& context, Renderer& renderer) {
     std::snprintf(label, sizeof label, "%s%s", shade_mode_name(mode), a.ao ? " + deep AO" : "");
     std::printf("%-22s", label);
     for (const char* p : kPasses) std::printf(" %8.1f", tools::median(samples[p]));
-    std::printf(" %8.1f %8.0f\n", tools::median(samples["total"]), double(last.gpu_peak_bytes) / (1 << 20));
+    std::printf(" %8.1f %8.0f\n", tools::median(samples["total"]),
+                double(last.gpu_peak_bytes) / (1 << 20));
     if (mode == ShadeMode::refractive)
-      std::printf("  refraction: %lld march dispatches, %lld rays unfinished, %.1f column events "
-                  "per pixel, %lld at most\n",
-                  static_cast<long long>(last.count("refract.dispatches")),
-                  static_cast<long long>(last.count("refract.unfinished")),
-                  double(last.count("refract.events")) / (double(a.width) * a.height),
-                  static_cast<long long>(last.count("refract.most_events")));
+      std::printf(
+          "  refraction: %lld march dispatches, %lld rays unfinished, %.1f column events "
+          "per pixel, %lld at most\n",
+          static_cast<long long>(last.count("refract.dispatches")),
+          static_cast<long long>(last.count("refract.unfinished")),
+          double(last.count("refract.events")) / (double(a.width) * a.height),
+          static_cast<long long>(last.count("refract.most_events")));
     if (a.json) std::printf("  %s\n", last.json().c_str());
   }
 }
@@ -175,19 +182,23 @@ void accuracy(const Args& a, const gl::Context& context, Renderer& renderer) {
   std::ofstream csv(a.accuracy);
   if (!csv) throw make_error("cannot write ", a.accuracy);
   csv << "scene,alpha,layers,mode,psnr_same_normals,psnr_sphere_normals\n";
-  std::printf("\nPSNR (dB) against the exact reference, same normals / sphere normals, 160x120, filter off\n");
-  std::printf("%-18s %6s %6s %14s %14s %14s\n", "scene", "alpha", "layers", "opaque", "translucent", "refractive");
+  std::printf(
+      "\nPSNR (dB) against the exact reference, same normals / sphere normals, 160x120, filter "
+      "off\n");
+  std::printf("%-18s %6s %6s %14s %14s %14s\n", "scene", "alpha", "layers", "opaque", "translucent",
+              "refractive");
   for (const test::AccuracyScene& scene : test::accuracy_scenes(160, 120)) {
     for (double alpha : a.alphas) {
       VoxelizeOptions vo = scene.options;
       vo.grid.alpha_degrees = alpha;
       gl::PassTimer timer(context.has_gpu_timers());
       FrameStats stats;
-      const GpuSpanImage& gpu = renderer.voxelizer().run(scene.camera, scene.particles, {}, vo, timer, stats);
+      const GpuSpanImage& gpu =
+          renderer.voxelizer().run(scene.camera, scene.particles, {}, vo, timer, stats);
       const SpanImage spans = gpu.download();
       std::vector<SpanNormals> exact_normals;
-      const SpanImage exact = exact_spans(spans.grid, scene.particles, {}, {vo.gap_bridging, vo.max_spans},
-                                          &exact_normals);
+      const SpanImage exact = exact_spans(spans.grid, scene.particles, {},
+                                          {vo.gap_bridging, vo.max_spans}, &exact_normals);
       const std::vector<glm::uvec2> sobel = reference_normals(exact, reference_links(exact));
       const std::vector<glm::uvec2> sphere = encode_exact_normals(exact_normals, sobel);
       std::printf("%-18s %6.2f %6d", scene.name.c_str(), alpha, spans.grid.layers());
@@ -195,8 +206,10 @@ void accuracy(const Args& a, const gl::Context& context, Renderer& renderer) {
         ShadeOptions shade = test::test_shading(mode, scene.ground_tile);
         if (a.bounces >= 0) shade.bounces = a.bounces;
         const FloatImage image = renderer.shade(gpu, {}, shade, timer, stats).download();
-        const double same = test::compare_images(image, reference_shading(exact, shade, &sobel)).psnr;
-        const double exact_n = test::compare_images(image, reference_shading(exact, shade, &sphere)).psnr;
+        const double same =
+            test::compare_images(image, reference_shading(exact, shade, &sobel)).psnr;
+        const double exact_n =
+            test::compare_images(image, reference_shading(exact, shade, &sphere)).psnr;
         std::printf(" %6.1f / %5.1f", same, exact_n);
         csv << '"' << scene.name << "\"," << alpha << ',' << spans.grid.layers() << ','
             << shade_mode_name(mode) << ',' << same << ',' << exact_n << '\n';
@@ -213,8 +226,10 @@ int run(const Args& a) {
   tools::print_renderer(context);
   gl::ShaderLibrary shaders;
   Renderer renderer(shaders);
-  if (!a.accuracy.empty()) accuracy(a, context, renderer);
-  else time_modes(a, context, renderer);
+  if (!a.accuracy.empty())
+    accuracy(a, context, renderer);
+  else
+    time_modes(a, context, renderer);
   return 0;
 }
 

@@ -64,9 +64,12 @@ constexpr char kUsage[] =
 
 // --threads per_pixel|per_particle|both (both: the default list).
 bool read_threads(const std::string& v, std::vector<SplatThreads>& threads) {
-  if (v == "per_pixel") threads = {SplatThreads::per_pixel};
-  else if (v == "per_particle") threads = {SplatThreads::per_particle};
-  else return v == "both";
+  if (v == "per_pixel")
+    threads = {SplatThreads::per_pixel};
+  else if (v == "per_particle")
+    threads = {SplatThreads::per_particle};
+  else
+    return v == "both";
   return true;
 }
 
@@ -154,12 +157,13 @@ int run(const Args& a) {
   const CellStatesView view = a.all_particles ? CellStatesView{} : cells.view;
   // Close enough that the water fills much of the image, as in the paper's views.
   const Camera camera = test::frame_scene(all, {0.35, -0.45, -1}, a.width, a.height, 45, 0.75);
-  std::printf("scene: dam break at t = %.2f s, %zu particles (spacing %.3g), %zu voxelized (%s), "
-              "cells %dx%dx%d (%lld inner-full, %lld inner-empty); made in %.1f s\n",
-              a.time, all.size(), shape.spacing, input.size(),
-              a.all_particles ? "all" : "boundary shell", cells.view.dims[0], cells.view.dims[1],
-              cells.view.dims[2], static_cast<long long>(cells.inner_full_cells),
-              static_cast<long long>(cells.inner_empty_cells), scene_s);
+  std::printf(
+      "scene: dam break at t = %.2f s, %zu particles (spacing %.3g), %zu voxelized (%s), "
+      "cells %dx%dx%d (%lld inner-full, %lld inner-empty); made in %.1f s\n",
+      a.time, all.size(), shape.spacing, input.size(), a.all_particles ? "all" : "boundary shell",
+      cells.view.dims[0], cells.view.dims[1], cells.view.dims[2],
+      static_cast<long long>(cells.inner_full_cells),
+      static_cast<long long>(cells.inner_empty_cells), scene_s);
 
   gl::ShaderLibrary shaders;
   Voxelizer voxelizer(shaders);
@@ -178,14 +182,14 @@ int run(const Args& a) {
       const Result lists = time_frames(voxelizer, context, camera, input, view, o, a.frames);
       if (first) {
         const FrameStats& s = lists.last;
-        std::printf("grid: %dx%d x %lld layers (needed %lld, alpha %.2f deg%s), near %.4g far %.4g, "
-                    "%lld voxels; %lld large spheres\n",
-                    a.width, a.height, static_cast<long long>(s.count("grid.layers")),
-                    static_cast<long long>(s.count("grid.layers_needed")),
-                    s.figure("grid.alpha_degrees"), s.count("grid.layer_cap_hit") ? ", capped" : "",
-                    s.figure("grid.near"), s.figure("grid.far"),
-                    static_cast<long long>(s.count("voxels")),
-                    static_cast<long long>(s.count("bin.large")));
+        std::printf(
+            "grid: %dx%d x %lld layers (needed %lld, alpha %.2f deg%s), near %.4g far %.4g, "
+            "%lld voxels; %lld large spheres\n",
+            a.width, a.height, static_cast<long long>(s.count("grid.layers")),
+            static_cast<long long>(s.count("grid.layers_needed")), s.figure("grid.alpha_degrees"),
+            s.count("grid.layer_cap_hit") ? ", capped" : "", s.figure("grid.near"),
+            s.figure("grid.far"), static_cast<long long>(s.count("voxels")),
+            static_cast<long long>(s.count("bin.large")));
         std::printf("\n%-34s", "configuration (median ms)");
         for (const char* p : kPasses) std::printf(" %9s", p);
         std::printf(" %9s %8s %8s %8s\n", "total", "Gvox/s", "Mpart/s", "peak MiB");
@@ -227,7 +231,8 @@ int run(const Args& a) {
     if (!a.accuracy) return 0;
     const auto r0 = std::chrono::steady_clock::now();
     const SpanImage ref = exact_spans(gpu.grid, input, view, {o.gap_bridging, o.max_spans});
-    const double ref_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count();
+    const double ref_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count();
     std::printf("\naccuracy against the exact reference (%.1f s on the CPU): %s\n", ref_s,
                 test::compare_spans(gpu, ref).summary().c_str());
   }

@@ -53,13 +53,15 @@ bool load(const std::string& path, double particles, double time, DamBreakState&
     return false;
   s.x.resize(h.count), s.y.resize(h.count), s.z.resize(h.count);
   for (auto* v : {&s.x, &s.y, &s.z})
-    if (!in.read(reinterpret_cast<char*>(v->data()), std::streamsize(h.count * sizeof(float)))) return false;
+    if (!in.read(reinterpret_cast<char*>(v->data()), std::streamsize(h.count * sizeof(float))))
+      return false;
   s.spacing = h.spacing;
   a = h.column_width;
   return true;
 }
 
-void save(const std::string& path, double particles, double time, const DamBreakState& s, double a) {
+void save(const std::string& path, double particles, double time, const DamBreakState& s,
+          double a) {
   std::ofstream out(path, std::ios::binary);
   Header h{};
   std::memcpy(h.magic, kMagic, sizeof kMagic);
@@ -136,7 +138,8 @@ DamBreakState ritter_dam_break(double particles, double t) {
   return s;
 }
 
-DamBreakState dam_break_state(bool ritter, double particles, double time, const std::string& cache) {
+DamBreakState dam_break_state(bool ritter, double particles, double time,
+                              const std::string& cache) {
   return ritter ? ritter_dam_break(particles, time < 0 ? 0.3 : time)
                 : solver_dam_break(particles, time < 0 ? 5.0 : time, cache);
 }

@@ -28,7 +28,8 @@ struct DamBreakState {
 // The solver (when built) run to Martin & Moyce's T = t sqrt(2 g / a) with about `particles`
 // fluid particles, loaded from `cache` when it holds that state, saved there otherwise.
 // Throws voxspan::Error when the examples are not built or the cache cannot be written.
-DamBreakState solver_dam_break(double particles, double nondimensional_time, const std::string& cache);
+DamBreakState solver_dam_break(double particles, double nondimensional_time,
+                               const std::string& cache);
 // The Ritter-profile test scene at t seconds.
 DamBreakState ritter_dam_break(double particles, double t);
 

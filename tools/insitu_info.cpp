@@ -55,8 +55,10 @@ int main(int argc, char** argv) {
       return voxspan::tools::print_usage(stdout, kUsage);
     if (!std::strcmp(argv[a], "--platform") && a + 1 < argc) {
       if (!voxspan::gl::parse_platform(argv[++a], options.platform)) {
-        std::fprintf(stderr, "insitu-info: error: --platform %s is not a platform (expected "
-                             "auto, nvidia, device or surfaceless)\n", argv[a]);
+        std::fprintf(stderr,
+                     "insitu-info: error: --platform %s is not a platform (expected "
+                     "auto, nvidia, device or surfaceless)\n",
+                     argv[a]);
         return 2;
       }
       continue;

@@ -80,7 +80,8 @@ int main(int argc, char** argv) {
 
     voxspan::VdbFileSummary summary = voxspan::inspect_vdb(file);
     std::cout << "file " << file << "\n";
-    for (const auto& [key, value] : summary.metadata) std::cout << "  " << key << ": " << value << "\n";
+    for (const auto& [key, value] : summary.metadata)
+      std::cout << "  " << key << ": " << value << "\n";
     std::cout << summary.grids.size() << (summary.grids.size() == 1 ? " grid\n" : " grids\n");
     for (const voxspan::VdbGridSummary& g : summary.grids) {
       std::cout << "grid \"" << g.name << "\"\n"
@@ -89,10 +90,10 @@ int main(int argc, char** argv) {
                 << "  active voxels " << g.active_voxels << "\n";
       if (g.active_voxels > 0) {
         std::cout << "  index bbox    [" << g.index_min[0] << ", " << g.index_min[1] << ", "
-                  << g.index_min[2] << "] .. [" << g.index_max[0] << ", " << g.index_max[1]
-                  << ", " << g.index_max[2] << "]\n"
-                  << "  world bbox    " << vec3_text(g.world_min) << " .. " << vec3_text(g.world_max)
-                  << "\n"
+                  << g.index_min[2] << "] .. [" << g.index_max[0] << ", " << g.index_max[1] << ", "
+                  << g.index_max[2] << "]\n"
+                  << "  world bbox    " << vec3_text(g.world_min) << " .. "
+                  << vec3_text(g.world_max) << "\n"
                   << "  value range   " << g.min_value << " .. " << g.max_value
                   << (g.value_type.rfind("vec3", 0) == 0 ? " (lengths)" : "") << "\n";
         if (g.grid_class == "Level Set")

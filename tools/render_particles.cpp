@@ -60,11 +60,16 @@ bool parse(int argc, char** argv, Options& o) {
         throw voxspan::make_error(a, " expects a positive number; got \"", text, "\"");
       return v;
     };
-    if (a == "--help" || a == "-h") std::exit(voxspan::tools::print_usage(stdout, kUsage));
-    else if (a == "--config") o.config = value();
-    else if (a == "--output") o.output = value();
-    else if (a == "--spacing") o.spacing = positive(value());
-    else if (a == "--radius") o.radius = positive(value());
+    if (a == "--help" || a == "-h")
+      std::exit(voxspan::tools::print_usage(stdout, kUsage));
+    else if (a == "--config")
+      o.config = value();
+    else if (a == "--output")
+      o.output = value();
+    else if (a == "--spacing")
+      o.spacing = positive(value());
+    else if (a == "--radius")
+      o.radius = positive(value());
     else if (a == "--arrays") {
       std::istringstream names(value());
       for (std::string n; std::getline(names, n, ',');)
@@ -82,7 +87,8 @@ bool parse(int argc, char** argv, Options& o) {
 // Every file is a render step: the config's render, PNG and stats triggers become "every
 // step"; the snapshots keep their own triggers, counted in files.
 voxspan::Config offline_config(const Options& o) {
-  voxspan::Config c = o.config.empty() ? voxspan::default_config() : voxspan::load_config_file(o.config);
+  voxspan::Config c =
+      o.config.empty() ? voxspan::default_config() : voxspan::load_config_file(o.config);
   if (!o.output.empty()) c.output_folder = o.output;
   const voxspan::TriggerSpec every{1, 0, true, true};
   c.trigger = c.output("png").trigger = c.output("stats").trigger = every;
@@ -92,8 +98,8 @@ voxspan::Config offline_config(const Options& o) {
 // The solver's view of a file's particles: positions as doubles (AoS), radii when the file has
 // them, every attribute by name (scalars and 3-vectors of floats, interleaved).
 voxspan::ParticleView view_of(const voxspan::ParticleData& d) {
-  auto view = voxspan::ParticleView::aos(d.positions.empty() ? nullptr : d.positions[0].data(),
-                                         d.size());
+  auto view =
+      voxspan::ParticleView::aos(d.positions.empty() ? nullptr : d.positions[0].data(), d.size());
   if (!d.radii.empty()) view.with_radii(d.radii.data());
   for (const voxspan::Attribute& a : d.attributes) {
     if (a.components == 3)
@@ -122,7 +128,8 @@ int main(int argc, char** argv) {
     if (!(spacing > 0)) {
       spacing = voxspan::estimate_particle_spacing(first.positions);
       if (!(spacing > 0))
-        throw voxspan::make_error(o.files[0].string(), ": cannot estimate the particle spacing "
+        throw voxspan::make_error(o.files[0].string(),
+                                  ": cannot estimate the particle spacing "
                                   "(fewer than two particles); pass --spacing");
       std::printf("particle spacing %.6g (estimated from %s; --spacing sets it)\n", spacing,
                   o.files[0].string().c_str());

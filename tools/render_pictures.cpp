@@ -88,8 +88,8 @@ bool compare(const std::filesystem::path& other, const ImageRGBA8& ours) {
     return false;
   }
   const test::ImageDifference d = test::compare_images(ours, theirs);
-  std::printf("compare %s: PSNR %.1f dB, largest difference %d/255, mean %.3f/255\n",
-              other.c_str(), d.psnr, d.max_levels, d.mean_levels);
+  std::printf("compare %s: PSNR %.1f dB, largest difference %d/255, mean %.3f/255\n", other.c_str(),
+              d.psnr, d.max_levels, d.mean_levels);
   return true;
 }
 
@@ -143,11 +143,13 @@ int run(const Args& a) {
     const ImageRGBA8 picture = linear_to_srgb8(image.rgba, image.width, image.height);
     write(out / (std::string(p.name) + ".png"), picture);
     if (!a.compare.empty())
-      compared &= compare(std::filesystem::path(a.compare) / (std::string(p.name) + ".png"), picture);
+      compared &=
+          compare(std::filesystem::path(a.compare) / (std::string(p.name) + ".png"), picture);
     if (a.reference) {
       const SpanImage spans = exact_spans(renderer.voxelizer().image().grid(), c.boundary,
                                           c.cell_states(), {options.voxelize.gap_bridging, 0});
-      write(out / (std::string(p.name) + "_reference.png"), reference_shading(spans, options.shade));
+      write(out / (std::string(p.name) + "_reference.png"),
+            reference_shading(spans, options.shade));
     }
   }
   return compared ? 0 : 1;

@@ -42,7 +42,8 @@ inline Flag read_scene_flag(int argc, char** argv, int& i, SceneArgs& a) {
   if (number == nullptr && k != "--size" && k != "--platform") return Flag::other;
   if (i + 1 >= argc) return Flag::bad;
   const char* value = argv[++i];
-  if (k == "--platform") return gl::parse_platform(value, a.context.platform) ? Flag::read : Flag::bad;
+  if (k == "--platform")
+    return gl::parse_platform(value, a.context.platform) ? Flag::read : Flag::bad;
   if (k == "--size") {
     char tail = 0;
     const bool ok = std::sscanf(value, "%dx%d%c", &a.width, &a.height, &tail) == 2;
@@ -74,9 +75,12 @@ class Arg {
   bool value(const char* name, T& v) {
     const char* text = value(name);
     if (text == nullptr) return false;
-    if constexpr (std::is_same_v<T, int>) v = std::atoi(text);
-    else if constexpr (std::is_same_v<T, double>) v = std::atof(text);
-    else v = text;
+    if constexpr (std::is_same_v<T, int>)
+      v = std::atoi(text);
+    else if constexpr (std::is_same_v<T, double>)
+      v = std::atof(text);
+    else
+      v = text;
     return true;
   }
 
@@ -100,8 +104,8 @@ inline bool read_bench_flag(Arg& arg, BenchArgs& a) {
     a.frames = std::max(1, a.frames);
     return true;
   }
-  return arg.value("--max-layers", a.max_layers) ||
-         arg.flag("--all-particles", a.all_particles) || arg.flag("--json", a.json);
+  return arg.value("--max-layers", a.max_layers) || arg.flag("--all-particles", a.all_particles) ||
+         arg.flag("--json", a.json);
 }
 
 // Reads a command line into a tool's Args (a SceneArgs): the scene flags, and every other

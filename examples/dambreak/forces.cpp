@@ -7,7 +7,8 @@
 //     (x_w - x_f) W_wf) / sum_f W_wf, clamped at 0 so walls never pull fluid; rho_w from Tait;
 //   * momentum: dv_i/dt = -sum_j m (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) grad W_ij + g, with
 //     Pi_ij = -alpha c0 mu_ij / rho_ij, mu_ij = h v_ij.x_ij / (r^2 + 0.01 h^2) when v_ij.x_ij < 0;
-//   * continuity: drho_i/dt = sum_j m v_ij . grad W_ij + delta h c0 sum_j psi_ij . grad W_ij m/rho_j
+//   * continuity: drho_i/dt = sum_j m v_ij . grad W_ij + delta h c0 sum_j psi_ij . grad W_ij
+//   m/rho_j
 //     with psi_ij = 2 (rho_j - rho_i) x_ji / r^2 (fluid pairs only; psi . grad W = -2 (rho_j -
 //     rho_i) fw, the regularisation of r^2 is left out).
 // Costs: per fluid particle ~27 cells x (2h)^3/dx^3/27 candidates, about 60 neighbours at
@@ -33,12 +34,13 @@ void DamBreak::compute_fluid_pressure() {
   const float p_min = config_.tension_free ? 0.0f : -std::numeric_limits<float>::max();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, f.size(), 1 << 12),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const float s = f.rho[i] * inv_rho0, s2 = s * s, s4 = s2 * s2;
-      f.p_over_rho2[i] = std::max(p_min, b * (s4 * s2 * s - 1)) / (f.rho[i] * f.rho[i]);
-      f.volume[i] = m / f.rho[i];
-    }
-  });
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        const float s = f.rho[i] * inv_rho0, s2 = s * s, s4 = s2 * s2;
+                        f.p_over_rho2[i] =
+                            std::max(p_min, b * (s4 * s2 * s - 1)) / (f.rho[i] * f.rho[i]);
+                        f.volume[i] = m / f.rho[i];
+                      }
+                    });
 }
 
 namespace {
@@ -123,9 +125,9 @@ void gather_walls(const Walls& w, const std::array<Range, 9>& ranges, int count,
 // The rates of the particles of one cell. Built for AVX2 too (8 lanes) and picked at run
 // time where the CPU has it. The particle itself and candidates beyond the support add
 // exactly 0 (x_ij = v_ij = 0, or fw = 0), so the loops have no branches.
-__attribute__((target_clones("avx2", "default")))
-void cell_rates(const ForceTerms& t, Fluid& f, Range own, const Candidates& fc,
-                const Candidates& wc) {
+__attribute__((target_clones("avx2", "default"))) void cell_rates(const ForceTerms& t, Fluid& f,
+                                                                  Range own, const Candidates& fc,
+                                                                  const Candidates& wc) {
   const CubicSpline kernel = t.kernel;  // a local copy: its fields stay in registers
   const float support2 = t.support2, eta2 = t.eta2, m = t.m, alpha_c0_h = t.alpha_c0_h;
   const float rho0 = t.rho0;
@@ -186,9 +188,9 @@ void cell_rates(const ForceTerms& t, Fluid& f, Range own, const Candidates& fc,
 }
 
 // Adami et al. (2012) eq. 27 for the wall particles of one cell, from the fluid candidates.
-__attribute__((target_clones("avx2", "default")))
-void cell_wall_pressure(const CubicSpline& kernel_ref, float support2, float g, float rho0,
-                        float b, Walls& w, Range own, const Candidates& fc) {
+__attribute__((target_clones("avx2", "default"))) void cell_wall_pressure(
+    const CubicSpline& kernel_ref, float support2, float g, float rho0, float b, Walls& w,
+    Range own, const Candidates& fc) {
   const CubicSpline kernel = kernel_ref;
   const float* __restrict cx = fc.x.data();
   const float* __restrict cy = fc.y.data();
@@ -220,16 +222,17 @@ void DamBreak::extrapolate_wall_pressure() {
   const float g = float(config_.gravity), rho0 = float(config_.rest_density), b = float(b_);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, wall_grid_.shape().cell_count(), 64),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-    std::array<Range, 9> ranges;
-    Candidates fluid;
-    for (std::size_t c = r.begin(); c != r.end(); ++c) {
-      const Range own = wall_grid_.cell(c);
-      if (own.begin == own.end) continue;
-      const Box box = bounds(walls_.x, walls_.y, walls_.z, own);
-      gather_fluid(fluid_, ranges, fluid_grid_.neighbour_ranges(c, ranges), box, support2, fluid);
-      cell_wall_pressure(kernel_, support2, g, rho0, b, walls_, own, fluid);
-    }
-  });
+                      std::array<Range, 9> ranges;
+                      Candidates fluid;
+                      for (std::size_t c = r.begin(); c != r.end(); ++c) {
+                        const Range own = wall_grid_.cell(c);
+                        if (own.begin == own.end) continue;
+                        const Box box = bounds(walls_.x, walls_.y, walls_.z, own);
+                        gather_fluid(fluid_, ranges, fluid_grid_.neighbour_ranges(c, ranges), box,
+                                     support2, fluid);
+                        cell_wall_pressure(kernel_, support2, g, rho0, b, walls_, own, fluid);
+                      }
+                    });
 }
 
 void DamBreak::compute_forces() {
@@ -251,18 +254,20 @@ void DamBreak::compute_forces() {
                          config_.wall_viscosity};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fluid_grid_.shape().cell_count(), 64),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-    std::array<Range, 9> ranges, wall_ranges;
-    Candidates fluid, walls;
-    for (std::size_t c = r.begin(); c != r.end(); ++c) {
-      const Range own = fluid_grid_.cell(c);
-      if (own.begin == own.end) continue;
-      const Box box = bounds(f.x, f.y, f.z, own);
-      gather_fluid(f, ranges, fluid_grid_.neighbour_ranges(c, ranges), box, terms.support2, fluid);
-      gather_walls(walls_, wall_ranges, wall_grid_.neighbour_ranges(c, wall_ranges), box,
-                   terms.support2, walls);
-      cell_rates(terms, f, own, fluid, walls);
-    }
-  });
+                      std::array<Range, 9> ranges, wall_ranges;
+                      Candidates fluid, walls;
+                      for (std::size_t c = r.begin(); c != r.end(); ++c) {
+                        const Range own = fluid_grid_.cell(c);
+                        if (own.begin == own.end) continue;
+                        const Box box = bounds(f.x, f.y, f.z, own);
+                        gather_fluid(f, ranges, fluid_grid_.neighbour_ranges(c, ranges), box,
+                                     terms.support2, fluid);
+                        gather_walls(walls_, wall_ranges,
+                                     wall_grid_.neighbour_ranges(c, wall_ranges), box,
+                                     terms.support2, walls);
+                        cell_rates(terms, f, own, fluid, walls);
+                      }
+                    });
 }
 
 }  // namespace dambreak

@@ -11,7 +11,8 @@ struct CubicSpline {
   float h = 0, inv_h = 0, sigma = 0;
 
   explicit CubicSpline(float smoothing_length)
-      : h(smoothing_length), inv_h(1.0f / smoothing_length),
+      : h(smoothing_length),
+        inv_h(1.0f / smoothing_length),
         sigma(1.0f / (std::numbers::pi_v<float> * smoothing_length * smoothing_length *
                       smoothing_length)) {}
 
@@ -19,7 +20,9 @@ struct CubicSpline {
 
   float w(float r) const {
     const float q = r * inv_h, a = 2 - q;
-    return sigma * (q < 1 ? 1 - 1.5f * q * q + 0.75f * q * q * q : q < 2 ? 0.25f * a * a * a : 0.0f);
+    return sigma * (q < 1   ? 1 - 1.5f * q * q + 0.75f * q * q * q
+                    : q < 2 ? 0.25f * a * a * a
+                            : 0.0f);
   }
   // dW/dr divided by r: the gradient is grad_i W_ij = (x_i - x_j) * dw_over_r(r). Finite at
   // r = 0 and 0 beyond the support, and branch-free, so pair loops can run it in SIMD lanes

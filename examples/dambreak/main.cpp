@@ -65,22 +65,34 @@ bool parse(int argc, char** argv, Options& o) {
       char* end = nullptr;
       const double v = std::strtod(text, &end);
       if (end == text || *end != '\0' || !(v >= lo && v <= hi)) {
-        std::fprintf(stderr, "dambreak: %s %s: expected a number in [%g, %g]\n", name, text, lo, hi);
+        std::fprintf(stderr, "dambreak: %s %s: expected a number in [%g, %g]\n", name, text, lo,
+                     hi);
         std::exit(2);
       }
       return v;
     };
-    if (a == "--config") o.insitu_config = value("--config");
-    else if (a == "--particles") o.config.particles = std::size_t(number("--particles", 8, 1e9));
-    else if (a == "--steps") o.steps = long(number("--steps", 0, 1e12));
-    else if (a == "--until") o.until = number("--until", 0, 1e6);
-    else if (a == "--render-every") o.render_every = long(number("--render-every", 1, 1e12));
-    else if (a == "--no-render") o.render_every = 0;
-    else if (a == "--validate") o.validate = true;
-    else if (a == "--depth-particles") o.config.depth_particles = int(number("--depth-particles", 1, 1e6));
-    else if (a == "--tank-length") o.config.tank_length = number("--tank-length", 1.1, 1e3);
-    else if (a == "--threads") o.threads = int(number("--threads", 1, 4096));
-    else if (a == "--progress-every") o.progress_every = long(number("--progress-every", 0, 1e12));
+    if (a == "--config")
+      o.insitu_config = value("--config");
+    else if (a == "--particles")
+      o.config.particles = std::size_t(number("--particles", 8, 1e9));
+    else if (a == "--steps")
+      o.steps = long(number("--steps", 0, 1e12));
+    else if (a == "--until")
+      o.until = number("--until", 0, 1e6);
+    else if (a == "--render-every")
+      o.render_every = long(number("--render-every", 1, 1e12));
+    else if (a == "--no-render")
+      o.render_every = 0;
+    else if (a == "--validate")
+      o.validate = true;
+    else if (a == "--depth-particles")
+      o.config.depth_particles = int(number("--depth-particles", 1, 1e6));
+    else if (a == "--tank-length")
+      o.config.tank_length = number("--tank-length", 1.1, 1e3);
+    else if (a == "--threads")
+      o.threads = int(number("--threads", 1, 4096));
+    else if (a == "--progress-every")
+      o.progress_every = long(number("--progress-every", 0, 1e12));
     else if (a == "--help" || a == "-h") {
       usage();
       std::exit(0);
@@ -111,12 +123,13 @@ int main(int argc, char** argv) {
   const auto t_setup = Clock::now();
   dambreak::DamBreak sim(o.config);
   const auto& lattice = sim.lattice();
-  std::printf("dambreak: %zu fluid + %zu wall particles, dx %.4g m, h %.4g m, c0 %.3g m/s, "
-              "grid %d x %d x %d cells (set up in %.2f s)\n",
-              sim.fluid().size(), sim.walls().size(), sim.dx(), sim.smoothing_length(),
-              sim.sound_speed(), sim.fluid_grid().shape().dims[0], sim.fluid_grid().shape().dims[1],
-              sim.fluid_grid().shape().dims[2],
-              std::chrono::duration<double>(Clock::now() - t_setup).count());
+  std::printf(
+      "dambreak: %zu fluid + %zu wall particles, dx %.4g m, h %.4g m, c0 %.3g m/s, "
+      "grid %d x %d x %d cells (set up in %.2f s)\n",
+      sim.fluid().size(), sim.walls().size(), sim.dx(), sim.smoothing_length(), sim.sound_speed(),
+      sim.fluid_grid().shape().dims[0], sim.fluid_grid().shape().dims[1],
+      sim.fluid_grid().shape().dims[2],
+      std::chrono::duration<double>(Clock::now() - t_setup).count());
   (void)lattice;
 
   voxspan::AdapterOptions ao;
@@ -126,10 +139,9 @@ int main(int argc, char** argv) {
   ao.classify.attributes = {"velocity", "density"};
   std::unique_ptr<voxspan::Adapter> adapter;
   try {
-    adapter = o.insitu_config.empty()
-                  ? std::make_unique<voxspan::Adapter>(ao)
-                  : std::make_unique<voxspan::Adapter>(
-                        voxspan::adapter_from_config_file(o.insitu_config, ao));
+    adapter = o.insitu_config.empty() ? std::make_unique<voxspan::Adapter>(ao)
+                                      : std::make_unique<voxspan::Adapter>(
+                                            voxspan::adapter_from_config_file(o.insitu_config, ao));
   } catch (const voxspan::Error& e) {
     std::fprintf(stderr, "dambreak: %s\n", e.what());
     return 1;
@@ -151,8 +163,9 @@ int main(int argc, char** argv) {
     const auto grid = voxspan::GridView::offsets(adapter_geometry(sim.fluid_grid().shape()),
                                                  sim.fluid_grid().offsets().data());
     const auto ta = Clock::now();
-    const voxspan::Status status = final_step ? adapter->execute_last(step, sim.time(), particles, grid)
-                                              : adapter->execute(step, sim.time(), particles, grid);
+    const voxspan::Status status = final_step
+                                       ? adapter->execute_last(step, sim.time(), particles, grid)
+                                       : adapter->execute(step, sim.time(), particles, grid);
     if (!status.ok()) ++failed;
     adapter_seconds += std::chrono::duration<double>(Clock::now() - ta).count();
 
@@ -161,12 +174,13 @@ int main(int argc, char** argv) {
       const double wall = std::chrono::duration<double>(now - last).count();
       const dambreak::Diagnostics d = sim.diagnostics();
       const voxspan::StepStats& st = adapter->last_stats();
-      std::printf("step %6ld  t %.4f s  T %.3f  dt %.3g s  front x/a %.3f  max|drho|/rho0 %.2f%%  "
-                  "%.3g particles/s  boundary %zu of %zu  in situ %.1f s (%lld render steps)\n",
-                  step, sim.time(), sim.nondimensional_time(), sim.dt(),
-                  d.front / o.config.column_width, 100 * d.max_density_error,
-                  double(f.size()) * double(step - last_step) / wall, st.counts.boundary,
-                  st.counts.particles, adapter_seconds, static_cast<long long>(adapter->render_steps()));
+      std::printf(
+          "step %6ld  t %.4f s  T %.3f  dt %.3g s  front x/a %.3f  max|drho|/rho0 %.2f%%  "
+          "%.3g particles/s  boundary %zu of %zu  in situ %.1f s (%lld render steps)\n",
+          step, sim.time(), sim.nondimensional_time(), sim.dt(), d.front / o.config.column_width,
+          100 * d.max_density_error, double(f.size()) * double(step - last_step) / wall,
+          st.counts.boundary, st.counts.particles, adapter_seconds,
+          static_cast<long long>(adapter->render_steps()));
       std::fflush(stdout);
       if (d.nonfinite > 0) {
         std::fprintf(stderr, "dambreak: %zu particles became NaN at step %ld\n", d.nonfinite, step);
@@ -182,15 +196,16 @@ int main(int argc, char** argv) {
   const double total = std::chrono::duration<double>(Clock::now() - t0).count();
   const double solver = total - adapter_seconds - finish_seconds;
   const long steps = long(sim.steps());
-  std::printf("dambreak: %ld steps to t %.4f s (T %.3f) in %.2f s: %.3g particle-steps/s; "
-              "adapter %.2f s (%ld render steps, %ld failed)\n",
-              steps, sim.time(), sim.nondimensional_time(), total,
-              steps > 0 ? double(sim.fluid().size()) * double(steps) / solver : 0.0,
-              adapter_seconds, long(adapter->render_steps()), failed);
-  std::printf("time: solver %.1f s, in situ %.1f s on the solver's thread (%.1f %% of the "
-              "solver's time) + %.1f s waiting for the last files\n",
-              solver, adapter_seconds, solver > 0 ? 100 * adapter_seconds / solver : 0.0,
-              finish_seconds);
+  std::printf(
+      "dambreak: %ld steps to t %.4f s (T %.3f) in %.2f s: %.3g particle-steps/s; "
+      "adapter %.2f s (%ld render steps, %ld failed)\n",
+      steps, sim.time(), sim.nondimensional_time(), total,
+      steps > 0 ? double(sim.fluid().size()) * double(steps) / solver : 0.0, adapter_seconds,
+      long(adapter->render_steps()), failed);
+  std::printf(
+      "time: solver %.1f s, in situ %.1f s on the solver's thread (%.1f %% of the "
+      "solver's time) + %.1f s waiting for the last files\n",
+      solver, adapter_seconds, solver > 0 ? 100 * adapter_seconds / solver : 0.0, finish_seconds);
   if (const std::string summary = adapter->summary(); !summary.empty())
     std::printf("in situ: %s\n", summary.c_str());
   return failed > 0 ? 1 : 0;

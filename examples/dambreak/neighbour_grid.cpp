@@ -26,8 +26,9 @@ void NeighbourGrid::sort(const float* x, const float* y, const float* z, std::si
   cell_.resize(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 14),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) cell_[i] = shape_.cell_of(x[i], y[i], z[i]);
-  });
+                      for (std::size_t i = r.begin(); i != r.end(); ++i)
+                        cell_[i] = shape_.cell_of(x[i], y[i], z[i]);
+                    });
   offsets_.assign(cells + 1, 0);
   for (std::size_t i = 0; i < n; ++i) ++offsets_[cell_[i] + 1];
   for (std::size_t c = 0; c < cells; ++c) offsets_[c + 1] += offsets_[c];
@@ -44,7 +45,8 @@ int NeighbourGrid::neighbour_ranges(std::size_t c, std::array<Range, 9>& out) co
   int count = 0;
   for (int kk = std::max(k - 1, 0); kk <= std::min(k + 1, nz - 1); ++kk)
     for (int jj = std::max(j - 1, 0); jj <= std::min(j + 1, ny - 1); ++jj) {
-      const std::size_t row = std::size_t(nx) * (std::size_t(jj) + std::size_t(ny) * std::size_t(kk));
+      const std::size_t row =
+          std::size_t(nx) * (std::size_t(jj) + std::size_t(ny) * std::size_t(kk));
       const Range r{offsets_[row + std::size_t(i0)], offsets_[row + std::size_t(i1) + 1]};
       if (r.begin != r.end) out[std::size_t(count++)] = r;
     }

@@ -12,22 +12,22 @@
 namespace dambreak {
 
 struct Config {
-  double column_width = 0.05715;  // a in metres: Martin & Moyce's 2.25 in column
-  double depth_ratio = 1.0;       // tank and column depth (y) in units of a
-  int depth_particles = 0;        // > 0: the depth in particles instead (thin tank)
-  std::size_t particles = 100000; // fluid particles wanted (the count is rounded to a lattice)
-  double tank_length = 4.0;       // in units of a
-  double tank_height = 3.0;       // in units of a; the tank has a lid
-  int wall_layers = 3;            // enough to fill the kernel support at the walls
+  double column_width = 0.05715;   // a in metres: Martin & Moyce's 2.25 in column
+  double depth_ratio = 1.0;        // tank and column depth (y) in units of a
+  int depth_particles = 0;         // > 0: the depth in particles instead (thin tank)
+  std::size_t particles = 100000;  // fluid particles wanted (the count is rounded to a lattice)
+  double tank_length = 4.0;        // in units of a
+  double tank_height = 3.0;        // in units of a; the tank has a lid
+  int wall_layers = 3;             // enough to fill the kernel support at the walls
 
-  double rest_density = 1000;     // kg/m^3
-  double gravity = 9.81;          // m/s^2
-  double h_over_dx = 1.2;         // smoothing length in particle spacings
-  double sound_speed_factor = 10; // c0 = factor * sqrt(2 g H): density varies ~1 %
-  double alpha = 0.02;            // artificial viscosity (Monaghan 1992)
-  double delta = 0.1;             // density diffusion (delta-SPH, Molteni & Colagrossi 2009)
-  double cfl = 0.25;              // dt = cfl * h / (c0 + max |v|)
-  bool wall_viscosity = true;     // artificial viscosity against the walls too (wall friction)
+  double rest_density = 1000;      // kg/m^3
+  double gravity = 9.81;           // m/s^2
+  double h_over_dx = 1.2;          // smoothing length in particle spacings
+  double sound_speed_factor = 10;  // c0 = factor * sqrt(2 g H): density varies ~1 %
+  double alpha = 0.02;             // artificial viscosity (Monaghan 1992)
+  double delta = 0.1;              // density diffusion (delta-SPH, Molteni & Colagrossi 2009)
+  double cfl = 0.25;               // dt = cfl * h / (c0 + max |v|)
+  bool wall_viscosity = true;      // artificial viscosity against the walls too (wall friction)
   // The liquid sustains no tension: p >= 0 and rho >= rho0. Without it a free surface under
   // tension clumps and explodes (tensile instability), and spray that separates keeps a low
   // continuity density, falls back without pressure and collapses onto the fluid.
@@ -37,9 +37,9 @@ struct Config {
 // Lattice counts and spacing derived from a Config.
 struct Lattice {
   double dx = 0;
-  int column_x = 0, column_z = 0;      // column particles along x and z (column_z = 2 column_x)
-  int depth = 0;                       // particles across the tank (y)
-  int tank_x = 0, tank_z = 0;          // tank interior in spacings
+  int column_x = 0, column_z = 0;  // column particles along x and z (column_z = 2 column_x)
+  int depth = 0;                   // particles across the tank (y)
+  int tank_x = 0, tank_z = 0;      // tank interior in spacings
   std::size_t fluid_count() const { return std::size_t(column_x) * depth * column_z; }
 };
 

@@ -19,8 +19,8 @@ template <class F>
 void parallel_over(std::size_t n, F&& f) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
-  });
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+                    });
 }
 
 // The grid covers the tank and its walls, with cells of the kernel support.
@@ -101,8 +101,7 @@ double DamBreak::nondimensional_time() const {
 }
 
 void DamBreak::sort_fluid() {
-  fluid_grid_.sort(fluid_.x.data(), fluid_.y.data(), fluid_.z.data(), fluid_.size(),
-                   permutation_);
+  fluid_grid_.sort(fluid_.x.data(), fluid_.y.data(), fluid_.z.data(), fluid_.size(), permutation_);
   gather(fluid_.x, scratch_.x, permutation_);
   gather(fluid_.y, scratch_.y, permutation_);
   gather(fluid_.z, scratch_.z, permutation_);
@@ -162,7 +161,9 @@ double DamBreak::stable_dt() const {
         }
         return acc;
       },
-      [](Max a, const Max& b) { return Max{std::max(a.v2, b.v2), std::max(a.a2, b.a2)}; });
+      [](Max a, const Max& b) {
+        return Max{std::max(a.v2, b.v2), std::max(a.a2, b.a2)};
+      });
   const double h = kernel_.h;
   const double acoustic = config_.cfl * h / (c0_ + std::sqrt(double(m.v2)));
   const double force = m.a2 > 0 ? 0.25 * std::sqrt(h / std::sqrt(double(m.a2))) : acoustic;

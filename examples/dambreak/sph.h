@@ -38,10 +38,10 @@ struct Walls {
 };
 
 struct Diagnostics {
-  std::size_t nonfinite = 0;       // particles with a NaN/inf position, velocity or density
-  std::size_t outside = 0;         // fluid particle centres outside the tank interior
-  double front = 0;                // leading edge: max x + dx / 2
-  double max_density_error = 0;    // max |rho - rho0| / rho0
+  std::size_t nonfinite = 0;     // particles with a NaN/inf position, velocity or density
+  std::size_t outside = 0;       // fluid particle centres outside the tank interior
+  double front = 0;              // leading edge: max x + dx / 2
+  double max_density_error = 0;  // max |rho - rho0| / rho0
   double mean_density_error = 0;
   double max_speed = 0;
 };

@@ -22,7 +22,9 @@ using yaml::MapReader;
 
 constexpr std::int64_t kNoLimit = std::numeric_limits<std::int64_t>::max();
 
-double length(const Vec3d& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+double length(const Vec3d& v) {
+  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
 
 // sin of the angle between a and b is |a x b| / (|a| |b|).
 bool parallel(const Vec3d& a, const Vec3d& b) {
@@ -63,8 +65,12 @@ void check_camera(MapReader& r, CameraConfig& c) {
     ch.error(r.find("up"), r.path("up"), "must not be parallel to the viewing direction");
 }
 
-bool manual(const CameraConfig& c) { return !c.automatic; }
-bool automatic(const CameraConfig& c) { return c.automatic; }
+bool manual(const CameraConfig& c) {
+  return !c.automatic;
+}
+bool automatic(const CameraConfig& c) {
+  return c.automatic;
+}
 
 const Section<RendererConfig>& renderer_section() {
   using R = RendererConfig;
@@ -96,9 +102,10 @@ const Section<WriterConfig>& writer_section() {
   static const Section<W> s{
       "writer",
       {schema::integer("queue_size", &W::queue_size, 1, 4096, "jobs waiting for the writer thread"),
-       schema::choice("when_full", &W::when_full, kQueuePolicyNames,
-                      "`wait` blocks the solver until a slot frees; `drop` skips the file and "
-                      "counts it (a warning at the 1st, 10th, 100th... drop, a summary at the end)"),
+       schema::choice(
+           "when_full", &W::when_full, kQueuePolicyNames,
+           "`wait` blocks the solver until a slot frees; `drop` skips the file and "
+           "counts it (a warning at the 1st, 10th, 100th... drop, a summary at the end)"),
        schema::flag("fsync", &W::fsync, "files are fsynced before they get their final name")}};
   return s;
 }
@@ -135,9 +142,9 @@ std::optional<ConfiguredView> read_view(Checker& checker, const YAML::Node& node
   v.name = "view" + std::to_string(index);
   kind->read(checker, node, path, v);
   if (!schema::is_plain_name(v.name))
-    checker.error(node.IsMap() && node["name"] ? node["name"] : node, path + ".name",
-                  "must be letters, digits, '_', '-' or '.' (it names files); got \"" + v.name +
-                      "\"");
+    checker.error(
+        node.IsMap() && node["name"] ? node["name"] : node, path + ".name",
+        "must be letters, digits, '_', '-' or '.' (it names files); got \"" + v.name + "\"");
   return view;
 }
 
@@ -149,8 +156,8 @@ void read_views(MapReader& top, std::vector<ConfiguredView>& views,
   views.clear();
   if (node.IsNull()) return;
   if (!node.IsSequence()) {
-    checker.error(node, "views", "expected a list of views (\"- name: ...\"); got " +
-                                     yaml::describe(node));
+    checker.error(node, "views",
+                  "expected a list of views (\"- name: ...\"); got " + yaml::describe(node));
     return;
   }
   std::set<std::string> names;
@@ -213,15 +220,14 @@ std::vector<Key<Config>> top_keys(const ConfigKinds& kinds) {
                      .default_shown_as("(keep `VOXSPAN_LOG_LEVEL`)")
                      .only_when([](const Config& c) { return !c.log_level.empty(); }));
   keys.back().type = "`error` `warning` `info` `debug`";
-  keys.push_back(schema::map("trigger", &Config::trigger, trigger_section(), "the render steps",
-                             true));
+  keys.push_back(
+      schema::map("trigger", &Config::trigger, trigger_section(), "the render steps", true));
   keys.back().shown_default = "`{every_steps: 10, first: true, last: true}`";
   keys.push_back(custom_key(
       "views", "list of views",
       "the views rendered on each render step (`views[i]` of each kind below); `[]` renders "
       "nothing",
-      "one view `main`",
-      [&kinds](MapReader& r, Config& c) { read_views(r, c.views, kinds.views); },
+      "one view `main`", [&kinds](MapReader& r, Config& c) { read_views(r, c.views, kinds.views); },
       [&kinds](YAML::Emitter& e, const Config& c) {
         e << YAML::BeginSeq;
         for (const ConfiguredView& v : c.views)
@@ -229,10 +235,10 @@ std::vector<Key<Config>> top_keys(const ConfigKinds& kinds) {
             if (k.name == v.kind) k.emit(e, *v.settings);
         e << YAML::EndSeq;
       }));
-  keys.push_back(schema::map("renderer", &Config::renderer, renderer_section(),
-                             "GL platform and GPU budget"));
-  keys.push_back(schema::map("classification", &Config::classification,
-                             classification_section(), "how cells are classified"));
+  keys.push_back(
+      schema::map("renderer", &Config::renderer, renderer_section(), "GL platform and GPU budget"));
+  keys.push_back(schema::map("classification", &Config::classification, classification_section(),
+                             "how cells are classified"));
   std::string output_names;
   for (const OutputConfigKind& k : kinds.outputs)
     output_names += (output_names.empty() ? "`" : ", `") + std::string(k.name) + "`";
@@ -289,8 +295,7 @@ const Section<CameraConfig>& camera_section() {
       {schema::flag("auto", &C::automatic, "automatic framing")
            .default_shown_as("true unless `eye`/`target` given"),
        schema::vec3("eye", &C::eye, "manual only, with `target`").only_when(manual),
-       schema::vec3("target", &C::target, "manual only, with `eye`; not the eye")
-           .only_when(manual),
+       schema::vec3("target", &C::target, "manual only, with `eye`; not the eye").only_when(manual),
        schema::vec3("up", &C::up, "not parallel to the viewing direction"),
        schema::number("fov", &C::fov_degrees, schema::above_up_to(0, 179),
                       "vertical field of view, degrees"),
@@ -321,7 +326,9 @@ std::size_t Config::output_index(std::string_view kind) const {
   throw make_error("the config has no output \"", kind, "\"");
 }
 
-OutputSettings& Config::output(std::string_view kind) { return *outputs[output_index(kind)].settings; }
+OutputSettings& Config::output(std::string_view kind) {
+  return *outputs[output_index(kind)].settings;
+}
 
 const OutputSettings& Config::output(std::string_view kind) const {
   return const_cast<Config&>(*this).output(kind);
@@ -343,7 +350,8 @@ Config default_config(const ConfigKinds& kinds) {
     c.views.push_back({std::string(kinds.views.front().name), kinds.views.front().defaults()});
     c.views.back().settings->name = "main";
   }
-  for (const OutputConfigKind& k : kinds.outputs) c.outputs.push_back({std::string(k.name), k.defaults()});
+  for (const OutputConfigKind& k : kinds.outputs)
+    c.outputs.push_back({std::string(k.name), k.defaults()});
   for (ConfiguredOutput& o : c.outputs)
     if (o.settings->follows_render_trigger) o.settings->trigger = c.trigger;
   return c;

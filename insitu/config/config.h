@@ -36,16 +36,16 @@ struct RendererConfig {
 };
 
 struct ClassificationConfig {
-  std::optional<std::int64_t> full_count;   // particles in a full cell; nullopt = from spacing
-  std::optional<double> particle_spacing;   // world units; nullopt = as the solver reports it
-  bool validate_grid = false;               // check each particle lies in the cell the grid says
+  std::optional<std::int64_t> full_count;  // particles in a full cell; nullopt = from spacing
+  std::optional<double> particle_spacing;  // world units; nullopt = as the solver reports it
+  bool validate_grid = false;              // check each particle lies in the cell the grid says
   bool operator==(const ClassificationConfig&) const = default;
 };
 
 struct WriterConfig {
-  int queue_size = 8;                  // jobs waiting for the writer thread
+  int queue_size = 8;  // jobs waiting for the writer thread
   QueuePolicy when_full = QueuePolicy::wait;
-  bool fsync = true;                   // make files durable before they get their final name
+  bool fsync = true;  // make files durable before they get their final name
   bool operator==(const WriterConfig&) const = default;
 };
 
@@ -61,12 +61,12 @@ using ConfiguredOutput = Configured<OutputSettings>;
 
 struct Config {
   std::string output_folder = "voxspan-output";
-  std::string log_level;  // empty: keep the logger's level (VOXSPAN_LOG_LEVEL)
+  std::string log_level;                   // empty: keep the logger's level (VOXSPAN_LOG_LEVEL)
   TriggerSpec trigger{10, 0, true, true};  // render steps
   std::vector<ConfiguredView> views;       // default_config(): one view "main" of the first kind
   RendererConfig renderer;
   ClassificationConfig classification;
-  std::vector<ConfiguredOutput> outputs;   // every output kind, in the kinds' order
+  std::vector<ConfiguredOutput> outputs;  // every output kind, in the kinds' order
   WriterConfig writer;
   bool operator==(const Config&) const = default;
 

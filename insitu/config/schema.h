@@ -38,7 +38,7 @@ namespace voxspan::schema {
 template <class T>
 struct Key {
   std::string name;
-  std::string type;           // for the reference: "integer 1..16384", "`wait` `drop`", "bool"
+  std::string type;  // for the reference: "integer 1..16384", "`wait` `drop`", "bool"
   std::string help;
   std::string shown_default;  // for the reference; empty: T{}'s value as YAML
   // Reads the key from the section (absent: leaves `out` as it is). Errors go to the checker.
@@ -76,8 +76,7 @@ class Section {
 
   // Reads a map node into `out`: keys absent keep out's values. A missing or null node is an
   // empty map. `path` is the node's key path in messages ("views[2].camera").
-  void read(yaml::Checker& checker, const YAML::Node& node, const std::string& path,
-            T& out) const {
+  void read(yaml::Checker& checker, const YAML::Node& node, const std::string& path, T& out) const {
     yaml::MapReader r(checker, node, path, names_);
     read(r, out);
   }
@@ -189,8 +188,8 @@ Key<T> integer(std::string name, I T::*member, I min, I max, std::string help) {
 }
 
 template <class T>
-Key<T> integer_or_auto(std::string name, std::optional<std::int64_t> T::*member,
-                       std::int64_t min, std::int64_t max, std::string help) {
+Key<T> integer_or_auto(std::string name, std::optional<std::int64_t> T::*member, std::int64_t min,
+                       std::int64_t max, std::string help) {
   std::string type = integer_type(min, max) + " or `auto`";
   return make_key<T, std::optional<std::int64_t>>(
       name, member, std::move(type), std::move(help),
@@ -201,10 +200,9 @@ Key<T> integer_or_auto(std::string name, std::optional<std::int64_t> T::*member,
 
 template <class T>
 Key<T> number(std::string name, double T::*member, Range range, std::string help) {
-  return make_key<T, double>(name, member, range.text(), std::move(help),
-                             [name, range](yaml::MapReader& r, double& v) {
-                               r.get_double(name, v, range);
-                             });
+  return make_key<T, double>(
+      name, member, range.text(), std::move(help),
+      [name, range](yaml::MapReader& r, double& v) { r.get_double(name, v, range); });
 }
 
 template <class T>
@@ -236,7 +234,8 @@ template <class T, class E, std::size_t N>
 Key<T> choice(std::string name, E T::*member, const EnumName<E> (&table)[N], std::string help) {
   const std::span<const EnumName<E>> names(table);
   std::string type;
-  for (const EnumName<E>& e : names) type += (type.empty() ? "`" : " `") + std::string(e.name) + "`";
+  for (const EnumName<E>& e : names)
+    type += (type.empty() ? "`" : " `") + std::string(e.name) + "`";
   return make_key<T, E>(
       name, member, std::move(type), std::move(help),
       [name, names](yaml::MapReader& r, E& v) { r.get_enum(name, v, names); },
@@ -289,8 +288,7 @@ std::string Section<T>::reference(const T& defaults) const {
   std::string s = "| key | type | default | meaning |\n|---|---|---|---|\n";
   for (const Key<T>& k : keys_) {
     std::string shown_value = k.shown_default;
-    if (shown_value.empty())
-      shown_value = shown([&](YAML::Emitter& e) { k.emit(e, defaults); });
+    if (shown_value.empty()) shown_value = shown([&](YAML::Emitter& e) { k.emit(e, defaults); });
     s += "| `" + k.name + "` | " + k.type + " | " + shown_value + " | " + k.help + " |\n";
   }
   return s;

@@ -89,8 +89,8 @@ const schema::Section<TriggerSpec>& trigger_section();
 // `trigger_default`: the reference's default for the trigger; empty: S{}'s.
 template <class S>
 std::vector<schema::Key<S>> output_keys(std::string trigger_default = {}) {
-  schema::Key<S> trigger = schema::map<S, TriggerSpec>(
-      "trigger", &OutputSettings::trigger, trigger_section(), "when it writes", true);
+  schema::Key<S> trigger = schema::map<S, TriggerSpec>("trigger", &OutputSettings::trigger,
+                                                       trigger_section(), "when it writes", true);
   trigger.shown_default = std::move(trigger_default);
   return {schema::flag<S>("enabled", &OutputSettings::enabled, "write this output"),
           schema::text<S>("folder", &OutputSettings::folder,
@@ -159,7 +159,7 @@ std::vector<schema::Key<S>> view_keys(std::string_view kind) {
           schema::integer<S, int>("width", &ViewSettings::width, 1, 16384, "pixels"),
           schema::integer<S, int>("height", &ViewSettings::height, 1, 16384, "pixels"),
           schema::map<S, CameraConfig>("camera", &ViewSettings::camera, camera_section(),
-                         "automatic framing unless `eye` and `target` are given")};
+                                       "automatic framing unless `eye` and `target` are given")};
 }
 
 // ---- how a kind describes itself to the config
@@ -169,8 +169,7 @@ struct ConfigKind {
   std::string_view name;
   std::function<Cloned<Settings>()> defaults;
   // Reads the kind's section into `settings` (made by defaults()).
-  std::function<void(yaml::Checker&, const YAML::Node&, const std::string& path, Settings&)>
-      read;
+  std::function<void(yaml::Checker&, const YAML::Node&, const std::string& path, Settings&)> read;
   std::function<void(YAML::Emitter&, const Settings&)> emit;  // the section as a YAML map
   std::function<std::string()> reference;                     // its table for docs/runtime.md
   std::function<std::span<const std::string_view>()> keys;

@@ -1,5 +1,5 @@
-// insitu/config/trigger.h - when something happens: every N steps, every T of simulated time, on the
-// first and on the last step, any combination (OR).
+// insitu/config/trigger.h - when something happens: every N steps, every T of simulated time, on
+// the first and on the last step, any combination (OR).
 //
 // "Every N steps" and "every T" fire on the first call whose step (time) reaches the next
 // multiple of N (T), so a solver with a variable time step, or one that calls only every few

@@ -36,7 +36,6 @@ std::string closest(std::string_view key, std::span<const std::string_view> allo
   return best;
 }
 
-
 }  // namespace
 
 void Checker::error(const YAML::Mark& mark, const std::string& path, const std::string& message) {
@@ -58,11 +57,16 @@ void Checker::throw_if_errors() const {
 
 std::string describe(const YAML::Node& node) {
   switch (node.Type()) {
-    case YAML::NodeType::Scalar: return "\"" + node.Scalar() + "\"";
-    case YAML::NodeType::Sequence: return "a list";
-    case YAML::NodeType::Map: return "a map";
-    case YAML::NodeType::Null: return "nothing";
-    case YAML::NodeType::Undefined: break;
+    case YAML::NodeType::Scalar:
+      return "\"" + node.Scalar() + "\"";
+    case YAML::NodeType::Sequence:
+      return "a list";
+    case YAML::NodeType::Map:
+      return "a map";
+    case YAML::NodeType::Null:
+      return "nothing";
+    case YAML::NodeType::Undefined:
+      break;
   }
   return "nothing";
 }
@@ -81,7 +85,8 @@ bool Range::contains(double v) const {
 }
 
 std::string Range::text() const {
-  if (std::isinf(max)) return (min_open ? "number above " : "number of at least ") + number_text(min);
+  if (std::isinf(max))
+    return (min_open ? "number above " : "number of at least ") + number_text(min);
   return "number in " + std::string(min_open ? "(" : "[") + number_text(min) + ", " +
          number_text(max) + "]";
 }
@@ -138,8 +143,8 @@ bool MapReader::scalar(std::string_view key, YAML::Node& value, const char* expe
   value = find(key);
   if (!value.IsDefined()) return false;
   if (!value.IsScalar()) {
-    checker_.error(value, path(key), std::string("expected ") + expected + "; got " +
-                                         describe(value));
+    checker_.error(value, path(key),
+                   std::string("expected ") + expected + "; got " + describe(value));
     return false;
   }
   return true;
@@ -222,8 +227,8 @@ bool MapReader::get_vec3(std::string_view key, std::array<double, 3>& out) {
   std::array<double, 3> v{};
   bool ok = value.IsSequence() && value.size() == 3;
   for (std::size_t i = 0; ok && i < 3; ++i)
-    ok = value[i].IsScalar() && YAML::convert<double>::decode(value[i], v[i]) &&
-         std::isfinite(v[i]);
+    ok =
+        value[i].IsScalar() && YAML::convert<double>::decode(value[i], v[i]) && std::isfinite(v[i]);
   if (!ok) {
     checker_.error(value, path(key), "expected three numbers [x, y, z]; got " + describe(value));
     return false;

@@ -36,16 +36,14 @@ bool is_radius_name(std::string_view name) {
 }
 
 void adopt_radius_attribute(ParticleData& data) {
-  auto it = std::find_if(data.attributes.begin(), data.attributes.end(), [](const auto& a) {
-    return a.components == 1 && is_radius_name(a.name);
-  });
+  auto it = std::find_if(data.attributes.begin(), data.attributes.end(),
+                         [](const auto& a) { return a.components == 1 && is_radius_name(a.name); });
   if (it == data.attributes.end()) return;
   data.radii = std::move(it->values);
   data.attributes.erase(it);
 }
 
-ParticleData read_particles(const std::filesystem::path& path,
-                            const ParticleReadOptions& options) {
+ParticleData read_particles(const std::filesystem::path& path, const ParticleReadOptions& options) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });

@@ -22,8 +22,8 @@ struct ParticleData {
   std::vector<std::array<double, 3>> positions;
   std::vector<float> radii;  // empty when the file has no radius
   std::vector<Attribute> attributes;
-  std::optional<double> time;         // simulated time, when the file says
-  std::optional<std::int64_t> step;   // step/iteration, when the file says
+  std::optional<double> time;        // simulated time, when the file says
+  std::optional<std::int64_t> step;  // step/iteration, when the file says
 
   std::size_t size() const { return positions.size(); }
   const Attribute* attribute(std::string_view name) const;

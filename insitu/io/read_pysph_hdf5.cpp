@@ -54,8 +54,8 @@ std::vector<std::string> member_names(hid_t group) {
   std::vector<std::string> names;
   if (H5Gget_info(group, &info) < 0) return names;
   for (hsize_t i = 0; i < info.nlinks; ++i) {
-    ssize_t size = H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0,
-                                      H5P_DEFAULT);
+    ssize_t size =
+        H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
     if (size < 0) continue;
     std::string name(static_cast<std::size_t>(size) + 1, '\0');
     H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(),
@@ -123,8 +123,7 @@ ParticleData read_pysph_hdf5(const std::filesystem::path& path,
   Handle h5(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (!h5.valid()) throw make_error("cannot open ", file);
   Handle particles(H5Gopen2(h5.get(), "particles", H5P_DEFAULT), H5Gclose);
-  if (!particles.valid())
-    throw make_error(file, ": no /particles group (not a PySPH output file)");
+  if (!particles.valid()) throw make_error(file, ": no /particles group (not a PySPH output file)");
 
   std::vector<std::string> available = member_names(particles.get());
   std::vector<std::string> names = options.arrays.empty() ? available : options.arrays;

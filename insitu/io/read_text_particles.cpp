@@ -28,7 +28,8 @@ std::string trim(std::string_view s) {
 // A CSV field without its surrounding spaces and quotes.
 std::string field_text(std::string_view s) {
   std::string out = trim(s);
-  if (out.size() >= 2 && out.front() == '"' && out.back() == '"') out = out.substr(1, out.size() - 2);
+  if (out.size() >= 2 && out.front() == '"' && out.back() == '"')
+    out = out.substr(1, out.size() - 2);
   return out;
 }
 
@@ -77,13 +78,16 @@ std::vector<std::string> split_whitespace(const std::string& line) {
 
 // The base name when a, b, c are the x, y, z components of one vector; empty otherwise.
 std::string vector_base(const std::string& a, const std::string& b, const std::string& c) {
-  static const std::vector<std::array<std::string, 3>> suffixes = {
-      {"_x", "_y", "_z"}, {":0", ":1", ":2"}, {"[0]", "[1]", "[2]"}, {"_0", "_1", "_2"},
-      {"x", "y", "z"}};
+  static const std::vector<std::array<std::string, 3>> suffixes = {{"_x", "_y", "_z"},
+                                                                   {":0", ":1", ":2"},
+                                                                   {"[0]", "[1]", "[2]"},
+                                                                   {"_0", "_1", "_2"},
+                                                                   {"x", "y", "z"}};
   std::string la = lower(a), lb = lower(b), lc = lower(c);
   for (const auto& s : suffixes) {
     auto ends = [](const std::string& t, const std::string& suffix) {
-      return t.size() > suffix.size() && t.compare(t.size() - suffix.size(), suffix.size(), suffix) == 0;
+      return t.size() > suffix.size() &&
+             t.compare(t.size() - suffix.size(), suffix.size(), suffix) == 0;
     };
     if (!ends(la, s[0]) || !ends(lb, s[1]) || !ends(lc, s[2])) continue;
     std::string base = a.substr(0, a.size() - s[0].size());
@@ -131,12 +135,14 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
   if (header.empty()) throw fail(line_no, "no header row (the first row must name the columns)");
   double probe = 0;
   if (parse_number(header[0], probe))
-    throw fail(line_no, "the first row holds numbers; a header row must name the columns (x,y,z,...)");
+    throw fail(line_no,
+               "the first row holds numbers; a header row must name the columns (x,y,z,...)");
 
   std::vector<Column> columns;
   int position = -1;  // index into columns
   for (std::size_t i = 0; i < header.size();) {
-    std::string base = i + 2 < header.size() ? vector_base(header[i], header[i + 1], header[i + 2]) : "";
+    std::string base =
+        i + 2 < header.size() ? vector_base(header[i], header[i + 1], header[i + 2]) : "";
     if (lower(header[i]) == "x" && i + 2 < header.size() && lower(header[i + 1]) == "y" &&
         lower(header[i + 2]) == "z")
       base = "position";
@@ -166,7 +172,8 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
                               std::to_string(header.size()));
     for (std::size_t f = 0; f < fields.size(); ++f)
       if (!parse_number(fields[f], values[f]))
-        throw fail(line_no, "column \"" + header[f] + "\" is not a number: \"" + field_text(fields[f]) + "\"");
+        throw fail(line_no, "column \"" + header[f] + "\" is not a number: \"" +
+                                field_text(fields[f]) + "\"");
     const Column& p = columns[std::size_t(position)];
     data.positions.push_back({values[p.first], values[p.first + 1], values[p.first + 2]});
     std::size_t a = 0;
@@ -190,7 +197,8 @@ ParticleData read_xyz_particles(const std::filesystem::path& path) {
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   std::size_t start = 0;
   // Extended XYZ: "N" alone on the first line, then a comment line.
-  std::vector<std::string> first = lines.empty() ? std::vector<std::string>{} : split_whitespace(lines[0]);
+  std::vector<std::string> first =
+      lines.empty() ? std::vector<std::string>{} : split_whitespace(lines[0]);
   double count = 0;
   if (first.size() == 1 && parse_number(first[0], count) && lines.size() >= 2) start = 2;
 
@@ -201,7 +209,8 @@ ParticleData read_xyz_particles(const std::filesystem::path& path) {
     if (t.empty() || t[0] == '#') continue;
     std::vector<std::string> fields = split_whitespace(t);
     double probe = 0;
-    if (!fields.empty() && !parse_number(fields[0], probe)) fields.erase(fields.begin());  // element
+    if (!fields.empty() && !parse_number(fields[0], probe))
+      fields.erase(fields.begin());  // element
     if (fields.size() < 3) throw fail(l + 1, "expected at least x y z");
     if (columns == 0) {
       columns = fields.size();
@@ -215,7 +224,8 @@ ParticleData read_xyz_particles(const std::filesystem::path& path) {
     std::vector<double> v(columns);
     for (std::size_t c = 0; c < columns; ++c)
       if (!parse_number(fields[c], v[c]))
-        throw fail(l + 1, "column " + std::to_string(c + 1) + " is not a number: \"" + fields[c] + "\"");
+        throw fail(l + 1,
+                   "column " + std::to_string(c + 1) + " is not a number: \"" + fields[c] + "\"");
     data.positions.push_back({v[0], v[1], v[2]});
     if (columns >= 4) data.radii.push_back(float(v[3]));
     for (std::size_t c = 4; c < columns; ++c) data.attributes[c - 4].values.push_back(float(v[c]));

@@ -25,7 +25,8 @@ double estimate_particle_spacing(std::span<const std::array<double, 3>> position
   for (const auto& p : positions) {
     if (!finite(p)) continue;
     ++n;
-    for (std::size_t a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+    for (std::size_t a = 0; a < 3; ++a)
+      lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
   }
   if (n < 2) return 0;
   // Cells of about one mean spacing: flat or thin sets count only their extended axes.
@@ -67,7 +68,8 @@ double estimate_particle_spacing(std::span<const std::array<double, 3>> position
     if (std::isfinite(best)) nearest.push_back(best);
   }
   if (nearest.empty()) return cell;  // every sample alone in its neighbourhood: the mean spacing
-  std::nth_element(nearest.begin(), nearest.begin() + std::ptrdiff_t(nearest.size() / 2), nearest.end());
+  std::nth_element(nearest.begin(), nearest.begin() + std::ptrdiff_t(nearest.size() / 2),
+                   nearest.end());
   return nearest[nearest.size() / 2];
 }
 

@@ -21,9 +21,13 @@ namespace vdb = openvdb;
 
 namespace {
 
-double magnitude(double v) { return v; }
+double magnitude(double v) {
+  return v;
+}
 template <class T>
-double magnitude(const vdb::math::Vec3<T>& v) { return double(v.length()); }
+double magnitude(const vdb::math::Vec3<T>& v) {
+  return double(v.length());
+}
 
 template <class GridT>
 bool value_range(const vdb::GridBase& base, double& lo, double& hi) {

@@ -14,8 +14,8 @@ namespace voxspan {
 
 struct VdbGridSummary {
   std::string name;
-  std::string value_type;   // "float", "vec3s", "int32"...
-  std::string grid_class;   // "level set", "fog volume", "unknown"...
+  std::string value_type;  // "float", "vec3s", "int32"...
+  std::string grid_class;  // "level set", "fog volume", "unknown"...
   std::array<double, 3> voxel_size{0, 0, 0};
   std::uint64_t active_voxels = 0;
   std::array<int, 3> index_min{0, 0, 0}, index_max{0, 0, 0};  // active voxels' bounding box
@@ -34,7 +34,7 @@ struct VdbFileSummary {
 VdbFileSummary inspect_vdb(const std::filesystem::path& path);
 
 struct LevelSetView {
-  std::string grid;         // empty: the first level set in the file
+  std::string grid;  // empty: the first level set in the file
   int width = 640, height = 480;
   std::array<double, 3> direction{-1, 2, -0.8};  // the camera looks along this
   std::array<double, 3> up{0, 0, 1};

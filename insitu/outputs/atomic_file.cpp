@@ -11,8 +11,7 @@
 
 namespace voxspan {
 
-void throw_write_error(std::string_view what, const std::filesystem::path& path,
-                       int error_number) {
+void throw_write_error(std::string_view what, const std::filesystem::path& path, int error_number) {
   throw WriteError(std::string(what) + " " + path.string() + ": " + std::strerror(error_number),
                    error_number);
 }
@@ -88,8 +87,9 @@ class AtomicFile::FdBuffer : public std::streambuf {
   int sync() override { return flush_buffer() ? 0 : -1; }
   pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode) override {
     if (!flush_buffer()) return pos_type(off_type(-1));
-    int whence = dir == std::ios_base::beg ? SEEK_SET : dir == std::ios_base::cur ? SEEK_CUR
-                                                                                 : SEEK_END;
+    int whence = dir == std::ios_base::beg   ? SEEK_SET
+                 : dir == std::ios_base::cur ? SEEK_CUR
+                                             : SEEK_END;
     off_t at = ::lseek(fd_, static_cast<off_t>(off), whence);
     if (at < 0) {
       set_error(errno);
@@ -149,9 +149,13 @@ void AtomicFile::discard() noexcept {
   ::unlink(temp_path_.c_str());
 }
 
-std::ostream& AtomicFile::stream() { return *stream_; }
+std::ostream& AtomicFile::stream() {
+  return *stream_;
+}
 
-std::size_t AtomicFile::bytes_written() const { return buffer_ ? buffer_->bytes() : 0; }
+std::size_t AtomicFile::bytes_written() const {
+  return buffer_ ? buffer_->bytes() : 0;
+}
 
 void AtomicFile::check() {
   if (buffer_->error() != 0) throw_write_error("cannot write", final_path_, buffer_->error());

@@ -30,11 +30,13 @@ BackgroundWriter::~BackgroundWriter() {
   thread_.join();
   WriterStats s = stats();
   if (s.failed > 1)
-    log_warning("writer: ", s.failed, " of ", s.submitted, " files could not be written; the "
-                "first failure: ", s.first_error);
+    log_warning("writer: ", s.failed, " of ", s.submitted,
+                " files could not be written; the "
+                "first failure: ",
+                s.first_error);
   if (s.dropped > 0)
-    log_warning("writer: ", s.dropped, " files were dropped because the writer queue (",
-                capacity_, " jobs) was full; raise writer.queue_size or use when_full: wait");
+    log_warning("writer: ", s.dropped, " files were dropped because the writer queue (", capacity_,
+                " jobs) was full; raise writer.queue_size or use when_full: wait");
 }
 
 bool BackgroundWriter::submit(std::string label, Job job) {
@@ -96,7 +98,7 @@ void BackgroundWriter::run() {
     {
       std::unique_lock lock(mutex_);
       work_ready_.wait(lock, [&] { return stopping_ || queued_ > 0; });
-      if (queued_ == 0) return;  // stopping, and drained
+      if (queued_ == 0) return;              // stopping, and drained
       entry.label.swap(ring_[head_].label);  // swaps keep both strings' storage alive
       entry.job = std::move(ring_[head_].job);
       ring_[head_].job = nullptr;

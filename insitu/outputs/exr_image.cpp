@@ -23,9 +23,10 @@ std::string encode_exr_channel(const FloatImage& image, const std::string& chann
     Imf::FrameBuffer frame;
     // The r component of every RGBA pixel, rows top first.
     const std::size_t pixel = 4 * sizeof(float);
-    frame.insert(channel, Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(
-                                                     image.rgba.data())),
-                                     pixel, pixel * std::size_t(image.width)));
+    frame.insert(
+        channel,
+        Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(image.rgba.data())),
+                   pixel, pixel * std::size_t(image.width)));
     Imf::StdOSStream stream;
     {
       Imf::OutputFile file(stream, header);

@@ -64,8 +64,7 @@ ImageRGBA8 linear_to_srgb8(std::span<const float> rgba, int width, int height, b
   return out;
 }
 
-std::string encode_png(std::span<const std::uint8_t> rgba, int width, int height,
-                       bool bottom_up) {
+std::string encode_png(std::span<const std::uint8_t> rgba, int width, int height, bool bottom_up) {
   std::size_t expected = std::size_t(width) * std::size_t(height) * 4;
   if (width <= 0 || height <= 0 || rgba.size() != expected)
     throw make_error("encode_png: ", rgba.size(), " bytes for a ", width, "x", height,

@@ -32,7 +32,8 @@ void StatsLog::append(std::string_view line) {
     if (n <= 0) {
       int error = n < 0 ? errno : ENOSPC;
       // Cut the partial line off: the file stays a list of complete records.
-      if (::ftruncate(fd_, static_cast<off_t>(size_)) != 0) { /* nothing more to do */ }
+      if (::ftruncate(fd_, static_cast<off_t>(size_)) != 0) { /* nothing more to do */
+      }
       throw_write_error("cannot append a stats line to", path_, error);
     }
     p += n;

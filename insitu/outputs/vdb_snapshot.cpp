@@ -54,7 +54,6 @@ class Stages {
   Stopwatch watch_;
 };
 
-
 // The closest particle's index per voxel (ParticlesToLevelSet's attribute transfer).
 using IndexGrid = vdb::FloatGrid::ValueConverter<vdb::Index32>::Type;
 
@@ -97,7 +96,8 @@ std::size_t fill_inner_full(const CellStatesView& cells, vdb::FloatGrid& sdf) {
   for (int k = 0; k < d[2]; ++k)
     for (int j = 0; j < d[1]; ++j)
       for (int i = 0; i < d[0];) {
-        std::size_t at = std::size_t(i) + std::size_t(d[0]) * (std::size_t(j) + std::size_t(d[1]) * k);
+        std::size_t at =
+            std::size_t(i) + std::size_t(d[0]) * (std::size_t(j) + std::size_t(d[1]) * k);
         if (cells.states[at] != cell::kInnerFull) {
           ++i;
           continue;
@@ -160,7 +160,8 @@ vdb::Int32Grid::Ptr cell_state_grid(const CellStatesView& cells) {
   for (int k = 0; k < cells.dims[2]; ++k)
     for (int j = 0; j < cells.dims[1]; ++j)
       for (int i = 0; i < cells.dims[0]; ++i, ++at)
-        if (cells.states[at] != cell::kInnerEmpty) acc.setValue(vdb::Coord(i, j, k), cells.states[at]);
+        if (cells.states[at] != cell::kInnerEmpty)
+          acc.setValue(vdb::Coord(i, j, k), cells.states[at]);
   return grid;
 }
 
@@ -174,7 +175,6 @@ class StreamArchive : public vdb::io::Archive {
 };
 
 }  // namespace
-
 
 VdbSnapshotReport write_vdb_snapshot(const std::filesystem::path& path,
                                      const VdbSnapshotInput& input,
@@ -196,8 +196,9 @@ VdbSnapshotReport write_vdb_snapshot(const std::filesystem::path& path,
     r_max = std::max(r_max, input.particles[i].radius);
   }
   const bool have_cells = !input.cells.empty() && input.cells.cell_size > 0;
-  double voxel = settings.voxel_size.value_or(
-      !list.valid.empty() ? r_min : have_cells ? 0.25 * input.cells.cell_size : 1.0);
+  double voxel = settings.voxel_size.value_or(!list.valid.empty() ? r_min
+                                              : have_cells        ? 0.25 * input.cells.cell_size
+                                                                  : 1.0);
   if (!(voxel > 0) || !std::isfinite(voxel))
     throw make_error("VDB snapshot: voxel size ", voxel, " is not a positive number");
   list.grow = settings.closing.value_or(list.valid.empty() ? 0.0 : double(r_max));

@@ -33,7 +33,7 @@ namespace voxspan {
 struct VdbSnapshotSettings {
   std::optional<double> voxel_size;  // nullopt: the smallest particle radius
   int half_width = 3;
-  std::optional<double> closing;     // nullopt: the largest particle radius; 0: no closing
+  std::optional<double> closing;  // nullopt: the largest particle radius; 0: no closing
   bool fill_inner = true;
   bool cell_states = true;
   bool operator==(const VdbSnapshotSettings&) const = default;
@@ -50,12 +50,12 @@ struct VdbSnapshotInput {
 struct VdbSnapshotReport {
   double voxel_size = 0;
   double closing = 0;
-  std::size_t particles = 0;           // rasterized
-  std::size_t particles_too_small = 0; // radius + closing under 1.5 voxels: left out
-  std::size_t particles_invalid = 0;   // NaN/inf position or non-positive radius: left out
-  std::size_t inner_full_cells = 0;    // filled
-  std::uint64_t level_set_voxels = 0;  // active voxels of "fluid"
-  std::uint64_t bytes = 0;             // file size
+  std::size_t particles = 0;            // rasterized
+  std::size_t particles_too_small = 0;  // radius + closing under 1.5 voxels: left out
+  std::size_t particles_invalid = 0;    // NaN/inf position or non-positive radius: left out
+  std::size_t inner_full_cells = 0;     // filled
+  std::uint64_t level_set_voxels = 0;   // active voxels of "fluid"
+  std::uint64_t bytes = 0;              // file size
   // Wall time per stage: "vdb_rasterize", "vdb_fill", "vdb_close", "vdb_attributes",
   // "vdb_write" (for the per-step stats).
   FrameStats timings;

@@ -20,9 +20,13 @@ class ViewImageJobs {
   using Write = std::function<void(const std::filesystem::path&, const FloatImage&)>;
 
   ViewImageJobs(const OutputContext& c, std::string extension, const char* label, Write write)
-      : folder_(c.folder), view_names_(c.view_names.begin(), c.view_names.end()),
-        extension_(std::move(extension)), label_(label), largest_(largest_view_floats(c.config)),
-        write_(std::move(write)), jobs_(c.writer, c.slots, [this](Slot& s) { run(s); }) {}
+      : folder_(c.folder),
+        view_names_(c.view_names.begin(), c.view_names.end()),
+        extension_(std::move(extension)),
+        label_(label),
+        largest_(largest_view_floats(c.config)),
+        write_(std::move(write)),
+        jobs_(c.writer, c.slots, [this](Slot& s) { run(s); }) {}
 
   // Hands over each view's `product` (ViewResult::picture or ::first_hit_depth); views without
   // one (failed, or not asked) are skipped.

@@ -15,39 +15,40 @@ namespace {
 
 void check_vtk(yaml::MapReader& r, VtkSettings& v) {
   if (v.enabled && !v.particles && !v.cells)
-    r.checker().error(r.node(), r.path(), "enabled but writes nothing: set particles or cells to true");
+    r.checker().error(r.node(), r.path(),
+                      "enabled but writes nothing: set particles or cells to true");
 }
 
 const schema::Section<VtkSettings>& vtk_section() {
   using V = VtkSettings;
-  static const schema::Section<V> s{"outputs.vtk",
-                                    [] {
-                                      auto keys = output_keys<V>();
-                                      keys.push_back(schema::flag(
-                                          "particles", &V::particles,
-                                          ".vtp of the boundary particles"));
-                                      keys.push_back(schema::flag("cells", &V::cells,
-                                                                  ".vti of the cell states"));
-                                      keys.push_back(schema::names(
-                                          "attributes", &V::attributes,
-                                          "particle attributes written as point data"));
-                                      return keys;
-                                    }(),
-                                    check_vtk};
+  static const schema::Section<V> s{
+      "outputs.vtk",
+      [] {
+        auto keys = output_keys<V>();
+        keys.push_back(schema::flag("particles", &V::particles, ".vtp of the boundary particles"));
+        keys.push_back(schema::flag("cells", &V::cells, ".vti of the cell states"));
+        keys.push_back(schema::names("attributes", &V::attributes,
+                                     "particle attributes written as point data"));
+        return keys;
+      }(),
+      check_vtk};
   return s;
 }
 
 class VtkOutput final : public Output {
  public:
   VtkOutput(const VtkSettings& s, const OutputContext& c)
-      : settings_(s), folder_(c.folder), fsync_(c.fsync),
+      : settings_(s),
+        folder_(c.folder),
+        fsync_(c.fsync),
         jobs_(c.writer, c.slots, [this](SnapshotCopy& copy) { write_files(copy); }) {
     if (s.particles) particles_ = std::make_unique<PvdSeries>(folder_ / "particles.pvd", fsync_);
     if (s.cells) cells_ = std::make_unique<PvdSeries>(folder_ / "cells.pvd", fsync_);
   }
 
   void write(const OutputStep& step) override {
-    jobs_.submit("VTK files", [&](SnapshotCopy& copy) { copy.fill(step.data, settings_.attributes); });
+    jobs_.submit("VTK files",
+                 [&](SnapshotCopy& copy) { copy.fill(step.data, settings_.attributes); });
   }
 
   OutputTally tally() const override { return jobs_.tally(); }

@@ -14,7 +14,8 @@ namespace voxspan {
 AdapterOptions adapter_options_for(const Config& config, AdapterOptions options) {
   options.render_every = 1;  // the config's triggers decide
   ClassifyOptions& c = options.classify;
-  if (config.classification.particle_spacing) c.particle_spacing = *config.classification.particle_spacing;
+  if (config.classification.particle_spacing)
+    c.particle_spacing = *config.classification.particle_spacing;
   if (config.classification.full_count) c.full_count = int(*config.classification.full_count);
   c.validate = c.validate || config.classification.validate_grid;
   for (const std::string& n : config.output_attributes())

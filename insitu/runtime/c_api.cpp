@@ -88,7 +88,8 @@ voxspan::AdapterOptions adapter_options(const voxspan_adapter_options* o) {
 voxspan::ScalarType scalar_type(int type) {
   if (type == VOXSPAN_FLOAT32) return voxspan::ScalarType::float32;
   if (type == VOXSPAN_FLOAT64) return voxspan::ScalarType::float64;
-  throw voxspan::make_error("scalar type ", type, " is neither VOXSPAN_FLOAT32 (0) nor "
+  throw voxspan::make_error("scalar type ", type,
+                            " is neither VOXSPAN_FLOAT32 (0) nor "
                             "VOXSPAN_FLOAT64 (1)");
 }
 
@@ -106,7 +107,8 @@ voxspan::StridedScalars strided(int type, const void* data, std::size_t stride,
 
 voxspan::IndexArray index_array(int type, const void* data) {
   if (type < VOXSPAN_INT32 || type > VOXSPAN_UINT64)
-    throw voxspan::make_error("index type ", type, " is not one of VOXSPAN_INT32, _UINT32, "
+    throw voxspan::make_error("index type ", type,
+                              " is not one of VOXSPAN_INT32, _UINT32, "
                               "_INT64, _UINT64 (0-3)");
   return {data, static_cast<voxspan::IndexType>(type)};
 }
@@ -114,7 +116,8 @@ voxspan::IndexArray index_array(int type, const void* data) {
 voxspan::GridGeometry geometry(const double origin[3], double cell_size, const int dims[3]) {
   require(origin, "grid origin");
   require(dims, "grid dims");
-  voxspan::GridGeometry g{{origin[0], origin[1], origin[2]}, cell_size, {dims[0], dims[1], dims[2]}};
+  voxspan::GridGeometry g{
+      {origin[0], origin[1], origin[2]}, cell_size, {dims[0], dims[1], dims[2]}};
   if (!g.valid())
     throw voxspan::make_error("grid geometry: cell size ", cell_size, " and dims ", dims[0], " x ",
                               dims[1], " x ", dims[2], " must all be > 0");
@@ -156,7 +159,9 @@ int execute_step(const char* function, voxspan_adapter* a, int64_t step, double 
 
 extern "C" {
 
-const char* voxspan_version(void) { return voxspan::version(); }
+const char* voxspan_version(void) {
+  return voxspan::version();
+}
 
 void voxspan_set_log_level(int level) {
   if (level < 0) level = 0;
@@ -164,14 +169,16 @@ void voxspan_set_log_level(int level) {
   voxspan::set_log_level(static_cast<voxspan::LogLevel>(level));
 }
 
-const char* voxspan_last_error(void) { return last_error.c_str(); }
+const char* voxspan_last_error(void) {
+  return last_error.c_str();
+}
 
 void voxspan_adapter_options_init(voxspan_adapter_options* o) {
   if (!o) return;
   const voxspan::AdapterOptions d;
   const voxspan::ClassifyOptions& c = d.classify;
-  *o = {d.render_every, c.particle_spacing, c.full_count, c.full_fraction, c.radius,
-        c.cell_size, c.validate ? 1 : 0, c.include_ghosts ? 1 : 0};
+  *o = {d.render_every, c.particle_spacing, c.full_count,       c.full_fraction,
+        c.radius,       c.cell_size,        c.validate ? 1 : 0, c.include_ghosts ? 1 : 0};
 }
 
 voxspan_adapter* voxspan_adapter_create(const voxspan_adapter_options* o) {
@@ -224,7 +231,9 @@ size_t voxspan_adapter_summary(const voxspan_adapter* a, char* buffer, size_t si
   return summary.size();
 }
 
-void voxspan_adapter_destroy(voxspan_adapter* adapter) { delete adapter; }
+void voxspan_adapter_destroy(voxspan_adapter* adapter) {
+  delete adapter;
+}
 
 int voxspan_adapter_add_attribute(voxspan_adapter* a, const char* name) {
   return guarded("voxspan_adapter_add_attribute", [&] {
@@ -260,11 +269,28 @@ int voxspan_adapter_stats(const voxspan_adapter* a, voxspan_step_stats* out) {
     require(out, "stats");
     const voxspan::StepStats& s = a->adapter->last_stats();
     const voxspan::ClassifyCounts& c = s.counts;
-    *out = {s.step, s.time, s.rendered ? 1 : 0, static_cast<int>(s.status.code),
-            c.particles, c.owned, c.boundary, c.dropped_nonfinite, c.not_in_grid,
-            c.cells, c.cells_empty, c.cells_partial, c.cells_full, c.cells_inner_empty,
-            c.cells_inner_full, c.full_count, c.grid_built ? 1 : 0, c.cell_size,
-            s.seconds_classify, s.seconds_compact, s.seconds_pipeline, s.seconds_total};
+    *out = {s.step,
+            s.time,
+            s.rendered ? 1 : 0,
+            static_cast<int>(s.status.code),
+            c.particles,
+            c.owned,
+            c.boundary,
+            c.dropped_nonfinite,
+            c.not_in_grid,
+            c.cells,
+            c.cells_empty,
+            c.cells_partial,
+            c.cells_full,
+            c.cells_inner_empty,
+            c.cells_inner_full,
+            c.full_count,
+            c.grid_built ? 1 : 0,
+            c.cell_size,
+            s.seconds_classify,
+            s.seconds_compact,
+            s.seconds_pipeline,
+            s.seconds_total};
     return VOXSPAN_OK;
   });
 }
@@ -289,8 +315,8 @@ size_t voxspan_adapter_cell_states(const voxspan_adapter* a, double origin[3], d
   return v.empty() ? 0 : v.cell_count();
 }
 
-size_t voxspan_adapter_attribute(const voxspan_adapter* a, const char* name,
-                                 const float** values, int* components) {
+size_t voxspan_adapter_attribute(const voxspan_adapter* a, const char* name, const float** values,
+                                 int* components) {
   if (!a || !name) return 0;
   for (const auto& attr : a->adapter->last_classification().attributes) {
     if (attr.name != name) continue;
@@ -310,17 +336,20 @@ voxspan_particles* voxspan_particles_create(void) {
   return p;
 }
 
-void voxspan_particles_destroy(voxspan_particles* p) { delete p; }
+void voxspan_particles_destroy(voxspan_particles* p) {
+  delete p;
+}
 
 int voxspan_particles_set_aos(voxspan_particles* p, int type, const void* xyz, size_t count,
                               size_t stride_bytes) {
   return guarded("voxspan_particles_set_aos", [&] {
     require(p, "particles");
     if (count > 0) require(xyz, "positions");
-    const voxspan::StridedScalars x = strided(type, xyz, stride_bytes ? stride_bytes
-                                                  : 3 * scalar_size(scalar_type(type)));
+    const voxspan::StridedScalars x =
+        strided(type, xyz, stride_bytes ? stride_bytes : 3 * scalar_size(scalar_type(type)));
     const auto axis = [&](std::size_t k) {
-      return voxspan::StridedScalars{static_cast<const char*>(x.data) + k * scalar_size(x.type), x.type, x.stride};
+      return voxspan::StridedScalars{static_cast<const char*>(x.data) + k * scalar_size(x.type),
+                                     x.type, x.stride};
     };
     const voxspan::ParticleView old = p->view;
     p->view = voxspan::ParticleView::from_axes(x, axis(1), axis(2), count);
@@ -382,15 +411,16 @@ int voxspan_particles_set_scalar(voxspan_particles* p, const char* name, int typ
   });
 }
 
-int voxspan_particles_set_vector(voxspan_particles* p, const char* name, int type,
-                                 const void* xyz, size_t stride_bytes) {
+int voxspan_particles_set_vector(voxspan_particles* p, const char* name, int type, const void* xyz,
+                                 size_t stride_bytes) {
   return guarded("voxspan_particles_set_vector", [&] {
     require(p, "particles");
     require(xyz, "attribute values");
     const std::size_t stride = stride_bytes ? stride_bytes : 3 * scalar_size(scalar_type(type));
-    attribute_slot(p, name) = {name, 3, {strided(type, xyz, stride, 0),
-                                         strided(type, xyz, stride, 1),
-                                         strided(type, xyz, stride, 2)}};
+    attribute_slot(p, name) = {name,
+                               3,
+                               {strided(type, xyz, stride, 0), strided(type, xyz, stride, 1),
+                                strided(type, xyz, stride, 2)}};
     return VOXSPAN_OK;
   });
 }
@@ -408,7 +438,9 @@ voxspan_grid* voxspan_grid_create(void) {
   return g;
 }
 
-void voxspan_grid_destroy(voxspan_grid* g) { delete g; }
+void voxspan_grid_destroy(voxspan_grid* g) {
+  delete g;
+}
 
 int voxspan_grid_set_offsets(voxspan_grid* g, const double origin[3], double cell_size,
                              const int dims[3], int index_type, const void* offsets) {

@@ -67,13 +67,17 @@ struct InsituPipeline::Impl {
   std::vector<std::string> view_names;
   std::vector<ViewState> views;
   std::vector<OutputState> outputs;
-  StatsRecord record;                // the views' sections are where their passes report
-  std::vector<ViewResult> results;   // per view, this step's products for the outputs
+  StatsRecord record;               // the views' sections are where their passes report
+  std::vector<ViewResult> results;  // per view, this step's products for the outputs
   PipelineTotals totals;
 
   Impl(const Config& c, double particle_spacing)
-      : config(with_log_level(c)), spacing(particle_spacing), schedule(config),
-        plan(schedule.blank()), context(prepared(config)), timer(context.has_gpu_timers()),
+      : config(with_log_level(c)),
+        spacing(particle_spacing),
+        schedule(config),
+        plan(schedule.blank()),
+        context(prepared(config)),
+        timer(context.has_gpu_timers()),
         writer(config.writer) {
     for (const ConfiguredView& v : config.views) view_names.push_back(v.settings->name);
     const ViewContext view_context{shaders, config.renderer, spacing, {}};
@@ -81,7 +85,8 @@ struct InsituPipeline::Impl {
     for (const ConfiguredView& v : config.views)
       views.push_back({v.settings->name,
                        registered_view_kind(v.kind).make(*v.settings, view_context),
-                       ViewFraming(*v.settings), {}});
+                       ViewFraming(*v.settings),
+                       {}});
     record.views.reserve(views.size());
     for (const ViewState& v : views) record.view(v.name);  // made once: their addresses stay
     results.resize(views.size());
@@ -102,9 +107,12 @@ struct InsituPipeline::Impl {
       return;
     }
     // Slots per pool: the queue's jobs, one running, one being filled.
-    const OutputContext c{config,           config.folder_of(*o.settings),
-                          view_names,       spacing,
-                          writer,           std::size_t(config.writer.queue_size) + 2,
+    const OutputContext c{config,
+                          config.folder_of(*o.settings),
+                          view_names,
+                          spacing,
+                          writer,
+                          std::size_t(config.writer.queue_size) + 2,
                           config.writer.fsync};
     outputs.push_back({&kind, kind.make(*o.settings, c)});
   }
@@ -135,7 +143,8 @@ struct InsituPipeline::Impl {
         const Camera camera = v.framing.update(data.boundary);
         v.view->render({data, camera, v.framing.box(), needs}, timer, stats, v.products);
         timer.collect(stats);
-        for (const FrameStats::Pass& pass : stats.passes) totals.passes.add_time(pass.name, pass.ms);
+        for (const FrameStats::Pass& pass : stats.passes)
+          totals.passes.add_time(pass.name, pass.ms);
         ++totals.frames;
         results[i].picture = &v.products.picture;
         if (needs.first_hit_depth) results[i].first_hit_depth = &v.products.first_hit_depth;
@@ -157,7 +166,8 @@ struct InsituPipeline::Impl {
       try {
         o.output->write(step);
       } catch (const std::exception& e) {
-        if (failure.empty()) failure = "outputs." + std::string(o.kind->config.name) + ": " + e.what();
+        if (failure.empty())
+          failure = "outputs." + std::string(o.kind->config.name) + ": " + e.what();
       }
     }
   }
@@ -171,8 +181,8 @@ struct InsituPipeline::Impl {
   void fill_record(const StepData& data, const StepStats& stats, double render_ms,
                    double outputs_ms, const Stopwatch& process) {
     const WriterStats writer_stats = writer.stats();
-    const StepRecordInput in{data.step, data.time,         &stats,        render_ms, outputs_ms,
-                             process.ms(), &writer_stats, host_memory()};
+    const StepRecordInput in{data.step,  data.time,    &stats,        render_ms,
+                             outputs_ms, process.ms(), &writer_stats, host_memory()};
     fill_step_record(in, record);
   }
 };
@@ -255,7 +265,9 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
   return {StatusCode::pipeline_failed, failure};
 }
 
-void InsituPipeline::finish() { impl_->writer.drain(); }
+void InsituPipeline::finish() {
+  impl_->writer.drain();
+}
 
 PipelineTotals InsituPipeline::totals() const {
   PipelineTotals t = impl_->totals;
@@ -265,12 +277,15 @@ PipelineTotals InsituPipeline::totals() const {
   return t;
 }
 
-const Config& InsituPipeline::config() const { return impl_->config; }
+const Config& InsituPipeline::config() const {
+  return impl_->config;
+}
 
 std::string InsituPipeline::description() const {
   const Impl& m = *impl_;
   std::ostringstream s;
-  s << m.context.description() << ", " << m.views.size() << (m.views.size() == 1 ? " view" : " views");
+  s << m.context.description() << ", " << m.views.size()
+    << (m.views.size() == 1 ? " view" : " views");
   for (std::size_t i = 0; i < m.views.size(); ++i)
     s << (i ? ", " : " (") << m.views[i].name << " " << m.views[i].view->description()
       << (i + 1 == m.views.size() ? ")" : "");
@@ -295,10 +310,12 @@ std::string InsituPipeline::summary() const {
     separator = ", ";
     no_slot += o.tally.no_slot;
   }
-  if (t.writer.failed) s << "; " << t.writer.failed << " files failed (first: " << t.writer.first_error << ")";
+  if (t.writer.failed)
+    s << "; " << t.writer.failed << " files failed (first: " << t.writer.first_error << ")";
   if (t.writer.dropped) s << "; " << t.writer.dropped << " files dropped (writer queue full)";
   if (no_slot) s << "; " << no_slot << " files not written (no free copy buffer)";
-  if (t.writer.waits) s << "; the solver waited " << t.writer.waits << " times for a full writer queue";
+  if (t.writer.waits)
+    s << "; the solver waited " << t.writer.waits << " times for a full writer queue";
   s << "; on the solver's thread " << t.seconds_process << " s (render " << t.seconds_render
     << " s, outputs " << t.seconds_outputs << " s), writer thread " << t.writer_seconds() << " s";
   return s.str();

@@ -38,13 +38,13 @@ struct OutputTotals {
 
 // What the run did so far.
 struct PipelineTotals {
-  std::int64_t render_steps = 0;   // steps where the views were rendered
-  std::int64_t frames = 0;         // views rendered (all render steps)
-  std::int64_t failed_views = 0;   // view renders that threw
-  double seconds_render = 0;   // solver's thread: framing, rendering, read-back
-  double seconds_outputs = 0;  // solver's thread: copies into job slots, submits (and waits)
-  double seconds_process = 0;  // solver's thread: all of process()
-  FrameStats passes;           // milliseconds per pass, summed over all views and steps
+  std::int64_t render_steps = 0;      // steps where the views were rendered
+  std::int64_t frames = 0;            // views rendered (all render steps)
+  std::int64_t failed_views = 0;      // view renders that threw
+  double seconds_render = 0;          // solver's thread: framing, rendering, read-back
+  double seconds_outputs = 0;         // solver's thread: copies into job slots, submits (and waits)
+  double seconds_process = 0;         // solver's thread: all of process()
+  FrameStats passes;                  // milliseconds per pass, summed over all views and steps
   std::vector<OutputTotals> outputs;  // every output kind, in the config's order
   WriterStats writer;
 

@@ -5,7 +5,7 @@
 
 namespace voxspan {
 
-ViewKind surface_view_kind();    // insitu/views/surface_view.cpp
+ViewKind surface_view_kind();  // insitu/views/surface_view.cpp
 
 OutputKind png_output_kind();    // insitu/outputs/png_output.cpp
 OutputKind vdb_output_kind();    // insitu/outputs/vdb_output.cpp

@@ -51,7 +51,6 @@ void fill_step_record(const StepRecordInput& in, StatsRecord& r) {
   r.set_memory("host_peak", double(in.memory.peak_bytes) / kMiB);
   r.set_memory("gpu", double(gpu) / kMiB);
   r.set_memory("gpu_peak", double(gpu_peak) / kMiB);
-
 }
 
 }  // namespace voxspan

@@ -13,7 +13,9 @@ namespace {
 
 constexpr double kMiB = 1024.0 * 1024.0;
 
-glm::dvec3 vec(const Vec3d& v) { return {v[0], v[1], v[2]}; }
+glm::dvec3 vec(const Vec3d& v) {
+  return {v[0], v[1], v[2]};
+}
 
 // Towards the sun: mostly up, a little to two sides, whatever axis is up.
 glm::dvec3 sun_direction(glm::dvec3 up) {
@@ -28,9 +30,9 @@ double lowest(const Bounds& box, glm::dvec3 up) {
   up = glm::normalize(up);
   double low = 1e300;
   for (int k = 0; k < 8; ++k)
-    low = std::min(low, glm::dot(up, glm::dvec3(k & 1 ? box.hi[0] : box.lo[0],
-                                                 k & 2 ? box.hi[1] : box.lo[1],
-                                                 k & 4 ? box.hi[2] : box.lo[2])));
+    low = std::min(
+        low, glm::dot(up, glm::dvec3(k & 1 ? box.hi[0] : box.lo[0], k & 2 ? box.hi[1] : box.lo[1],
+                                     k & 4 ? box.hi[2] : box.lo[2])));
   return low;
 }
 
@@ -68,9 +70,9 @@ void check_surface(yaml::MapReader& r, SurfaceSettings& v) {
   if (r.has("max_layers") && v.max_layers % 32 != 0)
     r.checker().error(r.find("max_layers"), r.path("max_layers"),
                       "must be a multiple of 32 (a column's layers are stored in 32-bit words); "
-                      "got " + std::to_string(v.max_layers));
-  if (r.has("absorption") &&
-      (v.absorption[0] < 0 || v.absorption[1] < 0 || v.absorption[2] < 0))
+                      "got " +
+                          std::to_string(v.max_layers));
+  if (r.has("absorption") && (v.absorption[0] < 0 || v.absorption[1] < 0 || v.absorption[2] < 0))
     r.checker().error(r.find("absorption"), r.path("absorption"), "must not be negative");
 }
 
@@ -90,9 +92,10 @@ const schema::Section<SurfaceSettings>& surface_section() {
         keys.push_back(schema::number_or_auto("gap", &S::gap, schema::at_least(0),
                                               "gap-bridging distance, world units (sec. 3.2, "
                                               "4.4); `auto` = the particle spacing"));
-        keys.push_back(schema::integer("max_spans", &S::max_spans, 0, 1 << 20,
-                                       "stored spans per pixel, 0: no cap; over the cap the last "
-                                       "span is extended and its empty length recorded (sec. 3.1)"));
+        keys.push_back(
+            schema::integer("max_spans", &S::max_spans, 0, 1 << 20,
+                            "stored spans per pixel, 0: no cap; over the cap the last "
+                            "span is extended and its empty length recorded (sec. 3.1)"));
         keys.push_back(schema::number_or_auto("filter_radius", &S::filter_radius,
                                               schema::at_least(0),
                                               "world radius of the depth filter (sec. 3.4, "
@@ -114,8 +117,10 @@ const schema::Section<SurfaceSettings>& surface_section() {
 class SurfaceView final : public View {
  public:
   SurfaceView(const SurfaceSettings& s, const ViewContext& c)
-      : settings_(s), options_(render_options(s, c.renderer, c.particle_spacing)),
-        renderer_(c.shaders), first_hit_(c.shaders),
+      : settings_(s),
+        options_(render_options(s, c.renderer, c.particle_spacing)),
+        renderer_(c.shaders),
+        first_hit_(c.shaders),
         stages_(c.span_stages ? c.span_stages() : std::vector<std::unique_ptr<SpanStage>>{}) {}
 
   void render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
@@ -129,7 +134,8 @@ class SurfaceView final : public View {
     validate(o.shade);
     const GpuSpanImage* spans = &renderer_.voxelizer().run(
         step.camera, step.data.boundary, step.data.cells, o.voxelize, timer, stats);
-    for (const std::unique_ptr<SpanStage>& stage : stages_) spans = &stage->run(*spans, timer, stats);
+    for (const std::unique_ptr<SpanStage>& stage : stages_)
+      spans = &stage->run(*spans, timer, stats);
     const GpuFloatImage& image = renderer_.shade(*spans, o.surfaces, o.shade, timer, stats);
     {
       auto t = timer.gpu("readback");

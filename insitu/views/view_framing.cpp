@@ -11,7 +11,9 @@
 namespace voxspan {
 namespace {
 
-glm::dvec3 vec(const Vec3d& v) { return {v[0], v[1], v[2]}; }
+glm::dvec3 vec(const Vec3d& v) {
+  return {v[0], v[1], v[2]};
+}
 
 constexpr double kPi = 3.14159265358979323846;
 

@@ -10,8 +10,8 @@ namespace voxspan {
 
 // What an output wants the views to produce on a step where it is due.
 struct ViewNeeds {
-  bool picture = false;         // the shaded picture (linear RGBA)
-  bool first_hit_depth = false; // distance from the eye to the first span entry per pixel
+  bool picture = false;          // the shaded picture (linear RGBA)
+  bool first_hit_depth = false;  // distance from the eye to the first span entry per pixel
   bool any() const { return picture || first_hit_depth; }
   ViewNeeds& operator|=(const ViewNeeds& o) {
     picture |= o.picture;

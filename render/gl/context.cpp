@@ -17,17 +17,28 @@ namespace {
 
 const char* egl_error_name(EGLint code) {
   switch (code) {
-    case EGL_SUCCESS: return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    default: return "EGL error";
+    case EGL_SUCCESS:
+      return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED:
+      return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+      return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+      return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+      return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+      return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+      return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+      return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+      return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+      return "EGL_BAD_PARAMETER";
+    default:
+      return "EGL error";
   }
 }
 
@@ -75,8 +86,9 @@ std::vector<Device> enumerate_devices() {
     bool nvidia = has_extension(ext, "EGL_NV_device_cuda");
     bool software = has_extension(ext, "EGL_MESA_device_software");
     std::string description = "EGL device " + std::to_string(i) +
-                              (nvidia ? " (EGL_NV_device_cuda)"
-                                      : software ? " (EGL_MESA_device_software)" : "");
+                              (nvidia     ? " (EGL_NV_device_cuda)"
+                               : software ? " (EGL_MESA_device_software)"
+                                          : "");
     devices.push_back({handles[static_cast<std::size_t>(i)], i, nvidia, std::move(description)});
   }
   std::stable_partition(devices.begin(), devices.end(), [](const Device& d) { return d.nvidia; });
@@ -130,9 +142,9 @@ DisplayAttempt open_surfaceless() {
     return {EGL_NO_DISPLAY, "Mesa surfaceless",
             "Mesa surfaceless platform: EGL_MESA_platform_surfaceless is missing "
             "(install libegl-mesa0 and libgl1-mesa-dri)"};
-  return initialise(eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
-                                             nullptr),
-                    "Mesa surfaceless");
+  return initialise(
+      eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
+      "Mesa surfaceless");
 }
 
 Platform requested_platform(Platform configured) {
@@ -173,10 +185,14 @@ EGLContext create_core_context(EGLDisplay display, bool debug, std::string& fail
     }
   }
   for (EGLint minor : {6, 5}) {
-    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
-                              EGL_CONTEXT_MINOR_VERSION, minor,
-                              EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                              EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                              4,
+                              EGL_CONTEXT_MINOR_VERSION,
+                              minor,
+                              EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                              EGL_CONTEXT_OPENGL_DEBUG,
+                              debug ? EGL_TRUE : EGL_FALSE,
                               EGL_NONE};
     EGLContext ctx = eglCreateContext(display, config, EGL_NO_CONTEXT, attribs);
     if (ctx != EGL_NO_CONTEXT) return ctx;
@@ -187,7 +203,9 @@ EGLContext create_core_context(EGLDisplay display, bool debug, std::string& fail
 
 }  // namespace
 
-const char* platform_name(Platform platform) { return name_of(kPlatformNames, platform).data(); }
+const char* platform_name(Platform platform) {
+  return name_of(kPlatformNames, platform).data();
+}
 
 bool parse_platform(std::string_view text, Platform& platform) {
   const std::optional<Platform> p = value_of(kPlatformNames, text);
@@ -201,9 +219,15 @@ Context::Context(const ContextOptions& options) {
 
   DisplayAttempt attempt;
   switch (requested) {
-    case Platform::nvidia: attempt = open_device(true); break;
-    case Platform::device: attempt = open_device(false); break;
-    case Platform::surfaceless: attempt = open_surfaceless(); break;
+    case Platform::nvidia:
+      attempt = open_device(true);
+      break;
+    case Platform::device:
+      attempt = open_device(false);
+      break;
+    case Platform::surfaceless:
+      attempt = open_surfaceless();
+      break;
     case Platform::automatic: {
       attempt = open_device(true);
       if (attempt.display == EGL_NO_DISPLAY) {
@@ -216,10 +240,10 @@ Context::Context(const ContextOptions& options) {
   if (attempt.display == EGL_NO_DISPLAY)
     throw make_error("cannot create an OpenGL context (platform ", platform_name(requested),
                      "): ", attempt.failure);
-  platform_ = requested == Platform::automatic
-                  ? (attempt.description == "Mesa surfaceless" ? Platform::surfaceless
-                                                               : Platform::nvidia)
-                  : requested;
+  platform_ =
+      requested == Platform::automatic
+          ? (attempt.description == "Mesa surfaceless" ? Platform::surfaceless : Platform::nvidia)
+          : requested;
   description_ = attempt.description;
 
   // Without this, EGL may hand out an OpenGL ES context (the default API).

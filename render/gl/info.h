@@ -13,8 +13,8 @@ namespace voxspan::gl {
 class Context;
 
 struct Info {
-  std::string platform;     // "surfaceless", "nvidia", ...
-  std::string device;       // Context::description()
+  std::string platform;  // "surfaceless", "nvidia", ...
+  std::string device;    // Context::description()
   std::string vendor, renderer, version, glsl_version;
   int major = 0, minor = 0;
   std::int64_t max_ssbo_block_bytes = 0;

@@ -17,12 +17,18 @@ GLuint create_buffer() {
 
 const char* gl_error_name(GLenum e) {
   switch (e) {
-    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    default: return "GL error";
+    case GL_INVALID_ENUM:
+      return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE:
+      return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION:
+      return "GL_INVALID_OPERATION";
+    case GL_OUT_OF_MEMORY:
+      return "GL_OUT_OF_MEMORY";
+    case GL_INVALID_FRAMEBUFFER_OPERATION:
+      return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    default:
+      return "GL error";
   }
 }
 
@@ -43,19 +49,34 @@ std::atomic<std::int64_t> g_memory_peak{0};
 // Bytes per texel of the formats we allocate; 4 for anything else (an estimate, for stats).
 std::int64_t texel_bytes(GLenum internal_format) {
   switch (internal_format) {
-    case GL_R8UI: case GL_R8: return 1;
-    case GL_R16UI: case GL_R16F: case GL_RG8: return 2;
-    case GL_RGBA16F: case GL_RG32F: case GL_RG32UI: return 8;
-    case GL_RGBA32F: case GL_RGBA32UI: return 16;
-    default: return 4;
+    case GL_R8UI:
+    case GL_R8:
+      return 1;
+    case GL_R16UI:
+    case GL_R16F:
+    case GL_RG8:
+      return 2;
+    case GL_RGBA16F:
+    case GL_RG32F:
+    case GL_RG32UI:
+      return 8;
+    case GL_RGBA32F:
+    case GL_RGBA32UI:
+      return 16;
+    default:
+      return 4;
   }
 }
 
 }  // namespace
 
-MemoryUsage memory_usage() { return {g_memory_current.load(), g_memory_peak.load()}; }
+MemoryUsage memory_usage() {
+  return {g_memory_current.load(), g_memory_peak.load()};
+}
 
-void reset_memory_peak() { g_memory_peak.store(g_memory_current.load()); }
+void reset_memory_peak() {
+  g_memory_peak.store(g_memory_current.load());
+}
 
 MemoryTicket::MemoryTicket(std::int64_t bytes) : bytes_(bytes) {
   const std::int64_t now = g_memory_current.fetch_add(bytes) + bytes;
@@ -64,7 +85,9 @@ MemoryTicket::MemoryTicket(std::int64_t bytes) : bytes_(bytes) {
   }
 }
 
-MemoryTicket::~MemoryTicket() { g_memory_current.fetch_sub(bytes_); }
+MemoryTicket::~MemoryTicket() {
+  g_memory_current.fetch_sub(bytes_);
+}
 
 MemoryTicket& MemoryTicket::operator=(MemoryTicket&& o) noexcept {
   if (this != &o) {
@@ -123,8 +146,7 @@ void Buffer::download(void* out, std::size_t bytes, std::size_t offset) const {
   if (offset + bytes > size_)
     throw make_error("Buffer::download: ", bytes, " bytes at ", offset, " exceed the buffer's ",
                      size_);
-  glGetNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
-                          out);
+  glGetNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), out);
 }
 
 void Buffer::clear(std::size_t offset, std::size_t bytes) {
@@ -146,7 +168,9 @@ void Buffer::copy_from(const Buffer& from, std::size_t bytes, std::size_t from_o
                            static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes));
 }
 
-void Buffer::bind(GLenum target, GLuint index) const { glBindBufferBase(target, index, id()); }
+void Buffer::bind(GLenum target, GLuint index) const {
+  glBindBufferBase(target, index, id());
+}
 
 void Buffer::bind_range(GLenum target, GLuint index, std::size_t offset, std::size_t bytes) const {
   glBindBufferRange(target, index, id(), static_cast<GLintptr>(offset),

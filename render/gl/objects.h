@@ -49,10 +49,18 @@ class Handle {
   GLuint id_ = 0;
 };
 
-struct DeleteBuffer { void operator()(GLuint id) const { glDeleteBuffers(1, &id); } };
-struct DeleteProgram { void operator()(GLuint id) const { glDeleteProgram(id); } };
-struct DeleteTexture { void operator()(GLuint id) const { glDeleteTextures(1, &id); } };
-struct DeleteQuery { void operator()(GLuint id) const { glDeleteQueries(1, &id); } };
+struct DeleteBuffer {
+  void operator()(GLuint id) const { glDeleteBuffers(1, &id); }
+};
+struct DeleteProgram {
+  void operator()(GLuint id) const { glDeleteProgram(id); }
+};
+struct DeleteTexture {
+  void operator()(GLuint id) const { glDeleteTextures(1, &id); }
+};
+struct DeleteQuery {
+  void operator()(GLuint id) const { glDeleteQueries(1, &id); }
+};
 
 // Bytes held by live Buffers and Texture3Ds (all contexts of the process), and the most held at
 // once since the last reset_memory_peak().

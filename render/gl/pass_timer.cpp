@@ -53,8 +53,8 @@ void PassTimer::finish(std::size_t record, bool gpu) {
     }
     glFinish();
   }
-  r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r.start)
-             .count();
+  r.ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r.start).count();
 }
 
 void PassTimer::collect(FrameStats& stats) {

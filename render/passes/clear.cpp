@@ -12,8 +12,8 @@ enum Binding : GLuint { kWords };
 }  // namespace
 
 ClearPass::ClearPass(const gl::ShaderLibrary& shaders)
-    : program_(shaders.compute("render/passes/clear.comp",
-                               gl::defines({{"WORDS_BINDING", kWords}}))) {
+    : program_(
+          shaders.compute("render/passes/clear.comp", gl::defines({{"WORDS_BINDING", kWords}}))) {
   GLint alignment = 0;
   glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
   offset_alignment_ = static_cast<std::size_t>(std::max(alignment, 1));

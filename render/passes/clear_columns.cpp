@@ -12,10 +12,10 @@ enum Binding : GLuint { kBits, kDepthBounds };
 }  // namespace
 
 ClearColumnsPass::ClearColumnsPass(const gl::ShaderLibrary& shaders)
-    : program_(shaders.compute("render/passes/clear_columns.comp",
-                               binding::cell_state_defines() +
-                                   gl::defines({{"BITS_BINDING", kBits},
-                                                {"DEPTH_BOUNDS_BINDING", kDepthBounds}}))) {}
+    : program_(shaders.compute(
+          "render/passes/clear_columns.comp",
+          binding::cell_state_defines() +
+              gl::defines({{"BITS_BINDING", kBits}, {"DEPTH_BOUNDS_BINDING", kDepthBounds}}))) {}
 
 void ClearColumnsPass::run(const gl::Buffer& bits, const gl::Buffer& depth_bounds,
                            const PerspectiveGrid& grid, const TileLayout& layout,

@@ -43,7 +43,9 @@ CompressPass::CompressPass(const gl::ShaderLibrary& shaders)
       rescan_(shaders.compute(kShader, binding_defines() + "#define COMPRESS_RESCAN 1")),
       stats_(16) {}
 
-void CompressPass::begin_frame() { stats_.clear(); }
+void CompressPass::begin_frame() {
+  stats_.clear();
+}
 
 CompressTallies CompressPass::tallies() const {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -65,11 +67,10 @@ void CompressPass::set_uniforms(const gl::Program& p, const TileLayout& layout,
 }
 
 std::uint32_t CompressPass::run(const gl::Buffer& bits, const gl::Buffer& depth_bounds,
-                                const TileLayout& layout,
-                                const TileRect& tile, const CellStateTexture& cells,
-                                const CompressSettings& settings, GpuSpanImage& image,
-                                std::uint32_t span_base, PrefixSumPass& prefix_sum,
-                                std::size_t max_binding_bytes) {
+                                const TileLayout& layout, const TileRect& tile,
+                                const CellStateTexture& cells, const CompressSettings& settings,
+                                GpuSpanImage& image, std::uint32_t span_base,
+                                PrefixSumPass& prefix_sum, std::size_t max_binding_bytes) {
   const auto pixels = static_cast<std::size_t>(tile.pixels());
   // Sized for the largest tile, so the frame's last, smaller tile reallocates nothing.
   const auto most = static_cast<std::size_t>(layout.tile_width) * layout.tile_height;

@@ -1,12 +1,12 @@
 // render/passes/compress.h - compresses one tile's voxel columns into the span image
 // (render/passes/compress.comp; [ZD15] sec. 3.1, 3.2, 4.3, 4.4): count pass, prefix sum of
 // the per-pixel counts, one read-back of the tile's span total to size the span buffer, copy
-// pass, and a re-scan of the few columns with more spans than the scratch holds. One thread per column; gaps shorter than g close; inner-empty cells are skipped and
-// inner-full cells count as inside when cell states are on.
-// Reads: the tile's bits, the cell states. Writes: the tile's pixel records and spans in the
-// GpuSpanImage; per-frame tallies of capped pixels.
-// Cost: one coalesced read of the tile's bits (a second only for columns storing more spans
-// than the scratch holds), a prefix sum over the tile's pixels, a 4-byte read-back.
+// pass, and a re-scan of the few columns with more spans than the scratch holds. One thread per
+// column; gaps shorter than g close; inner-empty cells are skipped and inner-full cells count as
+// inside when cell states are on. Reads: the tile's bits, the cell states. Writes: the tile's pixel
+// records and spans in the GpuSpanImage; per-frame tallies of capped pixels. Cost: one coalesced
+// read of the tile's bits (a second only for columns storing more spans than the scratch holds), a
+// prefix sum over the tile's pixels, a 4-byte read-back.
 #pragma once
 
 #include <cstdint>
@@ -21,9 +21,9 @@
 namespace voxspan {
 
 struct CompressSettings {
-  double gap_bridging = 0;    // g, world units along the ray
-  std::uint32_t max_spans = 0; // cap on stored spans per pixel; 0 = none
-  int scratch_spans = 8;      // spans per pixel kept from the count pass
+  double gap_bridging = 0;      // g, world units along the ray
+  std::uint32_t max_spans = 0;  // cap on stored spans per pixel; 0 = none
+  int scratch_spans = 8;        // spans per pixel kept from the count pass
 };
 
 struct CompressTallies {
@@ -40,10 +40,9 @@ class CompressPass {
   // Appends the tile's spans to `image` from span number `span_base`; returns how many.
   // `depth_bounds`: BinPass::depth_bounds() of this frame.
   std::uint32_t run(const gl::Buffer& bits, const gl::Buffer& depth_bounds,
-                    const TileLayout& layout, const TileRect& tile,
-                    const CellStateTexture& cells, const CompressSettings& settings,
-                    GpuSpanImage& image, std::uint32_t span_base, PrefixSumPass& prefix_sum,
-                    std::size_t max_binding_bytes);
+                    const TileLayout& layout, const TileRect& tile, const CellStateTexture& cells,
+                    const CompressSettings& settings, GpuSpanImage& image, std::uint32_t span_base,
+                    PrefixSumPass& prefix_sum, std::size_t max_binding_bytes);
   CompressTallies tallies() const;
 
  private:

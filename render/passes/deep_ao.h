@@ -18,7 +18,8 @@ namespace voxspan {
 class DeepAoPass {
  public:
   explicit DeepAoPass(const gl::ShaderLibrary& shaders);
-  void run(const GpuSpanImage& image, const GpuSurfaces& surfaces, const model::ShadeUniforms& uniforms);
+  void run(const GpuSpanImage& image, const GpuSurfaces& surfaces,
+           const model::ShadeUniforms& uniforms);
 
  private:
   gl::Program program_;

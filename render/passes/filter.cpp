@@ -31,14 +31,16 @@ double FilterPass::iterations_at(const PerspectiveGrid& grid, double radius, dou
   return std::ceil(iteration_scale(grid, radius) / (depth * depth));
 }
 
-int FilterPass::run(const GpuSpanImage& image, GpuSurfaces& surfaces, const SurfaceOptions& options) {
+int FilterPass::run(const GpuSpanImage& image, GpuSurfaces& surfaces,
+                    const SurfaceOptions& options) {
   validate(options);
   surfaces.set_filtered(-1);
   const std::size_t spans = image.span_count();
   if (options.filter_radius <= 0 || options.max_iterations == 0 || spans == 0) return 0;
   // The nearest surface needs the most iterations.
-  const int iterations = static_cast<int>(std::min<double>(
-      options.max_iterations, iterations_at(image.grid(), options.filter_radius, image.grid().near())));
+  const int iterations = static_cast<int>(
+      std::min<double>(options.max_iterations,
+                       iterations_at(image.grid(), options.filter_radius, image.grid().near())));
   if (iterations <= 0) return 0;
   for (int i = 0; i < 2; ++i) surfaces.filter_buffer(i).reserve(spans * 8);
   // Iteration 0 reads the span depths; then the buffers alternate.

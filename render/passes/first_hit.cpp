@@ -10,9 +10,9 @@ enum Binding : GLuint { kFirstHit = binding::kSpanImageEnd };
 }  // namespace
 
 FirstHitPass::FirstHitPass(const gl::ShaderLibrary& shaders)
-    : program_(shaders.compute("render/passes/first_hit.comp",
-                               binding::span_image_defines() +
-                                   gl::defines({{"FIRST_HIT_BINDING", kFirstHit}}))) {}
+    : program_(shaders.compute(
+          "render/passes/first_hit.comp",
+          binding::span_image_defines() + gl::defines({{"FIRST_HIT_BINDING", kFirstHit}}))) {}
 
 void FirstHitPass::run(const GpuSpanImage& image, GpuFloatImage& out) {
   out.resize(image.width(), image.height());

@@ -9,7 +9,7 @@ namespace voxspan {
 namespace {
 
 constexpr const char* kShader = "render/passes/prefix_sum.comp";
-constexpr unsigned kPerThread = 16;   // values each scan thread sums
+constexpr unsigned kPerThread = 16;    // values each scan thread sums
 constexpr std::size_t kMaxLevels = 3;  // 4096^3 values: more than a uint can count
 constexpr GLbitfield kBarriers = GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
 

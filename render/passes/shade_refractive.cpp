@@ -12,7 +12,7 @@ namespace {
 
 constexpr const char* kShader = "render/passes/shade_refractive.comp";
 constexpr std::size_t kRayRecordBytes = 96;  // RayRecord in shade_refractive.comp
-constexpr int kBlock = 8;                       // VX_BLOCK in render/model/column_march.glsl
+constexpr int kBlock = 8;                    // VX_BLOCK in render/model/column_march.glsl
 
 // shade_refractive.comp's own buffers, after the shaded image.
 enum Binding : GLuint { kRays = binding::kShadeEnd, kMarchTally, kBlockBounds };
@@ -38,7 +38,8 @@ RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfac
   out.resize(image.width(), image.height());
   rays_.reserve(std::max<std::size_t>(16, pixels * kRayRecordBytes));
   const int blocks_x = (image.width() + kBlock - 1) / kBlock;
-  const std::size_t blocks = std::size_t(blocks_x) * std::size_t((image.height() + kBlock - 1) / kBlock);
+  const std::size_t blocks =
+      std::size_t(blocks_x) * std::size_t((image.height() + kBlock - 1) / kBlock);
   blocks_.reserve(blocks * 8);
   blocks_.clear(0, blocks * 8);
   const auto bind = [&] {
@@ -59,7 +60,8 @@ RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfac
   dispatch_threads(begin_, pixels);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   const std::uint32_t most_spans = active_.read_array<std::uint32_t, 4>()[3];
-  const int max_dispatches = refract_dispatch_limit(image.width(), image.height(), most_spans, options);
+  const int max_dispatches =
+      refract_dispatch_limit(image.width(), image.height(), most_spans, options);
   RefractTally tally;
   std::uint32_t active = 1;
   while (active != 0 && tally.dispatches < max_dispatches) {

@@ -22,10 +22,10 @@
 namespace voxspan {
 
 struct RefractTally {
-  int dispatches = 0;           // march dispatches run
-  std::int64_t unfinished = 0;  // rays still marching after the last one (sent to the sky)
-  std::int64_t events = 0;      // column events, all rays (march_step() calls)
-  std::int64_t most_events = 0; // by one ray in one dispatch
+  int dispatches = 0;            // march dispatches run
+  std::int64_t unfinished = 0;   // rays still marching after the last one (sent to the sky)
+  std::int64_t events = 0;       // column events, all rays (march_step() calls)
+  std::int64_t most_events = 0;  // by one ray in one dispatch
 };
 
 class ShadeRefractivePass {

@@ -87,7 +87,8 @@ void SplatPass::run_large(const gl::Buffer& bits, const SplatInput& input,
   set_uniforms(large_items_, grid, layout, tile, settings);
   set_uniforms(large_splat_, grid, layout, tile, settings);
   for (std::size_t first = 0; first < input.large_count; first += batch) {
-    const auto large = static_cast<std::uint32_t>(std::min<std::size_t>(batch, input.large_count - first));
+    const auto large =
+        static_cast<std::uint32_t>(std::min<std::size_t>(batch, input.large_count - first));
     for (const gl::Program* p : {&large_items_, &large_splat_}) {
       p->set("u_large_first", static_cast<unsigned>(first));
       p->set("u_large", large);

@@ -24,7 +24,7 @@ enum class SplatThreads {
   // per_particle on llvmpipe (4x faster there: its work-group barriers are slow), per_pixel on
   // GPUs (GPU-NOTES: 9.3 against 13.5 ms on an H100 for sorted particles).
   automatic,
-  per_pixel,     // a work group shares 64 spheres' pixels out evenly: one thread per (sphere, pixel)
+  per_pixel,  // a work group shares 64 spheres' pixels out evenly: one thread per (sphere, pixel)
   per_particle,  // one thread per sphere loops over its pixels
 };
 
@@ -38,8 +38,8 @@ struct SplatInput {
 };
 
 struct SplatSettings {
-  double gap_bridging = 0;  // g, world units
-  bool surface_only = true; // with g > 0: entry and exit voxels only for spheres with 2 r < g
+  double gap_bridging = 0;   // g, world units
+  bool surface_only = true;  // with g > 0: entry and exit voxels only for spheres with 2 r < g
   SplatThreads threads = SplatThreads::automatic;
 };
 

@@ -48,7 +48,8 @@ ScreenBins bin_spheres(const PerspectiveGrid& grid, const std::vector<Sphere>& s
   bins.items.resize(bins.start.back());
   std::vector<std::uint32_t> cursor(bins.start.begin(), bins.start.end() - 1);
   for (std::size_t i = 0; i < spheres.size(); ++i)
-    each_bin(rects[i], [&](std::size_t b) { bins.items[cursor[b]++] = static_cast<std::uint32_t>(i); });
+    each_bin(rects[i],
+             [&](std::size_t b) { bins.items[cursor[b]++] = static_cast<std::uint32_t>(i); });
   return bins;
 }
 
@@ -138,8 +139,8 @@ SpanImage exact_spans(const PerspectiveGrid& grid, std::span<const ParticleSpher
         const glm::dvec3 d = grid.view().view_ray(x, y);
         const double scale = glm::length(d);
         intervals.clear();
-        const std::size_t bin = static_cast<std::size_t>(x / kBin) +
-                                static_cast<std::size_t>(y / kBin) * bins.nx;
+        const std::size_t bin =
+            static_cast<std::size_t>(x / kBin) + static_cast<std::size_t>(y / kBin) * bins.nx;
         for (std::uint32_t k = bins.start[bin]; k < bins.start[bin + 1]; ++k) {
           Interval iv;
           if (!chord(d, spheres[bins.items[k]], iv)) continue;
@@ -164,7 +165,8 @@ SpanImage exact_spans(const PerspectiveGrid& grid, std::span<const ParticleSpher
           auto& row_n = row_normals[static_cast<std::size_t>(y)];
           const glm::vec3 exit_normal = sphere_normal(grid, spheres, iv.exit_sphere, d, iv.exit);
           if (row.size() > stored)
-            row_n.push_back({sphere_normal(grid, spheres, iv.entry_sphere, d, iv.entry), exit_normal});
+            row_n.push_back(
+                {sphere_normal(grid, spheres, iv.entry_sphere, d, iv.entry), exit_normal});
           else
             row_n.back().exit = exit_normal;  // past the cap: the stored span was extended
         });
@@ -177,7 +179,8 @@ SpanImage exact_spans(const PerspectiveGrid& grid, std::span<const ParticleSpher
   for (int y = 0; y < height; ++y) {
     const auto& row = row_spans[static_cast<std::size_t>(y)];
     for (int x = 0; x < width; ++x)
-      image.pixels[static_cast<std::size_t>(x) + static_cast<std::size_t>(y) * width].offset += offset;
+      image.pixels[static_cast<std::size_t>(x) + static_cast<std::size_t>(y) * width].offset +=
+          offset;
     image.spans.insert(image.spans.end(), row.begin(), row.end());
     if (normals != nullptr) {
       const auto& row_n = row_normals[static_cast<std::size_t>(y)];

@@ -24,8 +24,8 @@
 namespace voxspan {
 
 struct ReferenceOptions {
-  double gap_bridging = 0;     // g: gaps shorter than this along the ray (world units) close
-  std::uint32_t max_spans = 0; // cap on stored spans per pixel; 0 = no cap
+  double gap_bridging = 0;      // g: gaps shorter than this along the ray (world units) close
+  std::uint32_t max_spans = 0;  // cap on stored spans per pixel; 0 = no cap
 };
 
 // Spans in the frame of `grid` (usually the GPU image's grid, so both share near and layers).

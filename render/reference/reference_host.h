@@ -29,7 +29,9 @@ class ReferenceHost : public GridUniforms, public ShadeUniforms {
   uint sd_count(ivec2 p) const { return record(p).count; }
   uint sd_offset(ivec2 p) const { return record(p).offset; }
   float sd_inside(ivec2 p) const { return record(p).inside; }
-  vec2 sd_raw_depths(uint span) const { return vec2(spans_.spans[span].entry, spans_.spans[span].exit); }
+  vec2 sd_raw_depths(uint span) const {
+    return vec2(spans_.spans[span].entry, spans_.spans[span].exit);
+  }
   vec2 sd_depths(uint span) const { return sd_raw_depths(span); }
   uvec2 sd_links(uint span) const { return links_[span]; }
   uvec2 sd_normals(uint span) const { return normals_[span]; }
@@ -60,7 +62,8 @@ class ReferenceHost : public GridUniforms, public ShadeUniforms {
       for (int x = 0; x < u_image.x; ++x) {
         const uint n = sd_count(ivec2(x, y));
         if (n == 0) continue;
-        vec2& b = block_bounds_[std::size_t(x / VX_BLOCK) + std::size_t(y / VX_BLOCK) * std::size_t(blocks_x_)];
+        vec2& b = block_bounds_[std::size_t(x / VX_BLOCK) +
+                                std::size_t(y / VX_BLOCK) * std::size_t(blocks_x_)];
         b.x = min(b.x, sd_depths(sd_offset(ivec2(x, y))).x);
         b.y = max(b.y, sd_depths(sd_offset(ivec2(x, y)) + n - 1).y);
       }
@@ -78,14 +81,17 @@ class ReferenceHost : public GridUniforms, public ShadeUniforms {
 
   template <class F>
   void each_pixel(F&& f) {
-    tbb::parallel_for(tbb::blocked_range<int>(0, u_image.y), [&](const tbb::blocked_range<int>& rows) {
-      for (int y = rows.begin(); y != rows.end(); ++y)
-        for (int x = 0; x < u_image.x; ++x) f(ivec2(x, y));
-    });
+    tbb::parallel_for(tbb::blocked_range<int>(0, u_image.y),
+                      [&](const tbb::blocked_range<int>& rows) {
+                        for (int y = rows.begin(); y != rows.end(); ++y)
+                          for (int x = 0; x < u_image.x; ++x) f(ivec2(x, y));
+                      });
   }
 
  private:
-  const PixelSpans& record(ivec2 p) const { return spans_.pixels[pixel_index(p)]; }
+  const PixelSpans& record(ivec2 p) const {
+    return spans_.pixels[pixel_index(p)];
+  }
   const SpanImage& spans_;
   std::vector<vec2> block_bounds_;
   int blocks_x_ = 1;

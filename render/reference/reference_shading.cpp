@@ -8,10 +8,12 @@ namespace voxspan {
 
 std::vector<glm::uvec2> reference_links(const SpanImage& spans) {
   model::ReferenceHost host(spans, model::ShadeUniforms{});
-  return host.per_span([&](model::ivec2 p, model::uint s) { return host.connect_span(p, s - host.sd_offset(p)); });
+  return host.per_span(
+      [&](model::ivec2 p, model::uint s) { return host.connect_span(p, s - host.sd_offset(p)); });
 }
 
-std::vector<glm::uvec2> reference_normals(const SpanImage& spans, const std::vector<glm::uvec2>& links) {
+std::vector<glm::uvec2> reference_normals(const SpanImage& spans,
+                                          const std::vector<glm::uvec2>& links) {
   model::ReferenceHost host(spans, model::ShadeUniforms{});
   host.links_ = links;
   return host.per_span([&](model::ivec2 p, model::uint s) { return host.span_normal_words(p, s); });
@@ -30,7 +32,8 @@ std::vector<glm::uvec2> encode_exact_normals(const std::vector<SpanNormals>& nor
 }
 
 std::vector<float> reference_ao(const SpanImage& spans, const std::vector<glm::uvec2>& links,
-                                const std::vector<glm::uvec2>& normals, const ShadeOptions& options) {
+                                const std::vector<glm::uvec2>& normals,
+                                const ShadeOptions& options) {
   model::ReferenceHost host(spans, model::shade_uniforms(options));
   host.links_ = links;
   host.normals_ = normals;
@@ -53,8 +56,12 @@ FloatImage reference_shading(const SpanImage& spans, const ShadeOptions& options
   host.each_pixel([&](model::ivec2 p) {
     model::vec3 c(0.0f);
     switch (options.mode) {
-      case ShadeMode::opaque: c = host.shade_opaque(p); break;
-      case ShadeMode::translucent: c = host.shade_translucent(p); break;
+      case ShadeMode::opaque:
+        c = host.shade_opaque(p);
+        break;
+      case ShadeMode::translucent:
+        c = host.shade_translucent(p);
+        break;
       case ShadeMode::refractive: {
         // The GPU's dispatches, one after the other: the same budget per resumption.
         model::ReferenceHost::RayState s = host.ray_start(p);
@@ -70,4 +77,3 @@ FloatImage reference_shading(const SpanImage& spans, const ShadeOptions& options
 }
 
 }  // namespace voxspan
-

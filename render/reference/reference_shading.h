@@ -25,7 +25,8 @@ std::vector<glm::uvec2> reference_links(const SpanImage& spans);
 
 // Sobel normals along those links on the span depths: per span the (entry, exit) octahedral
 // words of the outward world normals, as NormalsPass writes them.
-std::vector<glm::uvec2> reference_normals(const SpanImage& spans, const std::vector<glm::uvec2>& links);
+std::vector<glm::uvec2> reference_normals(const SpanImage& spans,
+                                          const std::vector<glm::uvec2>& links);
 
 // The same words from exact normals (world space; a zero normal, e.g. a boundary from a cell or
 // the near plane, falls back to the Sobel word in `sobel`).
@@ -39,6 +40,7 @@ FloatImage reference_shading(const SpanImage& spans, const ShadeOptions& options
 
 // Deep AO of every pixel (1 where there is no fluid), as DeepAoPass writes it.
 std::vector<float> reference_ao(const SpanImage& spans, const std::vector<glm::uvec2>& links,
-                                const std::vector<glm::uvec2>& normals, const ShadeOptions& options);
+                                const std::vector<glm::uvec2>& normals,
+                                const ShadeOptions& options);
 
 }  // namespace voxspan

@@ -68,11 +68,11 @@ struct StepStats {
 struct StepData {
   std::int64_t step = 0;
   double time = 0;
-  std::span<const ParticleSphere> boundary;       // the boundary particles, packed float4
-  CellStatesView cells;                           // one state byte per cell
-  std::span<const Attribute> attributes;          // in boundary order
-  const ParticleView* particles = nullptr;        // all particles, for outputs that want them
-  const GridView* grid = nullptr;                 // the grid as the solver passed it
+  std::span<const ParticleSphere> boundary;  // the boundary particles, packed float4
+  CellStatesView cells;                      // one state byte per cell
+  std::span<const Attribute> attributes;     // in boundary order
+  const ParticleView* particles = nullptr;   // all particles, for outputs that want them
+  const GridView* grid = nullptr;            // the grid as the solver passed it
 };
 
 // What the runtime plugs in behind the adapter: rendering and outputs.

@@ -24,8 +24,12 @@ constexpr std::uint8_t kInner = 4;
 constexpr std::uint8_t kInnerEmpty = kInner | kEmpty;
 constexpr std::uint8_t kInnerFull = kInner | kFull;
 
-constexpr std::uint8_t occupancy(std::uint8_t state) { return state & kOccupancyMask; }
-constexpr bool is_inner(std::uint8_t state) { return (state & kInner) != 0; }
+constexpr std::uint8_t occupancy(std::uint8_t state) {
+  return state & kOccupancyMask;
+}
+constexpr bool is_inner(std::uint8_t state) {
+  return (state & kInner) != 0;
+}
 }  // namespace cell
 
 // A view of the cell states of an axis-aligned grid: cell (i, j, k) covers

@@ -71,9 +71,9 @@ struct ClassifyCounts {
 
 struct Classification {
   GridGeometry geometry;
-  std::vector<std::uint8_t> states;       // one byte per cell, voxspan::cell
-  std::vector<ParticleSphere> boundary;   // in cell order, then grid order within a cell
-  std::vector<Attribute> attributes;  // the requested ones, in boundary order
+  std::vector<std::uint8_t> states;      // one byte per cell, voxspan::cell
+  std::vector<ParticleSphere> boundary;  // in cell order, then grid order within a cell
+  std::vector<Attribute> attributes;     // the requested ones, in boundary order
   ClassifyCounts counts;
   double seconds_classify = 0;  // counting (and sorting) and the cell states
   double seconds_compact = 0;   // the boundary spheres and attributes

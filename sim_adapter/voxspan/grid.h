@@ -30,11 +30,10 @@ struct GridGeometry {
     return std::size_t(dims[0]) * std::size_t(dims[1]) * std::size_t(dims[2]);
   }
   std::size_t linear(int i, int j, int k) const {
-    return std::size_t(i) + std::size_t(dims[0]) * (std::size_t(j) + std::size_t(dims[1]) * std::size_t(k));
+    return std::size_t(i) +
+           std::size_t(dims[0]) * (std::size_t(j) + std::size_t(dims[1]) * std::size_t(k));
   }
-  bool valid() const {
-    return cell_size > 0 && dims[0] > 0 && dims[1] > 0 && dims[2] > 0;
-  }
+  bool valid() const { return cell_size > 0 && dims[0] > 0 && dims[1] > 0 && dims[2] > 0; }
 };
 
 enum class IndexType : std::uint8_t { int32, uint32, int64, uint64 };
@@ -48,9 +47,12 @@ struct IndexArray {
   // The raw value (before the index base is applied).
   std::int64_t operator[](std::size_t i) const {
     switch (type) {
-      case IndexType::int32: return static_cast<const std::int32_t*>(data)[i];
-      case IndexType::uint32: return static_cast<const std::uint32_t*>(data)[i];
-      case IndexType::int64: return static_cast<const std::int64_t*>(data)[i];
+      case IndexType::int32:
+        return static_cast<const std::int32_t*>(data)[i];
+      case IndexType::uint32:
+        return static_cast<const std::uint32_t*>(data)[i];
+      case IndexType::int64:
+        return static_cast<const std::int64_t*>(data)[i];
       case IndexType::uint64:
         return static_cast<std::int64_t>(static_cast<const std::uint64_t*>(data)[i]);
     }

@@ -33,9 +33,21 @@ void log(LogLevel level, const Parts&... parts) {
   (s << ... << parts);
   log_message(level, s.str());
 }
-template <class... P> void log_error(const P&... p) { log(LogLevel::error, p...); }
-template <class... P> void log_warning(const P&... p) { log(LogLevel::warning, p...); }
-template <class... P> void log_info(const P&... p) { log(LogLevel::info, p...); }
-template <class... P> void log_debug(const P&... p) { log(LogLevel::debug, p...); }
+template <class... P>
+void log_error(const P&... p) {
+  log(LogLevel::error, p...);
+}
+template <class... P>
+void log_warning(const P&... p) {
+  log(LogLevel::warning, p...);
+}
+template <class... P>
+void log_info(const P&... p) {
+  log(LogLevel::info, p...);
+}
+template <class... P>
+void log_debug(const P&... p) {
+  log(LogLevel::debug, p...);
+}
 
 }  // namespace voxspan

@@ -69,8 +69,7 @@ class ParticleView {
   static ParticleView soa(const float* x, const float* y, const float* z, std::size_t count) {
     return from_axes(StridedScalars::of(x), StridedScalars::of(y), StridedScalars::of(z), count);
   }
-  static ParticleView soa(const double* x, const double* y, const double* z,
-                          std::size_t count) {
+  static ParticleView soa(const double* x, const double* y, const double* z, std::size_t count) {
     return from_axes(StridedScalars::of(x), StridedScalars::of(y), StridedScalars::of(z), count);
   }
   // Any strided layout, one array per axis (all three of one scalar type).
@@ -118,9 +117,10 @@ class ParticleView {
   template <class T>
   ParticleView& with_vector(std::string_view name, const T* xyz,
                             std::size_t stride_bytes = 3 * sizeof(T)) {
-    return add({name, 3, {StridedScalars::of(xyz, stride_bytes),
-                          StridedScalars::of(xyz + 1, stride_bytes),
-                          StridedScalars::of(xyz + 2, stride_bytes)}});
+    return add({name,
+                3,
+                {StridedScalars::of(xyz, stride_bytes), StridedScalars::of(xyz + 1, stride_bytes),
+                 StridedScalars::of(xyz + 2, stride_bytes)}});
   }
   // A 3-vector stored SoA.
   template <class T>

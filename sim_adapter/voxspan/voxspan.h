@@ -69,10 +69,10 @@ typedef struct voxspan_adapter_options {
 } voxspan_adapter_options;
 
 typedef struct voxspan_step_stats {
-  int64_t step;          /* the latest render step, -1 before the first */
+  int64_t step; /* the latest render step, -1 before the first */
   double time;
-  int rendered;          /* 1 when classification completed */
-  int status;            /* VOXSPAN_OK or an error code */
+  int rendered; /* 1 when classification completed */
+  int status;   /* VOXSPAN_OK or an error code */
   uint64_t particles, owned, boundary, dropped_nonfinite, not_in_grid;
   uint64_t cells, cells_empty, cells_partial, cells_full, cells_inner_empty, cells_inner_full;
   int full_count;
@@ -127,10 +127,10 @@ size_t voxspan_adapter_attribute(const voxspan_adapter* adapter, const char* nam
 voxspan_particles* voxspan_particles_create(void);
 void voxspan_particles_destroy(voxspan_particles* particles);
 /* AoS: particle i's x, y, z at xyz + i * stride_bytes (stride 0: packed). */
-int voxspan_particles_set_aos(voxspan_particles* particles, int type, const void* xyz,
-                              size_t count, size_t stride_bytes);
-int voxspan_particles_set_soa(voxspan_particles* particles, int type, const void* x,
-                              const void* y, const void* z, size_t count);
+int voxspan_particles_set_aos(voxspan_particles* particles, int type, const void* xyz, size_t count,
+                              size_t stride_bytes);
+int voxspan_particles_set_soa(voxspan_particles* particles, int type, const void* x, const void* y,
+                              const void* z, size_t count);
 int voxspan_particles_set_owned(voxspan_particles* particles, size_t owned);
 int voxspan_particles_set_radius(voxspan_particles* particles, double radius);
 /* Per-particle radii (stride 0: packed); NULL clears them. */

@@ -87,7 +87,9 @@ TEST(DamBreak, ReachesTwoTimeUnitsWithoutNaN) {
   EXPECT_GE(run().t.back(), 2.0);
 }
 
-TEST(DamBreak, NoParticleLeavesTheTank) { EXPECT_EQ(run().max_outside, 0u); }
+TEST(DamBreak, NoParticleLeavesTheTank) {
+  EXPECT_EQ(run().max_outside, 0u);
+}
 
 TEST(DamBreak, MassIsConservedExactly) {
   // No particle is lost or duplicated by ~2000 re-sorts: the ids are still a permutation.
@@ -97,9 +99,10 @@ TEST(DamBreak, MassIsConservedExactly) {
   std::iota(expected.begin(), expected.end(), 0u);
   EXPECT_EQ(ids, expected);
   EXPECT_EQ(run().final_mass, run().initial_mass);  // bit for bit
-  EXPECT_NEAR(run().initial_mass, 1000.0 * run().config.column_width *
-                                      (2 * run().config.column_width) *
-                                      (4 * run().config.column_width / 20), 1e-9);
+  EXPECT_NEAR(run().initial_mass,
+              1000.0 * run().config.column_width * (2 * run().config.column_width) *
+                  (4 * run().config.column_width / 20),
+              1e-9);
 }
 
 TEST(DamBreak, DensityErrorStaysUnderThreePercentAfterTheCollapse) {

@@ -78,7 +78,8 @@ TEST(AtomicFile, MissingFolderIsAWriteErrorNamingTheFile) {
   } catch (const WriteError& e) {
     EXPECT_EQ(e.error_number(), ENOENT);
     EXPECT_NE(std::string(e.what()).find("cannot create " + (dir / "no/such/").string()),
-              std::string::npos) << e.what();
+              std::string::npos)
+        << e.what();
   }
 }
 

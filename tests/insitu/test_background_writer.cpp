@@ -99,7 +99,8 @@ TEST(BackgroundWriter, DropPolicyNeverBlocksAndCountsWithAWarning) {
   // At the 1st and 10th drop, then the summary when the writer closes.
   ASSERT_EQ(warnings.size(), 3u) << log.all();
   EXPECT_NE(warnings[0].find("writer queue full (3 jobs): dropped frame 3; 1 file dropped so far"),
-            std::string::npos) << warnings[0];
+            std::string::npos)
+      << warnings[0];
   EXPECT_NE(warnings[1].find("10 files dropped so far"), std::string::npos) << warnings[1];
   EXPECT_NE(warnings[2].find("22 files were dropped"), std::string::npos) << warnings[2];
 }
@@ -119,7 +120,8 @@ TEST(BackgroundWriter, EachKindOfFailureIsReportedOnceThenCounted) {
   std::vector<std::string> errors = log.at(LogLevel::error);
   ASSERT_EQ(errors.size(), 1u) << log.all();
   EXPECT_NE(errors[0].find("writer: frame 0 not written: cannot write /out/f.png: No space left"),
-            std::string::npos) << errors[0];
+            std::string::npos)
+      << errors[0];
   w.submit("frame 9", [] { throw std::runtime_error("VTK could not encode"); });
   w.submit("frame 10", [] { throw WriteError("cannot write: File too large", EFBIG); });
   w.submit("frame 11", [] { throw WriteError("cannot write: File too large", EFBIG); });

@@ -152,7 +152,8 @@ outputs:
 TEST(Config, UnknownKeyNamesThePathTheLineAndTheNearestKey) {
   std::string e = error_of("views:\n  - name: a\n    camera:\n      fvo: 30\n");
   EXPECT_NE(e.find("test.yaml:4:7: views[0].camera.fvo: unknown key (did you mean 'fov'?)"),
-            std::string::npos) << e;
+            std::string::npos)
+      << e;
   e = error_of("outputs:\n  png: {enabled: true}\n  pngs: {}\n");
   EXPECT_NE(e.find("test.yaml:3:3: outputs.pngs: unknown key"), std::string::npos) << e;
   e = error_of("render_every: 10\n");
@@ -165,19 +166,28 @@ TEST(Config, WrongTypesAndBadValuesNameKeyAndLine) {
     const char* expected;
   };
   const Case cases[] = {
-      {"views:\n  - width: wide\n", "test.yaml:2:12: views[0].width: expected an integer from 1 to 16384; got \"wide\""},
+      {"views:\n  - width: wide\n",
+       "test.yaml:2:12: views[0].width: expected an integer from 1 to 16384; got \"wide\""},
       {"views:\n  - width: 0\n", "views[0].width: expected an integer from 1 to 16384; got \"0\""},
       {"views:\n  - width: 2.5\n", "views[0].width: expected an integer"},
-      {"views:\n  - shading: glass\n", "test.yaml:2:14: views[0].shading: expected one of opaque, translucent, refractive; got \"glass\""},
+      {"views:\n  - shading: glass\n",
+       "test.yaml:2:14: views[0].shading: expected one of opaque, translucent, refractive; got "
+       "\"glass\""},
       {"views:\n  - max_layers: 100\n", "views[0].max_layers: must be a multiple of 32"},
       {"views:\n  - alpha: 0\n", "views[0].alpha: expected a number in (0, 45]"},
       {"views:\n  - camera: {fov: 180}\n", "views[0].camera.fov: expected a number in (0, 179]"},
-      {"views:\n  - camera: {eye: [1, 2]}\n", "views[0].camera.eye: expected three numbers [x, y, z]"},
-      {"views:\n  - camera: {eye: [1, 2, 3]}\n", "views[0].camera: a manual camera needs both eye and target"},
-      {"views:\n  - camera: {eye: [1, 2, 3], target: [1, 2, 3]}\n", "views[0].camera.target: must differ from camera.eye"},
-      {"views:\n  - camera: {eye: [0, 0, 5], target: [0, 0, 0]}\n", "views[0].camera.up: must not be parallel to the viewing direction"},
-      {"views:\n  - camera: {auto: true, eye: [0, 0, 5]}\n", "views[0].camera.eye: automatic framing (auto: true)"},
-      {"views:\n  - camera: {direction: [0, 0, 1]}\n", "views[0].camera.direction: must not be parallel to camera.up"},
+      {"views:\n  - camera: {eye: [1, 2]}\n",
+       "views[0].camera.eye: expected three numbers [x, y, z]"},
+      {"views:\n  - camera: {eye: [1, 2, 3]}\n",
+       "views[0].camera: a manual camera needs both eye and target"},
+      {"views:\n  - camera: {eye: [1, 2, 3], target: [1, 2, 3]}\n",
+       "views[0].camera.target: must differ from camera.eye"},
+      {"views:\n  - camera: {eye: [0, 0, 5], target: [0, 0, 0]}\n",
+       "views[0].camera.up: must not be parallel to the viewing direction"},
+      {"views:\n  - camera: {auto: true, eye: [0, 0, 5]}\n",
+       "views[0].camera.eye: automatic framing (auto: true)"},
+      {"views:\n  - camera: {direction: [0, 0, 1]}\n",
+       "views[0].camera.direction: must not be parallel to camera.up"},
       {"views:\n  - name: a/b\n", "views[0].name: must be letters, digits"},
       {"views:\n  - name: a\n  - name: a\n", "views[1].name: \"a\" names two views"},
       {"views:\n  - gap: -1\n", "views[0].gap: expected a number of at least 0"},
@@ -185,18 +195,23 @@ TEST(Config, WrongTypesAndBadValuesNameKeyAndLine) {
       {"trigger: {every_steps: -3}\n", "trigger.every_steps: expected an integer from 0"},
       {"trigger: {first: maybe}\n", "trigger.first: expected true or false; got \"maybe\""},
       {"trigger: 10\n", "trigger: expected a map of settings; got \"10\""},
-      {"renderer: {gl_platform: vulkan}\n", "renderer.gl_platform: expected one of auto, nvidia, device, surfaceless; got \"vulkan\""},
+      {"renderer: {gl_platform: vulkan}\n",
+       "renderer.gl_platform: expected one of auto, nvidia, device, surfaceless; got \"vulkan\""},
       {"renderer: {gpu_memory_mib: 0}\n", "renderer.gpu_memory_mib: expected a number in [1,"},
-      {"classification: {full_count: 0}\n", "classification.full_count: expected an integer from 1"},
-      {"writer: {when_full: sometimes}\n", "writer.when_full: expected one of wait, drop; got \"sometimes\""},
+      {"classification: {full_count: 0}\n",
+       "classification.full_count: expected an integer from 1"},
+      {"writer: {when_full: sometimes}\n",
+       "writer.when_full: expected one of wait, drop; got \"sometimes\""},
       {"writer: {queue_size: 0}\n", "writer.queue_size: expected an integer from 1 to 4096"},
       {"log_level: loud\n", "log_level: expected one of error, warning, info, debug"},
       {"output_folder: ''\n", "output_folder: must not be empty"},
       {"outputs: {stats: {file: a/b.jsonl}}\n", "outputs.stats.file: must be a plain file name"},
-      {"outputs: {vdb: {enabled: true, trigger: {}}}\n", "outputs.vdb.trigger: never fires while the output is enabled"},
+      {"outputs: {vdb: {enabled: true, trigger: {}}}\n",
+       "outputs.vdb.trigger: never fires while the output is enabled"},
       {"outputs: {vdb: {voxel_size: 0}}\n", "outputs.vdb.voxel_size: expected a number above 0"},
       {"outputs: {vdb: {attributes: [v, v]}}\n", "outputs.vdb.attributes: \"v\" given twice"},
-      {"outputs: {vtk: {enabled: true, particles: false, cells: false}}\n", "outputs.vtk: enabled but writes nothing"},
+      {"outputs: {vtk: {enabled: true, particles: false, cells: false}}\n",
+       "outputs.vtk: enabled but writes nothing"},
       {"views: [\n", "test.yaml:2:1: (top level): not valid YAML"},
   };
   for (const Case& c : cases) {
@@ -206,7 +221,8 @@ TEST(Config, WrongTypesAndBadValuesNameKeyAndLine) {
 }
 
 TEST(Config, ReportsEveryErrorAtOnce) {
-  std::string e = error_of("bogus: 1\nviews:\n  - width: -1\n    height: x\nwriter: {when_full: no}\n");
+  std::string e =
+      error_of("bogus: 1\nviews:\n  - width: -1\n    height: x\nwriter: {when_full: no}\n");
   EXPECT_NE(e.find("4 errors"), std::string::npos) << e;
   EXPECT_NE(e.find("bogus"), std::string::npos);
   EXPECT_NE(e.find("views[0].width"), std::string::npos);
@@ -253,13 +269,15 @@ TEST(Config, LoadsFilesAndNamesThemInErrors) {
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find((dir / "bad.yaml").string() + ":3:10: writer.queue"),
-              std::string::npos) << e.what();
+              std::string::npos)
+        << e.what();
   }
   try {
     load_config_file(dir / "missing.yaml");
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("missing.yaml: No such file"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("missing.yaml: No such file"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -19,7 +19,8 @@ std::string read_file(const std::string& path) {
 
 TEST(ConfigDocs, RuntimeMdListsEveryKeyAsTheSchemaHasIt) {
   const std::string doc = read_file(VOXSPAN_SOURCE_DIR "/docs/runtime.md");
-  const std::string begin = "<!-- the output of `voxspan-config --reference`, held to it by a test -->\n";
+  const std::string begin =
+      "<!-- the output of `voxspan-config --reference`, held to it by a test -->\n";
   const std::string end = "<!-- end of the reference -->";
   const std::size_t a = doc.find(begin), b = doc.find(end);
   ASSERT_NE(a, std::string::npos) << "docs/runtime.md has no reference block";

@@ -35,11 +35,14 @@ std::map<std::string, std::string> parse_report(const std::string& text) {
   return m;
 }
 
-char pattern(std::size_t file, std::size_t i) { return char('a' + (file * 7 + i) % 26); }
+char pattern(std::size_t file, std::size_t i) {
+  return char('a' + (file * 7 + i) % 26);
+}
 
 // The "solver": 12 steps, each submitting one file of `size(step)` bytes and one stats line.
 // Afterwards it reports what the folder holds and whether each final file is complete.
-std::string simulate_run(const std::filesystem::path& folder, std::function<std::size_t(int)> size) {
+std::string simulate_run(const std::filesystem::path& folder,
+                         std::function<std::size_t(int)> size) {
   test::LogCapture log;
   int steps_done = 0;
   {
@@ -104,10 +107,10 @@ void expect_run_survived(const std::map<std::string, std::string>& r, const char
   EXPECT_GE(std::stoul(r.at("failed")), 1u);
   EXPECT_GE(std::stoul(r.at("completed")), 1u);
   EXPECT_NE(r.at("first_error").find(errno_text), std::string::npos) << r.at("first_error");
-  EXPECT_EQ(r.at("errors"), "1");              // reported once
-  EXPECT_EQ(r.at("temps"), "0");               // temporaries removed
-  EXPECT_EQ(r.at("finals"), r.at("complete")); // no partial file under a final name
-  EXPECT_EQ(r.at("stats_complete"), "1");      // the stats file ends with a whole line
+  EXPECT_EQ(r.at("errors"), "1");               // reported once
+  EXPECT_EQ(r.at("temps"), "0");                // temporaries removed
+  EXPECT_EQ(r.at("finals"), r.at("complete"));  // no partial file under a final name
+  EXPECT_EQ(r.at("stats_complete"), "1");       // the stats file ends with a whole line
   EXPECT_EQ(r.at("stats_lines"), r.at("stats_good"));
 }
 
@@ -130,7 +133,8 @@ TEST(DiskFull, SmallTmpfsFillsMidRun) {
     return simulate_run(mount_point, [](int) { return std::size_t(64) << 10; });
   });
   auto r = parse_report(report);
-  if (r.count("skip")) GTEST_SKIP() << "this machine allows no tmpfs mount in a namespace (" << r["skip"] << ")";
+  if (r.count("skip"))
+    GTEST_SKIP() << "this machine allows no tmpfs mount in a namespace (" << r["skip"] << ")";
   ASSERT_TRUE(r.count("failed")) << report;
   expect_run_survived(r, "No space left on device");
   EXPECT_GE(std::stoul(r.at("finals")), 2u);  // 200 KiB holds a few 64 KiB frames
@@ -141,10 +145,13 @@ TEST(DiskFull, FileSizeLimitFailsLargeFilesOnly) {
   test::TempFolder dir;
   std::string report = test::run_in_child([&]() -> std::string {
     ::signal(SIGXFSZ, SIG_IGN);  // so write(2) returns EFBIG instead of killing the process
-    struct rlimit limit {100 << 10, 100 << 10};
+    struct rlimit limit {
+      100 << 10, 100 << 10
+    };
     if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) return "skip=setrlimit\n";
     // Odd steps write 256 KiB (over the limit), even steps 16 KiB.
-    return simulate_run(dir.path(), [](int step) { return std::size_t(step % 2 ? 256 : 16) << 10; });
+    return simulate_run(dir.path(),
+                        [](int step) { return std::size_t(step % 2 ? 256 : 16) << 10; });
   });
   auto r = parse_report(report);
   ASSERT_FALSE(r.count("skip")) << report;

@@ -33,7 +33,8 @@ TEST(OutputFolder, RefusesAFileAndAFolderUnderAFile) {
   test::TempFolder dir;
   std::ofstream(dir / "file") << "x";
   std::string e = error_of(dir / "file");
-  EXPECT_NE(e.find("cannot use outputs.png folder " + (dir / "file").string()), std::string::npos) << e;
+  EXPECT_NE(e.find("cannot use outputs.png folder " + (dir / "file").string()), std::string::npos)
+      << e;
   EXPECT_NE(e.find("Not a directory"), std::string::npos) << e;
   e = error_of(dir / "file/sub");
   EXPECT_NE(e.find((dir / "file/sub").string() + ": Not a directory"), std::string::npos) << e;
@@ -48,13 +49,15 @@ TEST(OutputFolder, RefusesAReadOnlyFolder) {
   std::filesystem::path ro = dir / "ro";
   std::filesystem::create_directories(ro);
   if (::geteuid() != 0) {
-    std::filesystem::permissions(ro, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+    std::filesystem::permissions(
+        ro, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
     std::string e = error_of(ro);
     EXPECT_NE(e.find("cannot create a file in it (Permission denied)"), std::string::npos) << e;
     return;
   }
   std::string message = test::run_in_child([&]() -> std::string {
-    if (::unshare(CLONE_NEWNS) != 0 || ::mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0 ||
+    if (::unshare(CLONE_NEWNS) != 0 ||
+        ::mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0 ||
         ::mount("tmpfs", ro.c_str(), "tmpfs", MS_RDONLY, "size=64k") != 0)
       return "SKIP";
     return error_of(ro);
@@ -62,20 +65,24 @@ TEST(OutputFolder, RefusesAReadOnlyFolder) {
   if (message == "SKIP") GTEST_SKIP() << "no mount namespace here";
   EXPECT_NE(message.find("cannot use outputs.png folder " + ro.string() +
                          ": cannot create a file in it (Read-only file system)"),
-            std::string::npos) << message;
+            std::string::npos)
+      << message;
 }
 
 TEST(OutputFolder, ChecksTheFolderOfEveryEnabledOutput) {
   test::TempFolder dir;
   std::ofstream(dir / "blocker") << "x";
-  Config c = load_config_string("output_folder: " + dir.path().string() +
-                                "\noutputs:\n  png: {folder: frames}\n  vdb: {enabled: true, folder: blocker/snap}\n");
+  Config c = load_config_string(
+      "output_folder: " + dir.path().string() +
+      "\noutputs:\n  png: {folder: frames}\n  vdb: {enabled: true, folder: blocker/snap}\n");
   try {
     prepare_output_folders(c);
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot use outputs.vdb folder " + (dir / "blocker/snap").string()),
-              std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cannot use outputs.vdb folder " +
+                                         (dir / "blocker/snap").string()),
+              std::string::npos)
+        << e.what();
   }
   c.output("vdb").folder = "snap";
   std::vector<std::filesystem::path> folders = prepare_output_folders(c);

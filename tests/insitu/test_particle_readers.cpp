@@ -38,7 +38,8 @@ TEST(CsvParticles, HeaderNamesPositionsRadiiScalarsAndVectors) {
 
 TEST(CsvParticles, ParaViewExportWithQuotedPointColumns) {
   test::TempFolder dir;
-  std::ofstream(dir / "pv.csv") << "\"density\",\"velocity:0\",\"velocity:1\",\"velocity:2\",\"Points:0\",\"Points:1\",\"Points:2\"\n"
+  std::ofstream(dir / "pv.csv") << "\"density\",\"velocity:0\",\"velocity:1\",\"velocity:2\","
+                                   "\"Points:0\",\"Points:1\",\"Points:2\"\n"
                                    "1000,0,0,-1,0.1,0.2,0.3\n";
   ParticleData d = read_particles(dir / "pv.csv");
   ASSERT_EQ(d.size(), 1u);
@@ -53,11 +54,13 @@ TEST(CsvParticles, ParaViewExportWithQuotedPointColumns) {
 TEST(CsvParticles, ErrorsNameFileAndLine) {
   test::TempFolder dir;
   std::ofstream(dir / "a.csv") << "1,2,3\n";
-  EXPECT_NE(error_of(dir / "a.csv").find("a.csv:1: the first row holds numbers"), std::string::npos);
+  EXPECT_NE(error_of(dir / "a.csv").find("a.csv:1: the first row holds numbers"),
+            std::string::npos);
   std::ofstream(dir / "b.csv") << "x,y,z\n1,2,3\n1,2\n";
   EXPECT_NE(error_of(dir / "b.csv").find("b.csv:3: 2 fields; the header has 3"), std::string::npos);
   std::ofstream(dir / "c.csv") << "x,y,z\n1,2,abc\n";
-  EXPECT_NE(error_of(dir / "c.csv").find("c.csv:2: column \"z\" is not a number: \"abc\""), std::string::npos);
+  EXPECT_NE(error_of(dir / "c.csv").find("c.csv:2: column \"z\" is not a number: \"abc\""),
+            std::string::npos);
   std::ofstream(dir / "d.csv") << "a,b\n1,2\n";
   EXPECT_NE(error_of(dir / "d.csv").find("no position columns"), std::string::npos);
   EXPECT_NE(error_of(dir / "none.csv").find("cannot open"), std::string::npos);
@@ -76,14 +79,17 @@ TEST(XyzParticles, PlainAndExtended) {
   EXPECT_TRUE(d.radii.empty());
   EXPECT_DOUBLE_EQ(d.positions[2][1], 1);
   std::ofstream(dir / "w.xyz") << "2\n\n0 0 0\n";
-  EXPECT_NE(error_of(dir / "w.xyz").find("header says 2 particles; the file has 1"), std::string::npos);
+  EXPECT_NE(error_of(dir / "w.xyz").find("header says 2 particles; the file has 1"),
+            std::string::npos);
   std::ofstream(dir / "x.xyz") << "0 0 0 1 7\n1 1 1\n";
-  EXPECT_NE(error_of(dir / "x.xyz").find("x.xyz:2: 3 columns; earlier lines have 5"), std::string::npos);
+  EXPECT_NE(error_of(dir / "x.xyz").find("x.xyz:2: 3 columns; earlier lines have 5"),
+            std::string::npos);
 }
 
 // ---- PySPH ----
 
-void write_dataset(hid_t group, const char* name, const std::vector<double>& values, bool stored = true) {
+void write_dataset(hid_t group, const char* name, const std::vector<double>& values,
+                   bool stored = true) {
   hsize_t n = values.size();
   hid_t space = H5Screate_simple(1, &n, nullptr);
   hid_t set = H5Dcreate2(group, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -113,7 +119,8 @@ void write_array(hid_t particles, const char* name, const std::vector<std::array
   std::vector<double> x, y, z, u, v, w, m, rho;
   for (std::size_t i = 0; i < xyz.size(); ++i) {
     x.push_back(xyz[i][0]), y.push_back(xyz[i][1]), z.push_back(xyz[i][2]);
-    u.push_back(1.0 + i), v.push_back(2.0), w.push_back(-1.0), m.push_back(0.001), rho.push_back(1000 + i);
+    u.push_back(1.0 + i), v.push_back(2.0), w.push_back(-1.0), m.push_back(0.001),
+        rho.push_back(1000 + i);
   }
   write_dataset(arrays, "x", x);
   write_dataset(arrays, "y", y);
@@ -124,7 +131,8 @@ void write_array(hid_t particles, const char* name, const std::vector<std::array
   write_dataset(arrays, "m", m);
   write_dataset(arrays, "rho", rho);
   write_dataset(arrays, "au", {}, /*stored=*/false);  // declared, not output
-  for (const std::string& e : extra) write_dataset(arrays, e.c_str(), std::vector<double>(xyz.size(), 7.0));
+  for (const std::string& e : extra)
+    write_dataset(arrays, e.c_str(), std::vector<double>(xyz.size(), 7.0));
   write_dataset(constants, "c0", {10.0});
   H5Gclose(constants);
   H5Gclose(arrays);
@@ -181,7 +189,8 @@ TEST(PySphParticles, SelectsArraysByName) {
   ASSERT_EQ(fluid.size(), 3u);
   EXPECT_NE(fluid.attribute("p"), nullptr);
   std::string e = error_of(dir / "out.hdf5", {{"water"}});
-  EXPECT_NE(e.find("no particle array \"water\" (the file has: fluid, solid)"), std::string::npos) << e;
+  EXPECT_NE(e.find("no particle array \"water\" (the file has: fluid, solid)"), std::string::npos)
+      << e;
   std::ofstream(dir / "fake.h5") << "not hdf5";
   EXPECT_NE(error_of(dir / "fake.h5").find("not an HDF5 file"), std::string::npos);
 }

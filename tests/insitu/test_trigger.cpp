@@ -27,7 +27,8 @@ std::vector<std::int64_t> range(std::int64_t from, std::int64_t to, std::int64_t
 }
 
 TEST(Trigger, EveryNStepsFiresOnMultiples) {
-  EXPECT_EQ(fired_steps({10, 0, false, false}, range(0, 35)), (std::vector<std::int64_t>{0, 10, 20, 30}));
+  EXPECT_EQ(fired_steps({10, 0, false, false}, range(0, 35)),
+            (std::vector<std::int64_t>{0, 10, 20, 30}));
   // A run restarted at step 13 fires at the next multiple, not at once.
   EXPECT_EQ(fired_steps({10, 0, false, false}, range(13, 35)), (std::vector<std::int64_t>{20, 30}));
 }
@@ -41,7 +42,8 @@ TEST(Trigger, EveryNStepsNeverMissesAMultipleWhenCalledSparsely) {
 TEST(Trigger, FirstAndLast) {
   EXPECT_EQ(fired_steps({0, 0, true, false}, range(5, 9)), (std::vector<std::int64_t>{5}));
   EXPECT_EQ(fired_steps({0, 0, false, true}, range(5, 9), 9), (std::vector<std::int64_t>{9}));
-  EXPECT_EQ(fired_steps({4, 0, true, true}, range(1, 10), 10), (std::vector<std::int64_t>{1, 4, 8, 10}));
+  EXPECT_EQ(fired_steps({4, 0, true, true}, range(1, 10), 10),
+            (std::vector<std::int64_t>{1, 4, 8, 10}));
   EXPECT_TRUE(fired_steps({0, 0, false, false}, range(0, 100)).empty());
   EXPECT_TRUE((TriggerSpec{0, 0, false, false}).never_fires());
 }
@@ -103,7 +105,7 @@ TEST(Trigger, AStepBackwardsRestartsTheSchedule) {
   EXPECT_TRUE(t.is_due(0, 0));
   EXPECT_FALSE(t.is_due(5, 0));
   EXPECT_TRUE(t.is_due(10, 0));
-  EXPECT_TRUE(t.is_due(3, 0));   // restarted from a checkpoint: "first" again
+  EXPECT_TRUE(t.is_due(3, 0));  // restarted from a checkpoint: "first" again
   EXPECT_FALSE(t.is_due(7, 0));
   EXPECT_TRUE(t.is_due(10, 0));
 }
@@ -136,7 +138,8 @@ outputs:
 }
 
 TEST(Schedule, NoViewsMeansNoRendering) {
-  Config c = load_config_string("views: []\noutputs: {vdb: {enabled: true, trigger: {every_steps: 1}}}\n");
+  Config c =
+      load_config_string("views: []\noutputs: {vdb: {enabled: true, trigger: {every_steps: 1}}}\n");
   Schedule s(c);
   StepPlan p = s.plan(10, 0);
   EXPECT_FALSE(p.render);

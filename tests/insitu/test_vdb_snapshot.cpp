@@ -95,11 +95,14 @@ TEST_F(VdbSnapshot, LevelSetHoldsTheWholeFluidFromItsBoundaryParticles) {
   openvdb::Vec3d under_top(on_particle, on_particle, kSide * kDx - 0.5 * kDx);
   auto pa = p->getConstAccessor();
   EXPECT_TRUE(pa.isValueOn(p->transform().worldToIndexCellCentered(below_corner)));
-  EXPECT_FLOAT_EQ(pa.getValue(p->transform().worldToIndexCellCentered(below_corner)), float(0.5 * kDx * 1000.0));
-  EXPECT_NEAR(pa.getValue(p->transform().worldToIndexCellCentered(under_top)), (kSide - 0.5) * kDx * 1000.0, 1e-3);
+  EXPECT_FLOAT_EQ(pa.getValue(p->transform().worldToIndexCellCentered(below_corner)),
+                  float(0.5 * kDx * 1000.0));
+  EXPECT_NEAR(pa.getValue(p->transform().worldToIndexCellCentered(under_top)),
+              (kSide - 0.5) * kDx * 1000.0, 1e-3);
   auto v = grid_named<openvdb::Vec3SGrid>(*grids, "velocity");
   ASSERT_TRUE(v);
-  openvdb::Vec3s v_corner = v->getConstAccessor().getValue(v->transform().worldToIndexCellCentered(below_corner));
+  openvdb::Vec3s v_corner =
+      v->getConstAccessor().getValue(v->transform().worldToIndexCellCentered(below_corner));
   EXPECT_EQ(v_corner, openvdb::Vec3s(1.f, 0.f, float(0.5 * kDx)));
 
   auto states = grid_named<openvdb::Int32Grid>(*grids, "cell_state");
@@ -117,7 +120,8 @@ TEST_F(VdbSnapshot, LevelSetHoldsTheWholeFluidFromItsBoundaryParticles) {
                               scene.origin[2] + (k + 0.5) * scene.cell_size);
         openvdb::Coord c = states->transform().worldToIndexCellCentered(centre);
         ASSERT_EQ(acc.getValue(c),
-                  scene.states[std::size_t(i) + std::size_t(scene.dims[0]) * (j + std::size_t(scene.dims[1]) * k)]);
+                  scene.states[std::size_t(i) +
+                               std::size_t(scene.dims[0]) * (j + std::size_t(scene.dims[1]) * k)]);
       }
 }
 
@@ -155,7 +159,8 @@ TEST_F(VdbSnapshot, FinerVoxelsAndNoClosingKeepTheVolume) {
 }
 
 TEST_F(VdbSnapshot, AllParticlesWithoutCellsGiveTheSameVolume) {
-  write_vdb_snapshot(dir / "all.vdb", {scene.all, CellStatesView{}, {}, 0, 0}, VdbSnapshotSettings{});
+  write_vdb_snapshot(dir / "all.vdb", {scene.all, CellStatesView{}, {}, 0, 0},
+                     VdbSnapshotSettings{});
   auto fluid = grid_named<openvdb::FloatGrid>(*read_grids(dir / "all.vdb"), "fluid");
   EXPECT_NEAR(openvdb::tools::levelSetVolume(*fluid) / particle_volume(), 1.0, 0.10);
 }

@@ -33,8 +33,8 @@ double fill(const Camera& camera, const Bounds& b, double margin) {
                                         k & 4 ? half.z : -half.z);
     const glm::dvec3 v = frame.to_view(p);
     EXPECT_GT(v.z, 0);
-    most = std::max({most, std::abs(v.x) / (frame.tan_half_x * v.z),
-                     std::abs(v.y) / (frame.tan_half_y * v.z)});
+    most = std::max(
+        {most, std::abs(v.x) / (frame.tan_half_x * v.z), std::abs(v.y) / (frame.tan_half_y * v.z)});
   }
   return most;
 }
@@ -45,13 +45,14 @@ std::vector<ParticleSphere> block(float x0, float x1, float z1) {
   const auto steps = [](float length) { return int(std::lround(length / 0.05f)); };
   for (int i = 0; i <= steps(x1 - x0); ++i)
     for (int j = 0; j <= steps(0.25f); ++j)
-      for (int k = 0; k <= steps(z1); ++k) s.push_back({x0 + 0.05f * i, 0.05f * j, 0.05f * k, 0.01f});
+      for (int k = 0; k <= steps(z1); ++k)
+        s.push_back({x0 + 0.05f * i, 0.05f * j, 0.05f * k, 0.01f});
   return s;
 }
 
 TEST(ViewFraming, TheFluidsBoxJustFitsTheView) {
-  for (Vec3d direction : {Vec3d{0.3, 1, -0.45}, Vec3d{-1, 2, -0.8}, Vec3d{0, 0.01, -1},
-                          Vec3d{1, 0, 0}}) {
+  for (Vec3d direction :
+       {Vec3d{0.3, 1, -0.45}, Vec3d{-1, 2, -0.8}, Vec3d{0, 0.01, -1}, Vec3d{1, 0, 0}}) {
     SurfaceSettings v = view_looking(direction);
     if (std::abs(direction[2]) > 0.99) v.camera.up = {0, 1, 0};
     const std::vector<ParticleSphere> spheres = block(0, 1, 0.5);

@@ -83,7 +83,8 @@ TEST(VtkFiles, MismatchedAttributesAreRefused) {
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("attribute \"density\" has 1 values for 2 particles"),
-              std::string::npos) << e.what();
+              std::string::npos)
+        << e.what();
   }
 }
 

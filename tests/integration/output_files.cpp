@@ -30,8 +30,9 @@ double DecodedPng::fraction_unlike_row_background(int tolerance) const {
       ++counts[std::uint32_t(row[4 * x]) | std::uint32_t(row[4 * x + 1]) << 8 |
                std::uint32_t(row[4 * x + 2]) << 16];
     const std::uint32_t mode =
-        std::max_element(counts.begin(), counts.end(),
-                         [](const auto& a, const auto& b) { return a.second < b.second; })->first;
+        std::max_element(counts.begin(), counts.end(), [](const auto& a, const auto& b) {
+          return a.second < b.second;
+        })->first;
     for (int x = 0; x < width; ++x)
       for (int c = 0; c < 3; ++c)
         if (std::abs(int(row[4 * x + c]) - int((mode >> (8 * c)) & 255)) > tolerance) {

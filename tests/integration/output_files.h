@@ -33,10 +33,10 @@ std::vector<std::string> temporaries_under(const std::filesystem::path& root);
 struct VdbContents {
   bool ok = false;
   std::string error;
-  std::vector<std::string> grids;     // names
-  std::string fluid_class;            // "level set" for a level set
-  double fluid_volume = 0;            // world units^3, inside the zero level set
-  std::int64_t step = -1;             // file metadata
+  std::vector<std::string> grids;  // names
+  std::string fluid_class;         // "level set" for a level set
+  double fluid_volume = 0;         // world units^3, inside the zero level set
+  std::int64_t step = -1;          // file metadata
 };
 VdbContents read_vdb(const std::filesystem::path& path);
 

@@ -39,9 +39,11 @@ std::string start_error(const std::string& yaml) {
 }
 
 TEST(StartUp, UnknownConfigKeyIsNamedWithItsLine) {
-  const std::string e = start_error("output_folder: out\nviews:\n  - name: front\n    shadng: opaque\n");
+  const std::string e =
+      start_error("output_folder: out\nviews:\n  - name: front\n    shadng: opaque\n");
   EXPECT_NE(e.find("run.yaml:4:5: views[0].shadng: unknown key (did you mean 'shading'?)"),
-            std::string::npos) << e;
+            std::string::npos)
+      << e;
 }
 
 TEST(StartUp, UnknownConfigKeyThroughTheCApi) {
@@ -55,7 +57,9 @@ TEST(StartUp, UnknownConfigKeyThroughTheCApi) {
   EXPECT_EQ(a, nullptr);
   const std::string e = voxspan_last_error();
   EXPECT_NE(e.find(file.string() + ":3:3: writer.queue_sise: unknown key (did you mean "
-                   "'queue_size'?)"), std::string::npos) << e;
+                                   "'queue_size'?)"),
+            std::string::npos)
+      << e;
   voxspan_adapter_destroy(a);
 }
 
@@ -65,10 +69,14 @@ TEST(StartUp, OutputFolderThatCannotBeWrittenFailsBeforeStepOne) {
   // A folder under a regular file, and a folder in /proc: neither can exist (root included).
   std::string e = start_error("output_folder: " + (dir / "a-file").string() + "/run\n");
   EXPECT_NE(e.find("cannot use outputs.png folder " + (dir / "a-file").string() + "/run/frames"),
-            std::string::npos) << e;
-  e = start_error("outputs:\n  vdb: {enabled: true, folder: /proc/voxspan-snapshots}\n"
-                  "output_folder: " + (dir / "ok").string() + "\n");
-  EXPECT_NE(e.find("cannot use outputs.vdb folder /proc/voxspan-snapshots"), std::string::npos) << e;
+            std::string::npos)
+      << e;
+  e = start_error(
+      "outputs:\n  vdb: {enabled: true, folder: /proc/voxspan-snapshots}\n"
+      "output_folder: " +
+      (dir / "ok").string() + "\n");
+  EXPECT_NE(e.find("cannot use outputs.vdb folder /proc/voxspan-snapshots"), std::string::npos)
+      << e;
 }
 
 // The platform the config asks for, where it cannot work (no NVIDIA EGL device here), is one
@@ -78,8 +86,8 @@ TEST(StartUp, UnusableGlPlatformFailsBeforeStepOne) {
   const char* forced = std::getenv("VOXSPAN_GL_PLATFORM");  // it would override the config
   const std::string saved = forced ? forced : "";
   ::unsetenv("VOXSPAN_GL_PLATFORM");
-  const std::string e = start_error("output_folder: " + dir.path().string() +
-                                    "\nrenderer: {gl_platform: nvidia}\n");
+  const std::string e =
+      start_error("output_folder: " + dir.path().string() + "\nrenderer: {gl_platform: nvidia}\n");
   if (!saved.empty()) ::setenv("VOXSPAN_GL_PLATFORM", saved.c_str(), 1);
   if (e.empty()) GTEST_SKIP() << "this machine has an NVIDIA EGL device";
   EXPECT_NE(e.find("cannot create an OpenGL context (platform nvidia"), std::string::npos) << e;
@@ -120,7 +128,8 @@ outputs:
     r << "summary=" << adapter.summary() << "\n";
   }
   std::size_t write_errors = 0;
-  for (const std::string& m : log.at(LogLevel::error)) write_errors += m.find("not written") != std::string::npos;
+  for (const std::string& m : log.at(LogLevel::error))
+    write_errors += m.find("not written") != std::string::npos;
   r << "write_errors=" << write_errors << "\n";
   const auto errors = log.at(LogLevel::error);
   r << "first_error=" << (errors.empty() ? "" : errors[0]) << "\n";
@@ -149,50 +158,58 @@ outputs:
 
 void expect_run_went_on(const std::map<std::string, std::string>& r, const std::string& why) {
   std::printf("%s\n%s\n", r.at("summary").c_str(), r.at("first_error").c_str());
-  EXPECT_EQ(r.at("steps"), "30");   // the solver never stopped
-  EXPECT_EQ(r.at("failed"), "0");   // writes are the writer's: no step failed for them
+  EXPECT_EQ(r.at("steps"), "30");  // the solver never stopped
+  EXPECT_EQ(r.at("failed"), "0");  // writes are the writer's: no step failed for them
   EXPECT_EQ(r.at("write_errors"), "1") << r.at("first_error");  // reported once
   EXPECT_NE(r.at("first_error").find(why), std::string::npos) << r.at("first_error");
   EXPECT_NE(r.at("summary").find("files failed"), std::string::npos) << r.at("summary");
   EXPECT_EQ(r.at("temporaries"), "0");
-  EXPECT_EQ(r.at("broken"), "0");  // no partial file under a final name
+  EXPECT_EQ(r.at("broken"), "0");           // no partial file under a final name
   EXPECT_GT(std::stoi(r.at("finals")), 0);  // the disk took some files before it filled
 }
 
 TEST(MidRun, DiskFillsUp) {
-  if (const char* folder = test::child_folder()) return test::write_child_report(run_and_inspect(folder));
+  if (const char* folder = test::child_folder())
+    return test::write_child_report(run_and_inspect(folder));
   test::TempFolder dir;
   const std::filesystem::path mount_point = dir / "small";
   std::filesystem::create_directories(mount_point);
-  const std::string report = test::run_test_in_fresh_process(mount_point, dir / "report.txt", [&]() -> std::string {
-    const bool root = ::geteuid() == 0;
-    const uid_t uid = ::geteuid();
-    const gid_t gid = ::getegid();
-    if (::unshare(root ? CLONE_NEWNS : (CLONE_NEWUSER | CLONE_NEWNS)) != 0) return "skip=unshare\n";
-    if (!root) {
-      std::ofstream("/proc/self/setgroups") << "deny";
-      std::ofstream("/proc/self/uid_map") << "0 " << uid << " 1";
-      std::ofstream("/proc/self/gid_map") << "0 " << gid << " 1";
-    }
-    if (::mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0) return "skip=private\n";
-    if (::mount("tmpfs", mount_point.c_str(), "tmpfs", 0, "size=1m") != 0) return "skip=mount\n";
-    return "";
-  });
+  const std::string report =
+      test::run_test_in_fresh_process(mount_point, dir / "report.txt", [&]() -> std::string {
+        const bool root = ::geteuid() == 0;
+        const uid_t uid = ::geteuid();
+        const gid_t gid = ::getegid();
+        if (::unshare(root ? CLONE_NEWNS : (CLONE_NEWUSER | CLONE_NEWNS)) != 0)
+          return "skip=unshare\n";
+        if (!root) {
+          std::ofstream("/proc/self/setgroups") << "deny";
+          std::ofstream("/proc/self/uid_map") << "0 " << uid << " 1";
+          std::ofstream("/proc/self/gid_map") << "0 " << gid << " 1";
+        }
+        if (::mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0)
+          return "skip=private\n";
+        if (::mount("tmpfs", mount_point.c_str(), "tmpfs", 0, "size=1m") != 0)
+          return "skip=mount\n";
+        return "";
+      });
   const auto r = parse_report(report);
-  if (r.count("skip")) GTEST_SKIP() << "no tmpfs mount in a namespace here (" << r.at("skip") << ")";
+  if (r.count("skip"))
+    GTEST_SKIP() << "no tmpfs mount in a namespace here (" << r.at("skip") << ")";
   ASSERT_TRUE(r.count("steps")) << report;
   expect_run_went_on(r, "No space left on device");
 }
 
 TEST(MidRun, FileSizeLimitFailsTheLargeFiles) {
-  if (const char* folder = test::child_folder()) return test::write_child_report(run_and_inspect(folder));
+  if (const char* folder = test::child_folder())
+    return test::write_child_report(run_and_inspect(folder));
   test::TempFolder dir;
-  const std::string report = test::run_test_in_fresh_process(dir / "run", dir / "report.txt", [&]() -> std::string {
-    ::signal(SIGXFSZ, SIG_IGN);  // write(2) returns EFBIG instead of killing the process
-    const struct rlimit limit {48 << 10, 48 << 10};
-    if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) return "skip=setrlimit\n";
-    return "";
-  });
+  const std::string report =
+      test::run_test_in_fresh_process(dir / "run", dir / "report.txt", [&]() -> std::string {
+        ::signal(SIGXFSZ, SIG_IGN);  // write(2) returns EFBIG instead of killing the process
+        const struct rlimit limit { 48 << 10, 48 << 10 };
+        if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) return "skip=setrlimit\n";
+        return "";
+      });
   const auto r = parse_report(report);
   ASSERT_FALSE(r.count("skip")) << report;
   ASSERT_TRUE(r.count("steps")) << report;
@@ -216,13 +233,15 @@ outputs:
   Adapter adapter = adapter_from_config_text(yaml, options, "empty.yaml");
   EXPECT_TRUE(adapter.execute(1, 0.0, ParticleView()).ok()) << adapter.last_stats().status.message;
   std::vector<float> xyz;
-  for (int i = 0; i < 64; ++i) xyz.insert(xyz.end(), {0.01f * float(i % 4), 0.01f * float(i / 4 % 4), 0.01f * float(i / 16)});
+  for (int i = 0; i < 64; ++i)
+    xyz.insert(xyz.end(), {0.01f * float(i % 4), 0.01f * float(i / 4 % 4), 0.01f * float(i / 16)});
   xyz[3 * 5] = std::nanf("");
   EXPECT_TRUE(adapter.execute(2, 0.1, ParticleView::aos(xyz.data(), 64)).ok())
       << adapter.last_stats().status.message;
   EXPECT_EQ(adapter.last_stats().counts.dropped_nonfinite, 1u);
   adapter.finish();
-  EXPECT_EQ(test::files_in(dir / "frames"), (std::vector<std::string>{"a_00000001.png", "a_00000002.png"}));
+  EXPECT_EQ(test::files_in(dir / "frames"),
+            (std::vector<std::string>{"a_00000001.png", "a_00000002.png"}));
   EXPECT_TRUE(test::read_png_file(dir / "frames" / "a_00000001.png").ok);
   EXPECT_TRUE(test::read_vdb(dir / "snapshots" / "fluid_00000001.vdb").ok);
   EXPECT_TRUE(test::read_vdb(dir / "snapshots" / "fluid_00000002.vdb").ok);

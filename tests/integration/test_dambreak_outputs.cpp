@@ -61,7 +61,7 @@ class DamBreakRun : public ::testing::Test {
     dir_ = new test::TempFolder;
     sim_ = new dambreak::DamBreak(test::small_dambreak());
     Adapter adapter = adapter_from_config_text(config_for(dir_->path()),
-                                                test::solver_options(*sim_), "test.yaml");
+                                               test::solver_options(*sim_), "test.yaml");
     result_ = test::run_dambreak(*sim_, adapter, kSteps);
     summary_ = adapter.summary();
   }
@@ -85,7 +85,8 @@ TEST_F(DamBreakRun, EveryStepSucceeds) {
   EXPECT_EQ(result_.steps, kSteps);
   EXPECT_EQ(result_.failed, 0) << result_.first_failure;
   EXPECT_NE(summary_.find("4 render steps, 8 views rendered"), std::string::npos) << summary_;
-  EXPECT_NE(summary_.find("8 PNG, 2 VDB, 2 VTK sets, 4 stats lines"), std::string::npos) << summary_;
+  EXPECT_NE(summary_.find("8 PNG, 2 VDB, 2 VTK sets, 4 stats lines"), std::string::npos)
+      << summary_;
   EXPECT_TRUE(test::temporaries_under(dir_->path()).empty());
 }
 
@@ -203,7 +204,8 @@ TEST(CApi, RunsTheRuntimeFromAConfigFile) {
   const std::size_t length = voxspan_adapter_summary(a, summary, sizeof summary);
   EXPECT_GT(length, 0u);
   EXPECT_NE(std::string(summary).find("1 render steps, 1 views rendered; written: 1 PNG"),
-            std::string::npos) << summary;
+            std::string::npos)
+      << summary;
   EXPECT_EQ(test::files_in(dir / "out" / "frames"), std::vector<std::string>{"view0_00000003.png"});
   voxspan_particles_destroy(p);
   voxspan_adapter_destroy(a);

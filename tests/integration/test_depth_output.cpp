@@ -100,7 +100,8 @@ writer: {fsync: false}
     AdapterOptions options;
     options.classify.particle_spacing = block.spacing;
     Adapter adapter = adapter_from_config_text(yaml, options, "depth.yaml");
-    const auto particles = ParticleView::soa(x.data(), y.data(), z.data(), x.size()).with_radii(r.data());
+    const auto particles =
+        ParticleView::soa(x.data(), y.data(), z.data(), x.size()).with_radii(r.data());
     ASSERT_TRUE(adapter.execute(3, 0.0, particles).ok());
     adapter.finish();
     EXPECT_NE(adapter.summary().find("1 depth images"), std::string::npos) << adapter.summary();
@@ -120,7 +121,8 @@ writer: {fsync: false}
   double worst = 0;
   for (int py = 0; py < height; ++py)
     for (int px = 0; px < width; ++px) {
-      const double u = (2 * (px + 0.5) / width - 1) * tan_x, v = (1 - 2 * (py + 0.5) / height) * tan_y;
+      const double u = (2 * (px + 0.5) / width - 1) * tan_x,
+                   v = (1 - 2 * (py + 0.5) / height) * tan_y;
       const auto ray = normalized({forward[0] + u * right[0] + v * true_up[0],
                                    forward[1] + u * right[1] + v * true_up[1],
                                    forward[2] + u * right[2] + v * true_up[2]});
@@ -133,9 +135,10 @@ writer: {fsync: false}
         worst = std::max(worst, std::abs(got - exact) / exact);
       }
     }
-  std::printf("depth image: %d pixels hit exactly, %d in both, hit masks agree on %.2f %%, worst "
-              "relative distance error %.4f %%\n",
-              hits, both, 100.0 * agree / (width * height), 100 * worst);
+  std::printf(
+      "depth image: %d pixels hit exactly, %d in both, hit masks agree on %.2f %%, worst "
+      "relative distance error %.4f %%\n",
+      hits, both, 100.0 * agree / (width * height), 100 * worst);
   ASSERT_GT(hits, width * height / 5) << "the block fills too little of the view";
   // Silhouette pixels may differ (a sphere grazed within a voxel); the rest agree.
   EXPECT_GE(double(agree) / (width * height), 0.98);

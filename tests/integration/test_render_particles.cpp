@@ -57,7 +57,8 @@ void write_block_xyz(const std::filesystem::path& path) {
 
 std::int64_t counter(const std::string& line, const std::string& name) {
   std::smatch m;
-  return std::regex_search(line, m, std::regex("\"" + name + "\":([0-9]+)")) ? std::stoll(m[1]) : -1;
+  return std::regex_search(line, m, std::regex("\"" + name + "\":([0-9]+)")) ? std::stoll(m[1])
+                                                                             : -1;
 }
 
 TEST(RenderParticles, RendersEveryFileWithTheConfig) {
@@ -67,28 +68,32 @@ TEST(RenderParticles, RendersEveryFileWithTheConfig) {
   std::ofstream(dir / "offline.yaml")
       << "views:\n"
          "  - {name: front, width: 128, height: 96, absorption: [80, 40, 20]}\n"
-         "  - {name: side, width: 96, height: 96, shading: opaque, absorption: [80, 40, 20], camera: {direction: [1, 0.2, -0.3]}}\n"
+         "  - {name: side, width: 96, height: 96, shading: opaque, absorption: [80, 40, 20], "
+         "camera: {direction: [1, 0.2, -0.3]}}\n"
          "outputs:\n  vtk: {enabled: true, trigger: {last: true}, attributes: [pressure]}\n";
   const std::filesystem::path out = dir / "out";
-  const ToolRun r = run_tool(dir.path(), "--config " + (dir / "offline.yaml").string() + " --output " +
-                                      out.string() + " " + (dir / "a.csv").string() + " " +
-                                      (dir / "b.xyz").string());
+  const ToolRun r = run_tool(
+      dir.path(), "--config " + (dir / "offline.yaml").string() + " --output " + out.string() +
+                      " " + (dir / "a.csv").string() + " " + (dir / "b.xyz").string());
   // b.xyz has no pressure column: its step fails, named, and the run goes on.
   ASSERT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("particle spacing 0.01 (estimated"), std::string::npos) << r.out;
-  EXPECT_NE(r.err.find(dir.path().string() + "/b.xyz: attribute 'pressure'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(dir.path().string() + "/b.xyz: attribute 'pressure'"), std::string::npos)
+      << r.err;
   EXPECT_NE(r.out.find("a.csv: step 0, 2744 particles"), std::string::npos) << r.out;
 
   // Attributes every file has (none): both files go through.
   std::ofstream(dir / "offline.yaml", std::ios::trunc)
       << "views:\n"
          "  - {name: front, width: 128, height: 96, absorption: [80, 40, 20]}\n"
-         "  - {name: side, width: 96, height: 96, shading: opaque, absorption: [80, 40, 20], camera: {direction: [1, 0.2, -0.3]}}\n"
+         "  - {name: side, width: 96, height: 96, shading: opaque, absorption: [80, 40, 20], "
+         "camera: {direction: [1, 0.2, -0.3]}}\n"
          "outputs:\n  vtk: {enabled: true, trigger: {first: true}}\n";
   std::filesystem::remove_all(out);
-  const ToolRun ok = run_tool(dir.path(), "--config " + (dir / "offline.yaml").string() + " --output " +
-                                       out.string() + " --spacing 0.01 " +
-                                       (dir / "a.csv").string() + " " + (dir / "b.xyz").string());
+  const ToolRun ok =
+      run_tool(dir.path(), "--config " + (dir / "offline.yaml").string() + " --output " +
+                               out.string() + " --spacing 0.01 " + (dir / "a.csv").string() + " " +
+                               (dir / "b.xyz").string());
   ASSERT_EQ(ok.status, 0) << ok.out << ok.err;
   EXPECT_EQ(test::files_in(out / "frames"),
             (std::vector<std::string>{"front_00000000.png", "front_00000001.png",
@@ -115,7 +120,8 @@ TEST(RenderParticles, RendersEveryFileWithTheConfig) {
 
 TEST(RenderParticles, MissingFileAndBadOptionAreOneLineErrors) {
   test::TempFolder dir;
-  ToolRun r = run_tool(dir.path(), "--output " + (dir / "out").string() + " " + (dir / "none.csv").string());
+  ToolRun r = run_tool(dir.path(),
+                       "--output " + (dir / "out").string() + " " + (dir / "none.csv").string());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find((dir / "none.csv").string()), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

@@ -45,7 +45,8 @@ TEST(InnerCells, SkippingChangesNoSpanByMoreThanOneLayer) {
     const test::SpanComparison cmp = test::compare_spans(skipped, every, 1.0);
     std::printf("t=%.2f: %zu of %zu particles voxelized: %s\n", t, r.cells.boundary.size(),
                 r.all.size(), cmp.summary().c_str());
-    EXPECT_EQ(cmp.count_match(), 1.0) << cmp.summary() << test::describe_mismatches(skipped, every, 4);
+    EXPECT_EQ(cmp.count_match(), 1.0)
+        << cmp.summary() << test::describe_mismatches(skipped, every, 4);
     EXPECT_EQ(cmp.boundary_match(), 1.0) << cmp.summary();
   }
 }
@@ -63,7 +64,8 @@ TEST(InnerCells, WithoutTheCellStatesTheBoundaryShellIsHollow) {
 TEST(InnerCells, MatchTheReferenceWithTheSameCells) {
   const DamBreakRuns r = dam_break_runs(0.15);
   const SpanImage gpu = test::voxelize(r.camera, r.cells.boundary, r.options, r.cells.view);
-  const SpanImage ref = exact_spans(gpu.grid, r.cells.boundary, r.cells.view, {r.options.gap_bridging, 0});
+  const SpanImage ref =
+      exact_spans(gpu.grid, r.cells.boundary, r.cells.view, {r.options.gap_bridging, 0});
   const test::SpanComparison cmp = test::compare_spans(gpu, ref);
   EXPECT_GE(cmp.count_match(), 0.995) << cmp.summary();
   EXPECT_GE(cmp.boundary_match(), 0.995) << cmp.summary();

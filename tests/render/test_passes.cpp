@@ -42,7 +42,8 @@ TEST(BinPass, EveryTileListsTheSmallSpheresTouchingIt) {
   p.push_back({0, 0, 5.5f, 1.0f});  // around the eye: large
   p.push_back({0, 0, -1, 2.5f});    // big on screen: large
   const PerspectiveGrid grid = PerspectiveGrid::fit(camera, p, GridOptions{});
-  const TileLayout tiles = plan_tiles(160, 96, grid.layers(), 8, {std::size_t(1) << 30, 40, 24}, std::size_t(1) << 30);
+  const TileLayout tiles =
+      plan_tiles(160, 96, grid.layers(), 8, {std::size_t(1) << 30, 40, 24}, std::size_t(1) << 30);
   ASSERT_EQ(tiles.count(), 16);
   gl::Buffer particles(p.size() * 16, p.data());
   PrefixSumPass scan(test::shaders());
@@ -56,10 +57,12 @@ TEST(BinPass, EveryTileListsTheSmallSpheresTouchingIt) {
   // tile; a sphere whose footprint shrunk by a pixel meets the tile is listed; no duplicates.
   for (int t = 0; t < tiles.count(); ++t) {
     const TileRect r = tiles.tile(t);
-    std::set<std::uint32_t> listed(lists.begin() + bins.offsets[t], lists.begin() + bins.offsets[t + 1]);
+    std::set<std::uint32_t> listed(lists.begin() + bins.offsets[t],
+                                   lists.begin() + bins.offsets[t + 1]);
     EXPECT_EQ(listed.size(), bins.offsets[t + 1] - bins.offsets[t]) << "duplicates in tile " << t;
     for (std::uint32_t i = 0; i + 2 < p.size(); ++i) {
-      const PixelRect f = grid.sphere_pixels(grid.view().to_view({p[i].x, p[i].y, p[i].z}), p[i].radius);
+      const PixelRect f =
+          grid.sphere_pixels(grid.view().to_view({p[i].x, p[i].y, p[i].z}), p[i].radius);
       if (f.empty()) {
         EXPECT_FALSE(listed.count(i)) << "culled sphere " << i << " in tile " << t;
         continue;

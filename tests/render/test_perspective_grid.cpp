@@ -53,20 +53,21 @@ TEST(PerspectiveGrid, CapCoarsensTheLayersToStillReachFar) {
   EXPECT_NEAR(g.grid_far(), 10.0, 1e-9);
   EXPECT_GT(g.alpha_degrees(), 0.5);
   // alpha reached = atan(K_d R_y / (2 tan(fov / 2))).
-  const double alpha = std::atan(g.k_d() * 100 / (2 * std::tan(std::numbers::pi / 6))) * 180 / std::numbers::pi;
+  const double alpha =
+      std::atan(g.k_d() * 100 / (2 * std::tan(std::numbers::pi / 6))) * 180 / std::numbers::pi;
   EXPECT_NEAR(g.alpha_degrees(), alpha, 1e-9);
 }
 
 TEST(PerspectiveGrid, FitsNearAndFarToVisibleSpheresAndCountsTheRest) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const std::vector<ParticleSphere> p = {
-      {0, 0, -3, 0.5f},      // visible: depth 2.5 .. 3.5
-      {0.5f, 0, -6, 1.0f},   // visible: depth 5 .. 7
-      {0, 0, 4, 1.0f},       // behind the camera
-      {100, 0, -5, 1.0f},    // outside the frustum's side
-      {0, 0, -2, nan},       // invalid
-      {0, 0, -2, -1.0f},     // invalid
-      {0, 0, -0.01f, 0.05f}, // reaches 0.06 in front of the eye: before the near floor 0.07
+      {0, 0, -3, 0.5f},       // visible: depth 2.5 .. 3.5
+      {0.5f, 0, -6, 1.0f},    // visible: depth 5 .. 7
+      {0, 0, 4, 1.0f},        // behind the camera
+      {100, 0, -5, 1.0f},     // outside the frustum's side
+      {0, 0, -2, nan},        // invalid
+      {0, 0, -2, -1.0f},      // invalid
+      {0, 0, -0.01f, 0.05f},  // reaches 0.06 in front of the eye: before the near floor 0.07
   };
   CullCounts counts;
   const PerspectiveGrid g = PerspectiveGrid::fit(camera(), p, GridOptions{}, &counts);
@@ -113,14 +114,17 @@ TEST(PerspectiveGrid, SpherePixelsHoldEveryPixelWhoseRayHitsAndLittleMore) {
         const glm::dvec3 perp = c - zc * d;
         if (glm::dot(perp, perp) >= r * r || zc + r <= 0) continue;
         ++tested;
-        hits = {std::min(hits.x0, x), std::min(hits.y0, y), std::max(hits.x1, x), std::max(hits.y1, y)};
+        hits = {std::min(hits.x0, x), std::min(hits.y0, y), std::max(hits.x1, x),
+                std::max(hits.y1, y)};
         ASSERT_TRUE(x >= rect.x0 && x <= rect.x1 && y >= rect.y0 && y <= rect.y1)
-            << "sphere " << c.x << "," << c.y << "," << c.z << " r " << r << " pixel " << x << "," << y;
+            << "sphere " << c.x << "," << c.y << "," << c.z << " r " << r << " pixel " << x << ","
+            << y;
       }
     // Tight: the silhouette's bounds hold at most one more column or row of pixel centres
     // than the pixels hit, for spheres wholly on screen (the others' extreme points may lie
     // off it; spheres reaching the eye's plane get the whole image).
-    if (hits.empty() || c.z - r <= 0 || rect.x0 == 0 || rect.y0 == 0 || rect.x1 == 63 || rect.y1 == 47)
+    if (hits.empty() || c.z - r <= 0 || rect.x0 == 0 || rect.y0 == 0 || rect.x1 == 63 ||
+        rect.y1 == 47)
       continue;
     ++tight;
     EXPECT_GE(rect.x0, hits.x0 - 1);

@@ -35,8 +35,8 @@ TEST(Reference, OneSphereIsItsAnalyticChord) {
 }
 
 TEST(Reference, UnionOfOverlappingAndTouchingSpheres) {
-  const std::vector<ParticleSphere> p = {{0, 0, -5, 1}, {0, 0, -6.5f, 1}, {0, 0, -9.5f, 1},
-                                         {0, 0, -11.5f, 1}, {0, 0, -15, 1}};
+  const std::vector<ParticleSphere> p = {
+      {0, 0, -5, 1}, {0, 0, -6.5f, 1}, {0, 0, -9.5f, 1}, {0, 0, -11.5f, 1}, {0, 0, -15, 1}};
   const auto s = centre_spans(exact_spans(grid(), p, {}, {}));
   ASSERT_EQ(s.size(), 3u);  // 4..7.5, 8.5..12.5 (touching at 10.5), 14..16
   EXPECT_FLOAT_EQ(s[0].exit, 7.5f);
@@ -93,7 +93,8 @@ Cells block_cells() {
   c.states.assign(64, cell::kFull);
   for (int k = 1; k < 3; ++k)
     for (int j = 1; j < 3; ++j)
-      for (int i = 1; i < 3; ++i) c.states[static_cast<std::size_t>(i + 4 * (j + 4 * k))] = cell::kInnerFull;
+      for (int i = 1; i < 3; ++i)
+        c.states[static_cast<std::size_t>(i + 4 * (j + 4 * k))] = cell::kInnerFull;
   c.view.origin = {-2, -2, -12};
   c.view.cell_size = 1;
   c.view.dims = {4, 4, 4};

@@ -22,7 +22,8 @@ void expect_exact_cover(const TileLayout& t) {
     ASSERT_LE(r.width, t.tile_width);
     ASSERT_LE(r.height, t.tile_height);
     for (int y = r.y0; y < r.y0 + r.height; ++y)
-      for (int x = r.x0; x < r.x0 + r.width; ++x) ++hits[static_cast<std::size_t>(x + y * t.image_width)];
+      for (int x = r.x0; x < r.x0 + r.width; ++x)
+        ++hits[static_cast<std::size_t>(x + y * t.image_width)];
   }
   for (int h : hits) ASSERT_EQ(h, 1);
 }

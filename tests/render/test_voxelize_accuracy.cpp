@@ -22,8 +22,8 @@ struct Case {
 test::SpanComparison check(const Case& c, const char* name) {
   FrameStats stats;
   const SpanImage gpu = test::voxelize(c.camera, c.particles, c.options, {}, &stats);
-  const SpanImage ref = exact_spans(gpu.grid, c.particles, {},
-                                    {c.options.gap_bridging, c.options.max_spans});
+  const SpanImage ref =
+      exact_spans(gpu.grid, c.particles, {}, {c.options.gap_bridging, c.options.max_spans});
   const test::SpanComparison cmp = test::compare_spans(gpu, ref);
   SCOPED_TRACE(name);
   EXPECT_GT(cmp.pixels_hit, 0);

@@ -16,7 +16,9 @@
 namespace voxspan {
 namespace {
 
-Camera small_camera(glm::dvec3 eye, glm::dvec3 target) { return test::look_at(eye, target, 96, 64); }
+Camera small_camera(glm::dvec3 eye, glm::dvec3 target) {
+  return test::look_at(eye, target, 96, 64);
+}
 
 void expect_matches_reference(const SpanImage& gpu, std::span<const ParticleSphere> particles,
                               double gap) {
@@ -64,9 +66,9 @@ TEST(VoxelizeBadInput, ParticlesOnAndBehindTheNearPlane) {
   const Camera camera = small_camera({0, 0, 0}, {0, 0, -1});
   test::Particles p = test::lattice_block({-0.5, -0.4, -3}, {10, 8, 4}, 0.1, 0.08);
   const std::size_t in_front = p.size();
-  p.push_back({0.0f, 0.0f, 0.05f, 0.1f});    // around the eye: reaches both sides of it
-  p.push_back({0.2f, 0.1f, 0.5f, 0.2f});     // wholly behind the camera
-  p.push_back({-0.3f, 0.0f, 2.0f, 0.5f});    // far behind
+  p.push_back({0.0f, 0.0f, 0.05f, 0.1f});  // around the eye: reaches both sides of it
+  p.push_back({0.2f, 0.1f, 0.5f, 0.2f});   // wholly behind the camera
+  p.push_back({-0.3f, 0.0f, 2.0f, 0.5f});  // far behind
   VoxelizeOptions o;
   o.grid.alpha_degrees = 2;
   FrameStats stats;
@@ -136,16 +138,18 @@ TEST(VoxelizeBadInput, BudgetTooSmallForOneTileRowNamesTheBudgetNeeded) {
   VoxelizeOptions o;
   FrameStats stats;
   const SpanImage fine = test::voxelize(camera, p, o, {}, &stats);
-  const std::size_t needed =
-      96 * ((std::size_t(fine.grid.layers()) + 127) / 128 * 16 + scratch_bytes_per_pixel(o.scratch_spans));
+  const std::size_t needed = 96 * ((std::size_t(fine.grid.layers()) + 127) / 128 * 16 +
+                                   scratch_bytes_per_pixel(o.scratch_spans));
   o.tiles.memory_budget = needed - 1;
   try {
     test::voxelize(camera, p, o);
     FAIL() << "a budget below one tile row was accepted";
   } catch (const Error& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("tile memory budget of " + std::to_string(needed - 1)), std::string::npos) << what;
-    EXPECT_NE(what.find("at least " + std::to_string(needed) + " bytes"), std::string::npos) << what;
+    EXPECT_NE(what.find("tile memory budget of " + std::to_string(needed - 1)), std::string::npos)
+        << what;
+    EXPECT_NE(what.find("at least " + std::to_string(needed) + " bytes"), std::string::npos)
+        << what;
   }
   // Exactly one row per tile works, and gives the same spans.
   o.tiles.memory_budget = needed;

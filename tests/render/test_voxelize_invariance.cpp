@@ -1,8 +1,9 @@
 // The span image does not depend on how the work is cut up: the same spans, bit for bit,
 // whatever the tile size (bands, 2D tiles, more tiles than the binning's shared tallies hold),
 // the order of the particles, the binning (per-tile lists, tallied in shared memory or not, or
-// the paper's re-splat of all particles), the splat's threads (per pixel or per particle), surface-only or whole-chord
-// marking under gap bridging, and the compress scratch size (copy or re-scan).
+// the paper's re-splat of all particles), the splat's threads (per pixel or per particle),
+// surface-only or whole-chord marking under gap bridging, and the compress scratch size (copy or
+// re-scan).
 #include <algorithm>
 #include <random>
 
@@ -26,8 +27,7 @@ Scene dam_break_scene(int width, int height) {
   shape.spray_fraction = 0.01;
   Scene s{test::dam_break(shape, 0.3), {}, {}};
   // Droplets all over the tank, so that many rays cross more spans than the cap.
-  const test::Particles drops =
-      test::random_cloud(400, {0, 0, 0}, {1.2, 0.6, 0.3}, 0.005, 0.03, 9);
+  const test::Particles drops = test::random_cloud(400, {0, 0, 0}, {1.2, 0.6, 0.3}, 0.005, 0.03, 9);
   s.particles.insert(s.particles.end(), drops.begin(), drops.end());
   s.camera = test::frame_scene(s.particles, {0.4, -0.5, -1}, width, height);
   s.options.grid.alpha_degrees = 4;
@@ -58,7 +58,8 @@ TEST(VoxelizeInvariance, SameSpansWhateverTilesOrderBinningThreadsAndMarking) {
   const std::size_t row = 160 * (base.grid.layers() / 128 + 1) * 16 + 160 * (8 * 8 + 8);
   o.tiles.memory_budget = 7 * row;
   FrameStats band_stats;
-  expect_identical(base, test::voxelize(s.camera, shuffled, o, {}, &band_stats), "7-row bands, shuffled");
+  expect_identical(base, test::voxelize(s.camera, shuffled, o, {}, &band_stats),
+                   "7-row bands, shuffled");
   EXPECT_GE(band_stats.count("tiles"), 96 / 7);
 
   o = s.options;

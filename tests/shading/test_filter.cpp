@@ -54,7 +54,8 @@ TEST(Filter, HundredIterationsOnTheDamBreakStayStable) {
   SurfaceOptions filter;
   filter.filter_radius = 0.15;  // 2 (r / pixel)^2 > 100 at every depth of the frame
   filter.max_iterations = 100;
-  ASSERT_GT(FilterPass::iterations_at(spans.grid, filter.filter_radius, spans.grid.grid_far()), 100);
+  ASSERT_GT(FilterPass::iterations_at(spans.grid, filter.filter_radius, spans.grid.grid_far()),
+            100);
   const ShadeOptions shade = test::test_shading(ShadeMode::translucent);
   const test::GpuResult before = test::shade_on_gpu(spans, {}, shade);
   const test::GpuResult after = test::shade_on_gpu(spans, filter, shade);
@@ -94,10 +95,11 @@ TEST(Filter, HundredIterationsOnTheDamBreakStayStable) {
               smooth_after);
   EXPECT_LT(smooth_after, 0.7 * smooth_before) << "the filter should smooth the surface";
   const double hundred = roughness(spans, after.links, after.normals);
-  std::printf("100 iterations: largest depth change %.4f (radius %.2f), mean %.5f; neighbour "
-              "normals %.2f degrees apart; %zu of %zu spans closed to a sheet\n",
-              most, filter.filter_radius, sum / (2.0 * double(spans.spans.size())), hundred, closed,
-              spans.spans.size());
+  std::printf(
+      "100 iterations: largest depth change %.4f (radius %.2f), mean %.5f; neighbour "
+      "normals %.2f degrees apart; %zu of %zu spans closed to a sheet\n",
+      most, filter.filter_radius, sum / (2.0 * double(spans.spans.size())), hundred, closed,
+      spans.spans.size());
   EXPECT_LT(closed, spans.spans.size() / 100);
 
   // The droplet survives: its pixels keep their span, nearly where it was.
@@ -127,7 +129,8 @@ TEST(Filter, SilhouettesDoNotBleedAndFlatSurfacesStay) {
   SurfaceOptions filter;
   filter.filter_radius = 1.0;
   filter.max_iterations = 30;
-  const test::GpuResult r = test::shade_on_gpu(spans, filter, test::test_shading(ShadeMode::opaque));
+  const test::GpuResult r =
+      test::shade_on_gpu(spans, filter, test::test_shading(ShadeMode::opaque));
   EXPECT_EQ(r.stats.count("filter.iterations"), 30);
   for (std::size_t s = 0; s < spans.spans.size(); ++s) {
     EXPECT_NEAR(r.depths[s].x, spans.spans[s].entry, 2e-6) << "span " << s;
@@ -147,7 +150,8 @@ TEST(Filter, ThinNoisySheetSurvives) {
   SurfaceOptions filter;
   filter.filter_radius = 0.5;
   filter.max_iterations = 50;
-  const test::GpuResult r = test::shade_on_gpu(spans, filter, test::test_shading(ShadeMode::translucent));
+  const test::GpuResult r =
+      test::shade_on_gpu(spans, filter, test::test_shading(ShadeMode::translucent));
   double spread_before = 0, spread_after = 0;
   for (std::size_t s = 0; s < spans.spans.size(); ++s) {
     ASSERT_LT(r.depths[s].x, r.depths[s].y) << "span " << s;

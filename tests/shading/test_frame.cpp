@@ -36,7 +36,9 @@ TEST(DeepAo, OccludedNextToAStepAndDeepBehindASheet) {
   const std::vector<float> flat = test::shade_on_gpu(step_scene(false, false), {}, shade).ao;
   const std::vector<float> step = test::shade_on_gpu(step_scene(true, false), {}, shade).ao;
   const std::vector<float> hidden = test::shade_on_gpu(step_scene(true, true), {}, shade).ao;
-  const auto at = [](const std::vector<float>& ao, int x, int y) { return ao[std::size_t(x) + 32 * std::size_t(y)]; };
+  const auto at = [](const std::vector<float>& ao, int x, int y) {
+    return ao[std::size_t(x) + 32 * std::size_t(y)];
+  };
   for (int x = 2; x < 30; ++x) EXPECT_FLOAT_EQ(at(flat, x, 16), 1.0f) << "flat floor, x " << x;
   // On the floor right of the step: occluded near it, less so further away, not at all far off.
   EXPECT_LT(at(step, 12, 16), 0.9f);
@@ -68,9 +70,10 @@ TEST(Translucency, TwentyFourLayersCappedAtSevenEqualUncapped) {
   for (bool ao : {false, true}) {
     ShadeOptions shade = test::test_shading(ShadeMode::translucent);
     shade.deep_ao = ao;  // AO reads the front surface only: the cap cannot change it
-    const test::ImageDifference d = test::compare_images(test::shade_on_gpu(capped, {}, shade).image,
-                                                         test::shade_on_gpu(all, {}, shade).image);
-    std::printf("capped at 7 against all 24 spans (ao %d): max %d/255, PSNR %.1f dB\n", ao, d.max_levels, d.psnr);
+    const test::ImageDifference d = test::compare_images(
+        test::shade_on_gpu(capped, {}, shade).image, test::shade_on_gpu(all, {}, shade).image);
+    std::printf("capped at 7 against all 24 spans (ao %d): max %d/255, PSNR %.1f dB\n", ao,
+                d.max_levels, d.psnr);
     EXPECT_LE(d.max_levels, 1);
   }
 }
@@ -87,16 +90,18 @@ TEST(Refraction, MarchesResumedOverManyDispatchesComplete) {
   VoxelizeOptions options;
   options.gap_bridging = shape.spacing;
   for (const test::Particles* particles : {&dam, &sheets}) {
-    const SpanImage spans = test::voxelize(test::frame_scene(*particles, {0.4, -0.5, -1}, 256, 144), *particles, options);
+    const SpanImage spans = test::voxelize(test::frame_scene(*particles, {0.4, -0.5, -1}, 256, 144),
+                                           *particles, options);
     ShadeOptions shade = test::test_shading(ShadeMode::refractive);
     shade.bounces = 8;
     const test::GpuResult whole = test::shade_on_gpu(spans, {}, shade);
     shade.march_budget = 3;  // a few column events per ray and dispatch
     const test::GpuResult pieces = test::shade_on_gpu(spans, {}, shade);
-    std::printf("default budget: %lld dispatches, longest ray %lld events; budget 3: %lld dispatches\n",
-                static_cast<long long>(whole.stats.count("refract.dispatches")),
-                static_cast<long long>(whole.stats.count("refract.most_events")),
-                static_cast<long long>(pieces.stats.count("refract.dispatches")));
+    std::printf(
+        "default budget: %lld dispatches, longest ray %lld events; budget 3: %lld dispatches\n",
+        static_cast<long long>(whole.stats.count("refract.dispatches")),
+        static_cast<long long>(whole.stats.count("refract.most_events")),
+        static_cast<long long>(pieces.stats.count("refract.dispatches")));
     EXPECT_EQ(whole.stats.count("refract.unfinished"), 0);
     EXPECT_EQ(pieces.stats.count("refract.unfinished"), 0);
     EXPECT_GT(whole.stats.count("refract.most_events"), 150) << "rays should cross many columns";
@@ -112,7 +117,8 @@ TEST(Refraction, AMarchLongerThanOneDispatchCompletes) {
   // CPU (no loop limit) and with itself resumed every 7 events.
   std::vector<Span> column;
   for (int k = 0; k < 700; ++k) column.push_back({2.0f + 0.01f * k, 2.005f + 0.01f * k});
-  const SpanImage spans = test::hand_made(8, 8, std::vector<std::vector<Span>>(64, column), 1.0, 12.0);
+  const SpanImage spans =
+      test::hand_made(8, 8, std::vector<std::vector<Span>>(64, column), 1.0, 12.0);
   ShadeOptions shade = test::test_shading(ShadeMode::refractive);
   shade.material.absorption = {0.2, 0.1, 0.05};
   const test::GpuResult gpu = test::shade_on_gpu(spans, {}, shade);
@@ -124,8 +130,10 @@ TEST(Refraction, AMarchLongerThanOneDispatchCompletes) {
   shade.march_budget = 7;
   EXPECT_EQ(test::shade_on_gpu(spans, {}, shade).image.rgba, gpu.image.rgba);
   // Through 700 x 0.005 of fluid, red absorbed most: redder without the fluid, not black with it.
-  const FloatImage empty = test::shade_on_gpu(
-      test::hand_made(8, 8, std::vector<std::vector<Span>>(64), 1.0, 12.0), {}, shade).image;
+  const FloatImage empty =
+      test::shade_on_gpu(test::hand_made(8, 8, std::vector<std::vector<Span>>(64), 1.0, 12.0), {},
+                         shade)
+          .image;
   EXPECT_LT(gpu.image.at(4, 4).r, 0.95f * empty.at(4, 4).r);
   EXPECT_GT(gpu.image.at(4, 4).r, 0.05f);
 }
@@ -147,12 +155,14 @@ TEST(Renderer, FullFrameFromParticles) {
     const FloatImage image =
         test::renderer().render(camera, dam, {}, options, timer, stats).download();
     timer.collect(stats);
-    for (const char* pass : {"splat", "compress", "connect", "filter", "normals", "deep_ao", "shade"})
+    for (const char* pass :
+         {"splat", "compress", "connect", "filter", "normals", "deep_ao", "shade"})
       EXPECT_EQ(stats.runs(pass) > 0, true) << pass;
     EXPECT_GT(stats.count("filter.iterations"), 0);
     // Against the same spans shaded by the passes alone (the render() path adds nothing else).
     const SpanImage spans = test::voxelize(camera, dam, options.voxelize);
-    const test::ImageDifference d = test::compare_images(image, test::shade_on_gpu(spans, options.surfaces, options.shade).image);
+    const test::ImageDifference d = test::compare_images(
+        image, test::shade_on_gpu(spans, options.surfaces, options.shade).image);
     EXPECT_EQ(d.max_levels, 0) << shade_mode_name(mode);
   }
 }
@@ -166,7 +176,8 @@ TEST(Renderer, NoParticlesGiveTheEnvironment) {
     options.surfaces.filter_radius = 0.1;
     gl::PassTimer timer(false);
     FrameStats stats;
-    const FloatImage image = test::renderer().render(camera, {}, {}, options, timer, stats).download();
+    const FloatImage image =
+        test::renderer().render(camera, {}, {}, options, timer, stats).download();
     ASSERT_EQ(image.width, 32);
     // Sky at the top, ground at the bottom, nothing else.
     EXPECT_GT(image.at(16, 0).b, image.at(16, 0).r) << shade_mode_name(mode);
@@ -180,8 +191,8 @@ TEST(Renderer, BadOptionsNameTheOption) {
     gl::PassTimer timer(false);
     FrameStats stats;
     try {
-      test::renderer().render(test::look_at({0, 0, 3}, {0, 0, 0}, 8, 8), test::one_sphere({0, 0, 0}, 1), {},
-                              options, timer, stats);
+      test::renderer().render(test::look_at({0, 0, 3}, {0, 0, 0}, 8, 8),
+                              test::one_sphere({0, 0, 0}, 1), {}, options, timer, stats);
     } catch (const Error& e) {
       return std::string(e.what());
     }

@@ -35,10 +35,10 @@ void expect_links(const SpanImage& spans, const std::vector<glm::uvec2>& want) {
   const std::vector<glm::uvec2> got = gpu_links(spans);
   ASSERT_EQ(got.size(), want.size());
   for (std::size_t s = 0; s < want.size(); ++s) {
-    EXPECT_EQ(got[s].x, want[s].x) << "entry of span " << s << ": got " << show(got[s].x)
-                                   << ", want " << show(want[s].x);
-    EXPECT_EQ(got[s].y, want[s].y) << "exit of span " << s << ": got " << show(got[s].y)
-                                   << ", want " << show(want[s].y);
+    EXPECT_EQ(got[s].x, want[s].x)
+        << "entry of span " << s << ": got " << show(got[s].x) << ", want " << show(want[s].x);
+    EXPECT_EQ(got[s].y, want[s].y)
+        << "exit of span " << s << ": got " << show(got[s].y) << ", want " << show(want[s].y);
   }
   EXPECT_EQ(reference_links(spans), got) << "the CPU's rule disagrees with the GPU's";
 }
@@ -48,10 +48,10 @@ TEST(Links, Bubble) {
   // exit and entry are bubble walls linked in their own column; B's exit links A's last exit.
   const SpanImage spans = test::hand_made(2, 1, {{{1, 2}, {3, 4}}, {{1, 4}}});
   expect_links(spans, {
-      {word(S, 0, S, S), word(S, O, S, S)},  // A span 0
-      {word(S, O, S, S), word(S, 0, S, S)},  // A span 1
-      {word(0, S, S, S), word(1, S, S, S)},  // B span 0
-  });
+                          {word(S, 0, S, S), word(S, O, S, S)},  // A span 0
+                          {word(S, O, S, S), word(S, 0, S, S)},  // A span 1
+                          {word(0, S, S, S), word(1, S, S, S)},  // B span 0
+                      });
 }
 
 TEST(Links, TwoTouchingBlobs) {
@@ -59,35 +59,39 @@ TEST(Links, TwoTouchingBlobs) {
   // pixel 1 (one span [1, 3]) and are apart in pixel 2 (air between 2 and 2.5), so the air
   // pocket closes between pixels 1 and 2.
   const SpanImage spans = test::hand_made(3, 1, {{{1, 2}}, {{1, 3}}, {{1, 2}, {2.5f, 3}}});
-  expect_links(spans, {
-      {word(S, 0, S, S), word(S, 0, S, S)},  // pixel 0
-      {word(0, 0, S, S), word(0, 1, S, S)},  // pixel 1: exit to pixel 2's second exit
-      {word(0, S, S, S), word(O, S, S, S)},  // pixel 2, span 0: exit is the pocket's wall
-      {word(O, S, S, S), word(0, S, S, S)},  // pixel 2, span 1: entry is the pocket's wall
-  });
+  expect_links(
+      spans,
+      {
+          {word(S, 0, S, S), word(S, 0, S, S)},  // pixel 0
+          {word(0, 0, S, S), word(0, 1, S, S)},  // pixel 1: exit to pixel 2's second exit
+          {word(0, S, S, S), word(O, S, S, S)},  // pixel 2, span 0: exit is the pocket's wall
+          {word(O, S, S, S), word(0, S, S, S)},  // pixel 2, span 1: entry is the pocket's wall
+      });
 }
 
 TEST(Links, Overhang) {
   // A column of three pixels: a thick block at the top, below it the block's front part and
   // back part with air between, at the bottom only the back part: the front part overhangs.
   const SpanImage spans = test::hand_made(1, 3, {{{1, 5}}, {{1, 2}, {4, 5}}, {{4, 5}}});
-  expect_links(spans, {
-      {word(S, S, S, 0), word(S, S, S, 1)},  // top
-      {word(S, S, 0, S), word(S, S, O, S)},  // middle, front part: nothing below it
-      {word(S, S, O, 0), word(S, S, 0, 0)},  // middle, back part
-      {word(S, S, 1, S), word(S, S, 1, S)},  // bottom: up to the middle's back part
-  });
+  expect_links(spans,
+               {
+                   {word(S, S, S, 0), word(S, S, S, 1)},  // top
+                   {word(S, S, 0, S), word(S, S, O, S)},  // middle, front part: nothing below it
+                   {word(S, S, O, 0), word(S, S, 0, 0)},  // middle, back part
+                   {word(S, S, 1, S), word(S, S, 1, S)},  // bottom: up to the middle's back part
+               });
 }
 
 TEST(Links, NoOverlapAndEmptyNeighbours) {
   // Spans that do not overlap in depth, an empty pixel and spans touching at one depth (which
   // overlap: Listing 1 compares with <=).
   const SpanImage spans = test::hand_made(2, 2, {{{1, 2}}, {{3, 4}}, {}, {{2, 3}}});
-  expect_links(spans, {
-      {word(S, S, S, S), word(S, S, S, S)},  // (0,0): (1,0) is deeper, (0,1) empty
-      {word(S, S, S, 0), word(S, S, S, 0)},  // (1,0): touches (1,1) at depth 3
-      {word(S, S, 0, S), word(S, S, 0, S)},  // (1,1)
-  });
+  expect_links(spans,
+               {
+                   {word(S, S, S, S), word(S, S, S, S)},  // (0,0): (1,0) is deeper, (0,1) empty
+                   {word(S, S, S, 0), word(S, S, S, 0)},  // (1,0): touches (1,1) at depth 3
+                   {word(S, S, 0, S), word(S, S, 0, S)},  // (1,1)
+               });
 }
 
 TEST(Links, SpansPastByteRangeReadAsSurfaceEnds) {

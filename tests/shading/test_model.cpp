@@ -36,18 +36,22 @@ TEST(Model, OctahedralNormalsRoundTrip) {
   std::mt19937 rng(3);
   std::normal_distribution<float> g;
   std::vector<glm::vec4> inputs;
-  for (int i = 0; i < 20000; ++i) inputs.emplace_back(glm::normalize(glm::vec3(g(rng), g(rng), g(rng))), 0.0f);
-  for (glm::vec3 axis : {glm::vec3(1, 0, 0), glm::vec3(0, -1, 0), glm::vec3(0, 0, 1), glm::vec3(0, 0, -1)})
+  for (int i = 0; i < 20000; ++i)
+    inputs.emplace_back(glm::normalize(glm::vec3(g(rng), g(rng), g(rng))), 0.0f);
+  for (glm::vec3 axis :
+       {glm::vec3(1, 0, 0), glm::vec3(0, -1, 0), glm::vec3(0, 0, 1), glm::vec3(0, 0, -1)})
     inputs.emplace_back(axis, 0.0f);
   double worst = 0;
   for (const glm::vec4& v : inputs)
-    worst = std::max(worst, degrees_between(host.decode_normal(host.encode_normal(glm::vec3(v))), glm::vec3(v)));
+    worst = std::max(
+        worst, degrees_between(host.decode_normal(host.encode_normal(glm::vec3(v))), glm::vec3(v)));
   EXPECT_LT(worst, 0.01) << "degrees";
 
   // The GPU's compilation of the same file gives the same words, and decodes them alike.
   const auto n = static_cast<unsigned>(inputs.size());
   gl::Program probe = test::shaders().compute("tests/shading/octahedral_probe.comp");
-  gl::Buffer in(inputs.size() * 16, inputs.data()), words(inputs.size() * 4), decoded(inputs.size() * 16);
+  gl::Buffer in(inputs.size() * 16, inputs.data()), words(inputs.size() * 4),
+      decoded(inputs.size() * 16);
   in.bind(GL_SHADER_STORAGE_BUFFER, 0);
   words.bind(GL_SHADER_STORAGE_BUFFER, 1);
   decoded.bind(GL_SHADER_STORAGE_BUFFER, 2);
@@ -103,7 +107,8 @@ TEST(Model, FresnelAndSnell) {
     const ReferenceHost::RayState out = host.ray_interface(s, back, false);
     if (a < critical - 0.01f) {
       EXPECT_FALSE(out.inside);
-      EXPECT_NEAR(std::sqrt(out.dir.x * out.dir.x + out.dir.y * out.dir.y), ior * std::sin(a), 1e-4);
+      EXPECT_NEAR(std::sqrt(out.dir.x * out.dir.x + out.dir.y * out.dir.y), ior * std::sin(a),
+                  1e-4);
       EXPECT_LT(out.throughput.x, 1.0f);
     } else {
       EXPECT_TRUE(out.inside) << "internal reflection keeps the ray inside";
@@ -125,7 +130,8 @@ TEST(Model, EnvironmentSkyGroundAndHorizon) {
   o.environment.sun_color = {0, 0, 0};
   ReferenceHost host(none, model::shade_uniforms(o));
   const glm::vec3 eye(0, 1, 0);
-  EXPECT_NEAR(glm::distance(host.environment(eye, {0, 1, 0}), glm::vec3(o.environment.sky_zenith)), 0, 1e-6);
+  EXPECT_NEAR(glm::distance(host.environment(eye, {0, 1, 0}), glm::vec3(o.environment.sky_zenith)),
+              0, 1e-6);
   // Straight down onto the ground: a checker tile's colour (light or dark, or between at an edge).
   const glm::vec3 ground = host.environment(eye, {0, -1, 0});
   EXPECT_LE(ground.r, float(o.environment.ground_light.r) + 1e-6f);
@@ -159,7 +165,8 @@ TEST(Model, TranslucentBeerLambertExactPastTheCap) {
   const double f = std::pow((o.material.ior - 1) / (o.material.ior + 1), 2);
   for (int ch = 0; ch < 3; ++ch) {
     const double t = std::exp(-o.material.absorption[ch] * 24 * 0.05);
-    const double want = f * env[ch] + (1 - f) * (t * env[ch] + (1 - t) * o.material.scatter_color[ch]);
+    const double want =
+        f * env[ch] + (1 - f) * (t * env[ch] + (1 - t) * o.material.scatter_color[ch]);
     EXPECT_NEAR(got_all[ch], want, 2e-5) << "channel " << ch;
     EXPECT_NEAR(got_capped[ch], want, 2e-5) << "channel " << ch << ", capped";
   }
@@ -177,7 +184,8 @@ TEST(Model, RefractionStraightThroughAFlatSlab) {
   const double len = 1.0 * slab.grid.view().ray_scale(4, 4);
   for (int ch = 0; ch < 3; ++ch) {
     const double t = std::exp(-o.material.absorption[ch] * len);
-    const double want = f * env[ch] + (1 - f) * ((1 - t) * o.material.scatter_color[ch] + t * (1 - f) * env[ch]);
+    const double want =
+        f * env[ch] + (1 - f) * ((1 - t) * o.material.scatter_color[ch] + t * (1 - f) * env[ch]);
     EXPECT_NEAR(got[ch], want, 1e-4) << "channel " << ch;
   }
   // And the GPU agrees.

@@ -74,9 +74,9 @@ TEST(ShadeAccuracy, AgainstTheExactReferenceAtTheDefaultAngle) {
     const SpanImage spans = test::voxelize(scene.camera, scene.particles, scene.options);
     ASSERT_EQ(spans.grid.alpha_degrees(), 14.0);
     std::vector<SpanNormals> exact_normals;
-    const SpanImage exact = exact_spans(spans.grid, scene.particles, {},
-                                        {scene.options.gap_bridging, scene.options.max_spans},
-                                        &exact_normals);
+    const SpanImage exact =
+        exact_spans(spans.grid, scene.particles, {},
+                    {scene.options.gap_bridging, scene.options.max_spans}, &exact_normals);
     const std::vector<glm::uvec2> sobel = reference_normals(exact, reference_links(exact));
     const std::vector<glm::uvec2> sphere = encode_exact_normals(exact_normals, sobel);
     const SpanImage rounded = rounded_to_layers(exact);
@@ -88,9 +88,10 @@ TEST(ShadeAccuracy, AgainstTheExactReferenceAtTheDefaultAngle) {
       const double same = test::compare_images(gpu, ref_same).psnr;
       const double exact_n = test::compare_images(gpu, ref_sphere).psnr;
       const double limit = test::compare_images(reference_shading(rounded, shade), ref_same).psnr;
-      std::printf("%-18s %-12s PSNR %5.1f dB (same normals), %5.1f dB (sphere normals); "
-                  "rounded exact spans %5.1f dB\n",
-                  scene.name.c_str(), shade_mode_name(mode), same, exact_n, limit);
+      std::printf(
+          "%-18s %-12s PSNR %5.1f dB (same normals), %5.1f dB (sphere normals); "
+          "rounded exact spans %5.1f dB\n",
+          scene.name.c_str(), shade_mode_name(mode), same, exact_n, limit);
       const std::string tag = scene.name + " " + shade_mode_name(mode);
       keep(tag + " gpu", gpu);
       keep(tag + " reference", ref_same);

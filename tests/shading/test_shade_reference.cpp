@@ -46,7 +46,8 @@ TEST(ShadeReference, NormalsAndAoMatchTheCpu) {
   EXPECT_LT(worst, 1e-3);
   const std::vector<float> ao = reference_ao(spans, links, normals, shade);
   double ao_worst = 0;
-  for (std::size_t p = 0; p < ao.size(); ++p) ao_worst = std::max(ao_worst, double(std::abs(ao[p] - gpu.ao[p])));
+  for (std::size_t p = 0; p < ao.size(); ++p)
+    ao_worst = std::max(ao_worst, double(std::abs(ao[p] - gpu.ao[p])));
   std::printf("deep AO: worst difference %.2e\n", ao_worst);
   EXPECT_LT(ao_worst, 2e-3);
 }

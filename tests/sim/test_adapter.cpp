@@ -47,7 +47,9 @@ struct Recorder : Pipeline {
 
 // Silences the expected error lines of these tests.
 struct QuietLog {
-  QuietLog() { set_log_sink([](LogLevel, std::string_view) {}); }
+  QuietLog() {
+    set_log_sink([](LogLevel, std::string_view) {});
+  }
   ~QuietLog() { set_log_sink({}); }
 };
 
@@ -61,7 +63,8 @@ TEST(Adapter, RendersEveryNthStepAndKeepsStats) {
   adapter.set_pipeline(recorder);
   const auto view = ParticleView::aos(&s.sorted[0].x, s.sorted.size(), sizeof(Point));
   for (int step = 1; step <= 12; ++step)
-    EXPECT_TRUE(adapter.execute(step, 0.1 * step, view, GridView::offsets(g, s.offsets.data())).ok());
+    EXPECT_TRUE(
+        adapter.execute(step, 0.1 * step, view, GridView::offsets(g, s.offsets.data())).ok());
   EXPECT_EQ(recorder->steps, (std::vector<std::int64_t>{5, 10}));
   EXPECT_EQ(adapter.steps_seen(), 12);
   EXPECT_EQ(adapter.render_steps(), 2);
@@ -161,8 +164,12 @@ TEST(Adapter, AttributesReachThePipeline) {
   Adapter adapter(o);
   auto recorder = std::make_shared<Recorder>();
   adapter.set_pipeline(recorder);
-  EXPECT_TRUE(adapter.execute(0, 0, ParticleView::aos(&pts[0].x, 4, sizeof(Point))
-                                        .with_scalar("density", rho.data())).ok());
+  EXPECT_TRUE(
+      adapter
+          .execute(
+              0, 0,
+              ParticleView::aos(&pts[0].x, 4, sizeof(Point)).with_scalar("density", rho.data()))
+          .ok());
   EXPECT_EQ(recorder->attribute_values, 4u);
 }
 

@@ -13,7 +13,7 @@ TEST(CApi, CClientClassifiesALattice) {
   c_api_client_result r{};
   ASSERT_EQ(c_api_client_run(&r), 0);
   EXPECT_EQ(r.status, VOXSPAN_OK);
-  EXPECT_EQ(r.cells_full, 8);     // 2x2x2 full cells, all touching the air outside
+  EXPECT_EQ(r.cells_full, 8);  // 2x2x2 full cells, all touching the air outside
   EXPECT_EQ(r.boundary, 64);
   EXPECT_EQ(r.returned, 64);
   EXPECT_EQ(r.first_radius, 1.0f);
@@ -38,12 +38,14 @@ TEST(CApi, SoaDoubleOneBasedCellIndexAndAttributes) {
   }
   voxspan_particles* p = voxspan_particles_create();
   voxspan_grid* g = voxspan_grid_create();
-  ASSERT_EQ(voxspan_particles_set_soa(p, VOXSPAN_FLOAT64, x.data(), y.data(), z.data(), 10), VOXSPAN_OK);
+  ASSERT_EQ(voxspan_particles_set_soa(p, VOXSPAN_FLOAT64, x.data(), y.data(), z.data(), 10),
+            VOXSPAN_OK);
   ASSERT_EQ(voxspan_particles_set_radius(p, 0.6), VOXSPAN_OK);
   ASSERT_EQ(voxspan_particles_set_vector(p, "velocity", VOXSPAN_FLOAT64, v.data(), 0), VOXSPAN_OK);
   const double origin[3] = {0, 0, 0};
   const int dims[3] = {5, 1, 1};
-  ASSERT_EQ(voxspan_grid_set_cell_index(g, origin, 2.0, dims, VOXSPAN_INT32, cell.data()), VOXSPAN_OK);
+  ASSERT_EQ(voxspan_grid_set_cell_index(g, origin, 2.0, dims, VOXSPAN_INT32, cell.data()),
+            VOXSPAN_OK);
   ASSERT_EQ(voxspan_grid_set_index_base(g, 1), VOXSPAN_OK);
   ASSERT_EQ(voxspan_adapter_execute(a, 0, 0.0, p, g), VOXSPAN_OK) << voxspan_last_error();
 

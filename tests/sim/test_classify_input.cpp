@@ -39,11 +39,11 @@ TEST(ClassifyInput, NonFinitePositionsAreCountedAndLeftOut) {
   pts[20].z = -inf;
   const GridGeometry g = test::cube_grid(2.0, 5);
   test::SortedGrid s = test::sort_into(g, pts);  // the NaN particles land in clamped cells
-  for (auto grid : {GridView::offsets(g, s.offsets.data()).with_order(s.order.data()),
-                    GridView::cell_index(g, s.cells.data()), GridView::geometry_only(g),
-                    GridView()}) {
-    const Classification c = classify(ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point)),
-                                      grid, options());
+  for (auto grid :
+       {GridView::offsets(g, s.offsets.data()).with_order(s.order.data()),
+        GridView::cell_index(g, s.cells.data()), GridView::geometry_only(g), GridView()}) {
+    const Classification c =
+        classify(ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point)), grid, options());
     EXPECT_EQ(c.counts.dropped_nonfinite, 3u);
     EXPECT_EQ(c.counts.boundary, pts.size() - 3);
     for (const ParticleSphere& p : c.boundary)
@@ -57,9 +57,9 @@ TEST(ClassifyInput, NonFiniteRadiusIsLeftOut) {
   std::vector<double> radii(pts.size(), 0.5);
   radii[1] = std::numeric_limits<double>::quiet_NaN();
   radii[2] = -1;
-  const Classification c = classify(
-      ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point)).with_radii(radii.data()),
-      GridView::geometry_only(test::cube_grid(2.0, 4)), options());
+  const Classification c =
+      classify(ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point)).with_radii(radii.data()),
+               GridView::geometry_only(test::cube_grid(2.0, 4)), options());
   EXPECT_EQ(c.counts.dropped_nonfinite, 2u);
   EXPECT_EQ(c.boundary.size(), pts.size() - 2);
   for (const ParticleSphere& p : c.boundary) EXPECT_EQ(p.radius, 0.5f);
@@ -79,7 +79,8 @@ TEST(ClassifyInput, ValidationNamesTheParticleAndTheCell) {
   EXPECT_EQ(error_of(view, grid, o), "");  // without validation the mismatch goes unseen
   o.validate = true;
   const std::string e = error_of(view, grid, o);
-  EXPECT_NE(e.find("particle " + std::to_string(moved) + " at (5.5, 5.5, 5.5)"), std::string::npos) << e;
+  EXPECT_NE(e.find("particle " + std::to_string(moved) + " at (5.5, 5.5, 5.5)"), std::string::npos)
+      << e;
   EXPECT_NE(e.find("lies in cell (2, 2, 2)"), std::string::npos) << e;
   EXPECT_NE(e.find("lists it in cell (0, 0, 0)"), std::string::npos) << e;
 
@@ -103,17 +104,20 @@ TEST(ClassifyInput, ValidationFindsMissingAndDuplicatedParticles) {
   order[1] = order[0];  // particle order[1] vanishes, order[0] is listed twice
   const auto view = ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point));
   EXPECT_NE(error_of(view, GridView::offsets(g, s.offsets.data()).with_order(order.data()), o)
-                .find("listed twice"), std::string::npos);
+                .find("listed twice"),
+            std::string::npos);
 
   // Particles in no cell: counted without validation, an error with it.
   std::vector<std::uint32_t> offsets = s.offsets;
   offsets.back() -= 2;
   o.validate = false;
-  const Classification c = classify(view, GridView::offsets(g, offsets.data()).with_order(s.order.data()), o);
+  const Classification c =
+      classify(view, GridView::offsets(g, offsets.data()).with_order(s.order.data()), o);
   EXPECT_EQ(c.counts.not_in_grid, 2u);
   o.validate = true;
   EXPECT_NE(error_of(view, GridView::offsets(g, offsets.data()).with_order(s.order.data()), o)
-                .find("is in no cell of the grid"), std::string::npos);
+                .find("is in no cell of the grid"),
+            std::string::npos);
 }
 
 TEST(ClassifyInput, RangesOutOfBoundsAreErrorsAlways) {
@@ -129,12 +133,15 @@ TEST(ClassifyInput, RangesOutOfBoundsAreErrorsAlways) {
             std::string::npos);
   std::vector<std::uint32_t> order = s.order;
   order[3] = 1000;
-  EXPECT_NE(error_of(view, GridView::offsets(g, s.offsets.data()).with_order(order.data()), options())
-                .find("is particle 1000, not one of the 64"), std::string::npos);
+  EXPECT_NE(
+      error_of(view, GridView::offsets(g, s.offsets.data()).with_order(order.data()), options())
+          .find("is particle 1000, not one of the 64"),
+      std::string::npos);
   std::vector<std::int32_t> cells(s.cells.begin(), s.cells.end());
   cells[5] = -1;
   EXPECT_NE(error_of(view, GridView::cell_index(g, cells.data()), options())
-                .find("cell index of particle 5 is -1"), std::string::npos);
+                .find("cell index of particle 5 is -1"),
+            std::string::npos);
   GridGeometry bad = g;
   bad.cell_size = 0;
   EXPECT_NE(error_of(view, GridView::geometry_only(bad), options()).find("invalid grid geometry"),
@@ -201,7 +208,8 @@ TEST(ClassifyInput, AttributesFollowTheBoundaryOrder) {
                                      .with_scalar("density", density.data()),
                                  GridView(), o);
   EXPECT_NE(e.find("attribute 'pressure' was asked for but the particle view has only: density"),
-            std::string::npos) << e;
+            std::string::npos)
+      << e;
 }
 
 TEST(ClassifyInput, TooManyAttributesIsAnErrorNotACrash) {
@@ -217,8 +225,8 @@ TEST(ClassifyInput, FarFlungParticlesKeepTheBuiltGridBounded) {
   std::vector<Point> pts{{0, 0, 0}, {1, 1, 1}, {1e6f, 1e6f, 1e6f}};
   ClassifyOptions o = options();
   o.max_built_cells = 1 << 20;
-  const Classification c = classify(ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point)),
-                                    GridView(), o);
+  const Classification c =
+      classify(ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point)), GridView(), o);
   EXPECT_LE(c.geometry.cell_count(), o.max_built_cells);
   EXPECT_GT(c.geometry.cell_size, 2.0);
   EXPECT_EQ(c.boundary.size(), 3u);
@@ -228,9 +236,11 @@ TEST(ClassifyInput, MissingSpacingAndRadiusAreNamed) {
   std::vector<Point> pts(1, Point{1, 1, 1});
   ClassifyOptions o;
   EXPECT_NE(error_of(ParticleView::aos(&pts[0].x, 1, sizeof(Point)), GridView(), o)
-                .find("no particle radius"), std::string::npos);
+                .find("no particle radius"),
+            std::string::npos);
   EXPECT_NE(error_of(ParticleView::aos(&pts[0].x, 1, sizeof(Point)).with_radius(1), GridView(), o)
-                .find("cell size is unknown"), std::string::npos);
+                .find("cell size is unknown"),
+            std::string::npos);
 }
 
 }  // namespace

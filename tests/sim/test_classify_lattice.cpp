@@ -39,11 +39,11 @@ TEST(ClassifyLattice, SolidBlockInAir) {
 
   EXPECT_EQ(c.counts.full_count, 8);
   EXPECT_EQ(c.counts.cells, 1728u);
-  EXPECT_EQ(c.counts.cells_full, 512u);           // 8^3 block cells
-  EXPECT_EQ(c.counts.cells_inner_full, 216u);     // 6^3 cells away from the block's faces
+  EXPECT_EQ(c.counts.cells_full, 512u);        // 8^3 block cells
+  EXPECT_EQ(c.counts.cells_inner_full, 216u);  // 6^3 cells away from the block's faces
   EXPECT_EQ(c.counts.cells_partial, 0u);
   EXPECT_EQ(c.counts.cells_empty, 1216u);
-  EXPECT_EQ(c.counts.cells_inner_empty, 728u);    // all but the 10^3 cells touching the block
+  EXPECT_EQ(c.counts.cells_inner_empty, 728u);  // all but the 10^3 cells touching the block
   EXPECT_EQ(c.counts.boundary, (512u - 216u) * 8u);
   EXPECT_EQ(c.counts.dropped_nonfinite, 0u);
   EXPECT_EQ(c.counts.not_in_grid, 0u);
@@ -52,10 +52,11 @@ TEST(ClassifyLattice, SolidBlockInAir) {
     for (int j = 0; j < 12; ++j)
       for (int i = 0; i < 12; ++i) {
         const int d = chebyshev_distance_to_block(i, j, k, 2, 9);
-        const std::uint8_t expected = d == 0 ? (chebyshev_distance_to_block(i, j, k, 3, 8) == 0
-                                                    ? cell::kInnerFull : cell::kFull)
-                                      : d == 1 ? cell::kEmpty
-                                               : cell::kInnerEmpty;
+        const std::uint8_t expected =
+            d == 0
+                ? (chebyshev_distance_to_block(i, j, k, 3, 8) == 0 ? cell::kInnerFull : cell::kFull)
+            : d == 1 ? cell::kEmpty
+                     : cell::kInnerEmpty;
         ASSERT_EQ(c.states[g.linear(i, j, k)], expected) << "cell " << i << " " << j << " " << k;
       }
 
@@ -69,7 +70,8 @@ TEST(ClassifyLattice, SolidBlockInAir) {
   EXPECT_EQ(boundary.size(), c.boundary.size());
   for (const Point& p : pts) {
     const float depth = std::min({p.x - 4, 20 - p.x, p.y - 4, 20 - p.y, p.z - 4, 20 - p.z});
-    EXPECT_EQ(boundary.count({p.x, p.y, p.z}) == 1, depth <= 2.0f) << p.x << " " << p.y << " " << p.z;
+    EXPECT_EQ(boundary.count({p.x, p.y, p.z}) == 1, depth <= 2.0f)
+        << p.x << " " << p.y << " " << p.z;
   }
 }
 
@@ -81,9 +83,9 @@ TEST(ClassifyLattice, LoneDropletIsAllBoundary) {
   const Classification c = classify_sorted(pts, g);
 
   EXPECT_EQ(c.counts.boundary, 27u);
-  EXPECT_EQ(c.counts.cells_full, 1u);       // cell (5,5,5) holds 2x2x2 particles
+  EXPECT_EQ(c.counts.cells_full, 1u);  // cell (5,5,5) holds 2x2x2 particles
   EXPECT_EQ(c.counts.cells_inner_full, 0u);
-  EXPECT_EQ(c.counts.cells_partial, 7u);    // the rest of the droplet's 2x2x2 cells
+  EXPECT_EQ(c.counts.cells_partial, 7u);               // the rest of the droplet's 2x2x2 cells
   EXPECT_EQ(c.counts.cells_inner_empty, 1728u - 64u);  // all but cells 4..7 per axis
   EXPECT_EQ(c.states[g.linear(5, 5, 5)], cell::kFull);
   EXPECT_EQ(c.states[g.linear(6, 6, 6)], cell::kPartial);
@@ -93,9 +95,9 @@ TEST(ClassifyLattice, LoneDropletIsAllBoundary) {
 
 TEST(ClassifyLattice, SingleParticle) {
   const double p[3] = {5.0, 5.0, 5.0};
-  const Classification c = classify(ParticleView::aos(p, 1).with_radius(0.25),
-                                    GridView::geometry_only(test::cube_grid(2.0, 5)),
-                                    lattice_options());
+  const Classification c =
+      classify(ParticleView::aos(p, 1).with_radius(0.25),
+               GridView::geometry_only(test::cube_grid(2.0, 5)), lattice_options());
   ASSERT_EQ(c.boundary.size(), 1u);
   EXPECT_EQ(c.boundary[0].x, 5.0f);
   EXPECT_EQ(c.boundary[0].radius, 0.25f);

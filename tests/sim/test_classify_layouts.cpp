@@ -63,10 +63,10 @@ TEST(ClassifyLayouts, SoaFloatAndDouble) {
     xd.push_back(p.x), yd.push_back(p.y), zd.push_back(p.z);
   }
   const auto grid = GridView::offsets(r.g, r.s.offsets.data());
-  expect_same(classify(ParticleView::soa(xf.data(), yf.data(), zf.data(), xf.size()), grid,
-                       r.options));
-  expect_same(classify(ParticleView::soa(xd.data(), yd.data(), zd.data(), xd.size()), grid,
-                       r.options));
+  expect_same(
+      classify(ParticleView::soa(xf.data(), yf.data(), zf.data(), xf.size()), grid, r.options));
+  expect_same(
+      classify(ParticleView::soa(xd.data(), yd.data(), zd.data(), xd.size()), grid, r.options));
 }
 
 TEST(ClassifyLayouts, AosDoubleWithStride) {
@@ -105,10 +105,10 @@ TEST(ClassifyLayouts, FortranOneBased) {
   std::vector<std::int32_t> offsets(r.s.offsets.begin(), r.s.offsets.end()), order;
   for (std::int32_t& o : offsets) ++o;
   for (std::uint32_t i : r.s.order) order.push_back(std::int32_t(i) + 1);
-  expect_same(classify(ParticleView::aos(&r.pts[0].x, r.pts.size(), sizeof(Point)),
-                       GridView::offsets(r.g, offsets.data()).with_order(order.data())
-                           .with_index_base(1),
-                       r.options));
+  expect_same(
+      classify(ParticleView::aos(&r.pts[0].x, r.pts.size(), sizeof(Point)),
+               GridView::offsets(r.g, offsets.data()).with_order(order.data()).with_index_base(1),
+               r.options));
 }
 
 TEST(ClassifyLayouts, PerParticleCellIndex) {
@@ -150,17 +150,19 @@ TEST(ClassifyLayouts, NoGridAtAll) {
                   gk = k + int(b.origin[2] / 2);
         const std::uint8_t ref = r.expected.states[r.g.linear(gi, gj, gk)];
         // Cells on the built grid's faces see air beyond; the reference may see more cells.
-        const bool face = i == 0 || j == 0 || k == 0 || i == b.dims[0] - 1 ||
-                          j == b.dims[1] - 1 || k == b.dims[2] - 1;
-        if (!face) ASSERT_EQ(c.states[b.linear(i, j, k)], ref);
-        else ASSERT_EQ(cell::occupancy(c.states[b.linear(i, j, k)]), cell::occupancy(ref));
+        const bool face = i == 0 || j == 0 || k == 0 || i == b.dims[0] - 1 || j == b.dims[1] - 1 ||
+                          k == b.dims[2] - 1;
+        if (!face)
+          ASSERT_EQ(c.states[b.linear(i, j, k)], ref);
+        else
+          ASSERT_EQ(cell::occupancy(c.states[b.linear(i, j, k)]), cell::occupancy(ref));
       }
 }
 
 TEST(ClassifyLayouts, DefaultCellSizeIsTwoSpacings) {
   const Reference& r = reference();
-  const Classification c = classify(ParticleView::aos(&r.pts[0].x, r.pts.size(), sizeof(Point)),
-                                    GridView(), r.options);
+  const Classification c =
+      classify(ParticleView::aos(&r.pts[0].x, r.pts.size(), sizeof(Point)), GridView(), r.options);
   EXPECT_EQ(c.geometry.cell_size, 2.0);
   EXPECT_EQ(c.counts.full_count, 8);
 }

@@ -22,7 +22,8 @@ std::vector<AccuracyScene> accuracy_scenes(int width, int height) {
     s->options.gap_bridging = shape.spacing;
   }
   {
-    AccuracyScene* s = add("24 layers, cap 7", stacked_layers(24, 24, 2, 0.05, 0.045, 0.2), {0, 0, 1});
+    AccuracyScene* s =
+        add("24 layers, cap 7", stacked_layers(24, 24, 2, 0.05, 0.045, 0.2), {0, 0, 1});
     s->camera = look_at({0.62, 0.58, -1.2}, {0.6, 0.6, 1.0}, width, height);
     s->options.max_spans = 7;
     s->options.gap_bridging = 0.025;

@@ -9,8 +9,8 @@
 namespace voxspan::test {
 
 struct ImageDifference {
-  double psnr = 0;       // dB; infinite when identical
-  int max_levels = 0;    // largest difference of one channel, in 1/255 steps
+  double psnr = 0;     // dB; infinite when identical
+  int max_levels = 0;  // largest difference of one channel, in 1/255 steps
   double mean_levels = 0;
 };
 

@@ -16,7 +16,7 @@ struct LatticeScene {
   double spacing = 0;          // particle spacing dx
   int particles_per_side = 0;  // n: the block holds n^3 particles
   std::vector<ParticleSphere> all;
-  std::vector<ParticleSphere> boundary;  // the particles of non-inner cells
+  std::vector<ParticleSphere> boundary;       // the particles of non-inner cells
   std::vector<std::uint32_t> boundary_index;  // their indices into `all`
   std::array<double, 3> origin{};
   double cell_size = 0;
@@ -50,7 +50,8 @@ inline LatticeScene make_lattice_block(int n, double dx, float radius, int margi
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        ParticleSphere p{float((i + 0.5) * dx), float((j + 0.5) * dx), float((k + 0.5) * dx), radius};
+        ParticleSphere p{float((i + 0.5) * dx), float((j + 0.5) * dx), float((k + 0.5) * dx),
+                         radius};
         s.all.push_back(p);
         std::size_t c = cell_index(int((p.x - s.origin[0]) / s.cell_size),
                                    int((p.y - s.origin[1]) / s.cell_size),
@@ -73,7 +74,8 @@ inline LatticeScene make_lattice_block(int n, double dx, float radius, int margi
           for (int dj = -1; dj <= 1 && agree; ++dj)
             for (int di = -1; di <= 1 && agree; ++di) {
               int a = i + di, b = j + dj, c = k + dk;
-              bool outside = a < 0 || b < 0 || c < 0 || a >= s.dims[0] || b >= s.dims[1] || c >= s.dims[2];
+              bool outside =
+                  a < 0 || b < 0 || c < 0 || a >= s.dims[0] || b >= s.dims[1] || c >= s.dims[2];
               std::uint8_t other = outside ? cell::kEmpty : s.states[cell_index(a, b, c)];
               agree = other == own;
             }

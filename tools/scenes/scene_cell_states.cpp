@@ -28,8 +28,8 @@ TestCells classify_for_test(const std::vector<ParticleSphere>& particles, double
   options.particle_spacing = h / 2;
   options.full_count = full_count;
   const std::size_t stride = sizeof(ParticleSphere);
-  const ParticleView view =
-      ParticleView::aos(&particles[0].x, particles.size(), stride).with_radii(&particles[0].radius, stride);
+  const ParticleView view = ParticleView::aos(&particles[0].x, particles.size(), stride)
+                                .with_radii(&particles[0].radius, stride);
   Classification c = classify(view, GridView::geometry_only(g), options);
   out.states = std::move(c.states);
   out.boundary = std::move(c.boundary);

@@ -27,7 +27,9 @@ double ritter_height(double x, double x0, double h0, double t) {
 
 }  // namespace
 
-Particles one_sphere(glm::dvec3 center, double radius) { return {sphere(center, radius)}; }
+Particles one_sphere(glm::dvec3 center, double radius) {
+  return {sphere(center, radius)};
+}
 
 Particles lattice_block(glm::dvec3 lo, glm::ivec3 n, double spacing, double radius) {
   Particles out;
@@ -55,7 +57,8 @@ Particles dam_break(const DamBreak& s, double t, std::uint32_t seed) {
     if (h > 0) front = x;
     for (int j = 0; j < ny && (j + 0.5) * s.spacing < h; ++j)
       for (int k = 0; k < nz; ++k)
-        out.push_back(sphere(glm::dvec3(x, (j + 0.5) * s.spacing, (k + 0.5) * s.spacing), s.radius));
+        out.push_back(
+            sphere(glm::dvec3(x, (j + 0.5) * s.spacing, (k + 0.5) * s.spacing), s.radius));
   }
   if (t > 0 && s.spray_fraction > 0) {
     // Droplets above and ahead of the front, as a splashing front throws them.
@@ -75,7 +78,8 @@ Particles stacked_layers(int layers, int side, int thickness, double spacing, do
                          double pitch) {
   Particles out;
   for (int l = 0; l < layers; ++l) {
-    const Particles sheet = lattice_block({0, 0, l * pitch}, {side, side, thickness}, spacing, radius);
+    const Particles sheet =
+        lattice_block({0, 0, l * pitch}, {side, side, thickness}, spacing, radius);
     out.insert(out.end(), sheet.begin(), sheet.end());
   }
   return out;

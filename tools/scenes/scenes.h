@@ -48,8 +48,7 @@ Particles random_cloud(std::size_t n, glm::dvec3 lo, glm::dvec3 hi, double r0, d
                        std::uint32_t seed);
 
 // A camera at `eye` looking at `target`, y up.
-Camera look_at(glm::dvec3 eye, glm::dvec3 target, int width, int height,
-               double fov_y_degrees = 45);
+Camera look_at(glm::dvec3 eye, glm::dvec3 target, int width, int height, double fov_y_degrees = 45);
 
 // A camera looking at the particles' bounding box centre from `direction` (towards the
 // scene), at the distance that frames the box with a margin.

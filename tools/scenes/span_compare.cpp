@@ -18,8 +18,8 @@ double SpanComparison::inside_sum_error() const {
 std::string SpanComparison::summary() const {
   std::ostringstream s;
   s << "pixels hit " << pixels_hit << ", count match " << count_match() * 100
-    << " %, boundaries within " << boundary_match() * 100 << " % of " << boundaries
-    << " (worst " << worst_boundary_layers << " layers), inside per pixel " << inside_match() * 100
+    << " %, boundaries within " << boundary_match() * 100 << " % of " << boundaries << " (worst "
+    << worst_boundary_layers << " layers), inside per pixel " << inside_match() * 100
     << " %, inside sum " << inside_sum_test << " vs " << inside_sum_reference << " ("
     << inside_sum_error() * 100 << " %)";
   return s.str();
@@ -29,7 +29,9 @@ SpanComparison compare_spans(const SpanImage& test, const SpanImage& ref, double
   SpanComparison c;
   const PerspectiveGrid& grid = ref.grid;
   // Slack for float rounding of layer depths (relative) on top of the layer bound.
-  const auto allowed = [&](double depth) { return layers * grid.layer_thickness(depth) * 1.001 + 1e-6 * depth; };
+  const auto allowed = [&](double depth) {
+    return layers * grid.layer_thickness(depth) * 1.001 + 1e-6 * depth;
+  };
   for (int y = 0; y < ref.height(); ++y)
     for (int x = 0; x < ref.width(); ++x) {
       const PixelSpans& a = test.pixel(x, y);
@@ -43,8 +45,7 @@ SpanComparison compare_spans(const SpanImage& test, const SpanImage& ref, double
       for (const Span& s : sa) deepest = std::max(deepest, double(s.exit));
       for (const Span& s : sb) deepest = std::max(deepest, double(s.exit));
       const double scale = grid.view().ray_scale(x, y);
-      const double inside_allowed =
-          2.0 * std::max(a.total, b.total) * allowed(deepest) * scale;
+      const double inside_allowed = 2.0 * std::max(a.total, b.total) * allowed(deepest) * scale;
       if (std::abs(double(a.inside) - double(b.inside)) <= inside_allowed) ++c.pixels_inside_within;
       if (a.count != b.count || a.total != b.total) continue;
       ++c.pixels_count_equal;
@@ -54,7 +55,8 @@ SpanComparison compare_spans(const SpanImage& test, const SpanImage& ref, double
           const double r = end ? sb[k].exit : sb[k].entry;
           ++c.boundaries;
           const double err = std::abs(t - r);
-          c.worst_boundary_layers = std::max(c.worst_boundary_layers, err / grid.layer_thickness(r));
+          c.worst_boundary_layers =
+              std::max(c.worst_boundary_layers, err / grid.layer_thickness(r));
           if (err <= allowed(r)) ++c.boundaries_within;
         }
     }
@@ -67,7 +69,8 @@ std::string describe_mismatches(const SpanImage& test, const SpanImage& ref, int
   const auto list = [&](const SpanImage& image, int x, int y) {
     const PixelSpans& p = image.pixel(x, y);
     s << " (" << p.count << " of " << p.total << ")";
-    for (const Span& span : image.spans_at(x, y)) s << " [" << span.entry << " " << span.exit << "]";
+    for (const Span& span : image.spans_at(x, y))
+      s << " [" << span.entry << " " << span.exit << "]";
   };
   for (int y = 0; y < ref.height() && most > 0; ++y)
     for (int x = 0; x < ref.width() && most > 0; ++x) {
@@ -92,8 +95,8 @@ bool identical(const SpanImage& a, const SpanImage& b) {
     if (x.count != y.count || x.total != y.total ||
         std::memcmp(&x.inside, &y.inside, sizeof(float)) != 0)
       return false;
-    if (x.count != 0 &&
-        std::memcmp(a.spans.data() + x.offset, b.spans.data() + y.offset, x.count * sizeof(Span)) != 0)
+    if (x.count != 0 && std::memcmp(a.spans.data() + x.offset, b.spans.data() + y.offset,
+                                    x.count * sizeof(Span)) != 0)
       return false;
   }
   return true;
@@ -111,7 +114,8 @@ void write_array(std::ofstream& out, const std::vector<T>& v) {
 }
 
 template <typename T>
-std::vector<T> read_array(std::ifstream& in, std::uint64_t most, const std::filesystem::path& path) {
+std::vector<T> read_array(std::ifstream& in, std::uint64_t most,
+                          const std::filesystem::path& path) {
   std::uint64_t n = 0;
   in.read(reinterpret_cast<char*>(&n), sizeof n);
   if (!in || n > most) throw make_error(path.string(), ": not a span file or truncated");
