@@ -20,8 +20,6 @@ std::string shade_defines() {
   return surface_defines() + gl::defines({{"SHADED_IMAGE_BINDING", kShadedImage}});
 }
 
-std::string cell_state_defines() {
-  return gl::defines({{"CELL_STATES_UNIT", kCellStatesUnit}});
-}
+std::string cell_state_defines() { return gl::defines({{"CELL_STATES_UNIT", kCellStatesUnit}}); }
 
 }  // namespace voxspan::binding

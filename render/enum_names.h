@@ -16,15 +16,13 @@
 
 namespace voxspan {
 
-template <class E>
-struct EnumName {
+template <class E> struct EnumName {
   std::string_view name;
   E value;
 };
 
 // "?" for a value the table lacks (only a cast from an integer makes one).
-template <class E>
-constexpr std::string_view name_of(std::span<const EnumName<E>> table, E value) {
+template <class E> constexpr std::string_view name_of(std::span<const EnumName<E>> table, E value) {
   for (const EnumName<E>& e : table)
     if (e.value == value) return e.name;
   return "?";

@@ -8,8 +8,7 @@
 namespace voxspan {
 namespace {
 
-template <class T>
-auto find_named(T& list, std::string_view name) {
+template <class T> auto find_named(T& list, std::string_view name) {
   return std::find_if(list.begin(), list.end(), [&](const auto& e) { return e.first == name; });
 }
 
@@ -42,26 +41,20 @@ void FrameStats::add_time(std::string_view pass, double ms) {
 
 void FrameStats::add_count(std::string_view name, std::int64_t value) {
   auto it = find_named(counts, name);
-  if (it == counts.end())
-    counts.emplace_back(std::string(name), value);
-  else
-    it->second += value;
+  if (it == counts.end()) counts.emplace_back(std::string(name), value);
+  else it->second += value;
 }
 
 void FrameStats::set_count(std::string_view name, std::int64_t value) {
   auto it = find_named(counts, name);
-  if (it == counts.end())
-    counts.emplace_back(std::string(name), value);
-  else
-    it->second = value;
+  if (it == counts.end()) counts.emplace_back(std::string(name), value);
+  else it->second = value;
 }
 
 void FrameStats::set_figure(std::string_view name, double value) {
   auto it = find_named(figures, name);
-  if (it == figures.end())
-    figures.emplace_back(std::string(name), value);
-  else
-    it->second = value;
+  if (it == figures.end()) figures.emplace_back(std::string(name), value);
+  else it->second = value;
 }
 
 double FrameStats::ms(std::string_view pass) const {
@@ -112,9 +105,7 @@ std::string FrameStats::json() const {
   return out.str();
 }
 
-void FrameStats::clear() {
-  *this = FrameStats{};
-}
+void FrameStats::clear() { *this = FrameStats{}; }
 
 void FrameStats::zero() {
   for (Pass& p : passes) p.ms = 0, p.runs = 0;

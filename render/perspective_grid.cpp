@@ -140,9 +140,7 @@ PerspectiveGrid PerspectiveGrid::fit(const Camera& camera,
   return g;
 }
 
-double PerspectiveGrid::layer_depth(double i) const {
-  return near_ * std::exp2(i * log2_step_);
-}
+double PerspectiveGrid::layer_depth(double i) const { return near_ * std::exp2(i * log2_step_); }
 
 double PerspectiveGrid::layer_of(double depth) const {
   return std::log2(depth / near_) / log2_step_;

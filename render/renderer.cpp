@@ -47,12 +47,8 @@ const GpuFloatImage& Renderer::shade(const GpuSpanImage& spans, const SurfaceOpt
   }
   auto t = timer.gpu("shade");
   switch (shade.mode) {
-    case ShadeMode::opaque:
-      opaque_.run(spans, surfaces_, uniforms, image_);
-      break;
-    case ShadeMode::translucent:
-      translucent_.run(spans, surfaces_, uniforms, image_);
-      break;
+    case ShadeMode::opaque: opaque_.run(spans, surfaces_, uniforms, image_); break;
+    case ShadeMode::translucent: translucent_.run(spans, surfaces_, uniforms, image_); break;
     case ShadeMode::refractive: {
       const RefractTally tally = refractive_.run(spans, surfaces_, uniforms, shade, image_);
       stats.set_count("refract.dispatches", tally.dispatches);

@@ -8,9 +8,7 @@
 namespace voxspan {
 namespace {
 
-bool finite(glm::dvec3 v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
+bool finite(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 void check_color(const char* name, glm::dvec3 v) {
   if (!finite(v) || v.x < 0 || v.y < 0 || v.z < 0)

@@ -28,9 +28,7 @@ enum class ShadeMode { opaque, translucent, refractive };
 inline constexpr EnumName<ShadeMode> kShadeModeNames[] = {{"opaque", ShadeMode::opaque},
                                                           {"translucent", ShadeMode::translucent},
                                                           {"refractive", ShadeMode::refractive}};
-inline const char* shade_mode_name(ShadeMode mode) {
-  return name_of(kShadeModeNames, mode).data();
-}
+inline const char* shade_mode_name(ShadeMode mode) { return name_of(kShadeModeNames, mode).data(); }
 
 // The fluid: Beer-Lambert absorption per world unit (RGB), refractive index, the light it
 // scatters towards the eye when deep (translucent and refractive modes) and its colour as an

@@ -32,10 +32,8 @@ double SpanImage::inside_sum() const {
 
 void SpanListBuilder::add(double entry, double exit, double ray_scale) {
   inside_ += (exit - entry) * ray_scale;
-  if (cap_ == 0 || found_ < cap_)
-    out_.push_back({float(entry), float(exit)});
-  else
-    out_.back().exit = float(exit);  // sec. 3.1: extend the last stored span
+  if (cap_ == 0 || found_ < cap_) out_.push_back({float(entry), float(exit)});
+  else out_.back().exit = float(exit);  // sec. 3.1: extend the last stored span
   ++found_;
 }
 

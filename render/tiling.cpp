@@ -7,9 +7,7 @@
 namespace voxspan {
 namespace {
 
-int ceil_div(std::size_t a, std::size_t b) {
-  return static_cast<int>((a + b - 1) / b);
-}
+int ceil_div(std::size_t a, std::size_t b) { return static_cast<int>((a + b - 1) / b); }
 
 }  // namespace
 

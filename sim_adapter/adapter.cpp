@@ -59,12 +59,10 @@ void fail(Status& status, StatusCode code, const char* message) noexcept {
 }
 
 // Logging must not throw out of execute() either.
-template <class... Parts>
-void log_quietly(LogLevel level, const Parts&... parts) noexcept {
+template <class... Parts> void log_quietly(LogLevel level, const Parts&... parts) noexcept {
   try {
     log(level, parts...);
-  } catch (...) {
-  }
+  } catch (...) {}
 }
 
 }  // namespace
@@ -200,30 +198,14 @@ std::string Adapter::summary() const {
   return impl_->pipeline ? impl_->pipeline->summary() : std::string();
 }
 
-std::shared_ptr<Pipeline> Adapter::pipeline() const {
-  return impl_->pipeline;
-}
-double Adapter::seconds_in_situ() const {
-  return impl_->seconds_in_situ;
-}
+std::shared_ptr<Pipeline> Adapter::pipeline() const { return impl_->pipeline; }
+double Adapter::seconds_in_situ() const { return impl_->seconds_in_situ; }
 
-const StepStats& Adapter::last_stats() const {
-  return impl_->stats;
-}
-const Classification& Adapter::last_classification() const {
-  return impl_->classifier.result();
-}
-const AdapterOptions& Adapter::options() const {
-  return impl_->options;
-}
-std::int64_t Adapter::steps_seen() const {
-  return impl_->steps_seen;
-}
-std::int64_t Adapter::render_steps() const {
-  return impl_->render_steps;
-}
-std::int64_t Adapter::failed_steps() const {
-  return impl_->failed_steps;
-}
+const StepStats& Adapter::last_stats() const { return impl_->stats; }
+const Classification& Adapter::last_classification() const { return impl_->classifier.result(); }
+const AdapterOptions& Adapter::options() const { return impl_->options; }
+std::int64_t Adapter::steps_seen() const { return impl_->steps_seen; }
+std::int64_t Adapter::render_steps() const { return impl_->render_steps; }
+std::int64_t Adapter::failed_steps() const { return impl_->failed_steps; }
 
 }  // namespace voxspan

@@ -13,8 +13,7 @@ namespace {
 
 constexpr std::size_t kGrain = 1 << 14;
 
-template <class F>
-void for_ranges(std::size_t n, F&& f) {
+template <class F> void for_ranges(std::size_t n, F&& f) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
                     [&](const tbb::blocked_range<std::size_t>& r) { f(r.begin(), r.end()); });
 }

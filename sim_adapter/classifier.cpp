@@ -52,8 +52,7 @@ std::ostream& operator<<(std::ostream& os, const CellName& n) {
 }
 
 // The cell of a point, or -1 per axis outside [0, dims).
-template <class T>
-std::array<std::int64_t, 3> cell_of_point(const GridGeometry& g, T x, T y, T z) {
+template <class T> std::array<std::int64_t, 3> cell_of_point(const GridGeometry& g, T x, T y, T z) {
   const double p[3] = {double(x), double(y), double(z)};
   std::array<std::int64_t, 3> ijk{};
   for (int a = 0; a < 3; ++a) {
@@ -64,8 +63,7 @@ std::array<std::int64_t, 3> cell_of_point(const GridGeometry& g, T x, T y, T z) 
 }
 
 // Whether a point lies in cell c, up to rounding in the solver's own cell computation.
-template <class T>
-bool point_in_cell(const GridGeometry& g, std::size_t c, T x, T y, T z) {
+template <class T> bool point_in_cell(const GridGeometry& g, std::size_t c, T x, T y, T z) {
   const std::size_t nx = std::size_t(g.dims[0]), ny = std::size_t(g.dims[1]);
   const std::size_t idx[3] = {c % nx, (c / nx) % ny, c / (nx * ny)};
   const double p[3] = {double(x), double(y), double(z)};
@@ -480,13 +478,9 @@ Classifier::~Classifier() = default;
 Classifier::Classifier(Classifier&&) noexcept = default;
 Classifier& Classifier::operator=(Classifier&&) noexcept = default;
 
-const Classification& Classifier::result() const {
-  return work_->result;
-}
+const Classification& Classifier::result() const { return work_->result; }
 
-Classification Classifier::take_result() {
-  return std::move(work_->result);
-}
+Classification Classifier::take_result() { return std::move(work_->result); }
 
 const Classification& Classifier::run(const ParticleView& view, const GridView& grid,
                                       const ClassifyOptions& options) {
@@ -526,8 +520,7 @@ const Classification& Classifier::run(const ParticleView& view, const GridView& 
   }
   if (type == ScalarType::float32)
     work_->run(detail::Positions<float>(view), view, grid, options, attributes);
-  else
-    work_->run(detail::Positions<double>(view), view, grid, options, attributes);
+  else work_->run(detail::Positions<double>(view), view, grid, options, attributes);
   return work_->result;
 }
 

@@ -15,8 +15,7 @@ namespace voxspan::detail {
 
 class FirstError {
  public:
-  template <class... Parts>
-  void offer(std::size_t key, const Parts&... parts) {
+  template <class... Parts> void offer(std::size_t key, const Parts&... parts) {
     std::lock_guard lock(mutex_);
     if (key >= key_) return;
     key_ = key;

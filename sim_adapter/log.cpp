@@ -36,23 +36,17 @@ LoggerState& state() {
 
 const char* level_name(LogLevel level) {
   switch (level) {
-    case LogLevel::error:
-      return "error";
-    case LogLevel::warning:
-      return "warning";
-    case LogLevel::info:
-      return "info";
-    case LogLevel::debug:
-      return "debug";
+    case LogLevel::error: return "error";
+    case LogLevel::warning: return "warning";
+    case LogLevel::info: return "info";
+    case LogLevel::debug: return "debug";
   }
   return "?";
 }
 
 }  // namespace
 
-const char* version() {
-  return VOXSPAN_VERSION_STRING;
-}
+const char* version() { return VOXSPAN_VERSION_STRING; }
 
 bool parse_log_level(std::string_view text, LogLevel& level) {
   for (LogLevel l : {LogLevel::error, LogLevel::warning, LogLevel::info, LogLevel::debug}) {
@@ -69,14 +63,10 @@ void set_log_sink(LogSink sink) {
   state().sink = std::move(sink);
 }
 
-void set_log_level(LogLevel level) {
-  state().level.store(level, std::memory_order_relaxed);
-}
+void set_log_level(LogLevel level) { state().level.store(level, std::memory_order_relaxed); }
 
 // Relaxed: the level is a filter, not a synchronisation point.
-LogLevel log_level() {
-  return state().level.load(std::memory_order_relaxed);
-}
+LogLevel log_level() { return state().level.load(std::memory_order_relaxed); }
 
 void set_log_tag(std::string tag) {
   std::lock_guard lock(state().mutex);

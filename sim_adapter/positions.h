@@ -9,8 +9,7 @@
 
 namespace voxspan::detail {
 
-template <class T>
-struct Positions {
+template <class T> struct Positions {
   const char* base[3];
   std::size_t stride[3];
 

@@ -80,16 +80,11 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const char* v = i + 1 < argc ? argv[i + 1] : nullptr;
-    if (a == "--particles" && v)
-      sizes = parse_sizes(argv[++i]);
-    else if (a == "--steps" && v)
-      steps = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--repeats" && v)
-      repeats = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--threads" && v)
-      threads = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--until" && v)
-      until = std::atof(argv[++i]);
+    if (a == "--particles" && v) sizes = parse_sizes(argv[++i]);
+    else if (a == "--steps" && v) steps = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--repeats" && v) repeats = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--threads" && v) threads = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--until" && v) until = std::atof(argv[++i]);
     else {
       std::fprintf(stderr,
                    "usage: bench_classify [--particles N[,N...]] [--steps S] "

@@ -181,26 +181,16 @@ bool parse(int argc, char** argv, Options& o) {
       }
       return argv[++i];
     };
-    if (a == "--config")
-      o.config = value();
-    else if (a == "--particles")
-      o.particles = std::size_t(std::atof(value()));
-    else if (a == "--steps")
-      o.steps = std::atol(value());
-    else if (a == "--tank-length")
-      o.tank_length = std::atof(value());
-    else if (a == "--start")
-      o.start = std::atof(value());
-    else if (a == "--render-every")
-      o.render_every = std::atol(value());
-    else if (a == "--vdb-every")
-      o.vdb_every = std::atol(value());
-    else if (a == "--non-render-steps")
-      o.non_render_steps = std::atol(value());
-    else if (a == "--skip-runs")
-      o.runs = false;
-    else if (a == "--view")
-      o.views.push_back(value());
+    if (a == "--config") o.config = value();
+    else if (a == "--particles") o.particles = std::size_t(std::atof(value()));
+    else if (a == "--steps") o.steps = std::atol(value());
+    else if (a == "--tank-length") o.tank_length = std::atof(value());
+    else if (a == "--start") o.start = std::atof(value());
+    else if (a == "--render-every") o.render_every = std::atol(value());
+    else if (a == "--vdb-every") o.vdb_every = std::atol(value());
+    else if (a == "--non-render-steps") o.non_render_steps = std::atol(value());
+    else if (a == "--skip-runs") o.runs = false;
+    else if (a == "--view") o.views.push_back(value());
     else if (a == "--size") {
       if (std::sscanf(value(), "%dx%d", &o.width, &o.height) != 2) {
         std::fprintf(stderr, "bench_insitu: --size expects WxH\n");

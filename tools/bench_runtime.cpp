@@ -158,14 +158,10 @@ int main(int argc, char** argv) {
       std::filesystem::temp_directory_path() / numbered("voxspan-bench-", int(::getpid()), "");
   for (int i = 1; i + 1 < argc; i += 2) {
     std::string a = argv[i];
-    if (a == "--steps")
-      steps = std::stoll(argv[i + 1]);
-    else if (a == "--folder")
-      folder = argv[i + 1];
-    else if (a == "--block")
-      block = std::stoi(argv[i + 1]);
-    else if (a == "--keep")
-      keep = std::stoi(argv[i + 1]) != 0;
+    if (a == "--steps") steps = std::stoll(argv[i + 1]);
+    else if (a == "--folder") folder = argv[i + 1];
+    else if (a == "--block") block = std::stoi(argv[i + 1]);
+    else if (a == "--keep") keep = std::stoi(argv[i + 1]) != 0;
     else {
       std::cerr << "usage: bench_runtime [--steps N] [--folder DIR] [--block N] [--keep 1]\n";
       return 1;

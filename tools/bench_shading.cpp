@@ -77,14 +77,10 @@ std::vector<std::string> split(const std::string& text) {
 bool read_modes(const std::string& list, std::vector<ShadeMode>& modes) {
   modes.clear();
   for (const std::string& m : split(list)) {
-    if (m == "opaque")
-      modes.push_back(ShadeMode::opaque);
-    else if (m == "translucent")
-      modes.push_back(ShadeMode::translucent);
-    else if (m == "refractive")
-      modes.push_back(ShadeMode::refractive);
-    else
-      return false;
+    if (m == "opaque") modes.push_back(ShadeMode::opaque);
+    else if (m == "translucent") modes.push_back(ShadeMode::translucent);
+    else if (m == "refractive") modes.push_back(ShadeMode::refractive);
+    else return false;
   }
   return true;
 }
@@ -226,10 +222,8 @@ int run(const Args& a) {
   tools::print_renderer(context);
   gl::ShaderLibrary shaders;
   Renderer renderer(shaders);
-  if (!a.accuracy.empty())
-    accuracy(a, context, renderer);
-  else
-    time_modes(a, context, renderer);
+  if (!a.accuracy.empty()) accuracy(a, context, renderer);
+  else time_modes(a, context, renderer);
   return 0;
 }
 

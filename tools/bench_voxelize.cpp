@@ -64,12 +64,9 @@ constexpr char kUsage[] =
 
 // --threads per_pixel|per_particle|both (both: the default list).
 bool read_threads(const std::string& v, std::vector<SplatThreads>& threads) {
-  if (v == "per_pixel")
-    threads = {SplatThreads::per_pixel};
-  else if (v == "per_particle")
-    threads = {SplatThreads::per_particle};
-  else
-    return v == "both";
+  if (v == "per_pixel") threads = {SplatThreads::per_pixel};
+  else if (v == "per_particle") threads = {SplatThreads::per_particle};
+  else return v == "both";
   return true;
 }
 

@@ -14,9 +14,7 @@
 
 namespace {
 
-std::string mib(std::int64_t bytes) {
-  return std::to_string(bytes / (1024 * 1024)) + " MiB";
-}
+std::string mib(std::int64_t bytes) { return std::to_string(bytes / (1024 * 1024)) + " MiB"; }
 
 void print(const voxspan::gl::Info& i) {
   std::printf("voxspan         %s\n", voxspan::version());
@@ -37,8 +35,7 @@ void print(const voxspan::gl::Info& i) {
   if (i.gpu_memory_total_bytes)
     std::printf("GPU memory      %s total, %s available\n", mib(*i.gpu_memory_total_bytes).c_str(),
                 mib(i.gpu_memory_available_bytes.value_or(0)).c_str());
-  else
-    std::printf("GPU memory      not reported by the driver\n");
+  else std::printf("GPU memory      not reported by the driver\n");
   std::printf("GPU timers      %s\n", i.gpu_timers ? "yes" : "no (wall clock after glFinish)");
 }
 

@@ -60,16 +60,11 @@ bool parse(int argc, char** argv, Options& o) {
         throw voxspan::make_error(a, " expects a positive number; got \"", text, "\"");
       return v;
     };
-    if (a == "--help" || a == "-h")
-      std::exit(voxspan::tools::print_usage(stdout, kUsage));
-    else if (a == "--config")
-      o.config = value();
-    else if (a == "--output")
-      o.output = value();
-    else if (a == "--spacing")
-      o.spacing = positive(value());
-    else if (a == "--radius")
-      o.radius = positive(value());
+    if (a == "--help" || a == "-h") std::exit(voxspan::tools::print_usage(stdout, kUsage));
+    else if (a == "--config") o.config = value();
+    else if (a == "--output") o.output = value();
+    else if (a == "--spacing") o.spacing = positive(value());
+    else if (a == "--radius") o.radius = positive(value());
     else if (a == "--arrays") {
       std::istringstream names(value());
       for (std::string n; std::getline(names, n, ',');)
@@ -102,10 +97,8 @@ voxspan::ParticleView view_of(const voxspan::ParticleData& d) {
       voxspan::ParticleView::aos(d.positions.empty() ? nullptr : d.positions[0].data(), d.size());
   if (!d.radii.empty()) view.with_radii(d.radii.data());
   for (const voxspan::Attribute& a : d.attributes) {
-    if (a.components == 3)
-      view.with_vector(a.name, a.values.data());
-    else
-      view.with_scalar(a.name, a.values.data());
+    if (a.components == 3) view.with_vector(a.name, a.values.data());
+    else view.with_scalar(a.name, a.values.data());
   }
   return view;
 }

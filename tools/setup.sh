@@ -13,7 +13,7 @@ packages=(
   libopenexr-dev                                     # depth (and deep) images
   libhdf5-dev                                        # PySPH's HDF5 particle files (offline tools)
   libopenmpi-dev openmpi-bin                         # many ranks
-  libgtest-dev gfortran                              # tests (gfortran: the Fortran bindings)
+  libgtest-dev gfortran clang-format                 # tests (gfortran: the Fortran bindings)
 )
 if [[ ${1:-} == --media ]]; then
   packages+=(ffmpeg python3-matplotlib)              # the main job's video and charts

@@ -71,16 +71,12 @@ class Arg {
     if (std::string(argv_[i_]) != name || i_ + 1 >= argc_) return nullptr;
     return argv_[++i_];
   }
-  template <class T>
-  bool value(const char* name, T& v) {
+  template <class T> bool value(const char* name, T& v) {
     const char* text = value(name);
     if (text == nullptr) return false;
-    if constexpr (std::is_same_v<T, int>)
-      v = std::atoi(text);
-    else if constexpr (std::is_same_v<T, double>)
-      v = std::atof(text);
-    else
-      v = text;
+    if constexpr (std::is_same_v<T, int>) v = std::atoi(text);
+    else if constexpr (std::is_same_v<T, double>) v = std::atof(text);
+    else v = text;
     return true;
   }
 
@@ -111,8 +107,7 @@ inline bool read_bench_flag(Arg& arg, BenchArgs& a) {
 // Reads a command line into a tool's Args (a SceneArgs): the scene flags, and every other
 // argument through `own`, which returns false for one the tool does not know. False on a bad
 // scene flag or an unknown argument.
-template <class Args>
-bool read_args(int argc, char** argv, Args& a, bool (*own)(Arg&, Args&)) {
+template <class Args> bool read_args(int argc, char** argv, Args& a, bool (*own)(Arg&, Args&)) {
   for (int i = 1; i < argc; ++i) {
     const Flag shared = read_scene_flag(argc, argv, i, a);
     if (shared == Flag::bad) return false;

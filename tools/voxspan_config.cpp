@@ -30,12 +30,9 @@ int main(int argc, char** argv) {
     return print_usage(stderr, kUsage);
   if (arg == "-h" || arg == "--help") return print_usage(stdout, kUsage);
   try {
-    if (arg == "--reference")
-      std::fputs(voxspan::config_reference().c_str(), stdout);
-    else if (arg.empty())
-      std::fputs(voxspan::to_yaml(voxspan::default_config()).c_str(), stdout);
-    else
-      std::fputs(voxspan::to_yaml(voxspan::load_config_file(arg)).c_str(), stdout);
+    if (arg == "--reference") std::fputs(voxspan::config_reference().c_str(), stdout);
+    else if (arg.empty()) std::fputs(voxspan::to_yaml(voxspan::default_config()).c_str(), stdout);
+    else std::fputs(voxspan::to_yaml(voxspan::load_config_file(arg)).c_str(), stdout);
   } catch (const voxspan::Error& e) {
     std::fprintf(stderr, "voxspan-config: %s\n", e.what());
     return 1;

@@ -71,28 +71,18 @@ bool parse(int argc, char** argv, Options& o) {
       }
       return v;
     };
-    if (a == "--config")
-      o.insitu_config = value("--config");
-    else if (a == "--particles")
-      o.config.particles = std::size_t(number("--particles", 8, 1e9));
-    else if (a == "--steps")
-      o.steps = long(number("--steps", 0, 1e12));
-    else if (a == "--until")
-      o.until = number("--until", 0, 1e6);
-    else if (a == "--render-every")
-      o.render_every = long(number("--render-every", 1, 1e12));
-    else if (a == "--no-render")
-      o.render_every = 0;
-    else if (a == "--validate")
-      o.validate = true;
+    if (a == "--config") o.insitu_config = value("--config");
+    else if (a == "--particles") o.config.particles = std::size_t(number("--particles", 8, 1e9));
+    else if (a == "--steps") o.steps = long(number("--steps", 0, 1e12));
+    else if (a == "--until") o.until = number("--until", 0, 1e6);
+    else if (a == "--render-every") o.render_every = long(number("--render-every", 1, 1e12));
+    else if (a == "--no-render") o.render_every = 0;
+    else if (a == "--validate") o.validate = true;
     else if (a == "--depth-particles")
       o.config.depth_particles = int(number("--depth-particles", 1, 1e6));
-    else if (a == "--tank-length")
-      o.config.tank_length = number("--tank-length", 1.1, 1e3);
-    else if (a == "--threads")
-      o.threads = int(number("--threads", 1, 4096));
-    else if (a == "--progress-every")
-      o.progress_every = long(number("--progress-every", 0, 1e12));
+    else if (a == "--tank-length") o.config.tank_length = number("--tank-length", 1.1, 1e3);
+    else if (a == "--threads") o.threads = int(number("--threads", 1, 4096));
+    else if (a == "--progress-every") o.progress_every = long(number("--progress-every", 0, 1e12));
     else if (a == "--help" || a == "-h") {
       usage();
       std::exit(0);

@@ -15,8 +15,7 @@ namespace {
 
 constexpr std::size_t kGrain = 1 << 12;
 
-template <class F>
-void parallel_over(std::size_t n, F&& f) {
+template <class F> void parallel_over(std::size_t n, F&& f) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);

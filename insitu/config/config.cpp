@@ -22,9 +22,7 @@ using yaml::MapReader;
 
 constexpr std::int64_t kNoLimit = std::numeric_limits<std::int64_t>::max();
 
-double length(const Vec3d& v) {
-  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-}
+double length(const Vec3d& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
 // sin of the angle between a and b is |a x b| / (|a| |b|).
 bool parallel(const Vec3d& a, const Vec3d& b) {
@@ -59,18 +57,13 @@ void check_camera(MapReader& r, CameraConfig& c) {
     return;
   }
   const Vec3d d{c.target[0] - c.eye[0], c.target[1] - c.eye[1], c.target[2] - c.eye[2]};
-  if (length(d) == 0)
-    ch.error(r.find("target"), r.path("target"), "must differ from camera.eye");
+  if (length(d) == 0) ch.error(r.find("target"), r.path("target"), "must differ from camera.eye");
   else if (length(c.up) > 0 && parallel(d, c.up))
     ch.error(r.find("up"), r.path("up"), "must not be parallel to the viewing direction");
 }
 
-bool manual(const CameraConfig& c) {
-  return !c.automatic;
-}
-bool automatic(const CameraConfig& c) {
-  return c.automatic;
-}
+bool manual(const CameraConfig& c) { return !c.automatic; }
+bool automatic(const CameraConfig& c) { return c.automatic; }
 
 const Section<RendererConfig>& renderer_section() {
   using R = RendererConfig;

@@ -50,8 +50,7 @@ struct WriterConfig {
 };
 
 // A view or an output of the config: its kind's name and its settings.
-template <class Base>
-struct Configured {
+template <class Base> struct Configured {
   std::string kind;
   Cloned<Base> settings;
   bool operator==(const Configured&) const = default;
@@ -76,10 +75,8 @@ struct Config {
   OutputSettings& output(std::string_view kind);
   const OutputSettings& output(std::string_view kind) const;
   // The settings of the output whose settings type is S; throws when there is none.
-  template <class S>
-  S& output();
-  template <class S>
-  const S& output() const;
+  template <class S> S& output();
+  template <class S> const S& output() const;
   // The position of output `kind` in `outputs`; throws voxspan::Error when there is none.
   std::size_t output_index(std::string_view kind) const;
   // The particle attributes the enabled outputs ask for, each once.
@@ -102,15 +99,13 @@ std::string write_config(const Config& config, const ConfigKinds& kinds);
 // Markdown: a table per section, the views' and outputs' kinds included (docs/runtime.md).
 std::string config_reference(const ConfigKinds& kinds);
 
-template <class S>
-S& Config::output() {
+template <class S> S& Config::output() {
   for (ConfiguredOutput& o : outputs)
     if (S* s = dynamic_cast<S*>(&*o.settings)) return *s;
   return dynamic_cast<S&>(output("(no output of this settings type)"));
 }
 
-template <class S>
-const S& Config::output() const {
+template <class S> const S& Config::output() const {
   return const_cast<Config&>(*this).output<S>();
 }
 

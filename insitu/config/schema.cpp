@@ -5,22 +5,12 @@
 #include <limits>
 
 namespace voxspan::schema {
-void emit_value(YAML::Emitter& e, bool v) {
-  e << v;
-}
-void emit_value(YAML::Emitter& e, int v) {
-  e << v;
-}
-void emit_value(YAML::Emitter& e, std::int64_t v) {
-  e << v;
-}
+void emit_value(YAML::Emitter& e, bool v) { e << v; }
+void emit_value(YAML::Emitter& e, int v) { e << v; }
+void emit_value(YAML::Emitter& e, std::int64_t v) { e << v; }
 // Exact and short: a loaded config written again reads back as the same numbers.
-void emit_value(YAML::Emitter& e, double v) {
-  e << yaml::number_text(v);
-}
-void emit_value(YAML::Emitter& e, const std::string& v) {
-  e << v;
-}
+void emit_value(YAML::Emitter& e, double v) { e << yaml::number_text(v); }
+void emit_value(YAML::Emitter& e, const std::string& v) { e << v; }
 
 void emit_value(YAML::Emitter& e, const std::array<double, 3>& v) {
   e << YAML::Flow << YAML::BeginSeq;
@@ -47,17 +37,9 @@ std::string integer_type(std::int64_t min, std::int64_t max) {
   return "integer " + std::to_string(min) + ".." + std::to_string(max);
 }
 
-Range at_least(double min) {
-  return {min, HUGE_VAL, false};
-}
-Range above(double min) {
-  return {min, HUGE_VAL, true};
-}
-Range between(double min, double max) {
-  return {min, max, false};
-}
-Range above_up_to(double min, double max) {
-  return {min, max, true};
-}
+Range at_least(double min) { return {min, HUGE_VAL, false}; }
+Range above(double min) { return {min, HUGE_VAL, true}; }
+Range between(double min, double max) { return {min, max, false}; }
+Range above_up_to(double min, double max) { return {min, max, true}; }
 
 }  // namespace voxspan::schema

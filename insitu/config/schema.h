@@ -35,8 +35,7 @@
 namespace voxspan::schema {
 
 // One key of a section whose values live in a T.
-template <class T>
-struct Key {
+template <class T> struct Key {
   std::string name;
   std::string type;  // for the reference: "integer 1..16384", "`wait` `drop`", "bool"
   std::string help;
@@ -58,8 +57,7 @@ struct Key {
   }
 };
 
-template <class T>
-class Section {
+template <class T> class Section {
  public:
   using Check = std::function<void(yaml::MapReader&, T&)>;
   // `path` names the section in messages and in the reference ("views[i].camera").
@@ -119,17 +117,13 @@ void emit_value(YAML::Emitter& e, double v);
 void emit_value(YAML::Emitter& e, const std::string& v);
 void emit_value(YAML::Emitter& e, const std::array<double, 3>& v);
 void emit_value(YAML::Emitter& e, const std::vector<std::string>& v);
-template <class V>
-void emit_value(YAML::Emitter& e, const std::optional<V>& v) {
-  if (v)
-    emit_value(e, *v);
-  else
-    e << "auto";
+template <class V> void emit_value(YAML::Emitter& e, const std::optional<V>& v) {
+  if (v) emit_value(e, *v);
+  else e << "auto";
 }
 
 // A value as the reference shows it: `the YAML`, in flow style.
-template <class F>
-std::string shown(F&& emit) {
+template <class F> std::string shown(F&& emit) {
   YAML::Emitter e;
   e << YAML::Flow;
   emit(e);
@@ -165,14 +159,12 @@ Key<T> make_key(std::string name, M T::*member, std::string type, std::string he
   return k;
 }
 
-template <class T>
-Key<T> flag(std::string name, bool T::*member, std::string help) {
+template <class T> Key<T> flag(std::string name, bool T::*member, std::string help) {
   return make_key<T, bool>(name, member, "bool", std::move(help),
                            [name](yaml::MapReader& r, bool& v) { r.get(name, v); });
 }
 
-template <class T>
-Key<T> text(std::string name, std::string T::*member, std::string help) {
+template <class T> Key<T> text(std::string name, std::string T::*member, std::string help) {
   return make_key<T, std::string>(name, member, "text", std::move(help),
                                   [name](yaml::MapReader& r, std::string& v) { r.get(name, v); });
 }
@@ -262,8 +254,7 @@ Key<T> map(std::string name, M T::*member, const Section<M>& section, std::strin
 }
 
 // A key of a member struct (a writer's own settings inside an output's) as a key of T.
-template <class T, class Inner>
-Key<T> lifted(Inner T::*member, Key<Inner> k) {
+template <class T, class Inner> Key<T> lifted(Inner T::*member, Key<Inner> k) {
   Key<T> out;
   out.name = std::move(k.name);
   out.type = std::move(k.type);
@@ -283,8 +274,7 @@ Key<T> lifted(Inner T::*member, Key<Inner> k) {
 // Names that become parts of file names: letters, digits, '_', '-', '.' (not "." or "..").
 bool is_plain_name(std::string_view name);
 
-template <class T>
-std::string Section<T>::reference(const T& defaults) const {
+template <class T> std::string Section<T>::reference(const T& defaults) const {
   std::string s = "| key | type | default | meaning |\n|---|---|---|---|\n";
   for (const Key<T>& k : keys_) {
     std::string shown_value = k.shown_default;

@@ -24,11 +24,9 @@ namespace voxspan {
 using Vec3d = std::array<double, 3>;
 
 // A deep-copying owner of a value derived from Base (Base has clone() and equals()).
-template <class Base>
-class Cloned {
+template <class Base> class Cloned {
  public:
-  template <class D>
-  explicit Cloned(D value) : p_(std::make_unique<D>(std::move(value))) {}
+  template <class D> explicit Cloned(D value) : p_(std::make_unique<D>(std::move(value))) {}
   Cloned(const Cloned& o) : p_(o.p_->clone()) {}
   Cloned& operator=(const Cloned& o) {
     if (this != &o) p_ = o.p_->clone();
@@ -48,8 +46,7 @@ class Cloned {
 };
 
 // clone() and equals() of a settings type D derived from Base, from D's copy and ==.
-template <class D, class Base>
-struct CloneAs : Base {
+template <class D, class Base> struct CloneAs : Base {
   using Base::Base;
   std::unique_ptr<Base> clone() const override {
     return std::make_unique<D>(static_cast<const D&>(*this));
@@ -85,17 +82,20 @@ struct OutputSettings {
 
 const schema::Section<TriggerSpec>& trigger_section();
 
-// The keys every output has, for a section of S (S derives from OutputSettings).
+// The keys every output has, then `own`, for a section of S (S derives from OutputSettings).
 // `trigger_default`: the reference's default for the trigger; empty: S{}'s.
 template <class S>
-std::vector<schema::Key<S>> output_keys(std::string trigger_default = {}) {
-  schema::Key<S> trigger = schema::map<S, TriggerSpec>("trigger", &OutputSettings::trigger,
-                                                       trigger_section(), "when it writes", true);
-  trigger.shown_default = std::move(trigger_default);
-  return {schema::flag<S>("enabled", &OutputSettings::enabled, "write this output"),
-          schema::text<S>("folder", &OutputSettings::folder,
-                          "its folder, relative to `output_folder` unless absolute"),
-          std::move(trigger)};
+std::vector<schema::Key<S>> output_keys(std::vector<schema::Key<S>> own = {},
+                                        std::string trigger_default = {}) {
+  std::vector<schema::Key<S>> keys = {
+      schema::flag<S>("enabled", &OutputSettings::enabled, "write this output"),
+      schema::text<S>("folder", &OutputSettings::folder,
+                      "its folder, relative to `output_folder` unless absolute"),
+      schema::map<S, TriggerSpec>("trigger", &OutputSettings::trigger, trigger_section(),
+                                  "when it writes", true)};
+  keys.back().shown_default = std::move(trigger_default);
+  for (schema::Key<S>& k : own) keys.push_back(std::move(k));
+  return keys;
 }
 
 // ---- views: views[i]
@@ -140,10 +140,10 @@ struct ViewSettings {
   ViewSettings& operator=(const ViewSettings&) = default;
 };
 
-// The keys every view has, for a section of S (S derives from ViewSettings); `kind` is the
-// view kind's name.
+// The keys every view has, then `own`, for a section of S (S derives from ViewSettings);
+// `kind` is the view kind's name.
 template <class S>
-std::vector<schema::Key<S>> view_keys(std::string_view kind) {
+std::vector<schema::Key<S>> view_keys(std::string_view kind, std::vector<schema::Key<S>> own) {
   schema::Key<S> kind_key;
   kind_key.name = "kind";
   kind_key.type = "a view kind";
@@ -151,21 +151,23 @@ std::vector<schema::Key<S>> view_keys(std::string_view kind) {
   kind_key.shown_default = "`surface`";
   kind_key.read = [](yaml::MapReader&, S&) {};  // read first, to choose the section
   kind_key.emit = [kind = std::string(kind)](YAML::Emitter& e, const S&) { e << kind; };
-  return {std::move(kind_key),
-          schema::text<S>("name", &ViewSettings::name,
-                          "names the PNG files and the stats section; letters, digits, `_` "
-                          "`-` `.`; unique")
-              .default_shown_as("`view<i>` (`main` for the default view)"),
-          schema::integer<S, int>("width", &ViewSettings::width, 1, 16384, "pixels"),
-          schema::integer<S, int>("height", &ViewSettings::height, 1, 16384, "pixels"),
-          schema::map<S, CameraConfig>("camera", &ViewSettings::camera, camera_section(),
-                                       "automatic framing unless `eye` and `target` are given")};
+  std::vector<schema::Key<S>> keys = {
+      std::move(kind_key),
+      schema::text<S>("name", &ViewSettings::name,
+                      "names the PNG files and the stats section; letters, digits, `_` "
+                      "`-` `.`; unique")
+          .default_shown_as("`view<i>` (`main` for the default view)"),
+      schema::integer<S, int>("width", &ViewSettings::width, 1, 16384, "pixels"),
+      schema::integer<S, int>("height", &ViewSettings::height, 1, 16384, "pixels"),
+      schema::map<S, CameraConfig>("camera", &ViewSettings::camera, camera_section(),
+                                   "automatic framing unless `eye` and `target` are given")};
+  for (schema::Key<S>& k : own) keys.push_back(std::move(k));
+  return keys;
 }
 
 // ---- how a kind describes itself to the config
 
-template <class Settings>
-struct ConfigKind {
+template <class Settings> struct ConfigKind {
   std::string_view name;
   std::function<Cloned<Settings>()> defaults;
   // Reads the kind's section into `settings` (made by defaults()).

@@ -67,8 +67,7 @@ std::vector<std::string> member_names(hid_t group) {
 }
 
 // A numeric attribute of an object, if present.
-template <class T>
-bool read_scalar_attribute(hid_t object, const char* name, hid_t type, T& out) {
+template <class T> bool read_scalar_attribute(hid_t object, const char* name, hid_t type, T& out) {
   if (H5Aexists(object, name) <= 0) return false;
   Handle attr(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
   return attr.valid() && H5Aread(attr.get(), type, &out) >= 0;

@@ -21,16 +21,10 @@ namespace vdb = openvdb;
 
 namespace {
 
-double magnitude(double v) {
-  return v;
-}
-template <class T>
-double magnitude(const vdb::math::Vec3<T>& v) {
-  return double(v.length());
-}
+double magnitude(double v) { return v; }
+template <class T> double magnitude(const vdb::math::Vec3<T>& v) { return double(v.length()); }
 
-template <class GridT>
-bool value_range(const vdb::GridBase& base, double& lo, double& hi) {
+template <class GridT> bool value_range(const vdb::GridBase& base, double& lo, double& hi) {
   const auto* grid = dynamic_cast<const GridT*>(&base);
   if (!grid) return false;
   lo = std::numeric_limits<double>::infinity();

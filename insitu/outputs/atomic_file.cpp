@@ -149,13 +149,9 @@ void AtomicFile::discard() noexcept {
   ::unlink(temp_path_.c_str());
 }
 
-std::ostream& AtomicFile::stream() {
-  return *stream_;
-}
+std::ostream& AtomicFile::stream() { return *stream_; }
 
-std::size_t AtomicFile::bytes_written() const {
-  return buffer_ ? buffer_->bytes() : 0;
-}
+std::size_t AtomicFile::bytes_written() const { return buffer_ ? buffer_->bytes() : 0; }
 
 void AtomicFile::check() {
   if (buffer_->error() != 0) throw_write_error("cannot write", final_path_, buffer_->error());

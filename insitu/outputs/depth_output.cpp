@@ -20,26 +20,16 @@ const schema::Section<DepthSettings>& depth_section() {
   return s;
 }
 
-class DepthOutput final : public Output {
- public:
-  DepthOutput(const DepthSettings&, const OutputContext& c)
-      : jobs_(c, "exr", "depth image",
-              [sync = c.fsync](const std::filesystem::path& path, const FloatImage& depth) {
-                write_exr_channel(path, depth, "Z", sync);
-              }) {}
-
-  void write(const OutputStep& step) override { jobs_.submit(step, &ViewResult::first_hit_depth); }
-  OutputTally tally() const override { return jobs_.tally(); }
-
- private:
-  ViewImageJobs jobs_;
-};
+void write_depth(const std::filesystem::path& path, const FloatImage& depth, bool sync) {
+  write_exr_channel(path, depth, "Z", sync);
+}
 
 }  // namespace
 
 OutputKind depth_output_kind() {
-  return output_kind<DepthSettings, DepthOutput>("depth", "depth images", depth_section(),
-                                                 {.first_hit_depth = true});
+  return view_image_output_kind(
+      "depth", "depth images", depth_section(),
+      {"exr", "depth image", &ViewResult::first_hit_depth, {.first_hit_depth = true}, write_depth});
 }
 
 }  // namespace voxspan

@@ -17,29 +17,20 @@ struct PngSettings : CloneAs<PngSettings, OutputSettings> {
 
 const schema::Section<PngSettings>& png_section() {
   static const schema::Section<PngSettings> s{"outputs.png",
-                                              output_keys<PngSettings>("the render trigger")};
+                                              output_keys<PngSettings>({}, "the render trigger")};
   return s;
 }
 
-class PngOutput final : public Output {
- public:
-  PngOutput(const PngSettings&, const OutputContext& c)
-      : jobs_(c, "png", "PNG frame",
-              [sync = c.fsync](const std::filesystem::path& path, const FloatImage& picture) {
-                write_png(path, linear_to_srgb8(picture.rgba, picture.width, picture.height), sync);
-              }) {}
-
-  void write(const OutputStep& step) override { jobs_.submit(step, &ViewResult::picture); }
-  OutputTally tally() const override { return jobs_.tally(); }
-
- private:
-  ViewImageJobs jobs_;
-};
+void write_picture(const std::filesystem::path& path, const FloatImage& picture, bool sync) {
+  write_png(path, linear_to_srgb8(picture.rgba, picture.width, picture.height), sync);
+}
 
 }  // namespace
 
 OutputKind png_output_kind() {
-  return output_kind<PngSettings, PngOutput>("png", "PNG", png_section(), {.picture = true});
+  return view_image_output_kind(
+      "png", "PNG", png_section(),
+      {"png", "PNG frame", &ViewResult::picture, {.picture = true}, write_picture});
 }
 
 }  // namespace voxspan

@@ -17,8 +17,7 @@
 
 namespace voxspan {
 
-template <class Slot>
-class PooledJobs {
+template <class Slot> class PooledJobs {
  public:
   // `write` runs on the writer's thread; what it throws the writer counts as a failed file.
   PooledJobs(BackgroundWriter& writer, std::size_t slots, std::function<void(Slot&)> write)
@@ -27,8 +26,7 @@ class PooledJobs {
   // Fills a free slot with fill(Slot&) here and hands it to the writer. False when no slot is
   // free or the writer refused the job (its queue full under policy `drop`: it counts that).
   // What fill throws comes back to the caller, the slot freed.
-  template <class Fill>
-  bool submit(const char* label, Fill&& fill) {
+  template <class Fill> bool submit(const char* label, Fill&& fill) {
     Slot* slot = pool_->acquire();
     if (slot == nullptr) {
       ++no_slot_;

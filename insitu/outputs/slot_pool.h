@@ -16,8 +16,7 @@
 
 namespace voxspan {
 
-template <class T>
-class SlotPool {
+template <class T> class SlotPool {
  public:
   explicit SlotPool(std::size_t max_slots) : max_slots_(max_slots) {
     slots_.reserve(max_slots);
@@ -56,8 +55,7 @@ class SlotPool {
 };
 
 // Releases a slot when the scope ends (a job that throws still gives its slot back).
-template <class T>
-class SlotLease {
+template <class T> class SlotLease {
  public:
   SlotLease(SlotPool<T>& pool, T* slot) : pool_(pool), slot_(slot) {}
   ~SlotLease() { pool_.release(slot_); }

@@ -27,11 +27,8 @@ void check_stats(yaml::MapReader& r, StatsSettings& s) {
 const schema::Section<StatsSettings>& stats_section() {
   static const schema::Section<StatsSettings> s{
       "outputs.stats",
-      [] {
-        auto keys = output_keys<StatsSettings>("the render trigger");
-        keys.push_back(schema::text("file", &StatsSettings::file, "plain file name"));
-        return keys;
-      }(),
+      output_keys<StatsSettings>({schema::text("file", &StatsSettings::file, "plain file name")},
+                                 "the render trigger"),
       check_stats};
   return s;
 }

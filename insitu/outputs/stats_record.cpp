@@ -18,21 +18,11 @@ void append_string(std::string& out, std::string_view s) {
   out += '"';
   for (char c : s) {
     switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
       default:
         if (static_cast<unsigned char>(c) < 0x20) {
           char buf[8];
@@ -98,10 +88,8 @@ FrameStats& StatsRecord::view(std::string_view name) {
 }
 
 void StatsRecord::set_memory(std::string_view name, double mib) {
-  if (double* v = find_named(memory_mib, name))
-    *v = mib;
-  else
-    memory_mib.emplace_back(std::string(name), mib);
+  if (double* v = find_named(memory_mib, name)) *v = mib;
+  else memory_mib.emplace_back(std::string(name), mib);
 }
 
 void StatsRecord::clear() {

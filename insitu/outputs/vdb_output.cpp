@@ -14,33 +14,31 @@ const schema::Section<VdbSettings>& vdb_section() {
   using V = VdbSettings;
   using S = VdbSnapshotSettings;
   static const schema::Section<V> s{
-      "outputs.vdb", [] {
-        auto keys = output_keys<V>();
-        keys.push_back(schema::number_or_auto(
-            "radius", &V::radius, schema::above(0),
-            "sphere radius of every particle in the level set; `auto` = half the "
-            "particle spacing, so that the level set holds the particles' own "
-            "volume (the render radius when the spacing is unknown)"));
-        keys.push_back(schema::lifted(
-            &V::snapshot, schema::number_or_auto("voxel_size", &S::voxel_size, schema::above(0),
-                                                 "world units; `auto` = the radius")));
-        keys.push_back(schema::lifted(
-            &V::snapshot, schema::integer("half_width", &S::half_width, 1, 64,
-                                          "narrow band, voxels on each side of the surface")));
-        keys.push_back(schema::lifted(
-            &V::snapshot,
-            schema::number_or_auto("closing", &S::closing, schema::at_least(0),
-                                   "gap closing distance (dilate, then erode by it); `auto` = the "
-                                   "radius; 0: none")));
-        keys.push_back(schema::lifted(
-            &V::snapshot, schema::flag("fill_inner", &S::fill_inner,
-                                       "inner-full cells filled: the file holds the whole fluid")));
-        keys.push_back(schema::lifted(
-            &V::snapshot, schema::flag("cell_states", &S::cell_states, "the cell-state grid")));
-        keys.push_back(schema::names("attributes", &V::attributes,
-                                     "particle attributes written as float or vec3 grids"));
-        return keys;
-      }()};
+      "outputs.vdb",
+      output_keys<V>(
+          {schema::number_or_auto(
+               "radius", &V::radius, schema::above(0),
+               "sphere radius of every particle in the level set; `auto` = half the "
+               "particle spacing, so that the level set holds the particles' own "
+               "volume (the render radius when the spacing is unknown)"),
+           schema::lifted(&V::snapshot,
+                          schema::number_or_auto("voxel_size", &S::voxel_size, schema::above(0),
+                                                 "world units; `auto` = the radius")),
+           schema::lifted(&V::snapshot,
+                          schema::integer("half_width", &S::half_width, 1, 64,
+                                          "narrow band, voxels on each side of the surface")),
+           schema::lifted(&V::snapshot,
+                          schema::number_or_auto(
+                              "closing", &S::closing, schema::at_least(0),
+                              "gap closing distance (dilate, then erode by it); `auto` = the "
+                              "radius; 0: none")),
+           schema::lifted(&V::snapshot,
+                          schema::flag("fill_inner", &S::fill_inner,
+                                       "inner-full cells filled: the file holds the whole fluid")),
+           schema::lifted(&V::snapshot,
+                          schema::flag("cell_states", &S::cell_states, "the cell-state grid")),
+           schema::names("attributes", &V::attributes,
+                         "particle attributes written as float or vec3 grids")})};
   return s;
 }
 

@@ -1,7 +1,8 @@
 // insitu/outputs/view_images.h - the outputs that write one image per view and step (PNG
 // pictures, EXR depth images): each view's image copied into a pooled slot on the solver's
 // thread (no allocation once the slots have held the largest view), written as
-// <folder>/<view>_<step>.<extension> on the writer's.
+// <folder>/<view>_<step>.<extension> on the writer's. Such a kind is its settings, its schema
+// section and a ViewImageFormat (png_output.cpp, depth_output.cpp).
 #pragma once
 
 #include <algorithm>
@@ -73,5 +74,41 @@ class ViewImageJobs {
   Write write_;
   PooledJobs<Slot> jobs_;
 };
+
+// What a per-view image output writes, and how.
+struct ViewImageFormat {
+  const char* extension;                   // "png"
+  const char* label;                       // the writer's name for a job: "PNG frame"
+  const FloatImage* ViewResult::*product;  // &ViewResult::picture
+  ViewNeeds needs;                         // what the views must make for it
+  void (*write)(const std::filesystem::path& path, const FloatImage& image, bool sync);
+};
+
+class ViewImageOutput final : public Output {
+ public:
+  ViewImageOutput(const ViewImageFormat& format, const OutputContext& c)
+      : product_(format.product),
+        jobs_(c, format.extension, format.label,
+              [write = format.write, sync = c.fsync](const std::filesystem::path& path,
+                                                     const FloatImage& image) {
+                write(path, image, sync);
+              }) {}
+  void write(const OutputStep& step) override { jobs_.submit(step, product_); }
+  OutputTally tally() const override { return jobs_.tally(); }
+
+ private:
+  const FloatImage* ViewResult::*product_;
+  ViewImageJobs jobs_;
+};
+
+// The kind of a per-view image output whose settings type S is read by `section`.
+template <class S>
+OutputKind view_image_output_kind(std::string_view name, std::string_view noun,
+                                  const schema::Section<S>& section, ViewImageFormat format) {
+  return {config_kind<OutputSettings>(name, section), noun, format.needs, false,
+          [format](const OutputSettings&, const OutputContext& c) -> std::unique_ptr<Output> {
+            return std::make_unique<ViewImageOutput>(format, c);
+          }};
+}
 
 }  // namespace voxspan

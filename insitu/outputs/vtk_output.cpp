@@ -23,14 +23,10 @@ const schema::Section<VtkSettings>& vtk_section() {
   using V = VtkSettings;
   static const schema::Section<V> s{
       "outputs.vtk",
-      [] {
-        auto keys = output_keys<V>();
-        keys.push_back(schema::flag("particles", &V::particles, ".vtp of the boundary particles"));
-        keys.push_back(schema::flag("cells", &V::cells, ".vti of the cell states"));
-        keys.push_back(schema::names("attributes", &V::attributes,
-                                     "particle attributes written as point data"));
-        return keys;
-      }(),
+      output_keys<V>({schema::flag("particles", &V::particles, ".vtp of the boundary particles"),
+                      schema::flag("cells", &V::cells, ".vti of the cell states"),
+                      schema::names("attributes", &V::attributes,
+                                    "particle attributes written as point data")}),
       check_vtk};
   return s;
 }

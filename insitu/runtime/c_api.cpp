@@ -46,14 +46,12 @@ thread_local std::string last_error;
 int fail(int code, const std::string& message) {
   try {
     last_error = message;
-  } catch (...) {
-  }
+  } catch (...) {}
   return code;
 }
 
 // Runs f, turning any exception into a status and the thread's last error.
-template <class F>
-int guarded(const char* function, F&& f) noexcept {
+template <class F> int guarded(const char* function, F&& f) noexcept {
   try {
     last_error.clear();
     return f();
@@ -93,9 +91,7 @@ voxspan::ScalarType scalar_type(int type) {
                             "VOXSPAN_FLOAT64 (1)");
 }
 
-std::size_t scalar_size(voxspan::ScalarType t) {
-  return t == voxspan::ScalarType::float32 ? 4 : 8;
-}
+std::size_t scalar_size(voxspan::ScalarType t) { return t == voxspan::ScalarType::float32 ? 4 : 8; }
 
 // `count` values of `type` from data, `stride` bytes apart (0: packed).
 voxspan::StridedScalars strided(int type, const void* data, std::size_t stride,
@@ -159,9 +155,7 @@ int execute_step(const char* function, voxspan_adapter* a, int64_t step, double 
 
 extern "C" {
 
-const char* voxspan_version(void) {
-  return voxspan::version();
-}
+const char* voxspan_version(void) { return voxspan::version(); }
 
 void voxspan_set_log_level(int level) {
   if (level < 0) level = 0;
@@ -169,9 +163,7 @@ void voxspan_set_log_level(int level) {
   voxspan::set_log_level(static_cast<voxspan::LogLevel>(level));
 }
 
-const char* voxspan_last_error(void) {
-  return last_error.c_str();
-}
+const char* voxspan_last_error(void) { return last_error.c_str(); }
 
 void voxspan_adapter_options_init(voxspan_adapter_options* o) {
   if (!o) return;
@@ -231,9 +223,7 @@ size_t voxspan_adapter_summary(const voxspan_adapter* a, char* buffer, size_t si
   return summary.size();
 }
 
-void voxspan_adapter_destroy(voxspan_adapter* adapter) {
-  delete adapter;
-}
+void voxspan_adapter_destroy(voxspan_adapter* adapter) { delete adapter; }
 
 int voxspan_adapter_add_attribute(voxspan_adapter* a, const char* name) {
   return guarded("voxspan_adapter_add_attribute", [&] {
@@ -336,9 +326,7 @@ voxspan_particles* voxspan_particles_create(void) {
   return p;
 }
 
-void voxspan_particles_destroy(voxspan_particles* p) {
-  delete p;
-}
+void voxspan_particles_destroy(voxspan_particles* p) { delete p; }
 
 int voxspan_particles_set_aos(voxspan_particles* p, int type, const void* xyz, size_t count,
                               size_t stride_bytes) {
@@ -438,9 +426,7 @@ voxspan_grid* voxspan_grid_create(void) {
   return g;
 }
 
-void voxspan_grid_destroy(voxspan_grid* g) {
-  delete g;
-}
+void voxspan_grid_destroy(voxspan_grid* g) { delete g; }
 
 int voxspan_grid_set_offsets(voxspan_grid* g, const double origin[3], double cell_size,
                              const int dims[3], int index_type, const void* offsets) {

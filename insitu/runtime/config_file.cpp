@@ -10,9 +10,7 @@
 
 namespace voxspan {
 
-Config default_config() {
-  return default_config(registered_kinds().config);
-}
+Config default_config() { return default_config(registered_kinds().config); }
 
 Config load_config_string(std::string_view yaml, std::string_view source_name) {
   return read_config(yaml, source_name, registered_kinds().config);
@@ -31,8 +29,6 @@ std::string to_yaml(const Config& config) {
   return write_config(config, registered_kinds().config);
 }
 
-std::string config_reference() {
-  return voxspan::config_reference(registered_kinds().config);
-}
+std::string config_reference() { return voxspan::config_reference(registered_kinds().config); }
 
 }  // namespace voxspan

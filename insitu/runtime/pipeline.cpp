@@ -207,8 +207,7 @@ InsituPipeline::InsituPipeline(const Config& config, double particle_spacing)
 InsituPipeline::~InsituPipeline() {
   try {
     finish();
-  } catch (...) {
-  }
+  } catch (...) {}
 }
 
 bool InsituPipeline::wants_step(std::int64_t step, double time) {
@@ -265,9 +264,7 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
   return {StatusCode::pipeline_failed, failure};
 }
 
-void InsituPipeline::finish() {
-  impl_->writer.drain();
-}
+void InsituPipeline::finish() { impl_->writer.drain(); }
 
 PipelineTotals InsituPipeline::totals() const {
   PipelineTotals t = impl_->totals;
@@ -277,9 +274,7 @@ PipelineTotals InsituPipeline::totals() const {
   return t;
 }
 
-const Config& InsituPipeline::config() const {
-  return impl_->config;
-}
+const Config& InsituPipeline::config() const { return impl_->config; }
 
 std::string InsituPipeline::description() const {
   const Impl& m = *impl_;

@@ -20,9 +20,7 @@ Schedule::Schedule(const Config& config)
   }
 }
 
-StepPlan Schedule::blank() const {
-  return {false, std::vector<bool>(outputs_.size(), false)};
-}
+StepPlan Schedule::blank() const { return {false, std::vector<bool>(outputs_.size(), false)}; }
 
 void Schedule::plan(std::int64_t step, double time, bool last_step, StepPlan& plan) {
   bool render = has_views_ && render_.is_due(step, time, last_step);

@@ -13,9 +13,7 @@ namespace {
 
 constexpr double kMiB = 1024.0 * 1024.0;
 
-glm::dvec3 vec(const Vec3d& v) {
-  return {v[0], v[1], v[2]};
-}
+glm::dvec3 vec(const Vec3d& v) { return {v[0], v[1], v[2]}; }
 
 // Towards the sun: mostly up, a little to two sides, whatever axis is up.
 glm::dvec3 sun_direction(glm::dvec3 up) {
@@ -80,36 +78,31 @@ const schema::Section<SurfaceSettings>& surface_section() {
   using S = SurfaceSettings;
   static const schema::Section<S> s{
       "views[i]",
-      [] {
-        std::vector<schema::Key<S>> keys = view_keys<S>("surface");
-        keys.push_back(schema::choice("shading", &S::shading, kShadeModeNames,
-                                      "shade pass ([ZD15] sec. 3.5)"));
-        keys.push_back(schema::flag("deep_ao", &S::deep_ao,
-                                    "deep ambient occlusion over all stored layers (sec. 3.6)"));
-        keys.push_back(schema::number("alpha", &S::alpha_degrees, schema::above_up_to(0, 45),
-                                      "normal-angle resolution of the depth layers, degrees "
-                                      "(sec. 4.2; 14 degrees gives ~16 000 layers in the paper)"));
-        keys.push_back(schema::number_or_auto("gap", &S::gap, schema::at_least(0),
-                                              "gap-bridging distance, world units (sec. 3.2, "
-                                              "4.4); `auto` = the particle spacing"));
-        keys.push_back(
-            schema::integer("max_spans", &S::max_spans, 0, 1 << 20,
-                            "stored spans per pixel, 0: no cap; over the cap the last "
-                            "span is extended and its empty length recorded (sec. 3.1)"));
-        keys.push_back(schema::number_or_auto("filter_radius", &S::filter_radius,
-                                              schema::at_least(0),
-                                              "world radius of the depth filter (sec. 3.4, "
-                                              "4.6); 0 = off; `auto` = the particle spacing"));
-        keys.push_back(schema::integer("max_layers", &S::max_layers, 32, 1 << 20,
-                                       "cap on depth layers, a multiple of 32"));
-        keys.push_back(schema::vec3("absorption", &S::absorption,
-                                    "Beer-Lambert absorption per world unit, RGB, >= 0"));
-        keys.push_back(schema::number("ior", &S::ior, schema::between(1, 4),
-                                      "refractive index (refractive mode)"));
-        keys.push_back(schema::integer("bounces", &S::bounces, 0, 16,
-                                       "refraction/reflection bounces (refractive mode)"));
-        return keys;
-      }(),
+      view_keys<S>(
+          "surface",
+          {schema::choice("shading", &S::shading, kShadeModeNames, "shade pass ([ZD15] sec. 3.5)"),
+           schema::flag("deep_ao", &S::deep_ao,
+                        "deep ambient occlusion over all stored layers (sec. 3.6)"),
+           schema::number("alpha", &S::alpha_degrees, schema::above_up_to(0, 45),
+                          "normal-angle resolution of the depth layers, degrees "
+                          "(sec. 4.2; 14 degrees gives ~16 000 layers in the paper)"),
+           schema::number_or_auto("gap", &S::gap, schema::at_least(0),
+                                  "gap-bridging distance, world units (sec. 3.2, "
+                                  "4.4); `auto` = the particle spacing"),
+           schema::integer("max_spans", &S::max_spans, 0, 1 << 20,
+                           "stored spans per pixel, 0: no cap; over the cap the last "
+                           "span is extended and its empty length recorded (sec. 3.1)"),
+           schema::number_or_auto("filter_radius", &S::filter_radius, schema::at_least(0),
+                                  "world radius of the depth filter (sec. 3.4, "
+                                  "4.6); 0 = off; `auto` = the particle spacing"),
+           schema::integer("max_layers", &S::max_layers, 32, 1 << 20,
+                           "cap on depth layers, a multiple of 32"),
+           schema::vec3("absorption", &S::absorption,
+                        "Beer-Lambert absorption per world unit, RGB, >= 0"),
+           schema::number("ior", &S::ior, schema::between(1, 4),
+                          "refractive index (refractive mode)"),
+           schema::integer("bounces", &S::bounces, 0, 16,
+                           "refraction/reflection bounces (refractive mode)")}),
       check_surface};
   return s;
 }

@@ -11,9 +11,7 @@
 namespace voxspan {
 namespace {
 
-glm::dvec3 vec(const Vec3d& v) {
-  return {v[0], v[1], v[2]};
-}
+glm::dvec3 vec(const Vec3d& v) { return {v[0], v[1], v[2]}; }
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -99,10 +97,8 @@ Camera ViewFraming::update(std::span<const ParticleSphere> boundary) {
   const Framing framing = camera_.framing;
   if (framing != Framing::first || box_.empty()) {
     const Bounds now = Bounds::of_spheres(boundary);
-    if (framing == Framing::grow)
-      box_.add(now);
-    else if (!now.empty())
-      box_ = now;
+    if (framing == Framing::grow) box_.add(now);
+    else if (!now.empty()) box_ = now;
   }
   return frame_camera(camera_, width_, height_, box_);
 }

@@ -17,28 +17,17 @@ namespace {
 
 const char* egl_error_name(EGLint code) {
   switch (code) {
-    case EGL_SUCCESS:
-      return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED:
-      return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS:
-      return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC:
-      return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE:
-      return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG:
-      return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT:
-      return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY:
-      return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH:
-      return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER:
-      return "EGL_BAD_PARAMETER";
-    default:
-      return "EGL error";
+    case EGL_SUCCESS: return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+    default: return "EGL error";
   }
 }
 
@@ -165,10 +154,8 @@ bool debug_requested(bool configured) {
 void GLAPIENTRY debug_message(GLenum /*source*/, GLenum type, GLuint id, GLenum severity,
                               GLsizei length, const GLchar* message, const void* /*user*/) {
   LogLevel level = LogLevel::debug;
-  if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH)
-    level = LogLevel::error;
-  else if (severity == GL_DEBUG_SEVERITY_MEDIUM)
-    level = LogLevel::warning;
+  if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) level = LogLevel::error;
+  else if (severity == GL_DEBUG_SEVERITY_MEDIUM) level = LogLevel::warning;
   std::string_view text(message, length < 0 ? std::strlen(message) : std::size_t(length));
   log(level, "GL [", id, "] ", text);
 }
@@ -203,9 +190,7 @@ EGLContext create_core_context(EGLDisplay display, bool debug, std::string& fail
 
 }  // namespace
 
-const char* platform_name(Platform platform) {
-  return name_of(kPlatformNames, platform).data();
-}
+const char* platform_name(Platform platform) { return name_of(kPlatformNames, platform).data(); }
 
 bool parse_platform(std::string_view text, Platform& platform) {
   const std::optional<Platform> p = value_of(kPlatformNames, text);
@@ -219,15 +204,9 @@ Context::Context(const ContextOptions& options) {
 
   DisplayAttempt attempt;
   switch (requested) {
-    case Platform::nvidia:
-      attempt = open_device(true);
-      break;
-    case Platform::device:
-      attempt = open_device(false);
-      break;
-    case Platform::surfaceless:
-      attempt = open_surfaceless();
-      break;
+    case Platform::nvidia: attempt = open_device(true); break;
+    case Platform::device: attempt = open_device(false); break;
+    case Platform::surfaceless: attempt = open_surfaceless(); break;
     case Platform::automatic: {
       attempt = open_device(true);
       if (attempt.display == EGL_NO_DISPLAY) {

@@ -17,25 +17,18 @@ GLuint create_buffer() {
 
 const char* gl_error_name(GLenum e) {
   switch (e) {
-    case GL_INVALID_ENUM:
-      return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE:
-      return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION:
-      return "GL_INVALID_OPERATION";
-    case GL_OUT_OF_MEMORY:
-      return "GL_OUT_OF_MEMORY";
-    case GL_INVALID_FRAMEBUFFER_OPERATION:
-      return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    default:
-      return "GL error";
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    default: return "GL error";
   }
 }
 
 // The driver's compile log of a shader or link log of a program: `get_iv` and `get_log` are
 // glGetShaderiv and glGetShaderInfoLog, or the Program pair.
-template <class GetIv, class GetLog>
-std::string info_log(GLuint id, GetIv get_iv, GetLog get_log) {
+template <class GetIv, class GetLog> std::string info_log(GLuint id, GetIv get_iv, GetLog get_log) {
   GLint length = 0;
   get_iv(id, GL_INFO_LOG_LENGTH, &length);
   std::string info(static_cast<std::size_t>(length > 0 ? length : 1), '\0');
@@ -50,44 +43,32 @@ std::atomic<std::int64_t> g_memory_peak{0};
 std::int64_t texel_bytes(GLenum internal_format) {
   switch (internal_format) {
     case GL_R8UI:
-    case GL_R8:
-      return 1;
+    case GL_R8: return 1;
     case GL_R16UI:
     case GL_R16F:
-    case GL_RG8:
-      return 2;
+    case GL_RG8: return 2;
     case GL_RGBA16F:
     case GL_RG32F:
-    case GL_RG32UI:
-      return 8;
+    case GL_RG32UI: return 8;
     case GL_RGBA32F:
-    case GL_RGBA32UI:
-      return 16;
-    default:
-      return 4;
+    case GL_RGBA32UI: return 16;
+    default: return 4;
   }
 }
 
 }  // namespace
 
-MemoryUsage memory_usage() {
-  return {g_memory_current.load(), g_memory_peak.load()};
-}
+MemoryUsage memory_usage() { return {g_memory_current.load(), g_memory_peak.load()}; }
 
-void reset_memory_peak() {
-  g_memory_peak.store(g_memory_current.load());
-}
+void reset_memory_peak() { g_memory_peak.store(g_memory_current.load()); }
 
 MemoryTicket::MemoryTicket(std::int64_t bytes) : bytes_(bytes) {
   const std::int64_t now = g_memory_current.fetch_add(bytes) + bytes;
   std::int64_t peak = g_memory_peak.load();
-  while (now > peak && !g_memory_peak.compare_exchange_weak(peak, now)) {
-  }
+  while (now > peak && !g_memory_peak.compare_exchange_weak(peak, now)) {}
 }
 
-MemoryTicket::~MemoryTicket() {
-  g_memory_current.fetch_sub(bytes_);
-}
+MemoryTicket::~MemoryTicket() { g_memory_current.fetch_sub(bytes_); }
 
 MemoryTicket& MemoryTicket::operator=(MemoryTicket&& o) noexcept {
   if (this != &o) {
@@ -101,8 +82,7 @@ MemoryTicket& MemoryTicket::operator=(MemoryTicket&& o) noexcept {
 void check_error(std::string_view what) {
   GLenum e = glGetError();
   if (e == GL_NO_ERROR) return;
-  while (glGetError() != GL_NO_ERROR) {
-  }
+  while (glGetError() != GL_NO_ERROR) {}
   throw make_error(what, ": ", gl_error_name(e));
 }
 
@@ -168,9 +148,7 @@ void Buffer::copy_from(const Buffer& from, std::size_t bytes, std::size_t from_o
                            static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes));
 }
 
-void Buffer::bind(GLenum target, GLuint index) const {
-  glBindBufferBase(target, index, id());
-}
+void Buffer::bind(GLenum target, GLuint index) const { glBindBufferBase(target, index, id()); }
 
 void Buffer::bind_range(GLenum target, GLuint index, std::size_t offset, std::size_t bytes) const {
   glBindBufferRange(target, index, id(), static_cast<GLintptr>(offset),

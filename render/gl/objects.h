@@ -22,8 +22,7 @@
 namespace voxspan::gl {
 
 // Shared move-only ownership of one GL name; Deleter frees it.
-template <class Deleter>
-class Handle {
+template <class Deleter> class Handle {
  public:
   Handle() = default;
   explicit Handle(GLuint id) : id_(id) {}
@@ -109,15 +108,13 @@ class Buffer {
   void clear(std::size_t offset = 0, std::size_t bytes = SIZE_MAX);
 
   // N values from `first`, on the stack: a tally read back every frame allocates nothing.
-  template <class T, std::size_t N>
-  std::array<T, N> read_array(std::size_t first = 0) const {
+  template <class T, std::size_t N> std::array<T, N> read_array(std::size_t first = 0) const {
     std::array<T, N> out{};
     download(out.data(), N * sizeof(T), first * sizeof(T));
     return out;
   }
 
-  template <class T>
-  std::vector<T> read(std::size_t count, std::size_t first = 0) const {
+  template <class T> std::vector<T> read(std::size_t count, std::size_t first = 0) const {
     std::vector<T> out(count);
     if (count != 0) download(out.data(), count * sizeof(T), first * sizeof(T));
     return out;

@@ -43,9 +43,7 @@ CompressPass::CompressPass(const gl::ShaderLibrary& shaders)
       rescan_(shaders.compute(kShader, binding_defines() + "#define COMPRESS_RESCAN 1")),
       stats_(16) {}
 
-void CompressPass::begin_frame() {
-  stats_.clear();
-}
+void CompressPass::begin_frame() { stats_.clear(); }
 
 CompressTallies CompressPass::tallies() const {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -167,8 +167,7 @@ SpanImage exact_spans(const PerspectiveGrid& grid, std::span<const ParticleSpher
           if (row.size() > stored)
             row_n.push_back(
                 {sphere_normal(grid, spheres, iv.entry_sphere, d, iv.entry), exit_normal});
-          else
-            row_n.back().exit = exit_normal;  // past the cap: the stored span was extended
+          else row_n.back().exit = exit_normal;  // past the cap: the stored span was extended
         });
         image.pixels[static_cast<std::size_t>(x) + static_cast<std::size_t>(y) * width] =
             builder.end();

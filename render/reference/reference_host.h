@@ -70,8 +70,7 @@ class ReferenceHost : public GridUniforms, public ShadeUniforms {
   }
 
   // f(p, span index) for every span, rows in parallel.
-  template <class F>
-  std::vector<uvec2> per_span(F&& f) {
+  template <class F> std::vector<uvec2> per_span(F&& f) {
     std::vector<uvec2> out(spans_.spans.size());
     each_pixel([&](ivec2 p) {
       for (uint k = 0; k < sd_count(p); ++k) out[sd_offset(p) + k] = f(p, sd_offset(p) + k);
@@ -79,8 +78,7 @@ class ReferenceHost : public GridUniforms, public ShadeUniforms {
     return out;
   }
 
-  template <class F>
-  void each_pixel(F&& f) {
+  template <class F> void each_pixel(F&& f) {
     tbb::parallel_for(tbb::blocked_range<int>(0, u_image.y),
                       [&](const tbb::blocked_range<int>& rows) {
                         for (int y = rows.begin(); y != rows.end(); ++y)
@@ -89,9 +87,7 @@ class ReferenceHost : public GridUniforms, public ShadeUniforms {
   }
 
  private:
-  const PixelSpans& record(ivec2 p) const {
-    return spans_.pixels[pixel_index(p)];
-  }
+  const PixelSpans& record(ivec2 p) const { return spans_.pixels[pixel_index(p)]; }
   const SpanImage& spans_;
   std::vector<vec2> block_bounds_;
   int blocks_x_ = 1;

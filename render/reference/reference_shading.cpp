@@ -56,12 +56,8 @@ FloatImage reference_shading(const SpanImage& spans, const ShadeOptions& options
   host.each_pixel([&](model::ivec2 p) {
     model::vec3 c(0.0f);
     switch (options.mode) {
-      case ShadeMode::opaque:
-        c = host.shade_opaque(p);
-        break;
-      case ShadeMode::translucent:
-        c = host.shade_translucent(p);
-        break;
+      case ShadeMode::opaque: c = host.shade_opaque(p); break;
+      case ShadeMode::translucent: c = host.shade_translucent(p); break;
       case ShadeMode::refractive: {
         // The GPU's dispatches, one after the other: the same budget per resumption.
         model::ReferenceHost::RayState s = host.ray_start(p);

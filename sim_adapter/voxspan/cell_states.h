@@ -24,12 +24,8 @@ constexpr std::uint8_t kInner = 4;
 constexpr std::uint8_t kInnerEmpty = kInner | kEmpty;
 constexpr std::uint8_t kInnerFull = kInner | kFull;
 
-constexpr std::uint8_t occupancy(std::uint8_t state) {
-  return state & kOccupancyMask;
-}
-constexpr bool is_inner(std::uint8_t state) {
-  return (state & kInner) != 0;
-}
+constexpr std::uint8_t occupancy(std::uint8_t state) { return state & kOccupancyMask; }
+constexpr bool is_inner(std::uint8_t state) { return (state & kInner) != 0; }
 }  // namespace cell
 
 // A view of the cell states of an axis-aligned grid: cell (i, j, k) covers
@@ -62,10 +58,8 @@ struct CellStates {
     origin = v.origin;
     cell_size = v.cell_size;
     dims = v.dims;
-    if (v.empty())
-      states.clear();
-    else
-      states.assign(v.states, v.states + v.cell_count());
+    if (v.empty()) states.clear();
+    else states.assign(v.states, v.states + v.cell_count());
   }
 };
 

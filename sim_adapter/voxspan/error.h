@@ -15,8 +15,7 @@ class Error : public std::runtime_error {
 };
 
 // Builds the message from parts: throw make_error("tile budget ", mb, " MiB is too small").
-template <class... Parts>
-Error make_error(const Parts&... parts) {
+template <class... Parts> Error make_error(const Parts&... parts) {
   std::ostringstream s;
   (s << ... << parts);
   return Error(s.str());

@@ -47,12 +47,9 @@ struct IndexArray {
   // The raw value (before the index base is applied).
   std::int64_t operator[](std::size_t i) const {
     switch (type) {
-      case IndexType::int32:
-        return static_cast<const std::int32_t*>(data)[i];
-      case IndexType::uint32:
-        return static_cast<const std::uint32_t*>(data)[i];
-      case IndexType::int64:
-        return static_cast<const std::int64_t*>(data)[i];
+      case IndexType::int32: return static_cast<const std::int32_t*>(data)[i];
+      case IndexType::uint32: return static_cast<const std::uint32_t*>(data)[i];
+      case IndexType::int64: return static_cast<const std::int64_t*>(data)[i];
       case IndexType::uint64:
         return static_cast<std::int64_t>(static_cast<const std::uint64_t*>(data)[i]);
     }
@@ -62,8 +59,7 @@ struct IndexArray {
     return type == IndexType::int32 || type == IndexType::uint32 ? 4 : 8;
   }
 
-  template <class I>
-  static IndexArray of(const I* d) {
+  template <class I> static IndexArray of(const I* d) {
     static_assert(std::is_integral_v<I> && (sizeof(I) == 4 || sizeof(I) == 8),
                   "grid indices must be 32- or 64-bit integers");
     IndexType t = sizeof(I) == 4 ? (std::is_signed_v<I> ? IndexType::int32 : IndexType::uint32)
@@ -88,8 +84,7 @@ class GridView {
     return v;
   }
   // Compact grid, CSR offsets: cell c holds sorted positions [offsets[c], offsets[c+1]).
-  template <class I>
-  static GridView offsets(const GridGeometry& g, const I* offsets) {
+  template <class I> static GridView offsets(const GridGeometry& g, const I* offsets) {
     return begin_end(g, offsets, offsets + 1);
   }
   static GridView offsets(const GridGeometry& g, IndexArray offsets) {
@@ -110,8 +105,7 @@ class GridView {
     return v;
   }
   // Per-particle cell index: particle i lies in cell cell_of[i]; particles in any order.
-  template <class I>
-  static GridView cell_index(const GridGeometry& g, const I* cell_of) {
+  template <class I> static GridView cell_index(const GridGeometry& g, const I* cell_of) {
     return cell_index(g, IndexArray::of(cell_of));
   }
   static GridView cell_index(const GridGeometry& g, IndexArray cell_of) {
@@ -123,8 +117,7 @@ class GridView {
 
   // For cell ranges: the k-th particle in cell order is particle order[k] (default: the
   // particles are stored in cell order, k itself).
-  template <class I>
-  GridView& with_order(const I* order) {
+  template <class I> GridView& with_order(const I* order) {
     return with_order(IndexArray::of(order));
   }
   GridView& with_order(IndexArray order) {

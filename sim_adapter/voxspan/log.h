@@ -26,28 +26,15 @@ void log_message(LogLevel level, std::string_view message);
 // Parses "error", "warning", "info", "debug"; returns false on anything else.
 bool parse_log_level(std::string_view text, LogLevel& level);
 
-template <class... Parts>
-void log(LogLevel level, const Parts&... parts) {
+template <class... Parts> void log(LogLevel level, const Parts&... parts) {
   if (level > log_level()) return;
   std::ostringstream s;
   (s << ... << parts);
   log_message(level, s.str());
 }
-template <class... P>
-void log_error(const P&... p) {
-  log(LogLevel::error, p...);
-}
-template <class... P>
-void log_warning(const P&... p) {
-  log(LogLevel::warning, p...);
-}
-template <class... P>
-void log_info(const P&... p) {
-  log(LogLevel::info, p...);
-}
-template <class... P>
-void log_debug(const P&... p) {
-  log(LogLevel::debug, p...);
-}
+template <class... P> void log_error(const P&... p) { log(LogLevel::error, p...); }
+template <class... P> void log_warning(const P&... p) { log(LogLevel::warning, p...); }
+template <class... P> void log_info(const P&... p) { log(LogLevel::info, p...); }
+template <class... P> void log_debug(const P&... p) { log(LogLevel::debug, p...); }
 
 }  // namespace voxspan

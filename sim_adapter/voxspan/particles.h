@@ -165,10 +165,8 @@ class ParticleView {
                      StridedScalars::of(xyz + 2, stride), count);
   }
   ParticleView& add(const AttributeView& a) {
-    if (attribute_count_ < kMaxAttributes)
-      attributes_[std::size_t(attribute_count_++)] = a;
-    else if (overflow_.empty())
-      overflow_ = a.name;
+    if (attribute_count_ < kMaxAttributes) attributes_[std::size_t(attribute_count_++)] = a;
+    else if (overflow_.empty()) overflow_ = a.name;
     return *this;
   }
 

@@ -87,9 +87,7 @@ TEST(DamBreak, ReachesTwoTimeUnitsWithoutNaN) {
   EXPECT_GE(run().t.back(), 2.0);
 }
 
-TEST(DamBreak, NoParticleLeavesTheTank) {
-  EXPECT_EQ(run().max_outside, 0u);
-}
+TEST(DamBreak, NoParticleLeavesTheTank) { EXPECT_EQ(run().max_outside, 0u); }
 
 TEST(DamBreak, MassIsConservedExactly) {
   // No particle is lost or duplicated by ~2000 re-sorts: the ids are still a permutation.

@@ -9,8 +9,7 @@
 namespace voxspan::test {
 
 // The message of the Error that `call()` throws; "" when it throws none.
-template <class Call>
-std::string error_message(Call call) {
+template <class Call> std::string error_message(Call call) {
   try {
     call();
   } catch (const Error& e) {

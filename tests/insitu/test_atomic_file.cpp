@@ -39,8 +39,7 @@ TEST(AtomicFile, AbandonedFilesLeaveNothing) {
     AtomicFile f(dir / "b.bin");
     f.write(std::string(200000, 'x'));
     throw std::runtime_error("the job failed half-way");
-  } catch (const std::runtime_error&) {
-  }
+  } catch (const std::runtime_error&) {}
   EXPECT_FALSE(std::filesystem::exists(dir / "b.bin"));
   EXPECT_EQ(test::count_temp_files(dir.path()), 0u);
 }

@@ -35,9 +35,7 @@ std::map<std::string, std::string> parse_report(const std::string& text) {
   return m;
 }
 
-char pattern(std::size_t file, std::size_t i) {
-  return char('a' + (file * 7 + i) % 26);
-}
+char pattern(std::size_t file, std::size_t i) { return char('a' + (file * 7 + i) % 26); }
 
 // The "solver": 12 steps, each submitting one file of `size(step)` bytes and one stats line.
 // Afterwards it reports what the folder holds and whether each final file is complete.

@@ -21,9 +21,7 @@
 namespace voxspan::test {
 
 // Inside the rerun: the folder and report path, or nullptr in the ordinary run.
-inline const char* child_folder() {
-  return std::getenv("VOXSPAN_CHILD_FOLDER");
-}
+inline const char* child_folder() { return std::getenv("VOXSPAN_CHILD_FOLDER"); }
 inline void write_child_report(const std::string& report) {
   std::ofstream(std::getenv("VOXSPAN_CHILD_REPORT")) << report;
 }

@@ -152,10 +152,8 @@ TEST(ClassifyLayouts, NoGridAtAll) {
         // Cells on the built grid's faces see air beyond; the reference may see more cells.
         const bool face = i == 0 || j == 0 || k == 0 || i == b.dims[0] - 1 || j == b.dims[1] - 1 ||
                           k == b.dims[2] - 1;
-        if (!face)
-          ASSERT_EQ(c.states[b.linear(i, j, k)], ref);
-        else
-          ASSERT_EQ(cell::occupancy(c.states[b.linear(i, j, k)]), cell::occupancy(ref));
+        if (!face) ASSERT_EQ(c.states[b.linear(i, j, k)], ref);
+        else ASSERT_EQ(cell::occupancy(c.states[b.linear(i, j, k)]), cell::occupancy(ref));
       }
 }
 

@@ -27,9 +27,7 @@ double ritter_height(double x, double x0, double h0, double t) {
 
 }  // namespace
 
-Particles one_sphere(glm::dvec3 center, double radius) {
-  return {sphere(center, radius)};
-}
+Particles one_sphere(glm::dvec3 center, double radius) { return {sphere(center, radius)}; }
 
 Particles lattice_block(glm::dvec3 lo, glm::ivec3 n, double spacing, double radius) {
   Particles out;

@@ -106,8 +106,7 @@ namespace {
 
 constexpr char kSpansMagic[8] = {'v', 'o', 'x', 's', 'p', 'a', 'n', '1'};
 
-template <typename T>
-void write_array(std::ofstream& out, const std::vector<T>& v) {
+template <typename T> void write_array(std::ofstream& out, const std::vector<T>& v) {
   const std::uint64_t n = v.size();
   out.write(reinterpret_cast<const char*>(&n), sizeof n);
   out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
