@@ -3,23 +3,17 @@
 // failure becomes a Status and a log line.
 #include "voxspan/adapter.h"
 
-#include <chrono>
 #include <cmath>
 #include <exception>
 #include <new>
 #include <set>
 
 #include "voxspan/error.h"
+#include "voxspan/stopwatch.h"
 #include "voxspan/log.h"
 
 namespace voxspan {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 void check_options(const AdapterOptions& options) {
   const ClassifyOptions& o = options.classify;
@@ -94,7 +88,7 @@ void Adapter::Impl::render(std::int64_t step, double time, const ParticleView& p
   if (!pipeline) return;
 
   const StepData data{step, time, c.boundary, c.cell_states(), c.attributes, &particles, &grid};
-  const auto t0 = Clock::now();
+  const Stopwatch t0;
   try {
     Status s = pipeline->process(data, stats);
     if (!s.ok()) stats.status = std::move(s);
@@ -103,7 +97,7 @@ void Adapter::Impl::render(std::int64_t step, double time, const ParticleView& p
   } catch (...) {
     fail(stats.status, StatusCode::pipeline_failed, "unknown exception in the pipeline");
   }
-  stats.seconds_pipeline = seconds_since(t0);
+  stats.seconds_pipeline = t0.seconds();
 }
 
 Adapter::Adapter(AdapterOptions options) : impl_(std::make_unique<Impl>()) {
@@ -138,7 +132,7 @@ Status Adapter::execute(std::int64_t step, double time, const ParticleView& part
   ++m.steps_seen;
   if (!is_render_step(step, time)) return {};
 
-  const auto t0 = Clock::now();
+  const Stopwatch t0;
   ++m.render_steps;
   StepStats& s = m.stats;
   s.step = step;
@@ -158,7 +152,7 @@ Status Adapter::execute(std::int64_t step, double time, const ParticleView& part
   } catch (...) {
     fail(s.status, StatusCode::internal_error, "unknown exception");
   }
-  s.seconds_total = seconds_since(t0);
+  s.seconds_total = t0.seconds();
   m.seconds_in_situ += s.seconds_total;
   if (!s.status.ok()) {
     ++m.failed_steps;

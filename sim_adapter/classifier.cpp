@@ -15,7 +15,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <ostream>
@@ -27,17 +26,12 @@
 #include "positions.h"
 #include "voxspan/classify.h"
 #include "voxspan/error.h"
+#include "voxspan/stopwatch.h"
 
 namespace voxspan {
 namespace {
 
 using detail::kNoCell;
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 constexpr std::size_t kCellGrain = 1 << 10;
 constexpr std::size_t kParticleGrain = 1 << 14;
 
@@ -395,7 +389,7 @@ template <class T>
 void Classifier::Work::run(const detail::Positions<T>& pos, const ParticleView& view,
                            const GridView& grid, const ClassifyOptions& options,
                            const std::vector<AttributeView>& attributes) {
-  const auto t0 = Clock::now();
+  const Stopwatch t0;
   const std::size_t n = view.size();
   ClassifyCounts& counts_out = result.counts;
   counts_out = {};
@@ -460,17 +454,17 @@ void Classifier::Work::run(const detail::Positions<T>& pos, const ParticleView& 
   if (cells > 0)
     detail::classify_cells(result.geometry, counts, counts_out.full_count, result.states, scratch);
   detail::tally_cells(result.states, counts_out);
-  result.seconds_classify = seconds_since(t0);
+  result.seconds_classify = t0.seconds();
 
   // 4. Compact.
-  const auto t1 = Clock::now();
+  const Stopwatch t1;
   if (cells > 0) {
     compact(pos, view, ranges, options, radii, attributes);
   } else {
     result.boundary.clear();
     result.attributes.clear();
   }
-  result.seconds_compact = seconds_since(t1);
+  result.seconds_compact = t1.seconds();
 }
 
 Classifier::Classifier() : work_(std::make_unique<Work>()) {}

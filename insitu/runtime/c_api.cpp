@@ -80,6 +80,7 @@ voxspan::AdapterOptions adapter_options(const voxspan_adapter_options* o) {
   c.cell_size = o->cell_size;
   c.validate = o->validate != 0;
   c.include_ghosts = o->include_ghosts != 0;
+  if (o->has_mpi_comm) options.mpi_comm = o->mpi_comm;
   return options;
 }
 
@@ -169,8 +170,16 @@ void voxspan_adapter_options_init(voxspan_adapter_options* o) {
   if (!o) return;
   const voxspan::AdapterOptions d;
   const voxspan::ClassifyOptions& c = d.classify;
-  *o = {d.render_every, c.particle_spacing, c.full_count,       c.full_fraction,
-        c.radius,       c.cell_size,        c.validate ? 1 : 0, c.include_ghosts ? 1 : 0};
+  *o = {d.render_every,
+        c.particle_spacing,
+        c.full_count,
+        c.full_fraction,
+        c.radius,
+        c.cell_size,
+        c.validate ? 1 : 0,
+        c.include_ghosts ? 1 : 0,
+        0,
+        0};
 }
 
 voxspan_adapter* voxspan_adapter_create(const voxspan_adapter_options* o) {

@@ -29,7 +29,7 @@ PassTimer::Scope PassTimer::gpu(std::string_view pass) {
     queries_[static_cast<std::size_t>(r.query)].begin();
   } else {
     glFinish();  // the scope measures its own work only, not what was queued before it
-    r.start = std::chrono::steady_clock::now();
+    r.watch.restart();
   }
   records_.push_back(std::move(r));
   return Scope(this, records_.size() - 1, true);
@@ -38,7 +38,7 @@ PassTimer::Scope PassTimer::gpu(std::string_view pass) {
 PassTimer::Scope PassTimer::cpu(std::string_view pass) {
   Record r;
   r.pass = std::string(pass);
-  r.start = std::chrono::steady_clock::now();
+  r.watch.restart();
   records_.push_back(std::move(r));
   return Scope(this, records_.size() - 1, false);
 }
@@ -53,8 +53,7 @@ void PassTimer::finish(std::size_t record, bool gpu) {
     }
     glFinish();
   }
-  r.ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r.start).count();
+  r.ms = r.watch.ms();
 }
 
 void PassTimer::collect(FrameStats& stats) {

@@ -8,13 +8,13 @@
 // sit inside anything.
 #pragma once
 
-#include <chrono>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "render/frame_stats.h"
 #include "render/gl/objects.h"
+#include "voxspan/stopwatch.h"
 
 namespace voxspan::gl {
 
@@ -53,8 +53,8 @@ class PassTimer {
   struct Record {
     std::string pass;
     double ms = 0;
-    int query = -1;  // index into queries_ when timed by a GPU query
-    std::chrono::steady_clock::time_point start;
+    int query = -1;   // index into queries_ when timed by a GPU query
+    Stopwatch watch;  // CPU scopes and llvmpipe: from the scope's start
   };
   void finish(std::size_t record, bool gpu);
 

@@ -33,6 +33,8 @@ module voxspan
     real(c_double) :: cell_size
     integer(c_int) :: validate
     integer(c_int) :: include_ghosts
+    integer(c_int) :: has_mpi_comm  ! 1: inside an MPI job on mpi_comm
+    integer(c_int) :: mpi_comm      ! the communicator (a Fortran MPI handle is an integer)
   end type
 
   ! The C struct's uint64_t counters read as 64-bit integers.

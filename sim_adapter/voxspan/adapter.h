@@ -25,6 +25,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -43,6 +44,9 @@ struct AdapterOptions {
   // Full count, particle spacing, radius, built-grid cell size, validation, ghosts and the
   // attributes to compact: see voxspan/classify.h. particle_spacing or full_count is needed.
   ClassifyOptions classify;
+  // The MPI communicator of the job, as its Fortran handle (MPI_Fint: what MPI_Comm_c2f gives;
+  // voxspan/mpi.h sets it from an MPI_Comm). None: one process, no MPI call is made.
+  std::optional<int> mpi_comm;
 };
 
 enum class StatusCode : int { ok = 0, invalid_input = 1, pipeline_failed = 2, internal_error = 3 };

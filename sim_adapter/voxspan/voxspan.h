@@ -66,6 +66,9 @@ typedef struct voxspan_adapter_options {
   double cell_size;        /* of a grid built when the solver gives none; 0: 2 spacings */
   int validate;            /* 1: check that the grid matches the particles */
   int include_ghosts;      /* 1 (default): compact ghost boundary particles too */
+  int has_mpi_comm;        /* 1: the adapter runs inside an MPI job on mpi_comm (default 0) */
+  int mpi_comm;            /* the communicator as its Fortran handle: MPI_Comm_c2f(comm) in C,
+                              the communicator itself in Fortran */
 } voxspan_adapter_options;
 
 typedef struct voxspan_step_stats {
