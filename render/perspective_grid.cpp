@@ -127,16 +127,21 @@ DepthRange PerspectiveGrid::survey(std::span<const ParticleSphere> particles, do
 
 PerspectiveGrid PerspectiveGrid::fit(const Camera& camera,
                                      std::span<const ParticleSphere> particles,
-                                     const GridOptions& options, CullCounts* counts) {
+                                     const GridOptions& options, CullCounts* counts,
+                                     const DepthRangeCombine& combine) {
   PerspectiveGrid g = with_frame(camera, options);
+  const auto global = [&](const DepthRange& local) { return combine ? combine(local) : local; };
   DepthRange range = g.survey(particles, 0);
+  DepthRange all = global(range);
   // The near floor depends on the far depth. Only when some sphere starts before it does a
   // second pass sort out those that end before it (usually none do: one pass).
-  const double near_floor = std::max(options.min_near, options.min_near_fraction * range.hi);
-  if (range.counts.visible > 0 && range.lo < near_floor) range = g.survey(particles, near_floor);
+  const double near_floor = std::max(options.min_near, options.min_near_fraction * all.hi);
+  if (all.counts.visible > 0 && all.lo < near_floor) {
+    range = g.survey(particles, near_floor);
+    all = global(range);
+  }
   if (counts != nullptr) *counts = range.counts;
-  if (range.counts.visible > 0)
-    g.set_depth_range(std::max(near_floor, range.lo), range.hi, options);
+  if (all.counts.visible > 0) g.set_depth_range(std::max(near_floor, all.lo), all.hi, options);
   return g;
 }
 

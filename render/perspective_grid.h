@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <span>
 
@@ -49,6 +50,11 @@ struct DepthRange {
   CullCounts counts;
 };
 
+// Combines this process's depth range with those of the other processes that voxelize into the
+// same grid (MPI ranks: lo the least, hi the greatest, counts summed), so that every one fits
+// the same near, far and layers. Empty: one process.
+using DepthRangeCombine = std::function<DepthRange(const DepthRange&)>;
+
 // Pixels a sphere may cover, inclusive; empty when x0 > x1 or y0 > y1.
 struct PixelRect {
   int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
@@ -62,8 +68,10 @@ class PerspectiveGrid {
 
   // Fits near and far to the valid spheres inside the frustum (CullCounts says what was left
   // out). With no visible sphere the grid is empty(): zero layers.
+  // `combine` (when set) makes the fit global: called once or twice on every process alike.
   static PerspectiveGrid fit(const Camera& camera, std::span<const ParticleSphere> particles,
-                             const GridOptions& options, CullCounts* counts = nullptr);
+                             const GridOptions& options, CullCounts* counts = nullptr,
+                             const DepthRangeCombine& combine = {});
   // A grid over the depth range [near, far] as given (0 < near < far).
   static PerspectiveGrid over(const Camera& camera, double near, double far,
                               const GridOptions& options);

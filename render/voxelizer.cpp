@@ -1,5 +1,7 @@
 #include "render/voxelizer.h"
 
+#include "render/passes/depth_bounds.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -60,7 +62,7 @@ const GpuSpanImage& Voxelizer::run(const Camera& camera, std::span<const Particl
   CullCounts culled;
   {
     auto t = timer.cpu("frame");
-    grid = PerspectiveGrid::fit(camera, particles, options.grid, &culled);
+    grid = PerspectiveGrid::fit(camera, particles, options.grid, &culled, options.combine_ranks);
   }
   report_frame(grid, culled, particles.size(), stats);
   // Every count is reported every frame, zero or not, so each step's record has the same keys.
@@ -89,8 +91,11 @@ const GpuSpanImage& Voxelizer::run(const Camera& camera, std::span<const Particl
   const Bins* bins = nullptr;
   {
     auto t = timer.gpu("bin");
+    const std::vector<std::uint32_t> seed = options.combine_ranks && options.use_cell_states
+                                                ? inner_full_depth_bounds(grid, cells)
+                                                : std::vector<std::uint32_t>{};
     bins = &bin_.run(particles_, count, grid, layout, prefix_sum_,
-                     options.binning == Binning::per_tile_lists, options.bin_tallies);
+                     options.binning == Binning::per_tile_lists, options.bin_tallies, seed);
     if (!bins->offsets.empty()) stats.set_count("bin.entries", bins->offsets.back());
     stats.set_count("bin.large", bins->large);
   }

@@ -43,6 +43,11 @@ struct VoxelizeOptions {
   Binning binning = Binning::per_tile_lists;
   SplatThreads splat_threads = SplatThreads::automatic;
   BinTallies bin_tallies = BinTallies::automatic;
+  // The other processes voxelizing into the same grid (PerspectiveGrid::fit); empty: none.
+  // With them, this process's inner-full cells need not lie between its own boundary
+  // particles (another rank may hold the fluid's far side), so the compress pass's depth
+  // bounds take the cells in too (inner_full_depth_bounds).
+  DepthRangeCombine combine_ranks;
 };
 
 // Throws voxspan::Error naming the option that is out of range.

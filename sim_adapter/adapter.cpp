@@ -69,11 +69,17 @@ struct Adapter::Impl {
   std::int64_t steps_seen = 0, render_steps = 0, failed_steps = 0;
   double seconds_in_situ = 0;
 
-  void render(std::int64_t step, double time, const ParticleView& particles, const GridView& grid);
+  // Throws what the classification throws (bad input).
+  const Classification& classify(std::int64_t step, const ParticleView& particles,
+                                 const GridView& grid);
+  // The step's status on every rank of the pipeline (its own when alone).
+  void agree();
+  void process(std::int64_t step, double time, const Classification& c,
+               const ParticleView& particles, const GridView& grid);
 };
 
-void Adapter::Impl::render(std::int64_t step, double time, const ParticleView& particles,
-                           const GridView& grid) {
+const Classification& Adapter::Impl::classify(std::int64_t step, const ParticleView& particles,
+                                              const GridView& grid) {
   const Classification& c = classifier.run(particles, grid, options.classify);
   stats.counts = c.counts;
   stats.seconds_classify = c.seconds_classify;
@@ -85,8 +91,20 @@ void Adapter::Impl::render(std::int64_t step, double time, const ParticleView& p
   if (c.counts.not_in_grid > 0)
     log_quietly(LogLevel::warning, "step ", step, ": ", c.counts.not_in_grid,
                 " particles are in no cell of the grid and were left out");
-  if (!pipeline) return;
+  return c;
+}
 
+void Adapter::Impl::agree() {
+  try {
+    Status agreed = pipeline->agree(stats.status);
+    if (stats.status.ok() && !agreed.ok()) stats.status = std::move(agreed);
+  } catch (const std::exception& e) {
+    fail(stats.status, StatusCode::internal_error, e.what());
+  }
+}
+
+void Adapter::Impl::process(std::int64_t step, double time, const Classification& c,
+                            const ParticleView& particles, const GridView& grid) {
   const StepData data{step, time, c.boundary, c.cell_states(), c.attributes, &particles, &grid};
   const Stopwatch t0;
   try {
@@ -141,8 +159,9 @@ Status Adapter::execute(std::int64_t step, double time, const ParticleView& part
   s.status = {};
   s.counts = {};
   s.seconds_classify = s.seconds_compact = s.seconds_pipeline = 0;
+  const Classification* c = nullptr;
   try {
-    m.render(step, time, particles, grid);
+    c = &m.classify(step, particles, grid);
   } catch (const Error& e) {
     fail(s.status, StatusCode::invalid_input, e.what());
   } catch (const std::bad_alloc&) {
@@ -152,11 +171,16 @@ Status Adapter::execute(std::int64_t step, double time, const ParticleView& part
   } catch (...) {
     fail(s.status, StatusCode::internal_error, "unknown exception");
   }
+  // With ranks, a failure on one is the step's failure on all: they skip it together.
+  if (m.pipeline) m.agree();
+  if (m.pipeline && s.status.ok()) m.process(step, time, *c, particles, grid);
   s.seconds_total = t0.seconds();
   m.seconds_in_situ += s.seconds_total;
   if (!s.status.ok()) {
     ++m.failed_steps;
-    log_quietly(LogLevel::error, "step ", step, ": ", s.status.message);
+    // One line for the job, not one per rank.
+    if (!m.pipeline || m.pipeline->reports_failures())
+      log_quietly(LogLevel::error, "step ", step, ": ", s.status.message);
   }
   try {
     return s.status;

@@ -73,7 +73,13 @@ const Section<RendererConfig>& renderer_section() {
                       "as `VOXSPAN_GL_PLATFORM` (which overrides it)"),
        schema::flag("debug", &R::debug, "GL debug context"),
        schema::number("gpu_memory_mib", &R::gpu_memory_mib, schema::between(1, 1 << 24),
-                      "budget for the tiled bit grid and span buffers")}};
+                      "budget for the tiled bit grid and span buffers"),
+       schema::integer_or_auto("gpu_device", &R::gpu_device, 0, 1023,
+                               "the EGL device (GPU) of this process; `auto` = in an MPI job the "
+                               "node-local rank's, modulo the devices (the first alone)"),
+       schema::choice("composite", &R::composite, kCompositeSchemeNames,
+                      "in an MPI job, how the ranks merge their span images: bands merged by "
+                      "every rank (`direct_send`) or all on rank 0 (`root`); docs/design.md")}};
   return s;
 }
 
@@ -369,6 +375,31 @@ std::string write_config(const Config& config, const ConfigKinds& kinds) {
   YAML::Emitter e;
   top_section(kinds).emit(e, config);
   return std::string(e.c_str()) + "\n";
+}
+
+namespace {
+
+void flatten(const YAML::Node& node, const std::string& path, std::vector<std::string>& lines) {
+  if (node.IsMap()) {
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      const std::string key = it->first.Scalar();
+      flatten(it->second, path.empty() ? key : path + "." + key, lines);
+    }
+  } else if (node.IsSequence()) {
+    if (node.size() == 0) lines.push_back(path + ": []");
+    for (std::size_t i = 0; i < node.size(); ++i)
+      flatten(node[i], path + "[" + std::to_string(i) + "]", lines);
+  } else {
+    lines.push_back(path + ": " + (node.IsScalar() ? node.Scalar() : std::string("~")));
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> config_lines(const Config& config, const ConfigKinds& kinds) {
+  std::vector<std::string> lines;
+  flatten(YAML::Load(write_config(config, kinds)), "", lines);
+  return lines;
 }
 
 std::string config_reference(const ConfigKinds& kinds) {

@@ -28,10 +28,18 @@ enum class QueuePolicy { wait, drop };
 inline constexpr EnumName<QueuePolicy> kQueuePolicyNames[] = {{"wait", QueuePolicy::wait},
                                                               {"drop", QueuePolicy::drop}};
 
+// How the ranks of an MPI job composite their span images (insitu/views/span_compositor.h).
+enum class CompositeScheme { direct_send, root };
+inline constexpr EnumName<CompositeScheme> kCompositeSchemeNames[] = {
+    {"direct_send", CompositeScheme::direct_send}, {"root", CompositeScheme::root}};
+
 struct RendererConfig {
   gl::Platform platform = gl::Platform::automatic;
   bool debug = false;
   double gpu_memory_mib = 512;  // budget for the tiled bit grid and span buffers
+  // The GPU (EGL device) of this process; nullopt: the node-local MPI rank's, modulo devices.
+  std::optional<std::int64_t> gpu_device;
+  CompositeScheme composite = CompositeScheme::direct_send;
   bool operator==(const RendererConfig&) const = default;
 };
 
@@ -96,6 +104,9 @@ Config read_config(std::string_view yaml, std::string_view source_name, const Co
 // The effective configuration as YAML (every key, defaults included); reading it again gives
 // the same Config.
 std::string write_config(const Config& config, const ConfigKinds& kinds);
+// Every value of the config as "<key path>: <value>" lines, in order ("views[0].width: 640"):
+// what two processes compare to tell whether they read the same config.
+std::vector<std::string> config_lines(const Config& config, const ConfigKinds& kinds);
 // Markdown: a table per section, the views' and outputs' kinds included (docs/runtime.md).
 std::string config_reference(const ConfigKinds& kinds);
 

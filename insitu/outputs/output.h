@@ -22,6 +22,7 @@
 #include "insitu/config/config.h"
 #include "insitu/outputs/background_writer.h"
 #include "insitu/outputs/stats_record.h"
+#include "insitu/parallel/communicator.h"
 #include "insitu/views/view_products.h"
 #include "voxspan/adapter.h"
 
@@ -50,6 +51,7 @@ struct OutputContext {
   BackgroundWriter& writer;
   std::size_t slots = 0;  // pooled slots per kind of job (the writer's queue + 2)
   bool fsync = true;
+  Communicator* comm = nullptr;  // the MPI job's ranks; null in one process
 };
 
 class Output {
@@ -71,6 +73,9 @@ struct OutputKind {
   ViewNeeds needs;
   // An output of the step's own stats: handed the step last, with the record filled.
   bool reports_step = false;
+  // Made on the root rank only in an MPI job (the pictures and the stats exist there); the
+  // others write their own part (snapshots gather to the root themselves).
+  bool root_only = false;
   std::function<std::unique_ptr<Output>(const OutputSettings&, const OutputContext&)> make;
 };
 
@@ -78,8 +83,12 @@ struct OutputKind {
 template <class S, class O>
 OutputKind output_kind(std::string_view name, std::string_view noun,
                        const schema::Section<S>& section, ViewNeeds needs = {},
-                       bool reports_step = false) {
-  return {config_kind<OutputSettings>(name, section), noun, needs, reports_step,
+                       bool reports_step = false, bool root_only = false) {
+  return {config_kind<OutputSettings>(name, section),
+          noun,
+          needs,
+          reports_step,
+          root_only,
           [](const OutputSettings& s, const OutputContext& c) -> std::unique_ptr<Output> {
             return std::make_unique<O>(dynamic_cast<const S&>(s), c);
           }};

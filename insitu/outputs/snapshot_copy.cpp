@@ -1,6 +1,8 @@
 #include "insitu/outputs/snapshot_copy.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 
 #include "voxspan/error.h"
 
@@ -28,6 +30,154 @@ std::vector<AttributeSpan> SnapshotCopy::attribute_spans() const {
   spans.reserve(attributes.size());
   for (const Attribute& a : attributes) spans.push_back(a.view());
   return spans;
+}
+
+namespace {
+
+// A rank's copy as bytes, and back (the same machine's layout on every rank).
+class Packer {
+ public:
+  template <class T> void put(const T& v) {
+    const auto* p = reinterpret_cast<const std::byte*>(&v);
+    bytes.insert(bytes.end(), p, p + sizeof v);
+  }
+  template <class T> void put_all(std::span<const T> v) {
+    put(std::uint64_t(v.size()));
+    const auto* p = reinterpret_cast<const std::byte*>(v.data());
+    bytes.insert(bytes.end(), p, p + v.size_bytes());
+  }
+  std::vector<std::byte> bytes;
+};
+
+class Unpacker {
+ public:
+  explicit Unpacker(std::span<const std::byte> bytes) : bytes_(bytes) {}
+  template <class T> T get() {
+    T v;
+    take(&v, sizeof v);
+    return v;
+  }
+  template <class T> void get_all(std::vector<T>& out) {
+    out.resize(std::size_t(get<std::uint64_t>()));
+    take(out.data(), out.size() * sizeof(T));
+  }
+
+ private:
+  void take(void* out, std::size_t n) {
+    if (bytes_.size() - at_ < n) throw make_error("a rank's snapshot copy is cut short");
+    std::memcpy(out, bytes_.data() + at_, n);
+    at_ += n;
+  }
+  std::span<const std::byte> bytes_;
+  std::size_t at_ = 0;
+};
+
+std::vector<std::byte> pack(const SnapshotCopy& c) {
+  Packer p;
+  p.put_all<ParticleSphere>(c.spheres);
+  p.put(std::uint64_t(c.attributes.size()));
+  for (const Attribute& a : c.attributes) {
+    p.put_all<char>(a.name);
+    p.put(a.components);
+    p.put_all<float>(a.values);
+  }
+  p.put(c.cells.origin), p.put(c.cells.cell_size), p.put(c.cells.dims);
+  p.put_all<std::uint8_t>(c.cells.states);
+  return std::move(p.bytes);
+}
+
+// Every rank's cells in one grid over all of them, on the lattice of the first non-empty one.
+CellStates merge_cells(const std::vector<CellStates>& parts) {
+  const CellStates* first = nullptr;
+  for (const CellStates& c : parts)
+    if (!c.states.empty() && first == nullptr) first = &c;
+  if (first == nullptr) return {};
+  const double h = first->cell_size;
+  std::array<long long, 3> lo{}, hi{};
+  bool any = false;
+  auto offset = [&](const CellStates& c, int a) {
+    const double cells = (c.origin[std::size_t(a)] - first->origin[std::size_t(a)]) / h;
+    if (std::abs(c.cell_size - h) > 1e-9 * h || std::abs(cells - std::round(cells)) > 1e-6)
+      throw make_error("the ranks' grids do not lie on one lattice (cell size ", c.cell_size,
+                       " against ", h, ", origins ", cells,
+                       " cells apart): their cell states "
+                       "cannot go in one grid");
+    return std::llround(cells);
+  };
+  for (const CellStates& c : parts) {
+    if (c.states.empty()) continue;
+    for (int a = 0; a < 3; ++a) {
+      const long long o = offset(c, a), e = o + c.dims[std::size_t(a)];
+      lo[std::size_t(a)] = any ? std::min(lo[std::size_t(a)], o) : o;
+      hi[std::size_t(a)] = any ? std::max(hi[std::size_t(a)], e) : e;
+    }
+    any = true;
+  }
+  CellStates merged;
+  merged.cell_size = h;
+  for (int a = 0; a < 3; ++a) {
+    merged.origin[std::size_t(a)] = first->origin[std::size_t(a)] + double(lo[std::size_t(a)]) * h;
+    merged.dims[std::size_t(a)] = int(hi[std::size_t(a)] - lo[std::size_t(a)]);
+  }
+  // Cells no rank covers are inner-empty air, as outside any grid.
+  merged.states.assign(merged.view().cell_count(), cell::kInnerEmpty);
+  for (const CellStates& c : parts) {
+    if (c.states.empty()) continue;
+    const long long ox = offset(c, 0) - lo[0], oy = offset(c, 1) - lo[1], oz = offset(c, 2) - lo[2];
+    for (int k = 0; k < c.dims[2]; ++k)
+      for (int j = 0; j < c.dims[1]; ++j)
+        for (int i = 0; i < c.dims[0]; ++i) {
+          const std::uint8_t state =
+              c.states[std::size_t(i) +
+                       std::size_t(c.dims[0]) * (std::size_t(j) + std::size_t(c.dims[1]) * k)];
+          std::uint8_t& into =
+              merged.states[std::size_t(i + ox) +
+                            std::size_t(merged.dims[0]) *
+                                (std::size_t(j + oy) + std::size_t(merged.dims[1]) * (k + oz))];
+          // A ghost cell seen by two ranks: the one that holds particles in it says more.
+          if (into == cell::kInnerEmpty || into == cell::kEmpty) into = state;
+        }
+  }
+  return merged;
+}
+
+}  // namespace
+
+bool SnapshotCopy::gather(Communicator& comm) {
+  const std::vector<std::vector<std::byte>> all = comm.gather(pack(*this));
+  if (!comm.root()) return false;
+  std::vector<ParticleSphere> spheres_all;
+  std::vector<Attribute> attributes_all = attributes;
+  for (Attribute& a : attributes_all) a.values.clear();
+  std::vector<CellStates> cells_all(all.size());
+  for (std::size_t r = 0; r < all.size(); ++r) {
+    Unpacker u(all[r]);
+    std::vector<ParticleSphere> s;
+    u.get_all(s);
+    spheres_all.insert(spheres_all.end(), s.begin(), s.end());
+    const auto n = u.get<std::uint64_t>();
+    if (n != attributes_all.size()) throw make_error("rank ", r, " sent ", n, " attributes");
+    for (Attribute& a : attributes_all) {
+      std::vector<char> name;
+      u.get_all(name);
+      const int components = u.get<int>();
+      std::vector<float> values;
+      u.get_all(values);
+      if (std::string(name.begin(), name.end()) != a.name || components != a.components)
+        throw make_error("rank ", r, " sent attribute ", std::string(name.begin(), name.end()),
+                         " where ", a.name, " was expected");
+      a.values.insert(a.values.end(), values.begin(), values.end());
+    }
+    CellStates& c = cells_all[r];
+    c.origin = u.get<std::array<double, 3>>();
+    c.cell_size = u.get<double>();
+    c.dims = u.get<std::array<int, 3>>();
+    u.get_all(c.states);
+  }
+  spheres = std::move(spheres_all);
+  attributes = std::move(attributes_all);
+  cells = merge_cells(cells_all);
+  return true;
 }
 
 }  // namespace voxspan

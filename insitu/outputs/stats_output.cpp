@@ -71,7 +71,7 @@ class StatsOutput final : public Output {
 
 OutputKind stats_output_kind() {
   return output_kind<StatsSettings, StatsOutput>("stats", "stats lines", stats_section(), {},
-                                                 /*reports_step=*/true);
+                                                 /*reports_step=*/true, /*root_only=*/true);
 }
 
 }  // namespace voxspan

@@ -66,8 +66,9 @@ void append_object(std::string& out, std::string_view key,
   out += '}';
 }
 
-void append_section(std::string& out, const FrameStats& s) {
-  append_string(out, "timings_ms");
+// "<key>":{"<pass>":ms,...}
+void append_timings(std::string& out, std::string_view key, const FrameStats& s) {
+  append_string(out, key);
   out += ":{";
   for (std::size_t i = 0; i < s.passes.size(); ++i) {
     if (i) out += ',';
@@ -75,8 +76,34 @@ void append_section(std::string& out, const FrameStats& s) {
     out += ':';
     append_number(out, s.passes[i].ms);
   }
-  out += "},";
+  out += '}';
+}
+
+void append_section(std::string& out, const FrameStats& s) {
+  append_timings(out, "timings_ms", s);
+  out += ',';
   append_object(out, "counters", s.counts);
+}
+
+void append_ranks(std::string& out, const StatsRecord::Ranks& ranks) {
+  out += ",\"ranks\":{\"count\":";
+  append_number(out, std::int64_t(ranks.count));
+  out += ",\"bytes_sent\":[";
+  for (std::size_t i = 0; i < ranks.bytes_sent.size(); ++i) {
+    if (i) out += ',';
+    append_number(out, ranks.bytes_sent[i]);
+  }
+  out += "],";
+  append_timings(out, "timings_ms_mean", ranks.totals_mean);
+  out += ",\"views\":{";
+  for (std::size_t i = 0; i < ranks.views_mean.size(); ++i) {
+    if (i) out += ',';
+    append_string(out, ranks.views_mean[i].first);
+    out += ":{";
+    append_timings(out, "timings_ms_mean", ranks.views_mean[i].second);
+    out += '}';
+  }
+  out += "}}";
 }
 
 }  // namespace
@@ -134,7 +161,9 @@ void append_json_line(const StatsRecord& r, std::string& out) {
     append_section(out, section);
     out += '}';
   }
-  out += "}}\n";
+  out += '}';
+  if (r.ranks.count > 1) append_ranks(out, r.ranks);
+  out += "}\n";
 }
 
 }  // namespace voxspan

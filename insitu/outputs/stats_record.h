@@ -26,6 +26,16 @@ struct StatsRecord {
   FrameStats totals;
   std::vector<std::pair<std::string, FrameStats>> views;
   std::vector<std::pair<std::string, double>> memory_mib;  // "host_rss", "host_peak", "gpu"...
+  // In an MPI job (count > 1), the root's record: the totals' and the views' timings are the
+  // slowest rank's and their counters the sum over the ranks; the means and what every rank
+  // sent are here. Written as "ranks":{"count":N,"bytes_sent":[...],"timings_ms_mean":{...},
+  // "views":{"<view>":{"timings_ms_mean":{...}}}}.
+  struct Ranks {
+    int count = 1;
+    std::vector<std::int64_t> bytes_sent;  // per rank, on this step
+    FrameStats totals_mean;
+    std::vector<std::pair<std::string, FrameStats>> views_mean;
+  } ranks;
 
   FrameStats& view(std::string_view name);  // created on first use
   void set_memory(std::string_view name, double mib);

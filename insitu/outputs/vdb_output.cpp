@@ -49,11 +49,21 @@ class VdbOutput final : public Output {
         folder_(c.folder),
         fsync_(c.fsync),
         radius_(s.radius.value_or(c.particle_spacing > 0 ? 0.5 * c.particle_spacing : 0.0)),
+        comm_(c.comm),
         jobs_(c.writer, c.slots, [this](SnapshotCopy& copy) { write_snapshot(copy); }) {}
 
   void write(const OutputStep& step) override {
-    jobs_.submit("VDB snapshot",
-                 [&](SnapshotCopy& copy) { copy.fill(step.data, settings_.attributes, radius_); });
+    if (comm_ == nullptr || comm_->size() == 1) {
+      jobs_.submit("VDB snapshot", [&](SnapshotCopy& copy) {
+        copy.fill(step.data, settings_.attributes, radius_);
+      });
+      return;
+    }
+    // Every rank's part, gathered on the root before any slot is taken: a rank without a free
+    // slot still takes part. One file per snapshot, the whole fluid, where Houdini opens it.
+    gathered_.fill(step.data, settings_.attributes, radius_);
+    if (!gathered_.gather(*comm_)) return;
+    jobs_.submit("VDB snapshot", [&](SnapshotCopy& copy) { std::swap(copy, gathered_); });
   }
 
   OutputTally tally() const override { return jobs_.tally(); }
@@ -70,6 +80,8 @@ class VdbOutput final : public Output {
   const std::filesystem::path folder_;
   const bool fsync_;
   const double radius_;  // 0: the spheres' own radii
+  Communicator* const comm_;
+  SnapshotCopy gathered_;  // with ranks: the job's whole snapshot, on the root
   PooledJobs<SnapshotCopy> jobs_;
 };
 

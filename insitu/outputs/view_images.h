@@ -105,7 +105,11 @@ class ViewImageOutput final : public Output {
 template <class S>
 OutputKind view_image_output_kind(std::string_view name, std::string_view noun,
                                   const schema::Section<S>& section, ViewImageFormat format) {
-  return {config_kind<OutputSettings>(name, section), noun, format.needs, false,
+  return {config_kind<OutputSettings>(name, section),
+          noun,
+          format.needs,
+          false,
+          true,
           [format](const OutputSettings&, const OutputContext& c) -> std::unique_ptr<Output> {
             return std::make_unique<ViewImageOutput>(format, c);
           }};

@@ -126,15 +126,42 @@ std::string PvdSeries::document(std::span<const Entry> entries) {
        "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
        "  <Collection>\n";
   for (const Entry& e : entries)
-    s << "    <DataSet timestep=\"" << e.time << "\" group=\"\" part=\"0\" file=\""
+    s << "    <DataSet timestep=\"" << e.time << "\" group=\"\" part=\"" << e.part << "\" file=\""
       << xml_escape(e.file) << "\"/>\n";
   s << "  </Collection>\n</VTKFile>\n";
   return s.str();
 }
 
-void PvdSeries::add(double time, std::string file) {
-  entries_.push_back({time, std::move(file)});
+void PvdSeries::add(double time, std::string file, int part) {
+  const Entry e{time, std::move(file), part};
+  add(std::span(&e, 1));
+}
+
+void PvdSeries::add(std::span<const Entry> entries) {
+  entries_.insert(entries_.end(), entries.begin(), entries.end());
   write_file_atomically(path_, document(entries_), sync_);
+}
+
+std::string pvtp_document(std::span<const std::string> pieces,
+                          std::span<const AttributeSpan> attributes) {
+  std::ostringstream s;
+  s << "<?xml version=\"1.0\"?>\n"
+       "<VTKFile type=\"PPolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+       "header_type=\"UInt64\">\n"
+       "  <PPolyData GhostLevel=\"0\">\n"
+       "    <PPointData>\n"
+       "      <PDataArray type=\"Float32\" Name=\"radius\"/>\n";
+  for (const AttributeSpan& a : attributes)
+    s << "      <PDataArray type=\"Float32\" Name=\"" << xml_escape(std::string(a.name))
+      << "\" NumberOfComponents=\"" << a.components << "\"/>\n";
+  s << "    </PPointData>\n"
+       "    <PPoints>\n"
+       "      <PDataArray type=\"Float32\" NumberOfComponents=\"3\"/>\n"
+       "    </PPoints>\n";
+  for (const std::string& piece : pieces)
+    s << "    <Piece Source=\"" << xml_escape(piece) << "\"/>\n";
+  s << "  </PPolyData>\n</VTKFile>\n";
+  return s.str();
 }
 
 }  // namespace voxspan

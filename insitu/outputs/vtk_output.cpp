@@ -3,8 +3,11 @@
 // writer's, each then listed in its .pvd series (particles.pvd, cells.pvd).
 #include "insitu/outputs/vtk_output.h"
 
+#include <cstdio>
+#include <cstring>
 #include <memory>
 
+#include "insitu/outputs/atomic_file.h"
 #include "insitu/outputs/output.h"
 #include "insitu/outputs/pooled_jobs.h"
 #include "insitu/outputs/snapshot_copy.h"
@@ -31,13 +34,19 @@ const schema::Section<VtkSettings>& vtk_section() {
   return s;
 }
 
+// In an MPI job every rank writes its piece (<name>_<step>_<rank>.vtp/.vti); the root also
+// writes particles_<step>.pvtp over the pieces and lists the cells' pieces as the parts of one
+// dataset in cells.pvd, so ParaView opens each step as one dataset.
 class VtkOutput final : public Output {
  public:
   VtkOutput(const VtkSettings& s, const OutputContext& c)
       : settings_(s),
         folder_(c.folder),
         fsync_(c.fsync),
+        rank_(c.comm != nullptr ? c.comm->rank() : 0),
+        ranks_(c.comm != nullptr ? c.comm->size() : 1),
         jobs_(c.writer, c.slots, [this](SnapshotCopy& copy) { write_files(copy); }) {
+    if (rank_ != 0) return;
     if (s.particles) particles_ = std::make_unique<PvdSeries>(folder_ / "particles.pvd", fsync_);
     if (s.cells) cells_ = std::make_unique<PvdSeries>(folder_ / "cells.pvd", fsync_);
   }
@@ -51,23 +60,45 @@ class VtkOutput final : public Output {
 
  private:
   void write_files(const SnapshotCopy& s) {
-    if (particles_) {
-      const std::string name = step_file_name("particles", s.step, "vtp");
-      const std::vector<AttributeSpan> attributes = s.attribute_spans();
-      write_vtp(folder_ / name, s.spheres, attributes, fsync_);
-      particles_->add(s.time, name);
+    const std::vector<AttributeSpan> attributes = s.attribute_spans();
+    if (settings_.particles) {
+      write_vtp(folder_ / piece(s.step, rank_, "particles", "vtp"), s.spheres, attributes, fsync_);
+      if (particles_) particles_->add(s.time, particle_dataset(s.step, attributes));
     }
-    if (cells_ && !s.cells.states.empty()) {
-      const std::string name = step_file_name("cells", s.step, "vti");
-      write_vti(folder_ / name, s.cells.view(), fsync_);
-      cells_->add(s.time, name);
+    if (settings_.cells && !s.cells.states.empty())
+      write_vti(folder_ / piece(s.step, rank_, "cells", "vti"), s.cells.view(), fsync_);
+    if (cells_) {
+      std::vector<PvdSeries::Entry> parts;
+      for (int r = 0; r < ranks_; ++r)
+        parts.push_back({s.time, piece(s.step, r, "cells", "vti"), r});
+      if (ranks_ > 1 || !s.cells.states.empty()) cells_->add(parts);
     }
+  }
+
+  // "<prefix>_<step>.<ext>" alone, "<prefix>_<step>_<rank>.<ext>" for a rank's piece.
+  std::string piece(std::int64_t step, int rank, const char* prefix, const char* ext) const {
+    if (ranks_ == 1) return step_file_name(prefix, step, ext);
+    char suffix[16];
+    std::snprintf(suffix, sizeof suffix, "_%04d", rank);
+    std::string name = step_file_name(prefix, step, ext);
+    return name.insert(name.size() - std::strlen(ext) - 1, suffix);
+  }
+
+  // The file the particles' series lists for a step: the root's piece alone, else a .pvtp.
+  std::string particle_dataset(std::int64_t step, std::span<const AttributeSpan> attributes) {
+    if (ranks_ == 1) return piece(step, 0, "particles", "vtp");
+    std::vector<std::string> pieces;
+    for (int r = 0; r < ranks_; ++r) pieces.push_back(piece(step, r, "particles", "vtp"));
+    const std::string name = step_file_name("particles", step, "pvtp");
+    write_file_atomically(folder_ / name, pvtp_document(pieces, attributes), fsync_);
+    return name;
   }
 
   const VtkSettings settings_;
   const std::filesystem::path folder_;
   const bool fsync_;
-  std::unique_ptr<PvdSeries> particles_, cells_;
+  const int rank_, ranks_;
+  std::unique_ptr<PvdSeries> particles_, cells_;  // the root's
   PooledJobs<SnapshotCopy> jobs_;
 };
 

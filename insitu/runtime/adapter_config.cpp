@@ -26,8 +26,8 @@ AdapterOptions adapter_options_for(const Config& config, AdapterOptions options)
 
 Adapter make_insitu_adapter(const Config& config, AdapterOptions options) {
   Adapter adapter(adapter_options_for(config, std::move(options)));  // checked before GL
-  adapter.set_pipeline(
-      std::make_shared<InsituPipeline>(config, adapter.options().classify.particle_spacing));
+  adapter.set_pipeline(std::make_shared<InsituPipeline>(
+      config, adapter.options().classify.particle_spacing, adapter.options().mpi_comm));
   return adapter;
 }
 

@@ -29,6 +29,10 @@ std::string to_yaml(const Config& config) {
   return write_config(config, registered_kinds().config);
 }
 
+std::vector<std::string> config_lines(const Config& config) {
+  return voxspan::config_lines(config, registered_kinds().config);
+}
+
 std::string config_reference() { return voxspan::config_reference(registered_kinds().config); }
 
 }  // namespace voxspan

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "insitu/config/config.h"
 
@@ -18,6 +19,8 @@ Config load_config_string(std::string_view yaml, std::string_view source_name = 
 // The effective configuration as YAML (every key, defaults included); loading it again
 // gives the same Config.
 std::string to_yaml(const Config& config);
+// Every value as "<key path>: <value>" lines (config_lines with the registered kinds).
+std::vector<std::string> config_lines(const Config& config);
 // The reference tables of every key (docs/runtime.md, "Every key").
 std::string config_reference();
 

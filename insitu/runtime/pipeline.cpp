@@ -2,15 +2,20 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <thread>
 
 #include "insitu/outputs/stats_record.h"
+#include "insitu/parallel/communicator.h"
+#include "insitu/runtime/rank_stats.h"
 #include "insitu/runtime/host_memory.h"
 #include "insitu/runtime/output_folder.h"
+#include "insitu/runtime/config_file.h"
 #include "insitu/runtime/registry.h"
 #include "insitu/runtime/schedule.h"
 #include "insitu/runtime/step_record.h"
+#include "insitu/views/span_compositor.h"
 #include "insitu/views/view.h"
 #include "insitu/views/view_framing.h"
 #include "render/gl/context.h"
@@ -30,10 +35,27 @@ Config with_log_level(const Config& config) {
   return config;
 }
 
-// Folders first: a bad folder is reported before the (slower) GL start-up.
-gl::ContextOptions prepared(const Config& config) {
+// Folders first: a bad folder is reported before the (slower) GL start-up. Ranks on one node
+// take its GPUs in turn unless the config names one.
+gl::ContextOptions prepared(const Config& config, const Communicator* comm) {
   prepare_output_folders(config);
-  return {config.renderer.platform, config.renderer.debug};
+  const int device = config.renderer.gpu_device ? int(*config.renderer.gpu_device)
+                     : comm != nullptr          ? comm->node_rank()
+                                                : -1;
+  return {config.renderer.platform, config.renderer.debug, device};
+}
+
+// The depth range of every rank's visible spheres: each fits the same grid.
+DepthRange combine_depths(Communicator& comm, const DepthRange& local) {
+  DepthRange all = local;
+  double lo_hi[2] = {local.lo, -local.hi};
+  comm.min(lo_hi);
+  all.lo = lo_hi[0];
+  all.hi = -lo_hi[1];
+  std::int64_t visible[1] = {local.counts.visible};
+  comm.sum(visible);
+  all.counts.visible = visible[0];
+  return all;
 }
 
 struct ViewState {
@@ -53,6 +75,7 @@ struct OutputState {
 struct InsituPipeline::Impl {
   const Config config;
   const double spacing;
+  Communicator* const comm;  // null in one process
   Schedule schedule;
   StepPlan plan;
   std::int64_t planned_step = std::numeric_limits<std::int64_t>::min();
@@ -71,16 +94,17 @@ struct InsituPipeline::Impl {
   std::vector<ViewResult> results;  // per view, this step's products for the outputs
   PipelineTotals totals;
 
-  Impl(const Config& c, double particle_spacing)
+  Impl(const Config& c, double particle_spacing, Communicator* communicator)
       : config(with_log_level(c)),
         spacing(particle_spacing),
+        comm(communicator),
         schedule(config),
         plan(schedule.blank()),
-        context(prepared(config)),
+        context(prepared(config, communicator)),
         timer(context.has_gpu_timers()),
         writer(config.writer) {
     for (const ConfiguredView& v : config.views) view_names.push_back(v.settings->name);
-    const ViewContext view_context{shaders, config.renderer, spacing, {}};
+    const ViewContext view_context = make_view_context();
     views.reserve(config.views.size());
     for (const ConfiguredView& v : config.views)
       views.push_back({v.settings->name,
@@ -99,10 +123,24 @@ struct InsituPipeline::Impl {
       if (o.output) o.output->close();
   }
 
+  // With ranks: the views fit one grid, and their span images meet in a compositor.
+  ViewContext make_view_context() {
+    ViewContext c{shaders, config.renderer, spacing, {}, {}};
+    if (comm == nullptr || comm->size() == 1) return c;
+    c.span_stages = [this](const MergeSettings& m) {
+      std::vector<std::unique_ptr<SpanStage>> stages;
+      stages.push_back(std::make_unique<SpanCompositor>(*comm, m, config.renderer.composite));
+      return stages;
+    };
+    c.combine_ranks = [this](const DepthRange& local) { return combine_depths(*comm, local); };
+    return c;
+  }
+
   void make_output(const ConfiguredOutput& o) {
     const OutputKind& kind = registered_output_kind(o.kind);
-    totals.outputs.push_back({o.kind, kind.noun, o.settings->enabled, {}});
-    if (!o.settings->enabled) {
+    const bool here = !kind.root_only || comm == nullptr || comm->root();
+    totals.outputs.push_back({o.kind, kind.noun, o.settings->enabled && here, {}});
+    if (!o.settings->enabled || !here) {
       outputs.push_back({&kind, nullptr});
       return;
     }
@@ -113,7 +151,8 @@ struct InsituPipeline::Impl {
                           spacing,
                           writer,
                           std::size_t(config.writer.queue_size) + 2,
-                          config.writer.fsync};
+                          config.writer.fsync,
+                          comm};
     outputs.push_back({&kind, kind.make(*o.settings, c)});
   }
 
@@ -134,17 +173,20 @@ struct InsituPipeline::Impl {
   // Renders every view; the first failure's message comes back (empty when all went well).
   std::string render_views(const StepData& data, const ViewNeeds& needs) {
     std::string failure;
+    const Bounds step_box = global_box(data.boundary);
     for (std::size_t i = 0; i < views.size(); ++i) {
       ViewState& v = views[i];
       FrameStats& stats = record.views[i].second;
       stats.zero();
       results[i] = {v.name, nullptr, nullptr};
       try {
-        const Camera camera = v.framing.update(data.boundary);
-        v.view->render({data, camera, v.framing.box(), needs}, timer, stats, v.products);
+        const Camera camera = v.framing.update(step_box);
+        const bool shown =
+            v.view->render({data, camera, v.framing.box(), needs}, timer, stats, v.products);
         timer.collect(stats);
         for (const FrameStats::Pass& pass : stats.passes)
           totals.passes.add_time(pass.name, pass.ms);
+        if (!shown) continue;  // an MPI rank that only voxelized: the root shows the view
         ++totals.frames;
         results[i].picture = &v.products.picture;
         if (needs.first_hit_depth) results[i].first_hit_depth = &v.products.first_hit_depth;
@@ -172,9 +214,12 @@ struct InsituPipeline::Impl {
     }
   }
 
+  // Every rank takes part in the record (its stats go to the root) where one writes it.
   bool any_reports_step(const StepPlan& p) const {
     for (std::size_t i = 0; i < outputs.size(); ++i)
-      if (p.outputs[i] && outputs[i].output && outputs[i].kind->reports_step) return true;
+      if (p.outputs[i] && outputs[i].kind->reports_step &&
+          (outputs[i].output || (comm != nullptr && config.outputs[i].settings->enabled)))
+        return true;
     return false;
   }
 
@@ -184,6 +229,20 @@ struct InsituPipeline::Impl {
     const StepRecordInput in{data.step,  data.time,    &stats,        render_ms,
                              outputs_ms, process.ms(), &writer_stats, host_memory()};
     fill_step_record(in, record);
+    if (comm == nullptr || comm->size() == 1) return;
+    std::int64_t sent = comm->take_bytes_sent();
+    for (const auto& [name, view] : record.views) sent += view.count("composite.bytes_sent");
+    record.totals.set_count("mpi.bytes_sent", sent);
+    combine_rank_records(*comm, sent, record);
+  }
+
+  // This step's box of the boundary spheres, over every rank.
+  Bounds global_box(std::span<const ParticleSphere> boundary) {
+    Bounds box = Bounds::of_spheres(boundary);
+    if (comm == nullptr) return box;
+    comm->min(box.lo);
+    comm->max(box.hi);
+    return box;
   }
 };
 
@@ -199,10 +258,73 @@ double PipelineTotals::writer_seconds() const {
   return s;
 }
 
-InsituPipeline::InsituPipeline(const Config& config, double particle_spacing)
-    : impl_(std::make_unique<Impl>(config, particle_spacing)) {
-  log_info("in situ: ", description());
+namespace {
+
+// With ranks, every one must have read the same config: the first key that differs is named.
+void check_same_config(Communicator& comm, const Config& config) {
+  std::string mine;
+  for (const std::string& line : config_lines(config)) mine += line + "\n";
+  const auto bytes = std::as_bytes(std::span(mine.data(), mine.size()));
+  const std::vector<std::vector<std::byte>> all = comm.gather(bytes);
+  std::string verdict;
+  for (std::size_t r = 1; r < all.size() && verdict.empty(); ++r) {
+    std::istringstream root_lines(mine),
+        rank_lines(std::string(reinterpret_cast<const char*>(all[r].data()), all[r].size()));
+    std::string a, b;
+    for (bool more_a = true, more_b = true; (more_a || more_b) && verdict.empty();) {
+      more_a = bool(std::getline(root_lines, a));
+      more_b = bool(std::getline(rank_lines, b));
+      if (!more_a) a.clear();
+      if (!more_b) b.clear();
+      if (a == b) continue;
+      const std::string key = (a.empty() ? b : a).substr(0, (a.empty() ? b : a).find(": "));
+      verdict = "rank " + std::to_string(r) + "'s config differs from rank 0's at " + key +
+                ": rank 0 has \"" + a + "\", rank " + std::to_string(r) + " has \"" + b + "\"";
+    }
+  }
+  verdict = comm.broadcast(verdict);
+  if (!verdict.empty()) throw Error(verdict);
 }
+
+std::unique_ptr<Communicator> communicator(const std::optional<int>& mpi_comm) {
+  if (!mpi_comm) return nullptr;
+  return std::make_unique<Communicator>(*mpi_comm);
+}
+
+}  // namespace
+
+InsituPipeline::InsituPipeline(const Config& config, double particle_spacing,
+                               std::optional<int> mpi_comm)
+    : comm_(communicator(mpi_comm)) {
+  if (comm_) check_same_config(*comm_, config);
+  // Every rank makes its part (folders, GL context, passes); a failure on any is one on all.
+  std::string failure;
+  try {
+    impl_ = std::make_unique<Impl>(config, particle_spacing, comm_.get());
+  } catch (const std::exception& e) {
+    if (!comm_) throw;
+    failure = e.what();
+  }
+  if (comm_) {
+    const Agreement agreed = comm_->agree(failure.empty(), failure);
+    if (!agreed.ok) {
+      impl_.reset();
+      throw make_error(comm_->size() > 1 ? "rank " + std::to_string(agreed.rank) + ": " : "",
+                       agreed.message);
+    }
+  }
+  if (!comm_ || comm_->root()) log_info("in situ: ", description());
+}
+
+Status InsituPipeline::agree(const Status& local) {
+  if (!comm_) return local;
+  const Agreement agreed = comm_->agree(local.ok(), local.message);
+  if (agreed.ok || !local.ok()) return local;
+  return {StatusCode::pipeline_failed,
+          "step abandoned: rank " + std::to_string(agreed.rank) + ": " + agreed.message};
+}
+
+bool InsituPipeline::reports_failures() const { return !comm_ || comm_->root(); }
 
 InsituPipeline::~InsituPipeline() {
   try {

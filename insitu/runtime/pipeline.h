@@ -17,12 +17,14 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "insitu/config/config.h"
 #include "insitu/outputs/background_writer.h"
 #include "insitu/outputs/output.h"
+#include "insitu/parallel/communicator.h"
 #include "render/frame_stats.h"
 #include "voxspan/adapter.h"
 
@@ -56,11 +58,16 @@ struct PipelineTotals {
 class InsituPipeline final : public Pipeline {
  public:
   // `particle_spacing`: the solver's rest spacing (0 when unknown: then every view needs its
-  // gap and filter_radius set). Throws voxspan::Error (see above).
-  InsituPipeline(const Config& config, double particle_spacing);
+  // gap and filter_radius set). `mpi_comm`: the job's communicator (Fortran handle; voxspan/
+  // mpi.h), when the runtime runs on every rank of it. Throws voxspan::Error (see above), on
+  // every rank alike.
+  InsituPipeline(const Config& config, double particle_spacing,
+                 std::optional<int> mpi_comm = std::nullopt);
   ~InsituPipeline() override;
 
   bool wants_step(std::int64_t step, double time) override;
+  Status agree(const Status& local) override;
+  bool reports_failures() const override;
   void mark_last_step(std::int64_t step) override;
   Status process(const StepData& data, const StepStats& stats) override;
   void finish() override;
@@ -73,6 +80,7 @@ class InsituPipeline final : public Pipeline {
 
  private:
   struct Impl;
+  std::unique_ptr<Communicator> comm_;  // before impl_, which uses it; null in one process
   std::unique_ptr<Impl> impl_;
 };
 

@@ -114,9 +114,12 @@ class SurfaceView final : public View {
         options_(render_options(s, c.renderer, c.particle_spacing)),
         renderer_(c.shaders),
         first_hit_(c.shaders),
-        stages_(c.span_stages ? c.span_stages() : std::vector<std::unique_ptr<SpanStage>>{}) {}
+        stages_(c.span_stages
+                    ? c.span_stages({options_.voxelize.gap_bridging, options_.voxelize.max_spans})
+                    : std::vector<std::unique_ptr<SpanStage>>{}),
+        combine_ranks_(c.combine_ranks) {}
 
-  void render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
+  bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
               ViewProducts& out) override {
     RenderOptions& o = step_options_;
     o = options_;
@@ -125,10 +128,21 @@ class SurfaceView final : public View {
     // Options are checked before any GPU work, so a bad one costs nothing.
     validate(o.surfaces);
     validate(o.shade);
-    const GpuSpanImage* spans = &renderer_.voxelizer().run(
-        step.camera, step.data.boundary, step.data.cells, o.voxelize, timer, stats);
+    // With stages, every span goes on (a merge needs them all); the stages apply the cap.
+    if (!stages_.empty()) o.voxelize.max_spans = 0;
+    o.voxelize.combine_ranks = combine_ranks_;
+    const GpuSpanImage* spans = nullptr;
+    std::string failure;
+    try {
+      spans = &renderer_.voxelizer().run(step.camera, step.data.boundary, step.data.cells,
+                                         o.voxelize, timer, stats);
+    } catch (const std::exception& e) {
+      if (stages_.empty()) throw;
+      failure = e.what();  // the stages take part all the same, then throw for every rank
+    }
     for (const std::unique_ptr<SpanStage>& stage : stages_)
-      spans = &stage->run(*spans, timer, stats);
+      spans = stage->run(spans, failure, timer, stats);
+    if (spans == nullptr) return false;  // nothing to shade in this process
     const GpuFloatImage& image = renderer_.shade(*spans, o.surfaces, o.shade, timer, stats);
     {
       auto t = timer.gpu("readback");
@@ -139,6 +153,7 @@ class SurfaceView final : public View {
       first_hit_.run(*spans, depth_);
       depth_.download(out.first_hit_depth);
     }
+    return true;
   }
 
   std::string description() const override {
@@ -154,6 +169,7 @@ class SurfaceView final : public View {
   FirstHitPass first_hit_;
   GpuFloatImage depth_;
   std::vector<std::unique_ptr<SpanStage>> stages_;
+  DepthRangeCombine combine_ranks_;
 };
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "insitu/config/config.h"
+#include "insitu/parallel/span_merge.h"
 #include "insitu/views/view_products.h"
 #include "insitu/views/view_framing.h"
 #include "render/camera.h"
@@ -26,12 +27,17 @@ namespace voxspan {
 
 // A stage between the voxelization and the surfaces of a span-image view: it takes the step's
 // span image and gives back the one the surfaces are built from (the same one, or another:
-// the composite of every rank's). Stages run in order.
+// the composite of every rank's), or null when this process has nothing to shade (a rank
+// other than the root). Stages run in order. A stage sees every span found (the view
+// voxelizes without a cap when it has stages) and applies the view's cap itself
+// (MergeSettings). `spans` is null when this process failed to voxelize (`failure` says why):
+// a stage that spans processes must still take part, and throws voxspan::Error, naming the
+// first rank that failed, when any did.
 class SpanStage {
  public:
   virtual ~SpanStage() = default;
-  virtual const GpuSpanImage& run(const GpuSpanImage& spans, gl::PassTimer& timer,
-                                  FrameStats& stats) = 0;
+  virtual const GpuSpanImage* run(const GpuSpanImage* spans, const std::string& failure,
+                                  gl::PassTimer& timer, FrameStats& stats) = 0;
 };
 
 // What a view is made with.
@@ -39,9 +45,11 @@ struct ViewContext {
   const gl::ShaderLibrary& shaders;
   const RendererConfig& renderer;
   double particle_spacing = 0;  // the solver's rest spacing; 0 when unknown
-  // The stages a span-image view runs between its voxelization and its surfaces (none in a
-  // single process).
-  std::function<std::vector<std::unique_ptr<SpanStage>>()> span_stages;
+  // The stages a span-image view runs between its voxelization and its surfaces, made for its
+  // gap bridging and span cap (none in a single process: then it is empty).
+  std::function<std::vector<std::unique_ptr<SpanStage>>(const MergeSettings&)> span_stages;
+  // Makes every process fit the same perspective grid (empty in a single process).
+  DepthRangeCombine combine_ranks;
 };
 
 struct ViewStep {
@@ -54,9 +62,10 @@ struct ViewStep {
 class View {
  public:
   virtual ~View() = default;
-  // Renders the step into `out`. Throws voxspan::Error on bad input or a memory budget too
-  // small (the step fails, the run goes on).
-  virtual void render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
+  // Renders the step into `out`; false when this process has no picture to show (an MPI rank
+  // other than the root: the picture is made where the ranks' parts meet). Throws
+  // voxspan::Error on bad input or a memory budget too small (the step fails, the run goes on).
+  virtual bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
                       ViewProducts& out) = 0;
   // A few words for the start-up line: "translucent 640x360".
   virtual std::string description() const = 0;

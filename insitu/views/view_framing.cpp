@@ -93,10 +93,13 @@ Camera frame_camera(const CameraConfig& c, int width, int height, const Bounds& 
 }
 
 Camera ViewFraming::update(std::span<const ParticleSphere> boundary) {
+  return update(Bounds::of_spheres(boundary));
+}
+
+Camera ViewFraming::update(const Bounds& now) {
   // A manual camera keeps the box too: the environment's ground lies under it.
   const Framing framing = camera_.framing;
   if (framing != Framing::first || box_.empty()) {
-    const Bounds now = Bounds::of_spheres(boundary);
     if (framing == Framing::grow) box_.add(now);
     else if (!now.empty()) box_ = now;
   }

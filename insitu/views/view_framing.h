@@ -42,6 +42,8 @@ class ViewFraming {
       : camera_(view.camera), width_(view.width), height_(view.height) {}
   // The camera for this render step's boundary spheres.
   Camera update(std::span<const ParticleSphere> boundary);
+  // The same from this step's box of them (with MPI: the box of every rank's).
+  Camera update(const Bounds& step_box);
   // The fluid's box as the framing follows it (the grown box under `grow`), kept for manual
   // cameras too (the ground plane of the environment goes under it).
   const Bounds& box() const { return box_; }

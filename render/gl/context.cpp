@@ -106,14 +106,18 @@ DisplayAttempt initialise(EGLDisplay display, std::string description) {
   return attempt;
 }
 
-DisplayAttempt open_device(bool nvidia_only) {
+// `preferred` >= 0: that device of the candidates (modulo their number) is tried first, so
+// that the ranks of an MPI job on one node spread over its GPUs.
+DisplayAttempt open_device(bool nvidia_only, int preferred) {
   if (!has_client_extension("EGL_EXT_platform_device"))
     return {EGL_NO_DISPLAY, "EGL device platform",
             "EGL device platform: the EGL library lacks EGL_EXT_platform_device"};
   std::vector<Device> devices = enumerate_devices();
+  if (nvidia_only) std::erase_if(devices, [](const Device& d) { return !d.nvidia; });
+  if (preferred >= 0 && !devices.empty())
+    std::rotate(devices.begin(), devices.begin() + preferred % int(devices.size()), devices.end());
   std::string failures;
   for (const Device& d : devices) {
-    if (nvidia_only && !d.nvidia) continue;
     DisplayAttempt a = initialise(
         eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, d.handle, nullptr), d.description);
     if (a.display != EGL_NO_DISPLAY) return a;
@@ -204,11 +208,11 @@ Context::Context(const ContextOptions& options) {
 
   DisplayAttempt attempt;
   switch (requested) {
-    case Platform::nvidia: attempt = open_device(true); break;
-    case Platform::device: attempt = open_device(false); break;
+    case Platform::nvidia: attempt = open_device(true, options.device); break;
+    case Platform::device: attempt = open_device(false, options.device); break;
     case Platform::surfaceless: attempt = open_surfaceless(); break;
     case Platform::automatic: {
-      attempt = open_device(true);
+      attempt = open_device(true, options.device);
       if (attempt.display == EGL_NO_DISPLAY) {
         log_debug("no NVIDIA EGL device, using Mesa: ", attempt.failure);
         attempt = open_surfaceless();

@@ -32,6 +32,9 @@ struct ContextOptions {
   // A debug context: GL checks every call and reports through the logger synchronously.
   // Also switched on by VOXSPAN_GL_DEBUG=1.
   bool debug = false;
+  // The EGL device to try first (device platforms), modulo the devices there are; -1: the
+  // first (NVIDIA ones before others).
+  int device = -1;
 };
 
 class Context {

@@ -44,7 +44,8 @@ bool sphere_tiles(uint i, out bool is_large, out ivec4 tiles) {
   is_large = sphere_is_large(sphere, r);
   tiles = ivec4(r.xy / u_tile_size, r.zw / u_tile_size);
 #ifndef BIN_SCATTER
-  uvec2 bounds = depth_bounds_bits(max(sphere.z - sphere.w, u_near), min(sphere.z + sphere.w, u_grid_far));
+  uvec2 bounds =
+      depth_bounds_bits(max(sphere.z - sphere.w, u_near), min(sphere.z + sphere.w, u_grid_far));
   ivec4 blocks = is_large ? ivec4(0, 0, -1, -1) : r / kDepthBlock;
   if (is_large) {
     atomicMax(depth_bounds[u_depth_block_count].x, bounds.x);

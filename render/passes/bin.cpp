@@ -37,7 +37,8 @@ BinPass::BinPass(const gl::ShaderLibrary& shaders)
 
 const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
                          const PerspectiveGrid& grid, const TileLayout& tiles,
-                         PrefixSumPass& prefix_sum, bool tile_lists, BinTallies tallies) {
+                         PrefixSumPass& prefix_sum, bool tile_lists, BinTallies tallies,
+                         std::span<const std::uint32_t> seed_bounds) {
   const std::size_t tile_count = static_cast<std::size_t>(tiles.count());
   if (tallies == BinTallies::automatic) tallies = automatic_;
   const bool shared = tallies == BinTallies::shared && tile_count <= std::size_t(kSharedTiles);
@@ -65,7 +66,9 @@ const Bins& BinPass::run(const gl::Buffer& particles, std::size_t count,
   large_.clear(0, 8);
   const std::size_t bounds_bytes = (depth_block_count(grid) + 1) * 8;
   depth_bounds_.reserve(bounds_bytes);
-  depth_bounds_.clear(0, bounds_bytes);
+  if (seed_bounds.size_bytes() == bounds_bytes)
+    depth_bounds_.upload(seed_bounds.data(), bounds_bytes);
+  else depth_bounds_.clear(0, bounds_bytes);
   lists_.reserve(4);
   large_list_.reserve(4);
   bind_all();

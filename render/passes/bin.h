@@ -9,6 +9,8 @@
 // Tallies go through shared memory on GPUs and straight to global atomics on llvmpipe.
 #pragma once
 
+#include <span>
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -37,9 +39,12 @@ struct Bins {
 class BinPass {
  public:
   explicit BinPass(const gl::ShaderLibrary& shaders);
+  // `seed_bounds`: depth bounds the blocks start from (inner_full_depth_bounds(), in the
+  // buffer's layout); empty: none, they grow from zero.
   const Bins& run(const gl::Buffer& particles, std::size_t count, const PerspectiveGrid& grid,
                   const TileLayout& tiles, PrefixSumPass& prefix_sum, bool tile_lists,
-                  BinTallies tallies = BinTallies::automatic);
+                  BinTallies tallies = BinTallies::automatic,
+                  std::span<const std::uint32_t> seed_bounds = {});
   const gl::Buffer& lists() const { return lists_; }
   const gl::Buffer& large_list() const { return large_list_; }
   const gl::Buffer& depth_bounds() const { return depth_bounds_; }

@@ -14,7 +14,9 @@ const int kDepthBlock = 16;
 uniform int u_depth_blocks_x;     // blocks across the image
 uniform int u_depth_block_count;  // blocks in the image; the large spheres' entry follows
 
-int depth_block(ivec2 pixel) { return pixel.x / kDepthBlock + (pixel.y / kDepthBlock) * u_depth_blocks_x; }
+int depth_block(ivec2 pixel) {
+  return pixel.x / kDepthBlock + (pixel.y / kDepthBlock) * u_depth_blocks_x;
+}
 
 uvec2 depth_bounds_bits(float nearest, float farthest) {
   return uvec2(~floatBitsToUint(nearest), floatBitsToUint(farthest));

@@ -86,6 +86,13 @@ class Pipeline {
   // Called on every step that passes the adapter's render_every filter, before any work:
   // must be cheap and must not allocate. Lets the runtime's own triggers decide.
   virtual bool wants_step(std::int64_t /*step*/, double /*time*/) { return true; }
+  // Called on every step the pipeline wants, after the classification, with its status here
+  // (ok, or why it failed). A pipeline spread over MPI ranks returns the step's status on all
+  // of them (a failure on any rank, naming it), so that every rank skips a failed step
+  // together and none waits for another; one process returns `local`.
+  virtual Status agree(const Status& local) { return local; }
+  // False on the processes that must not log the step's failures (every MPI rank but one).
+  virtual bool reports_failures() const { return true; }
   // A render step's data. Exceptions are caught and reported as pipeline_failed; a returned
   // error status is passed on as it is.
   virtual Status process(const StepData& data, const StepStats& stats) = 0;

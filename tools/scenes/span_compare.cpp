@@ -86,15 +86,19 @@ std::string describe_mismatches(const SpanImage& test, const SpanImage& ref, int
   return s.str();
 }
 
-bool identical(const SpanImage& a, const SpanImage& b) {
+bool identical(const SpanImage& a, const SpanImage& b) { return same_spans(a, b, 0); }
+
+bool same_spans(const SpanImage& a, const SpanImage& b, double inside_tolerance) {
   if (a.pixels.size() != b.pixels.size() || a.spans.size() != b.spans.size()) return false;
   // Offsets may differ only if the layout differs; compare records and each pixel's spans.
   for (std::size_t p = 0; p < a.pixels.size(); ++p) {
     const PixelSpans& x = a.pixels[p];
     const PixelSpans& y = b.pixels[p];
-    if (x.count != y.count || x.total != y.total ||
-        std::memcmp(&x.inside, &y.inside, sizeof(float)) != 0)
-      return false;
+    const bool inside_same = inside_tolerance == 0
+                                 ? std::memcmp(&x.inside, &y.inside, sizeof(float)) == 0
+                                 : std::abs(double(x.inside) - y.inside) <=
+                                       inside_tolerance * std::abs(double(y.inside));
+    if (x.count != y.count || x.total != y.total || !inside_same) return false;
     if (x.count != 0 && std::memcmp(a.spans.data() + x.offset, b.spans.data() + y.offset,
                                     x.count * sizeof(Span)) != 0)
       return false;

@@ -39,6 +39,9 @@ std::string describe_mismatches(const SpanImage& test, const SpanImage& referenc
 
 // True when both images hold exactly the same records and spans (bit for bit).
 bool identical(const SpanImage& a, const SpanImage& b);
+// The same, but each pixel's `inside` within a relative tolerance (a merge of span images
+// sums it again, in another order).
+bool same_spans(const SpanImage& a, const SpanImage& b, double inside_tolerance);
 
 // A span image's pixels and spans in a file, to compare two renderers' voxelizations of the
 // same scene on different machines (an NVIDIA GPU against llvmpipe). The grid is not stored:

@@ -1,0 +1,41 @@
+// insitu/views/span_compositor.h - the span stage of a view rendered by several MPI ranks:
+// every rank's span image (all made in the same perspective grid: DepthRangeCombine) merged
+// exactly (insitu/parallel/span_merge.h) into the one the root shades. docs/design.md,
+// "Compositing across ranks", says which scheme and why, with the figures.
+//   direct send: the image's rows are cut into one band per rank; each rank sends every other
+//     rank the pixels of its band that it has spans in (a rank with nothing in view sends only
+//     the counts), merges the band it owns, and the bands are gathered on the root;
+//   root: every rank sends all its pixels to the root, which merges the whole image (the
+//     simplest, for comparison: its root receives everything).
+// Counts per step: composite.bytes_sent (this rank), composite.pixels_merged (pixels more than
+// one rank saw, in the bands this rank merged). Times: composite_download, composite (the
+// exchange and the merge), composite_upload (root).
+#pragma once
+
+#include <string>
+
+#include "insitu/parallel/communicator.h"
+#include "insitu/parallel/span_merge.h"
+#include "insitu/views/view.h"
+
+namespace voxspan {
+
+class SpanCompositor final : public SpanStage {
+ public:
+  SpanCompositor(Communicator& comm, const MergeSettings& settings, CompositeScheme scheme)
+      : comm_(comm), settings_(settings), scheme_(scheme) {}
+
+  const GpuSpanImage* run(const GpuSpanImage* spans, const std::string& failure,
+                          gl::PassTimer& timer, FrameStats& stats) override;
+
+ private:
+  // The merged bands this rank holds after the exchange.
+  std::vector<std::byte> merge(const SpanImage& local, FrameStats& stats);
+
+  Communicator& comm_;
+  const MergeSettings settings_;
+  const CompositeScheme scheme_;
+  GpuSpanImage merged_;  // the root's composite, for the passes after this stage
+};
+
+}  // namespace voxspan

@@ -1,0 +1,145 @@
+// The adapter inside an MPI job (run under mpiexec on 3 ranks): bad input on one rank fails the
+// step on all with one error line, and the run goes on; a rank's config that differs from rank
+// 0's is refused at start-up, naming the rank and the key; NaN positions, an empty rank and
+// every rank empty still give a picture. Every rank runs every test, in the same order (the
+// runtime's collectives need them all); only rank 0 prints.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "log_capture.h"
+#include "output_files.h"
+#include "voxspan/error.h"
+#include "voxspan/mpi.h"
+
+namespace voxspan {
+namespace {
+
+int rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+
+int ranks() {
+  int n = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+// A folder every rank names alike, made new by rank 0.
+std::filesystem::path shared_folder(const std::string& name) {
+  const auto folder = std::filesystem::temp_directory_path() / ("voxspan-mpi-test-" + name);
+  if (rank() == 0) {
+    std::filesystem::remove_all(folder);
+    std::filesystem::create_directories(folder);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  return folder;
+}
+
+std::string config_for(const std::filesystem::path& folder, int width = 96) {
+  return "output_folder: " + folder.string() + "\ntrigger: {every_steps: 1}\nviews:\n" +
+         "  - {name: v, width: " + std::to_string(width) + ", height: 64, shading: translucent}\n" +
+         "writer: {fsync: false}\n";
+}
+
+// A block of fluid cut into slabs along x, one per rank; `count` particles per side.
+struct Block {
+  std::vector<double> x, y, z;
+  explicit Block(int count, bool mine = true) {
+    if (!mine) return;
+    const double dx = 0.01;
+    for (int k = 0; k < count; ++k)
+      for (int j = 0; j < count; ++j)
+        for (int i = 0; i < count; ++i) {
+          if (i * ranks() / count != rank()) continue;
+          x.push_back((i + 0.5) * dx), y.push_back((j + 0.5) * dx), z.push_back((k + 0.5) * dx);
+        }
+  }
+  ParticleView view() const { return ParticleView::soa(x.data(), y.data(), z.data(), x.size()); }
+};
+
+AdapterOptions options() {
+  AdapterOptions o;
+  o.classify.particle_spacing = 0.01;
+  return o;
+}
+
+TEST(MpiAdapter, ARankWhoseConfigDiffersIsRefusedNamingItAndTheKey) {
+  const auto folder = shared_folder("config");
+  const std::string yaml = config_for(folder, rank() == 1 ? 640 : 96);
+  try {
+    adapter_from_config_text(yaml, options(), MPI_COMM_WORLD, "mpi.yaml");
+    FAIL() << "no error on rank " << rank();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("rank 1's config differs from rank 0's at views[0].width"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(MpiAdapter, BadInputOnOneRankFailsTheStepOnAllWithOneErrorLine) {
+  const auto folder = shared_folder("bad-input");
+  test::LogCapture log;
+  Adapter adapter = adapter_from_config_text(config_for(folder), options(), MPI_COMM_WORLD);
+  const Block block(12);
+  // Rank 1 hands over a grid whose cell offsets run backwards: invalid input there.
+  const std::vector<std::uint32_t> offsets = {5, 0};
+  const GridView bad = GridView::offsets(GridGeometry{{0, 0, 0}, 1.0, {1, 1, 1}}, offsets.data());
+  const Status failed = adapter.execute(1, 0.1, block.view(), rank() == 1 ? bad : GridView());
+  EXPECT_FALSE(failed.ok());
+  if (rank() != 1) {
+    EXPECT_NE(failed.message.find("step abandoned: rank 1: "), std::string::npos) << failed.message;
+  }
+  const std::size_t errors = log.at(LogLevel::error).size();
+  EXPECT_EQ(errors, rank() == 0 ? 1u : 0u) << log.all();
+  // The run goes on: the next step renders on every rank.
+  EXPECT_TRUE(adapter.execute(2, 0.2, block.view()).ok());
+  adapter.finish();
+  if (rank() == 0) {
+    EXPECT_TRUE(test::read_png_file(folder / "frames" / "v_00000002.png").ok);
+  }
+}
+
+TEST(MpiAdapter, NanPositionsEmptyRanksAndNoFluidAtAllStillRender) {
+  const auto folder = shared_folder("empty");
+  Adapter adapter = adapter_from_config_text(config_for(folder), options(), MPI_COMM_WORLD);
+  Block nan(12);
+  if (!nan.x.empty()) nan.x[0] = std::nan("");
+  EXPECT_TRUE(adapter.execute(1, 0.1, nan.view()).ok());
+  EXPECT_EQ(adapter.last_stats().counts.dropped_nonfinite, nan.x.empty() ? 0u : 1u);
+  const Block last_empty(12, rank() != ranks() - 1);
+  EXPECT_TRUE(adapter.execute(2, 0.2, last_empty.view()).ok());
+  const Block none(12, false);
+  EXPECT_TRUE(adapter.execute(3, 0.3, none.view()).ok());
+  adapter.finish();
+  if (rank() != 0) return;
+  for (int step = 1; step <= 3; ++step) {
+    const auto png =
+        test::read_png_file(folder / "frames" / ("v_0000000" + std::to_string(step) + ".png"));
+    EXPECT_TRUE(png.ok) << step;
+    if (step < 3) {
+      EXPECT_GT(png.fraction_unlike_row_background(), 0.05) << step;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace voxspan
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  if (voxspan::rank() != 0)  // one report for the job
+    delete ::testing::UnitTest::GetInstance()->listeners().Release(
+        ::testing::UnitTest::GetInstance()->listeners().default_result_printer());
+  const int failed = RUN_ALL_TESTS();
+  int any = failed;
+  MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Finalize();
+  return any;
+}
