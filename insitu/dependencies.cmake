@@ -4,7 +4,8 @@
 set(CMAKE_FIND_PACKAGE_TARGETS_GLOBAL ON)
 find_package(yaml-cpp REQUIRED)
 find_package(PNG REQUIRED)
-find_package(VTK 9.1 REQUIRED COMPONENTS CommonCore CommonDataModel IOXML IOXMLParser)
+find_package(VTK 9.1 REQUIRED COMPONENTS CommonCore CommonDataModel IOXML IOXMLParser
+             IOParallelXML)
 find_package(HDF5 REQUIRED COMPONENTS C)
 # Imath first (OpenVDB and OpenEXR both need it), so that its target is made global here too.
 find_package(Imath 3 REQUIRED CONFIG)

@@ -86,6 +86,17 @@ std::vector<std::byte> pack(const SnapshotCopy& c) {
   return std::move(p.bytes);
 }
 
+// A cell two ranks classified (one holds it, the other has it among its ghosts' cells). A rank
+// can only miss particles, never see extra ones, so what says more fluid is right: the higher
+// occupancy, inner-full when either found it so, inner-empty only when both did.
+std::uint8_t combined_state(std::uint8_t a, std::uint8_t b) {
+  const std::uint8_t occupancy = std::max(cell::occupancy(a), cell::occupancy(b));
+  const bool inner = occupancy == cell::kFull    ? a == cell::kInnerFull || b == cell::kInnerFull
+                     : occupancy == cell::kEmpty ? cell::is_inner(a) && cell::is_inner(b)
+                                                 : false;
+  return std::uint8_t(occupancy | (inner ? cell::kInner : 0));
+}
+
 // Every rank's cells in one grid over all of them, on the lattice of the first non-empty one.
 CellStates merge_cells(const std::vector<CellStates>& parts) {
   const CellStates* first = nullptr;
@@ -134,8 +145,7 @@ CellStates merge_cells(const std::vector<CellStates>& parts) {
               merged.states[std::size_t(i + ox) +
                             std::size_t(merged.dims[0]) *
                                 (std::size_t(j + oy) + std::size_t(merged.dims[1]) * (k + oz))];
-          // A ghost cell seen by two ranks: the one that holds particles in it says more.
-          if (into == cell::kInnerEmpty || into == cell::kEmpty) into = state;
+          into = combined_state(into, state);
         }
   }
   return merged;
