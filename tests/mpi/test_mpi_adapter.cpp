@@ -128,6 +128,23 @@ TEST(MpiAdapter, NanPositionsEmptyRanksAndNoFluidAtAllStillRender) {
   }
 }
 
+TEST(MpiAdapter, StatsLineHasTheJobsCountsTheSlowestRankAndTheBytesEachSent) {
+  const auto folder = shared_folder("stats");
+  Adapter adapter = adapter_from_config_text(config_for(folder), options(), MPI_COMM_WORLD);
+  const Block block(12);
+  ASSERT_TRUE(adapter.execute(1, 0.1, block.view()).ok());
+  adapter.finish();
+  if (rank() != 0) return;
+  const std::vector<std::string> lines = test::read_lines(folder / "stats.jsonl");
+  ASSERT_EQ(lines.size(), 1u);
+  const std::string& line = lines[0];
+  // Every rank's particles counted: the whole block.
+  EXPECT_NE(line.find("\"particles\":1728"), std::string::npos) << line;
+  EXPECT_NE(line.find("\"ranks\":{\"count\":3,\"bytes_sent\":["), std::string::npos) << line;
+  EXPECT_NE(line.find("\"timings_ms_mean\":{"), std::string::npos) << line;
+  EXPECT_NE(line.find("\"composite\":"), std::string::npos) << line;
+}
+
 }  // namespace
 }  // namespace voxspan
 
