@@ -25,7 +25,6 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -66,17 +65,10 @@ constexpr char kUsage[] =
     "         [--ao] [--accuracy FILE.csv] [--alphas 14,7,3.5,2,1] [--bounces N] [--json]\n"
     "         [--platform auto|nvidia|device|surfaceless]\n";
 
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream s(text);
-  for (std::string item; std::getline(s, item, ',');) items.push_back(item);
-  return items;
-}
-
 // --modes opaque,translucent,refractive: false for another name.
 bool read_modes(const std::string& list, std::vector<ShadeMode>& modes) {
   modes.clear();
-  for (const std::string& m : split(list)) {
+  for (const std::string& m : tools::comma_list(list)) {
     if (m == "opaque") modes.push_back(ShadeMode::opaque);
     else if (m == "translucent") modes.push_back(ShadeMode::translucent);
     else if (m == "refractive") modes.push_back(ShadeMode::refractive);
@@ -90,7 +82,8 @@ bool read_flag(tools::Arg& arg, Args& a) {
   if (const char* v = arg.value("--modes")) return read_modes(v, a.modes);
   if (const char* v = arg.value("--alphas")) {
     a.alphas.clear();
-    for (const std::string& alpha : split(v)) a.alphas.push_back(std::atof(alpha.c_str()));
+    for (const std::string& alpha : tools::comma_list(v))
+      a.alphas.push_back(std::atof(alpha.c_str()));
     return true;
   }
   return tools::read_bench_flag(arg, a) || arg.value("--state", a.state) ||

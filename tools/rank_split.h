@@ -32,4 +32,9 @@ struct RankPart {
 RankPart split_particles(std::span<const std::array<double, 3>> positions, Split split, int rank,
                          int ranks, double margin);
 
+// The ghosts' margin for particles of rest spacing `spacing`: two cells of the grid the adapter
+// builds (two spacings each) deep, since the classification of a rank's border cells reads its
+// neighbours' occupancy.
+inline double ghost_margin(double spacing) { return 4 * spacing; }
+
 }  // namespace voxspan::tools

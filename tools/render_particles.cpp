@@ -137,10 +137,8 @@ struct Ranks {
 // This rank's part of a file's particles: its own, then its ghosts (tools/rank_split.h).
 voxspan::ParticleData part_of(const voxspan::ParticleData& d, const Options& o, const Ranks& r,
                               double spacing, std::size_t& owned) {
-  // Ghosts two built cells (of two spacings) deep: the classification of a rank's border
-  // cells reads its neighbours' occupancy.
-  const voxspan::tools::RankPart part =
-      voxspan::tools::split_particles(d.positions, o.split, r.rank, r.size, 4 * spacing);
+  const voxspan::tools::RankPart part = voxspan::tools::split_particles(
+      d.positions, o.split, r.rank, r.size, voxspan::tools::ghost_margin(spacing));
   voxspan::ParticleData p;
   p.time = d.time;
   p.step = d.step;

@@ -1,8 +1,8 @@
-// tools/tool_args.h - what the rendering tools (bench_voxelize, bench_shading, render_pictures)
-// share: the scene and image flags of their command lines, the flags both benchmarks have, the
-// reading of each tool's own flags, main()'s frame (--help, usage on a bad command line, one
-// error line on failure), the renderer line their output starts with, and the median of timed
-// frames.
+// tools/tool_args.h - what the rendering tools (bench_voxelize, bench_shading, bench_composite,
+// render_pictures) share: the scene and image flags of their command lines, the flags the
+// benchmarks have, the reading of each tool's own flags and of lists and sizes, main()'s frame
+// (--help, usage on a bad command line, one error line on failure), the renderer line their
+// output starts with, and the median of timed frames.
 #pragma once
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <sstream>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -30,6 +31,20 @@ struct SceneArgs {
 
 enum class Flag { other, read, bad };
 
+// "WxH" (both positive) into width and height; false for anything else.
+inline bool parse_size(const char* text, int& width, int& height) {
+  char tail = 0;
+  return std::sscanf(text, "%dx%d%c", &width, &height, &tail) == 2 && width > 0 && height > 0;
+}
+
+// The items of a comma-separated list: "a,b" gives {"a", "b"}.
+inline std::vector<std::string> comma_list(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream s(text);
+  for (std::string item; std::getline(s, item, ',');) items.push_back(item);
+  return items;
+}
+
 // Reads argv[i] when it is --particles N, --time T, --size WxH, --alpha DEG or --platform P,
 // advancing i past its value: `read`, or `bad` when the value is missing or malformed (not a
 // finite number, not a positive size, no such platform); `other` for any other argument.
@@ -44,11 +59,7 @@ inline Flag read_scene_flag(int argc, char** argv, int& i, SceneArgs& a) {
   const char* value = argv[++i];
   if (k == "--platform")
     return gl::parse_platform(value, a.context.platform) ? Flag::read : Flag::bad;
-  if (k == "--size") {
-    char tail = 0;
-    const bool ok = std::sscanf(value, "%dx%d%c", &a.width, &a.height, &tail) == 2;
-    return ok && a.width > 0 && a.height > 0 ? Flag::read : Flag::bad;
-  }
+  if (k == "--size") return parse_size(value, a.width, a.height) ? Flag::read : Flag::bad;
   char* end = nullptr;
   *number = std::strtod(value, &end);
   return end != value && *end == '\0' && std::isfinite(*number) ? Flag::read : Flag::bad;
@@ -86,7 +97,8 @@ class Arg {
   int& i_;
 };
 
-// The flags that both benchmarks (bench_voxelize, bench_shading) have beyond the scene's.
+// The flags the rendering benchmarks (bench_voxelize, bench_shading, bench_composite) have
+// beyond the scene's.
 struct BenchArgs : SceneArgs {
   int max_layers = 16384;      // the grid's layer cap
   int frames = 3;              // timed frames, after one warm-up; at least 1
