@@ -13,12 +13,16 @@ void GpuSpanImage::bind() const {
 }
 
 SpanImage GpuSpanImage::download() const {
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   SpanImage image;
-  image.grid = grid_;
-  image.pixels = pixels_.read<PixelSpans>(static_cast<std::size_t>(width()) * height());
-  image.spans = spans_.read<Span>(span_count_);
+  download(image);
   return image;
+}
+
+void GpuSpanImage::download(SpanImage& out) const {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  out.grid = grid_;
+  pixels_.read(out.pixels, static_cast<std::size_t>(width()) * height());
+  spans_.read(out.spans, span_count_);
 }
 
 void GpuSpanImage::upload(const SpanImage& image) {

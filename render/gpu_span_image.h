@@ -28,6 +28,8 @@ class GpuSpanImage {
   void bind() const;
   // Reads the whole image back (tests, the CPU paths, file output).
   SpanImage download() const;
+  // The same into `out`, keeping its memory (a read-back every frame).
+  void download(SpanImage& out) const;
   // Replaces the image with one made on the CPU (a composited or hand-made span image, or the
   // exact reference), for the passes after the voxelization.
   void upload(const SpanImage& image);

@@ -220,7 +220,6 @@ class RankProbe final : public SpanStage {
       auto t = timer.cpu("wait");
       comm_.agree(true, {});
     }
-    comm_.take_bytes_sent();
     return spans;
   }
 
@@ -456,7 +455,6 @@ class Bench {
   StatsRecord render_frame(View& view, const ViewStep& step) {
     gl::PassTimer timer(context_.has_gpu_timers());
     FrameStats stats;
-    comm_.take_bytes_sent();
     const Stopwatch wall;
     view.render(step, timer, stats, products_);
     timer.collect(stats);

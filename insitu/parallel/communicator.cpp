@@ -149,10 +149,4 @@ std::vector<std::vector<std::byte>> Communicator::exchange(
   return received;
 }
 
-std::int64_t Communicator::take_bytes_sent() {
-  const std::int64_t b = bytes_sent_;
-  bytes_sent_ = 0;
-  return b;
-}
-
 }  // namespace voxspan

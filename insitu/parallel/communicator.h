@@ -50,8 +50,9 @@ class Communicator {
   // sizes go first (an all-to-all of counts), so a rank with nothing to send sends no data.
   std::vector<std::vector<std::byte>> exchange(const std::vector<std::vector<std::byte>>& send);
 
-  // Bytes this rank has sent (data and counts) since the last take_bytes_sent().
-  std::int64_t take_bytes_sent();
+  // Bytes this rank has sent (data and counts) since construction: a stage counts its own as
+  // the difference across it, so that no reader resets what another one counts.
+  std::int64_t bytes_sent() const { return bytes_sent_; }
 
  private:
   struct Handles;  // the MPI_Comm objects, in communicator.cpp (no header needs <mpi.h>)

@@ -48,6 +48,36 @@ void append_pixel(std::vector<std::byte>& out, const PixelHeader& header,
   append(out, spans.data(), spans.size_bytes());
 }
 
+// The compress pass's gap test (render/passes/column_scan.glsl) in its own float arithmetic.
+class GapRule {
+ public:
+  GapRule(const PerspectiveGrid& grid, int x, int y, double gap)
+      : grid_(grid),
+        near_(float(grid.near())),
+        log2_step_(float(grid.log2_step())),
+        centre_scale_(float(1 + grid.k_d() / 2)),
+        scale_(ray_scale(grid, x, y)),
+        gap_(float(gap)) {}
+  // Whether the gap from a run ending at `exit` (a layer's depth) to one starting at `entry`
+  // closes.
+  bool closes(float exit, float entry) const {
+    const float end = float(std::lround(grid_.layer_of(exit)));  // the layer after the run
+    const float last_voxel = near_ * std::exp2((end - 1.0f) * log2_step_);
+    return (entry - last_voxel) * centre_scale_ * scale_ < gap_;
+  }
+
+ private:
+  // length(view_ray(pixel)) of render/perspective_grid.glsl, in float.
+  static float ray_scale(const PerspectiveGrid& grid, int x, int y) {
+    const float nx = 2.0f * (float(x) + 0.5f) / float(grid.width()) - 1.0f;
+    const float ny = 1.0f - 2.0f * (float(y) + 0.5f) / float(grid.height());
+    const float vx = nx * float(grid.view().tan_half_x), vy = ny * float(grid.view().tan_half_y);
+    return std::sqrt(vx * vx + vy * vy + 1.0f);
+  }
+  const PerspectiveGrid& grid_;
+  const float near_, log2_step_, centre_scale_, scale_, gap_;
+};
+
 struct Entry {
   PixelHeader header;
   std::span<const Span> spans;
@@ -66,12 +96,12 @@ void merge_pixel(const PerspectiveGrid& grid, std::span<const Entry> entries,
   std::sort(scratch.begin(), scratch.end(),
             [](const Span& a, const Span& b) { return a.entry < b.entry; });
   // The gap rule of render/passes/column_scan.glsl, between the centres of the last set voxel
-  // (layer end - 1) and the next one.
-  const double centre_gap_scale = 1 + grid.k_d() / 2;
+  // (layer end - 1) and the next one, in float with the uniforms the compress pass gets, so
+  // that a gap within rounding of g closes here as it would there.
+  const GapRule rule(grid, x, y, settings.gap_bridging);
   auto bridged = [&](const Span& run, const Span& next) {
     if (next.entry <= run.exit) return true;  // touching or overlapping: one run of bits
-    const double last_voxel = grid.layer_depth(std::round(grid.layer_of(run.exit)) - 1);
-    return (double(next.entry) - last_voxel) * centre_gap_scale * scale < settings.gap_bridging;
+    return rule.closes(run.exit, next.entry);
   };
   merged.clear();
   SpanListBuilder list(merged, settings.max_spans);
@@ -126,23 +156,24 @@ std::vector<std::byte> merge_rows(const PerspectiveGrid& grid,
                                   std::span<const std::vector<std::byte>> parts,
                                   const MergeSettings& settings) {
   // Each part lists its pixels in increasing index: merge them like sorted lists.
+  // Only the parts with pixels take part: most are empty in a large job.
   std::vector<BandReader> readers;
-  std::vector<Entry> heads(parts.size());
-  std::vector<bool> live(parts.size(), false);
-  for (std::size_t r = 0; r < parts.size(); ++r) {
-    readers.emplace_back(parts[r]);
+  for (const std::vector<std::byte>& part : parts)
+    if (!part.empty()) readers.emplace_back(part);
+  std::vector<Entry> heads(readers.size());
+  std::vector<bool> live(readers.size(), false);
+  for (std::size_t r = 0; r < readers.size(); ++r)
     live[r] = readers[r].next(heads[r].header, heads[r].spans);
-  }
   std::vector<std::byte> out;
   std::vector<Entry> same;
   std::vector<Span> scratch, merged;
   for (;;) {
     std::uint32_t lowest = UINT32_MAX;
-    for (std::size_t r = 0; r < parts.size(); ++r)
+    for (std::size_t r = 0; r < readers.size(); ++r)
       if (live[r]) lowest = std::min(lowest, heads[r].header.index);
     if (lowest == UINT32_MAX) break;
     same.clear();
-    for (std::size_t r = 0; r < parts.size(); ++r)
+    for (std::size_t r = 0; r < readers.size(); ++r)
       if (live[r] && heads[r].header.index == lowest) {
         same.push_back(heads[r]);
         live[r] = readers[r].next(heads[r].header, heads[r].spans);
@@ -155,7 +186,14 @@ std::vector<std::byte> merge_rows(const PerspectiveGrid& grid,
 
 SpanImage decode_image(const PerspectiveGrid& grid, std::span<const std::vector<std::byte>> bands) {
   SpanImage image;
+  decode_image(grid, bands, image);
+  return image;
+}
+
+void decode_image(const PerspectiveGrid& grid, std::span<const std::vector<std::byte>> bands,
+                  SpanImage& image) {
   image.grid = grid;
+  image.spans.clear();
   image.pixels.assign(std::size_t(grid.width()) * std::size_t(grid.height()), PixelSpans{});
   for (const std::vector<std::byte>& band : bands) {
     BandReader reader(band);
@@ -168,7 +206,6 @@ SpanImage decode_image(const PerspectiveGrid& grid, std::span<const std::vector<
       image.spans.insert(image.spans.end(), spans.begin(), spans.end());
     }
   }
-  return image;
 }
 
 RowBand band_of(int rank, int ranks, int height) {

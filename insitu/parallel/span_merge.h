@@ -37,6 +37,9 @@ std::vector<std::byte> merge_rows(const PerspectiveGrid& grid,
 
 // The span image of `grid` that holds the encoded bands (pixels in none are empty).
 SpanImage decode_image(const PerspectiveGrid& grid, std::span<const std::vector<std::byte>> bands);
+// The same into `out`, keeping its memory (once a frame in an MPI job).
+void decode_image(const PerspectiveGrid& grid, std::span<const std::vector<std::byte>> bands,
+                  SpanImage& out);
 
 // The rows rank `rank` of `ranks` merges: an equal share of the image's rows, in order.
 struct RowBand {

@@ -224,14 +224,13 @@ struct InsituPipeline::Impl {
   }
 
   void fill_record(const StepData& data, const StepStats& stats, double render_ms,
-                   double outputs_ms, const Stopwatch& process) {
+                   double outputs_ms, const Stopwatch& process, std::int64_t bytes_before) {
     const WriterStats writer_stats = writer.stats();
     const StepRecordInput in{data.step,  data.time,    &stats,        render_ms,
                              outputs_ms, process.ms(), &writer_stats, host_memory()};
     fill_step_record(in, record);
     if (comm == nullptr || comm->size() == 1) return;
-    std::int64_t sent = comm->take_bytes_sent();
-    for (const auto& [name, view] : record.views) sent += view.count("composite.bytes_sent");
+    const std::int64_t sent = comm->bytes_sent() - bytes_before;
     record.totals.set_count("mpi.bytes_sent", sent);
     combine_rank_records(*comm, sent, record);
   }
@@ -355,6 +354,7 @@ void InsituPipeline::mark_last_step(std::int64_t step) {
 Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
   Impl& m = *impl_;
   const Stopwatch process;
+  const std::int64_t bytes_before = m.comm != nullptr ? m.comm->bytes_sent() : 0;
   if (data.step != m.planned_step) wants_step(data.step, data.time);
   const StepPlan& p = m.plan;
   m.make_current();
@@ -374,7 +374,7 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
   m.write_outputs(step, p, false, failure);
   const double outputs_ms = outputs.ms();
   if (m.any_reports_step(p)) {
-    m.fill_record(data, stats, render_ms, outputs_ms, process);
+    m.fill_record(data, stats, render_ms, outputs_ms, process, bytes_before);
     step.record = &m.record;
     m.write_outputs(step, p, true, failure);
   }

@@ -18,32 +18,33 @@ std::vector<std::byte> SpanCompositor::merge(const SpanImage& local, FrameStats&
     received = comm_.gather(encode_rows(local, 0, height));
     if (!comm_.root()) return {};
   }
-  std::int64_t pixels = 0;
-  for (const auto& part : received) pixels += !part.empty();
-  stats.set_count("composite.ranks_with_spans", pixels);
+  std::int64_t senders = 0;
+  for (const auto& part : received) senders += !part.empty();
+  stats.set_count("composite.ranks_with_spans", senders);
   return merge_rows(local.grid, received, settings_);
 }
 
 const GpuSpanImage* SpanCompositor::run(const GpuSpanImage* spans, const std::string& failure,
                                         gl::PassTimer& timer, FrameStats& stats) {
+  const std::int64_t bytes_before = comm_.bytes_sent();
   const Agreement agreed = comm_.agree(spans != nullptr, failure);
   if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
-  SpanImage local;
   {
     auto t = timer.gpu("composite_download");
-    local = spans->download();
+    spans->download(local_);
   }
   std::vector<std::vector<std::byte>> bands;
   {
     auto t = timer.cpu("composite");
-    const std::vector<std::byte> mine = merge(local, stats);
-    bands = scheme_ == CompositeScheme::direct_send ? comm_.gather(mine)
-                                                    : std::vector<std::vector<std::byte>>{mine};
+    std::vector<std::byte> mine = merge(local_, stats);
+    if (scheme_ == CompositeScheme::direct_send) bands = comm_.gather(mine);
+    else bands.push_back(std::move(mine));
   }
-  stats.set_count("composite.bytes_sent", comm_.take_bytes_sent());
+  stats.set_count("composite.bytes_sent", comm_.bytes_sent() - bytes_before);
   if (!comm_.root()) return nullptr;
   auto t = timer.gpu("composite_upload");
-  merged_.upload(decode_image(local.grid, bands));
+  decode_image(local_.grid, bands, composite_);
+  merged_.upload(composite_);
   return &merged_;
 }
 

@@ -7,9 +7,9 @@
 //     the counts), merges the band it owns, and the bands are gathered on the root;
 //   root: every rank sends all its pixels to the root, which merges the whole image (the
 //     simplest, for comparison: its root receives everything).
-// Counts per step: composite.bytes_sent (this rank), composite.pixels_merged (pixels more than
-// one rank saw, in the bands this rank merged). Times: composite_download, composite (the
-// exchange and the merge), composite_upload (root).
+// Counts per step: composite.bytes_sent (this rank), composite.ranks_with_spans (the ranks that
+// sent this rank pixels of the bands it merges; on the root under `root`). Times:
+// composite_download, composite (the exchange and the merge), composite_upload (root).
 #pragma once
 
 #include <string>
@@ -35,7 +35,9 @@ class SpanCompositor final : public SpanStage {
   Communicator& comm_;
   const MergeSettings settings_;
   const CompositeScheme scheme_;
-  GpuSpanImage merged_;  // the root's composite, for the passes after this stage
+  SpanImage local_;      // this rank's spans, read back
+  SpanImage composite_;  // the root's composite on the CPU
+  GpuSpanImage merged_;  // ... on the GPU, for the passes after this stage
 };
 
 }  // namespace voxspan

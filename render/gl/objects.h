@@ -115,9 +115,15 @@ class Buffer {
   }
 
   template <class T> std::vector<T> read(std::size_t count, std::size_t first = 0) const {
-    std::vector<T> out(count);
-    if (count != 0) download(out.data(), count * sizeof(T), first * sizeof(T));
+    std::vector<T> out;
+    read(out, count, first);
     return out;
+  }
+  // Into `out`, whose memory is kept: a read every frame allocates only when it grows.
+  template <class T>
+  void read(std::vector<T>& out, std::size_t count, std::size_t first = 0) const {
+    out.resize(count);
+    if (count != 0) download(out.data(), count * sizeof(T), first * sizeof(T));
   }
 
   // Copies `bytes` from `from` at `from_offset` to this buffer at `offset`, on the GPU.
