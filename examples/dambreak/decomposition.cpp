@@ -40,6 +40,37 @@ template <class Keep> void keep_if(Fluid& f, Keep keep) {
   f.resize(kept);
 }
 
+// The particles' x over all ranks, counted in kBins bins from the least x to the greatest.
+struct Histogram {
+  double lo = 0, bin_width = 0;
+  std::vector<std::uint64_t> counts;  // empty: no particle anywhere
+};
+
+// Collective. Only finite positions count: the solver's diagnostics catch the others, and
+// migration gives them to the last rank.
+Histogram global_histogram(const Fluid& fluid, MPI_Comm comm) {
+  double least[2] = {kInf, kInf};  // the least x, and the least -x
+  for (const float x : fluid.x) {
+    if (!std::isfinite(x)) continue;
+    least[0] = std::min(least[0], double(x));
+    least[1] = std::min(least[1], -double(x));
+  }
+  MPI_Allreduce(MPI_IN_PLACE, least, 2, MPI_DOUBLE, MPI_MIN, comm);
+  Histogram h;
+  h.lo = least[0];
+  const double hi = -least[1];
+  if (!(h.lo <= hi)) return h;
+  h.bin_width = (hi - h.lo) / double(kBins);
+  h.counts.assign(kBins, 0);
+  for (const float x : fluid.x) {
+    if (!std::isfinite(x)) continue;
+    const double u = h.bin_width > 0 ? (double(x) - h.lo) / h.bin_width : 0;
+    ++h.counts[std::min(std::size_t(u), kBins - 1)];
+  }
+  MPI_Allreduce(MPI_IN_PLACE, h.counts.data(), int(kBins), MPI_UINT64_T, MPI_SUM, comm);
+  return h;
+}
+
 }  // namespace
 
 Decomposition::Decomposition(MPI_Comm comm, long rebalance_every)
@@ -114,38 +145,21 @@ void Decomposition::max_over_ranks(std::span<float> values) {
 }
 
 void Decomposition::rebalance(const Fluid& fluid) {
-  // The global range of x. Only finite positions count: the solver's diagnostics catch the
-  // others, and migration gives them to the last rank.
-  double range[2] = {kInf, kInf};  // min x, -max x
-  for (const float x : fluid.x)
-    if (std::isfinite(x))
-      range[0] = std::min(range[0], double(x)), range[1] = std::min(range[1], -double(x));
-  MPI_Allreduce(MPI_IN_PLACE, range, 2, MPI_DOUBLE, MPI_MIN, comm_);
-  const double lo = range[0], hi = -range[1];
-  if (!(lo <= hi)) return;  // no fluid anywhere: keep the slabs
-
-  const double bin_width = (hi - lo) / double(kBins);
-  std::vector<std::uint64_t> histogram(kBins, 0);
-  for (const float x : fluid.x) {
-    if (!std::isfinite(x)) continue;
-    const double u = bin_width > 0 ? (double(x) - lo) / bin_width : 0;
-    ++histogram[std::min(std::size_t(u), kBins - 1)];
-  }
-  MPI_Allreduce(MPI_IN_PLACE, histogram.data(), int(kBins), MPI_UINT64_T, MPI_SUM, comm_);
-
+  const Histogram h = global_histogram(fluid, comm_);
+  if (h.counts.empty()) return;  // no fluid anywhere: keep the slabs
   // Cut r at the bin edge nearest to r / size of the particles. Every rank computes the same
   // bounds from the same sums, which is all that ownership needs; the balance is as good as
   // the bins (particles of one x all go to one rank).
   std::uint64_t total = 0;
-  for (const std::uint64_t n : histogram) total += n;
+  for (const std::uint64_t n : h.counts) total += n;
   std::size_t bin = 0;
   std::uint64_t below = 0;  // particles in bins [0, bin)
   for (int r = 1; r < size_; ++r) {
     const double target = double(total) * r / size_;
-    while (bin < kBins && double(below + histogram[bin]) <= target) below += histogram[bin++];
+    while (bin < kBins && double(below + h.counts[bin]) <= target) below += h.counts[bin++];
     const bool after =
-        bin < kBins && double(below + histogram[bin]) - target < target - double(below);
-    bounds_[std::size_t(r)] = lo + double(bin + (after ? 1 : 0)) * bin_width;
+        bin < kBins && double(below + h.counts[bin]) - target < target - double(below);
+    bounds_[std::size_t(r)] = h.lo + double(bin + (after ? 1 : 0)) * h.bin_width;
   }
 }
 
