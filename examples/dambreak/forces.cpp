@@ -1,6 +1,7 @@
 // The pair loops of the WCSPH step, parallel over the cells of the neighbour grid: each
 // fluid cell gathers from the 9 particle ranges covering its 27 neighbour cells, in the fluid
-// and in the wall grid. Gather form (no writes to neighbours), so no atomics.
+// and in the wall grid (and in the ghost grid of a distributed run: 9 ranges more). Gather
+// form (no writes to neighbours), so no atomics.
 //   * fluid pressure: Tait, p = B ((rho/rho0)^7 - 1), clamped at 0 (Config::tension_free),
 //     stored as p / rho^2;
 //   * wall pressure (Adami, Hu & Adams 2012, eq. 27): p_w = (sum_f p_f W_wf + g . sum_f rho_f
@@ -19,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "sph.h"
@@ -92,17 +94,17 @@ Box bounds(const std::vector<float>& x, const std::vector<float>& y, const std::
   return b;
 }
 
-std::size_t total(const std::array<Range, 9>& ranges, int count) {
+std::size_t total(std::span<const Range> ranges) {
   std::size_t n = 0;
-  for (int k = 0; k < count; ++k) n += ranges[std::size_t(k)].end - ranges[std::size_t(k)].begin;
+  for (const Range& r : ranges) n += r.end - r.begin;
   return n;
 }
 
-void gather_fluid(const Fluid& f, const std::array<Range, 9>& ranges, int count, const Box& box,
-                  float support2, Candidates& c) {
-  c.reserve(total(ranges, count));
-  for (int k = 0; k < count; ++k)
-    for (std::uint32_t j = ranges[std::size_t(k)].begin; j < ranges[std::size_t(k)].end; ++j) {
+void gather_fluid(const Fluid& f, std::span<const Range> ranges, const Box& box, float support2,
+                  Candidates& c) {
+  c.reserve(total(ranges));
+  for (const Range& r : ranges)
+    for (std::uint32_t j = r.begin; j < r.end; ++j) {
       if (box.distance2(f.x[j], f.y[j], f.z[j]) >= support2) continue;
       const std::size_t q = c.n++;
       c.x[q] = f.x[j], c.y[q] = f.y[j], c.z[q] = f.z[j];
@@ -111,11 +113,11 @@ void gather_fluid(const Fluid& f, const std::array<Range, 9>& ranges, int count,
     }
 }
 
-void gather_walls(const Walls& w, const std::array<Range, 9>& ranges, int count, const Box& box,
-                  float support2, Candidates& c) {
-  c.reserve(total(ranges, count));
-  for (int k = 0; k < count; ++k)
-    for (std::uint32_t j = ranges[std::size_t(k)].begin; j < ranges[std::size_t(k)].end; ++j) {
+void gather_walls(const Walls& w, std::span<const Range> ranges, const Box& box, float support2,
+                  Candidates& c) {
+  c.reserve(total(ranges));
+  for (const Range& r : ranges)
+    for (std::uint32_t j = r.begin; j < r.end; ++j) {
       if (box.distance2(w.x[j], w.y[j], w.z[j]) >= support2) continue;
       const std::size_t q = c.n++;
       c.x[q] = w.x[j], c.y[q] = w.y[j], c.z[q] = w.z[j], c.p_over_rho2[q] = w.p_over_rho2[j];
@@ -217,19 +219,40 @@ __attribute__((target_clones("avx2", "default"))) void cell_wall_pressure(
 
 }  // namespace
 
+int DamBreak::fluid_ranges(std::size_t cell, std::array<Range, 18>& out) const {
+  std::array<Range, 9> own, ghosts;
+  const int n = fluid_grid_.neighbour_ranges(cell, own);
+  const int g = fluid_.size() > owned_ ? ghost_grid_.neighbour_ranges(cell, ghosts) : 0;
+  std::copy_n(own.begin(), n, out.begin());
+  const auto base = std::uint32_t(owned_);
+  for (int k = 0; k < g; ++k)
+    out[std::size_t(n + k)] = {ghosts[std::size_t(k)].begin + base,
+                               ghosts[std::size_t(k)].end + base};
+  return n + g;
+}
+
 void DamBreak::extrapolate_wall_pressure() {
   const float support2 = kernel_.support() * kernel_.support();
   const float g = float(config_.gravity), rho0 = float(config_.rest_density), b = float(b_);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, wall_grid_.shape().cell_count(), 64),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-                      std::array<Range, 9> ranges;
+                      std::array<Range, 18> ranges;
                       Candidates fluid;
                       for (std::size_t c = r.begin(); c != r.end(); ++c) {
                         const Range own = wall_grid_.cell(c);
                         if (own.begin == own.end) continue;
+                        const std::span<const Range> near(ranges.data(),
+                                                          std::size_t(fluid_ranges(c, ranges)));
+                        // No fluid near: p = 0, as the sums would give, without Tait's pow per
+                        // particle (most walls, and in a distributed run all but the walls near
+                        // this rank's fluid).
+                        if (total(near) == 0) {
+                          std::fill(walls_.p_over_rho2.begin() + own.begin,
+                                    walls_.p_over_rho2.begin() + own.end, 0.0f);
+                          continue;
+                        }
                         const Box box = bounds(walls_.x, walls_.y, walls_.z, own);
-                        gather_fluid(fluid_, ranges, fluid_grid_.neighbour_ranges(c, ranges), box,
-                                     support2, fluid);
+                        gather_fluid(fluid_, near, box, support2, fluid);
                         cell_wall_pressure(kernel_, support2, g, rho0, b, walls_, own, fluid);
                       }
                     });
@@ -237,7 +260,7 @@ void DamBreak::extrapolate_wall_pressure() {
 
 void DamBreak::compute_forces() {
   Fluid& f = fluid_;
-  const std::size_t n = f.size();
+  const std::size_t n = owned_;
   f.ax.resize(n);
   f.ay.resize(n);
   f.az.resize(n);
@@ -254,17 +277,19 @@ void DamBreak::compute_forces() {
                          config_.wall_viscosity};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fluid_grid_.shape().cell_count(), 64),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-                      std::array<Range, 9> ranges, wall_ranges;
+                      std::array<Range, 18> ranges;
+                      std::array<Range, 9> wall_ranges;
                       Candidates fluid, walls;
                       for (std::size_t c = r.begin(); c != r.end(); ++c) {
                         const Range own = fluid_grid_.cell(c);
                         if (own.begin == own.end) continue;
                         const Box box = bounds(f.x, f.y, f.z, own);
-                        gather_fluid(f, ranges, fluid_grid_.neighbour_ranges(c, ranges), box,
+                        gather_fluid(f, {ranges.data(), std::size_t(fluid_ranges(c, ranges))}, box,
                                      terms.support2, fluid);
-                        gather_walls(walls_, wall_ranges,
-                                     wall_grid_.neighbour_ranges(c, wall_ranges), box,
-                                     terms.support2, walls);
+                        gather_walls(walls_,
+                                     {wall_ranges.data(),
+                                      std::size_t(wall_grid_.neighbour_ranges(c, wall_ranges))},
+                                     box, terms.support2, walls);
                         cell_rates(terms, f, own, fluid, walls);
                       }
                     });

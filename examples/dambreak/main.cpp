@@ -3,21 +3,32 @@
 // adapter as views, without a copy. With --config the in-situ runtime renders and writes what
 // the YAML file asks (docs/runtime.md); without it the adapter only classifies.
 //
-//   dambreak [--config FILE] [--particles N] [--steps S | --until T] [--render-every K]
-//            [--threads P] [--progress-every K] [--depth-particles D] [--validate] [--no-render]
+// Under mpiexec with more than one rank it is a distributed run (decomposition.h): each rank
+// steps the particles of its slab with ghosts from the others, and hands the adapter its
+// owned particles followed by its ghosts, and the job's communicator. Started alone (or on
+// one rank) it is the serial solver, unchanged.
+//
+//   [mpiexec -n R] dambreak [--config FILE] [--particles N] [--steps S | --until T]
+//            [--render-every K] [--threads P] [--progress-every K] [--depth-particles D]
+//            [--rebalance-every K] [--validate] [--no-render]
+#include <mpi.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <voxspan/adapter.h>
 #include <voxspan/error.h>
 #include <voxspan/insitu.h>
+#include <voxspan/mpi.h>
 
+#include "decomposition.h"
 #include "sph.h"
 
 namespace {
@@ -29,6 +40,7 @@ struct Options {
   double until = 0;  // non-dimensional end time; 0: use steps
   long render_every = 10;
   long progress_every = 50;
+  long rebalance_every = 50;
   int threads = 0;
   bool validate = false;
 };
@@ -46,8 +58,10 @@ void usage() {
       "  --validate           have the adapter check the grid against the particles\n"
       "  --depth-particles D  a thin tank D particles deep (quasi-2D)\n"
       "  --tank-length L      tank length in column widths (default 4)\n"
-      "  --threads P          worker threads (default: all cores)\n"
-      "  --progress-every K   progress line every K steps (default 50; 0: none)");
+      "  --threads P          worker threads per rank (default: all cores)\n"
+      "  --progress-every K   progress line every K steps (default 50; 0: none)\n"
+      "  --rebalance-every K  under mpiexec: re-balance the slabs every K steps (default 50;\n"
+      "                       0: keep the slabs cut at the start)");
 }
 
 bool parse(int argc, char** argv, Options& o) {
@@ -83,6 +97,8 @@ bool parse(int argc, char** argv, Options& o) {
     else if (a == "--tank-length") o.config.tank_length = number("--tank-length", 1.1, 1e3);
     else if (a == "--threads") o.threads = int(number("--threads", 1, 4096));
     else if (a == "--progress-every") o.progress_every = long(number("--progress-every", 0, 1e12));
+    else if (a == "--rebalance-every")
+      o.rebalance_every = long(number("--rebalance-every", 0, 1e12));
     else if (a == "--help" || a == "-h") {
       usage();
       std::exit(0);
@@ -99,34 +115,61 @@ voxspan::GridGeometry adapter_geometry(const dambreak::GridShape& s) {
   return {s.origin, s.cell_size, s.dims};
 }
 
-}  // namespace
+// The grid the adapter gets: the solver's own where the rank holds no ghosts; else one cell
+// order over the owned particles and the ghosts stored after them.
+voxspan::GridView adapter_grid(const dambreak::DamBreak& sim, dambreak::CellOrder& merged) {
+  const voxspan::GridGeometry geometry = adapter_geometry(sim.fluid_grid().shape());
+  if (sim.fluid().size() == sim.owned_count())
+    return voxspan::GridView::offsets(geometry, sim.fluid_grid().offsets().data());
+  dambreak::merge_cell_orders(sim.fluid_grid(), sim.ghost_grid(), std::uint32_t(sim.owned_count()),
+                              merged);
+  return voxspan::GridView::offsets(geometry, merged.offsets.data())
+      .with_order(merged.order.data());
+}
 
-int main(int argc, char** argv) {
-  Options o;
-  if (!parse(argc, argv, o)) return 2;
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  const auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+int run(const Options& o) {
   std::unique_ptr<tbb::global_control> threads;
   if (o.threads > 0)
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                     std::size_t(o.threads));
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  const bool root = rank == 0;
+  std::unique_ptr<dambreak::Decomposition> domain;
+  if (ranks > 1)
+    domain = std::make_unique<dambreak::Decomposition>(MPI_COMM_WORLD, o.rebalance_every);
 
   using Clock = std::chrono::steady_clock;
   const auto t_setup = Clock::now();
-  dambreak::DamBreak sim(o.config);
-  const auto& lattice = sim.lattice();
-  std::printf(
-      "dambreak: %zu fluid + %zu wall particles, dx %.4g m, h %.4g m, c0 %.3g m/s, "
-      "grid %d x %d x %d cells (set up in %.2f s)\n",
-      sim.fluid().size(), sim.walls().size(), sim.dx(), sim.smoothing_length(), sim.sound_speed(),
-      sim.fluid_grid().shape().dims[0], sim.fluid_grid().shape().dims[1],
-      sim.fluid_grid().shape().dims[2],
-      std::chrono::duration<double>(Clock::now() - t_setup).count());
-  (void)lattice;
+  dambreak::DamBreak sim(o.config, domain.get());
+  const std::uint64_t fluid_count = dambreak::sum_over_ranks(sim.owned_count(), MPI_COMM_WORLD);
+  if (root) {
+    std::printf(
+        "dambreak: %llu fluid + %zu wall particles, dx %.4g m, h %.4g m, c0 %.3g m/s, "
+        "grid %d x %d x %d cells (set up in %.2f s)\n",
+        static_cast<unsigned long long>(fluid_count), sim.walls().size(), sim.dx(),
+        sim.smoothing_length(), sim.sound_speed(), sim.fluid_grid().shape().dims[0],
+        sim.fluid_grid().shape().dims[1], sim.fluid_grid().shape().dims[2],
+        std::chrono::duration<double>(Clock::now() - t_setup).count());
+    if (domain)
+      std::printf("dambreak: %d ranks, slabs along x re-balanced every %ld steps\n", ranks,
+                  o.rebalance_every);
+  }
 
   voxspan::AdapterOptions ao;
   ao.render_every = o.render_every;
   ao.classify.particle_spacing = sim.dx();
   ao.classify.validate = o.validate;
   ao.classify.attributes = {"velocity", "density"};
+  if (domain) ao = voxspan::with_communicator(std::move(ao), MPI_COMM_WORLD);
   std::unique_ptr<voxspan::Adapter> adapter;
   try {
     adapter = o.insitu_config.empty() ? std::make_unique<voxspan::Adapter>(ao)
@@ -141,17 +184,25 @@ int main(int argc, char** argv) {
   auto last = t0;
   long last_step = 0, failed = 0;
   double adapter_seconds = 0;
+  std::vector<double> step_seconds;
+  dambreak::CellOrder merged;
   for (long step = 1;; ++step) {
     if (o.until > 0 ? sim.nondimensional_time() >= o.until : step > o.steps) break;
+    const auto ts = Clock::now();
     sim.step();
+    step_seconds.push_back(std::chrono::duration<double>(Clock::now() - ts).count());
     const bool final_step = o.until > 0 ? sim.nondimensional_time() >= o.until : step == o.steps;
+    if (domain && dambreak::sum_over_ranks(sim.owned_count(), MPI_COMM_WORLD) != fluid_count) {
+      if (root) std::fprintf(stderr, "dambreak: fluid particles lost at step %ld\n", step);
+      return 1;
+    }
 
     const dambreak::Fluid& f = sim.fluid();
     const auto particles = voxspan::ParticleView::soa(f.x.data(), f.y.data(), f.z.data(), f.size())
+                               .with_owned(sim.owned_count())
                                .with_vector("velocity", f.vx.data(), f.vy.data(), f.vz.data())
                                .with_scalar("density", f.rho.data());
-    const auto grid = voxspan::GridView::offsets(adapter_geometry(sim.fluid_grid().shape()),
-                                                 sim.fluid_grid().offsets().data());
+    const voxspan::GridView grid = adapter_grid(sim, merged);
     const auto ta = Clock::now();
     const voxspan::Status status = final_step
                                        ? adapter->execute_last(step, sim.time(), particles, grid)
@@ -162,18 +213,22 @@ int main(int argc, char** argv) {
     if (o.progress_every > 0 && step % o.progress_every == 0) {
       const auto now = Clock::now();
       const double wall = std::chrono::duration<double>(now - last).count();
-      const dambreak::Diagnostics d = sim.diagnostics();
+      const dambreak::Diagnostics d =
+          dambreak::combine_over_ranks(sim.diagnostics(), MPI_COMM_WORLD);
       const voxspan::StepStats& st = adapter->last_stats();
-      std::printf(
-          "step %6ld  t %.4f s  T %.3f  dt %.3g s  front x/a %.3f  max|drho|/rho0 %.2f%%  "
-          "%.3g particles/s  boundary %zu of %zu  in situ %.1f s (%lld render steps)\n",
-          step, sim.time(), sim.nondimensional_time(), sim.dt(), d.front / o.config.column_width,
-          100 * d.max_density_error, double(f.size()) * double(step - last_step) / wall,
-          st.counts.boundary, st.counts.particles, adapter_seconds,
-          static_cast<long long>(adapter->render_steps()));
+      if (root)
+        std::printf(
+            "step %6ld  t %.4f s  T %.3f  dt %.3g s  front x/a %.3f  max|drho|/rho0 %.2f%%  "
+            "%.3g particles/s  boundary %zu of %zu%s  in situ %.1f s (%lld render steps)\n",
+            step, sim.time(), sim.nondimensional_time(), sim.dt(), d.front / o.config.column_width,
+            100 * d.max_density_error, double(d.fluid) * double(step - last_step) / wall,
+            st.counts.boundary, st.counts.particles, domain ? " on rank 0" : "", adapter_seconds,
+            static_cast<long long>(adapter->render_steps()));
       std::fflush(stdout);
       if (d.nonfinite > 0) {
-        std::fprintf(stderr, "dambreak: %zu particles became NaN at step %ld\n", d.nonfinite, step);
+        if (root)
+          std::fprintf(stderr, "dambreak: %zu particles became NaN at step %ld\n", d.nonfinite,
+                       step);
         return 1;
       }
       last = now;
@@ -186,17 +241,42 @@ int main(int argc, char** argv) {
   const double total = std::chrono::duration<double>(Clock::now() - t0).count();
   const double solver = total - adapter_seconds - finish_seconds;
   const long steps = long(sim.steps());
+  const dambreak::Diagnostics d = dambreak::combine_over_ranks(sim.diagnostics(), MPI_COMM_WORLD);
+  const bool ids_ok = !domain || dambreak::ids_complete(sim.fluid(), sim.owned_count(), fluid_count,
+                                                        MPI_COMM_WORLD);
+  if (!root) return ids_ok ? 0 : 1;
   std::printf(
       "dambreak: %ld steps to t %.4f s (T %.3f) in %.2f s: %.3g particle-steps/s; "
       "adapter %.2f s (%ld render steps, %ld failed)\n",
       steps, sim.time(), sim.nondimensional_time(), total,
-      steps > 0 ? double(sim.fluid().size()) * double(steps) / solver : 0.0, adapter_seconds,
+      steps > 0 ? double(fluid_count) * double(steps) / solver : 0.0, adapter_seconds,
       long(adapter->render_steps()), failed);
   std::printf(
-      "time: solver %.1f s, in situ %.1f s on the solver's thread (%.1f %% of the "
-      "solver's time) + %.1f s waiting for the last files\n",
-      solver, adapter_seconds, solver > 0 ? 100 * adapter_seconds / solver : 0.0, finish_seconds);
+      "time: solver %.1f s (median step %.2f ms), in situ %.1f s on the solver's thread "
+      "(%.1f %% of the solver's time) + %.1f s waiting for the last files\n",
+      solver, 1e3 * median(step_seconds), adapter_seconds,
+      solver > 0 ? 100 * adapter_seconds / solver : 0.0, finish_seconds);
+  std::printf("final: T %.4f  front x/a %.5f  max|drho|/rho0 %.2f%%  fluid particles %zu\n",
+              sim.nondimensional_time(), d.front / o.config.column_width, 100 * d.max_density_error,
+              d.fluid);
+  if (domain)
+    std::printf("mpi: %d ranks, %llu fluid particles on every step, ids %s\n", ranks,
+                static_cast<unsigned long long>(fluid_count),
+                ids_ok ? "each owned once" : "NOT each owned once");
   if (const std::string summary = adapter->summary(); !summary.empty())
     std::printf("in situ: %s\n", summary.c_str());
-  return failed > 0 ? 1 : 0;
+  return failed > 0 || !ids_ok ? 1 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (!parse(argc, argv, o)) return 2;
+  // Started without mpiexec, Open MPI makes the program a job of one rank.
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  const int code = run(o);
+  MPI_Finalize();
+  return code;
 }

@@ -53,4 +53,21 @@ int NeighbourGrid::neighbour_ranges(std::size_t c, std::array<Range, 9>& out) co
   return count;
 }
 
+void merge_cell_orders(const NeighbourGrid& first, const NeighbourGrid& second,
+                       std::uint32_t second_base, CellOrder& out) {
+  const std::vector<std::uint32_t>&a = first.offsets(), &b = second.offsets();
+  out.offsets.resize(a.size());
+  out.order.resize(a.back() + b.back());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, a.size() - 1, 1 << 10),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t c = r.begin(); c != r.end(); ++c) {
+                        std::uint32_t k = out.offsets[c] = a[c] + b[c];
+                        for (std::uint32_t i = a[c]; i < a[c + 1]; ++i) out.order[k++] = i;
+                        for (std::uint32_t i = b[c]; i < b[c + 1]; ++i)
+                          out.order[k++] = second_base + i;
+                      }
+                    });
+  out.offsets.back() = a.back() + b.back();
+}
+
 }  // namespace dambreak

@@ -49,4 +49,14 @@ class NeighbourGrid {
   std::vector<std::uint32_t> next_;     // scatter cursor per cell
 };
 
+// One cell order over two grids of one shape whose particles are stored one segment after the
+// other (a rank's owned particles, then its ghosts from `second_base` on): cell c's particles
+// are order[offsets[c]] .. order[offsets[c+1] - 1], those of the first segment first. What
+// the in-situ adapter takes as a compact grid with an order array.
+struct CellOrder {
+  std::vector<std::uint32_t> offsets, order;
+};
+void merge_cell_orders(const NeighbourGrid& first, const NeighbourGrid& second,
+                       std::uint32_t second_base, CellOrder& out);
+
 }  // namespace dambreak

@@ -34,21 +34,37 @@ GridShape grid_shape(const Lattice& l, int layers, double support) {
   return g;
 }
 
-// Reorders `v` by `perm` (new slot -> old index) through `tmp`.
+// Reorders the perm.size() elements of `v` from `first` on by `perm` (new slot -> old index,
+// both counted from `first`) through `tmp`.
 template <class T>
-void gather(std::vector<T>& v, std::vector<T>& tmp, const std::vector<std::uint32_t>& perm) {
-  tmp.resize(v.size());
-  parallel_over(v.size(), [&](std::size_t i) { tmp[i] = v[perm[i]]; });
-  v.swap(tmp);
+void gather(std::vector<T>& v, std::vector<T>& tmp, const std::vector<std::uint32_t>& perm,
+            std::size_t first = 0) {
+  tmp.resize(perm.size());
+  parallel_over(perm.size(), [&](std::size_t i) { tmp[i] = v[first + perm[i]]; });
+  if (first == 0 && perm.size() == v.size()) v.swap(tmp);
+  else std::copy(tmp.begin(), tmp.end(), v.begin() + std::ptrdiff_t(first));
 }
+
+// How far past a rank's slab its ghosts reach, in kernel supports: an owned particle reads the
+// fluid within one support, and the wall particles within its support read the fluid within
+// one support of them (Adami's extrapolation), so two; 1 % more so that float rounding in a
+// pair's distance test cannot find a neighbour that the decomposition did not send.
+constexpr float kGhostSupports = 2.02f;
 
 }  // namespace
 
-DamBreak::DamBreak(const Config& config)
+void Fluid::resize(std::size_t n) {
+  for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &rho}) v->resize(n);
+  id.resize(n);
+}
+
+DamBreak::DamBreak(const Config& config, Domain* domain)
     : config_(config),
       lattice_(make_lattice(config)),
       kernel_(float(config.h_over_dx * lattice_.dx)),
+      domain_(domain),
       fluid_grid_(grid_shape(lattice_, config.wall_layers, 2 * config.h_over_dx * lattice_.dx)),
+      ghost_grid_(fluid_grid_.shape()),
       wall_grid_(fluid_grid_.shape()) {
   const double dx = lattice_.dx;
   const double height = lattice_.column_z * dx;
@@ -85,7 +101,10 @@ DamBreak::DamBreak(const Config& config)
   walls_.z = std::move(wall.z);
   walls_.p_over_rho2.assign(walls_.size(), 0);
 
+  if (domain_) domain_->distribute(fluid_);
+  owned_ = fluid_.size();
   sort_fluid();
+  update_ghosts();
   compute_rates();
   dt_ = stable_dt();
 }
@@ -100,15 +119,38 @@ double DamBreak::nondimensional_time() const {
 }
 
 void DamBreak::sort_fluid() {
-  fluid_grid_.sort(fluid_.x.data(), fluid_.y.data(), fluid_.z.data(), fluid_.size(), permutation_);
-  gather(fluid_.x, scratch_.x, permutation_);
-  gather(fluid_.y, scratch_.y, permutation_);
-  gather(fluid_.z, scratch_.z, permutation_);
-  gather(fluid_.vx, scratch_.vx, permutation_);
-  gather(fluid_.vy, scratch_.vy, permutation_);
-  gather(fluid_.vz, scratch_.vz, permutation_);
-  gather(fluid_.rho, scratch_.rho, permutation_);
-  gather(fluid_.id, scratch_.id, permutation_);
+  fluid_grid_.sort(fluid_.x.data(), fluid_.y.data(), fluid_.z.data(), owned_, permutation_);
+  gather_state(0, permutation_);
+}
+
+// The ghosts are rebuilt whole from their owners' state: after the drift for the forces, and
+// after the last kick so that the state a step leaves holds exact copies of the owners'.
+void DamBreak::update_ghosts() {
+  if (!domain_) return;
+  fluid_.resize(owned_);
+  domain_->append_ghosts(fluid_, kGhostSupports * kernel_.support());
+  const std::size_t ghosts = fluid_.size() - owned_;
+  ghost_grid_.sort(fluid_.x.data() + owned_, fluid_.y.data() + owned_, fluid_.z.data() + owned_,
+                   ghosts, permutation_);
+  gather_state(owned_, permutation_);
+}
+
+void DamBreak::gather_state(std::size_t first, const std::vector<std::uint32_t>& perm) {
+  gather(fluid_.x, scratch_.x, perm, first);
+  gather(fluid_.y, scratch_.y, perm, first);
+  gather(fluid_.z, scratch_.z, perm, first);
+  gather(fluid_.vx, scratch_.vx, perm, first);
+  gather(fluid_.vy, scratch_.vy, perm, first);
+  gather(fluid_.vz, scratch_.vz, perm, first);
+  gather(fluid_.rho, scratch_.rho, perm, first);
+  gather(fluid_.id, scratch_.id, perm, first);
+}
+
+void DamBreak::migrate() {
+  if (!domain_) return;
+  fluid_.resize(owned_);
+  domain_->migrate(fluid_);
+  owned_ = fluid_.size();
 }
 
 void DamBreak::compute_rates() {
@@ -121,7 +163,7 @@ void DamBreak::kick(float half_dt) {
   Fluid& f = fluid_;
   // Tension-free liquid: a particle that separates (spray) is a drop at rest density.
   const float rho_min = config_.tension_free ? float(config_.rest_density) : 0.0f;
-  parallel_over(f.size(), [&](std::size_t i) {
+  parallel_over(owned_, [&](std::size_t i) {
     f.vx[i] += half_dt * f.ax[i];
     f.vy[i] += half_dt * f.ay[i];
     f.vz[i] += half_dt * f.az[i];
@@ -129,18 +171,25 @@ void DamBreak::kick(float half_dt) {
   });
 }
 
-void DamBreak::step() {
-  const float dt = float(dt_), half = 0.5f * dt;
-  kick(half);
+void DamBreak::drift(float dt) {
   Fluid& f = fluid_;
-  parallel_over(f.size(), [&](std::size_t i) {
+  parallel_over(owned_, [&](std::size_t i) {
     f.x[i] += dt * f.vx[i];
     f.y[i] += dt * f.vy[i];
     f.z[i] += dt * f.vz[i];
   });
+}
+
+void DamBreak::step() {
+  const float dt = float(dt_), half = 0.5f * dt;
+  kick(half);
+  drift(dt);
+  migrate();
   sort_fluid();
+  update_ghosts();
   compute_rates();
   kick(half);
+  update_ghosts();
   time_ += dt_;
   ++steps_;
   dt_ = stable_dt();
@@ -151,8 +200,8 @@ double DamBreak::stable_dt() const {
     float v2 = 0, a2 = 0;
   };
   const Fluid& f = fluid_;
-  const Max m = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, f.size(), kGrain), Max{},
+  Max m = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, owned_, kGrain), Max{},
       [&](const tbb::blocked_range<std::size_t>& r, Max acc) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
           acc.v2 = std::max(acc.v2, f.vx[i] * f.vx[i] + f.vy[i] * f.vy[i] + f.vz[i] * f.vz[i]);
@@ -163,6 +212,11 @@ double DamBreak::stable_dt() const {
       [](Max a, const Max& b) {
         return Max{std::max(a.v2, b.v2), std::max(a.a2, b.a2)};
       });
+  if (domain_) {
+    float both[2] = {m.v2, m.a2};
+    domain_->max_over_ranks(both);
+    m = {both[0], both[1]};
+  }
   const double h = kernel_.h;
   const double acoustic = config_.cfl * h / (c0_ + std::sqrt(double(m.v2)));
   const double force = m.a2 > 0 ? 0.25 * std::sqrt(h / std::sqrt(double(m.a2))) : acoustic;
@@ -178,7 +232,7 @@ Diagnostics DamBreak::diagnostics() const {
     double front = -1e300, max_err = 0, sum_err = 0, max_v2 = 0;
   };
   tbb::combinable<Acc> acc;
-  parallel_over(f.size(), [&](std::size_t i) {
+  parallel_over(owned_, [&](std::size_t i) {
     Acc& a = acc.local();
     const float v[7] = {f.x[i], f.y[i], f.z[i], f.vx[i], f.vy[i], f.vz[i], f.rho[i]};
     if (!std::all_of(v, v + 7, [](float s) { return std::isfinite(s); })) {
@@ -204,11 +258,12 @@ Diagnostics DamBreak::diagnostics() const {
     sum.max_v2 = std::max(sum.max_v2, a.max_v2);
   });
   Diagnostics d;
+  d.fluid = owned_;
   d.nonfinite = sum.nonfinite;
   d.outside = sum.outside;
   d.front = sum.front + 0.5 * lattice_.dx;
   d.max_density_error = sum.max_err;
-  d.mean_density_error = f.size() ? sum.sum_err / double(f.size()) : 0;
+  d.mean_density_error = owned_ ? sum.sum_err / double(owned_) : 0;
   d.max_speed = std::sqrt(sum.max_v2);
   return d;
 }

@@ -11,9 +11,12 @@
 //   * a cell-sorted neighbour grid (neighbour_grid.h), particles re-sorted every step,
 //     loops parallel over cells with oneTBB.
 // The fluid arrays are SoA floats in cell order; fluid_grid().offsets() is the compact grid.
+// With a Domain (below) the solver is one rank of a distributed run: the same step on the
+// particles it owns, with ghosts from the other ranks as extra neighbours.
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "kernel.h"
@@ -22,6 +25,8 @@
 
 namespace dambreak {
 
+// In a distributed run the arrays hold the owned particles first, in cell order, then the
+// ghosts, in cell order too; the rates only the owned particles'.
 struct Fluid {
   std::vector<float> x, y, z, vx, vy, vz, rho;  // state, in cell order
   std::vector<float> ax, ay, az, drho;          // rates from the latest force evaluation
@@ -29,6 +34,9 @@ struct Fluid {
   std::vector<float> volume;                    // m / rho of the latest evaluation
   std::vector<std::uint32_t> id;                // the particle's index at t = 0
   std::size_t size() const { return x.size(); }
+  // Resizes the state (positions, velocities, densities, ids): what a particle carries from
+  // step to step, and all that migration and ghosts copy. The rest is recomputed each step.
+  void resize(std::size_t n);
 };
 
 struct Walls {
@@ -38,6 +46,7 @@ struct Walls {
 };
 
 struct Diagnostics {
+  std::size_t fluid = 0;         // fluid particles (owned ones, in a distributed run)
   std::size_t nonfinite = 0;     // particles with a NaN/inf position, velocity or density
   std::size_t outside = 0;       // fluid particle centres outside the tank interior
   double front = 0;              // leading edge: max x + dx / 2
@@ -46,9 +55,28 @@ struct Diagnostics {
   double max_speed = 0;
 };
 
+// How the fluid is shared among the ranks of a distributed run (decomposition.h: slabs over
+// MPI). Each rank owns some particles and keeps ghosts: copies of other ranks' particles near
+// its own. The serial solver has none: it owns every particle and has no ghosts.
+class Domain {
+ public:
+  virtual ~Domain() = default;
+  // Once, with the initial fluid that every rank built alike: keeps this rank's particles.
+  virtual void distribute(Fluid& fluid) = 0;
+  // After the drift, on the owned particles (no ghosts): those now owned by another rank go
+  // to it, keeping their state and id, and those arriving are appended.
+  virtual void migrate(Fluid& fluid) = 0;
+  // Appends, after the owned particles (no ghosts), the state of every other rank's particle
+  // that lies within `width` of this rank's share of space.
+  virtual void append_ghosts(Fluid& fluid, float width) = 0;
+  // values[k] becomes the maximum over the ranks of values[k].
+  virtual void max_over_ranks(std::span<float> values) = 0;
+};
+
 class DamBreak {
  public:
-  explicit DamBreak(const Config& config);
+  // `domain`: the run's decomposition (it must outlive the solver); none: the serial solver.
+  explicit DamBreak(const Config& config, Domain* domain = nullptr);
 
   // One time step of the size chosen after the previous one.
   void step();
@@ -68,14 +96,24 @@ class DamBreak {
   // Tank interior: [0, extent[0]] x [0, extent[1]] x [0, extent[2]].
   std::array<double, 3> tank_extent() const;
 
+  // The owned particles, then (in a distributed run) the ghosts.
   const Fluid& fluid() const { return fluid_; }
+  std::size_t owned_count() const { return owned_; }
   const Walls& walls() const { return walls_; }
+  // Cell ranges of the owned particles, and of the ghosts counted from owned_count() on.
   const NeighbourGrid& fluid_grid() const { return fluid_grid_; }
+  const NeighbourGrid& ghost_grid() const { return ghost_grid_; }
 
+  // Of the owned particles: a distributed run combines the ranks' (decomposition.h).
   Diagnostics diagnostics() const;
 
  private:
+  void drift(float dt);
+  void migrate();
   void sort_fluid();
+  void update_ghosts();
+  void gather_state(std::size_t first, const std::vector<std::uint32_t>& permutation);
+  int fluid_ranges(std::size_t cell, std::array<Range, 18>& out) const;
   void compute_fluid_pressure();
   void extrapolate_wall_pressure();
   void compute_rates();
@@ -88,9 +126,11 @@ class DamBreak {
   CubicSpline kernel_;
   float mass_ = 0;
   double c0_ = 0, b_ = 0;
+  Domain* domain_ = nullptr;
   Fluid fluid_, scratch_;
+  std::size_t owned_ = 0;
   Walls walls_;
-  NeighbourGrid fluid_grid_, wall_grid_;
+  NeighbourGrid fluid_grid_, ghost_grid_, wall_grid_;
   std::vector<std::uint32_t> permutation_;
   double time_ = 0, dt_ = 0;
   std::int64_t steps_ = 0;
