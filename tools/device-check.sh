@@ -14,7 +14,9 @@
 #                          --threads per_particle --compare-spans OUT/spans.bin
 #   shading_*.txt      bench_shading: the same two scales, every mode, with and without deep AO;
 #   insitu.txt         bench_insitu: the in-situ cost against the WCSPH solver at the main job's
-#                      settings, one render every 10 steps (when the bundle carries it).
+#                      settings, one render every 10 steps (when the bundle carries it);
+#   composite.txt      bench_composite on 2 ranks sharing the GPU at 1920x1080, when the machine
+#                      has Open MPI's mpiexec (the bundle carries libmpi, not the launcher).
 # Each step writes OUT/<step>.txt; a failing step is reported and the others still run.
 # --debs DIR: unpack these .deb files (the GL vendor-neutral dispatch, libglvnd, for a machine
 #             whose driver comes without it) into / first.
@@ -83,6 +85,22 @@ else
     --modes translucent
   [[ -x $bin/bench_insitu ]] &&
     step insitu "$bin/bench_insitu" --steps 300 --render-every 10 --vdb-every 100
+fi
+
+# composite_step ARGS...: bench_composite on 2 ranks, where this machine can start them (Open
+# MPI 4 calls its launcher OpenRTE, 5 PRRTE; the bundle's libmpi needs Open MPI's).
+composite_step() {
+  if mpiexec --version 2>/dev/null | grep -q -e OpenRTE -e PRRTE -e "Open MPI"; then
+    export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1  # root on the machine
+    step composite mpiexec --oversubscribe -n 2 "$bin/bench_composite" "$@"
+  else
+    echo "device-check: composite skipped: no Open MPI mpiexec on this machine"
+  fi
+}
+if ((quick)); then
+  composite_step --particles 2e4 --size 160x90 --frames 1
+else
+  composite_step --particles 1e6 --size 1920x1080 --frames 3
 fi
 echo "device-check: outputs in $out"
 exit "$failed"
