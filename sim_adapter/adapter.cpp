@@ -171,9 +171,13 @@ Status Adapter::execute(std::int64_t step, double time, const ParticleView& part
   } catch (...) {
     fail(s.status, StatusCode::internal_error, "unknown exception");
   }
-  // With ranks, a failure on one is the step's failure on all: they skip it together.
+  // With ranks, a failure on one is the step's failure on all: they skip it together. After the
+  // pipeline they agree again, for what fails on one rank alone (the root's shading, outputs).
   if (m.pipeline) m.agree();
-  if (m.pipeline && s.status.ok()) m.process(step, time, *c, particles, grid);
+  if (m.pipeline && s.status.ok()) {
+    m.process(step, time, *c, particles, grid);
+    m.agree();
+  }
   s.seconds_total = t0.seconds();
   m.seconds_in_situ += s.seconds_total;
   if (!s.status.ok()) {

@@ -86,8 +86,8 @@ class Pipeline {
   // Called on every step that passes the adapter's render_every filter, before any work:
   // must be cheap and must not allocate. Lets the runtime's own triggers decide.
   virtual bool wants_step(std::int64_t /*step*/, double /*time*/) { return true; }
-  // Called on every step the pipeline wants, after the classification, with its status here
-  // (ok, or why it failed). A pipeline spread over MPI ranks returns the step's status on all
+  // Called on every step the pipeline wants, after the classification and again after
+  // process(), with the status here (ok, or why it failed). A pipeline spread over MPI ranks returns the step's status on all
   // of them (a failure on any rank, naming it), so that every rank skips a failed step
   // together and none waits for another; one process returns `local`.
   virtual Status agree(const Status& local) { return local; }

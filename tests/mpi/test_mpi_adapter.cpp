@@ -105,6 +105,32 @@ TEST(MpiAdapter, BadInputOnOneRankFailsTheStepOnAllWithOneErrorLine) {
   }
 }
 
+// A rank that throws in the middle of the step, after every rank has classified and while the
+// others voxelize: its grid is longer than a GL 3D texture may be, so its cell-state upload
+// fails inside the render pass. Every rank abandons the step, one line names the rank, and the
+// next step renders.
+TEST(MpiAdapter, ARankThatThrowsMidStepFailsTheStepOnAllAndTheRunGoesOn) {
+  const auto folder = shared_folder("throws");
+  test::LogCapture log;
+  Adapter adapter = adapter_from_config_text(config_for(folder), options(), MPI_COMM_WORLD);
+  const Block block(12);
+  // 20 000 cells along x: more than any GL's 3D texture side (16 384 on NVIDIA, 2 048 on Mesa).
+  const GridView too_long = GridView::geometry_only(GridGeometry{{0, 0, 0}, 0.01, {20000, 12, 12}});
+  const Status failed = adapter.execute(1, 0.1, block.view(), rank() == 1 ? too_long : GridView());
+  EXPECT_FALSE(failed.ok());
+  EXPECT_NE(failed.message.find("rank 1: cell states: grid of 20000x12x12 cells"),
+            std::string::npos)
+      << failed.message;
+  const std::vector<std::string> errors = log.at(LogLevel::error);
+  EXPECT_EQ(errors.size(), rank() == 0 ? 1u : 0u) << log.all();
+  EXPECT_TRUE(adapter.execute(2, 0.2, block.view()).ok());
+  adapter.finish();
+  if (rank() == 0) {
+    EXPECT_FALSE(std::filesystem::exists(folder / "frames" / "v_00000001.png"));
+    EXPECT_TRUE(test::read_png_file(folder / "frames" / "v_00000002.png").ok);
+  }
+}
+
 TEST(MpiAdapter, NanPositionsEmptyRanksAndNoFluidAtAllStillRender) {
   const auto folder = shared_folder("empty");
   Adapter adapter = adapter_from_config_text(config_for(folder), options(), MPI_COMM_WORLD);
