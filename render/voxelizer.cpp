@@ -13,8 +13,10 @@ namespace {
 // NVIDIA breaks on single bindings of 2 GiB or more (GPU-NOTES); 1 GiB keeps clear of it.
 constexpr std::size_t kBindingCap = std::size_t(1) << 30;
 
-void report_frame(const PerspectiveGrid& grid, const CullCounts& culled, std::size_t input,
-                  FrameStats& stats) {
+}  // namespace
+
+void report_grid_fit(const PerspectiveGrid& grid, const CullCounts& culled, std::size_t input,
+                     FrameStats& stats) {
   stats.set_count("particles.input", static_cast<std::int64_t>(input));
   stats.set_count("particles.visible", culled.visible);
   stats.set_count("particles.invalid", culled.invalid);
@@ -28,8 +30,6 @@ void report_frame(const PerspectiveGrid& grid, const CullCounts& culled, std::si
   stats.set_figure("grid.k_d", grid.k_d());
   stats.set_figure("grid.alpha_degrees", grid.alpha_degrees());
 }
-
-}  // namespace
 
 void validate(const VoxelizeOptions& o) {
   validate(o.grid);
@@ -64,7 +64,7 @@ const GpuSpanImage& Voxelizer::run(const Camera& camera, std::span<const Particl
     auto t = timer.cpu("frame");
     grid = PerspectiveGrid::fit(camera, particles, options.grid, &culled, options.combine_ranks);
   }
-  report_frame(grid, culled, particles.size(), stats);
+  report_grid_fit(grid, culled, particles.size(), stats);
   // Every count is reported every frame, zero or not, so each step's record has the same keys.
   for (const char* name : {"tiles", "bin.entries", "bin.large", "voxels", "spans.stored",
                            "spans.found", "pixels.capped"})

@@ -53,6 +53,11 @@ struct VoxelizeOptions {
 // Throws voxspan::Error naming the option that is out of range.
 void validate(const VoxelizeOptions& options);
 
+// The counts and figures of a frame's grid fit (particles.*, grid.*), as both renderers report
+// them.
+void report_grid_fit(const PerspectiveGrid& grid, const CullCounts& culled, std::size_t input,
+                     FrameStats& stats);
+
 class Voxelizer {
  public:
   // Needs a current GL context; compiles the passes.

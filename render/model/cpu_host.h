@@ -1,4 +1,4 @@
-// render/reference/reference_host.h - the CPU host of the shared model files
+// render/model/cpu_host.h - the CPU host of the shared model files
 // (render/model/*.glsl, render/model/cpp_host.h): a span image and its per-span surface data
 // read through the sd_* accessors the model files call, the uniforms as members, and the model
 // files' functions as its own. The CPU reference (render/reference/reference_shading.h) runs
@@ -13,18 +13,24 @@
 
 #include "render/model/cpp_host.h"
 #include "render/model/shade_uniforms.h"
+#include "render/shade_options.h"
 #include "render/span_image.h"
 
 namespace voxspan::model {
 
-class ReferenceHost : public GridUniforms, public ShadeUniforms {
+class CpuHost : public GridUniforms, public ShadeUniforms {
  public:
-  ReferenceHost(const SpanImage& spans, const ShadeUniforms& shade)
+  CpuHost(const SpanImage& spans, const ShadeUniforms& shade)
       : GridUniforms(grid_uniforms(spans.grid)), ShadeUniforms(shade), spans_(spans) {}
 
-  // Per span (entry, exit) link and normal words; per pixel deep AO: filled by the caller.
+  // Per span (entry, exit) link and normal words; per pixel deep AO; per span the surface
+  // depths after the filter (empty: the span depths): filled by the caller.
   std::vector<uvec2> links_, normals_;
   std::vector<float> ao_;
+  std::vector<vec2> depths_;
+  // render/model/surface_filter.glsl's uniforms.
+  uint u_iteration = 0u, u_max_iterations = 0u;
+  float u_radius = 0.0f, u_iteration_scale = 0.0f;
 
   uint sd_count(ivec2 p) const { return record(p).count; }
   uint sd_offset(ivec2 p) const { return record(p).offset; }
@@ -32,7 +38,7 @@ class ReferenceHost : public GridUniforms, public ShadeUniforms {
   vec2 sd_raw_depths(uint span) const {
     return vec2(spans_.spans[span].entry, spans_.spans[span].exit);
   }
-  vec2 sd_depths(uint span) const { return sd_raw_depths(span); }
+  vec2 sd_depths(uint span) const { return depths_.empty() ? sd_raw_depths(span) : depths_[span]; }
   uvec2 sd_links(uint span) const { return links_[span]; }
   uvec2 sd_normals(uint span) const { return normals_[span]; }
   float sd_ao(ivec2 p) const { return ao_[pixel_index(p)]; }
@@ -47,6 +53,7 @@ class ReferenceHost : public GridUniforms, public ShadeUniforms {
 #include "render/model/links.glsl"
 #include "render/model/octahedral.glsl"
 #include "render/model/surface_geometry.glsl"
+#include "render/model/surface_filter.glsl"
 #include "render/model/environment.glsl"
 #include "render/model/lighting.glsl"
 #include "render/model/shade_modes.glsl"
@@ -70,11 +77,14 @@ class ReferenceHost : public GridUniforms, public ShadeUniforms {
   }
 
   // f(p, span index) for every span, rows in parallel.
+  template <class F> void each_span(F&& f) {
+    each_pixel([&](ivec2 p) {
+      for (uint k = 0; k < sd_count(p); ++k) f(p, sd_offset(p) + k);
+    });
+  }
   template <class F> std::vector<uvec2> per_span(F&& f) {
     std::vector<uvec2> out(spans_.spans.size());
-    each_pixel([&](ivec2 p) {
-      for (uint k = 0; k < sd_count(p); ++k) out[sd_offset(p) + k] = f(p, sd_offset(p) + k);
-    });
+    each_span([&](ivec2 p, uint s) { out[s] = f(p, s); });
     return out;
   }
 
@@ -84,6 +94,25 @@ class ReferenceHost : public GridUniforms, public ShadeUniforms {
                         for (int y = rows.begin(); y != rows.end(); ++y)
                           for (int x = 0; x < u_image.x; ++x) f(ivec2(x, y));
                       });
+  }
+
+  // The colour of pixel p in `mode`. Refraction runs the GPU's dispatches one after the other
+  // (at most `dispatches`, each `budget` column events); `unfinished` is set when the ray
+  // still marched after them and left to the environment.
+  vec3 shade_pixel(ivec2 p, ShadeMode mode, int dispatches, int budget, bool& unfinished) {
+    unfinished = false;
+    switch (mode) {
+      case ShadeMode::opaque: return shade_opaque(p);
+      case ShadeMode::translucent: return shade_translucent(p);
+      case ShadeMode::refractive: break;
+    }
+    RayState s = ray_start(p);
+    for (int d = 0; d < dispatches && s.marching; ++d) s = march(s, budget);
+    if (s.marching) {
+      unfinished = true;
+      s = ray_leave(s);
+    }
+    return s.color;
   }
 
  private:

@@ -1,10 +1,6 @@
 // One iteration of the surface filter ([ZD15] sec. 3.4, 4.6; render/passes/filter.h): one
-// thread per span smooths the reciprocal depth of its entry and its exit with the 3x3 binomial
-// kernel over the points its links reach across (render/model/links.glsl), from
-// surface_depths (the previous iteration) into filtered_depths. A point stops after n(z)
-// iterations (constant world radius); it never moves more than u_radius from its span depth,
-// nor past the midpoint to the neighbouring span of its column, and a span's entry never
-// passes its exit.
+// thread per span, the rule in render/model/surface_filter.glsl, from surface_depths (the
+// previous iteration) into filtered_depths.
 layout(local_size_x = 64) in;
 
 #define SPAN_IMAGE_ACCESS readonly
@@ -19,60 +15,15 @@ layout(std430, binding = FILTERED_DEPTHS_BINDING) writeonly buffer FilteredDepth
   vec2 filtered_depths[];
 };
 
-uniform uint u_iteration;       // 0-based
+uniform uint u_iteration;         // 0-based
 uniform uint u_max_iterations;
-uniform float u_radius;         // world units
+uniform float u_radius;           // world units
 uniform float u_iteration_scale;  // n(z) = ceil(u_iteration_scale / z^2)
 
-bool still_filtering(float depth) {
-  float n = ceil(u_iteration_scale / (depth * depth));
-  return float(u_iteration) < min(n, float(u_max_iterations));
-}
-
-// The kernel's weighted mean of 1/z: centre 4, direct neighbours 2, corners 1 (reached through
-// a horizontal neighbour), over the points linked across only; returns the depth.
-float smoothed_depth(SurfacePoint v, float depth) {
-  float sum = 4.0 / depth;
-  float weight = 4.0;
-  for (int dir = 0; dir < 2; ++dir) {
-    if (!link_is_across(v, dir)) continue;
-    SurfacePoint w = follow_link(v, dir);
-    sum += 2.0 / point_depth(w);
-    weight += 2.0;
-    for (int dir_y = 2; dir_y < 4; ++dir_y) {
-      if (!link_is_across(w, dir_y)) continue;
-      sum += 1.0 / point_depth(follow_link(w, dir_y));
-      weight += 1.0;
-    }
-  }
-  for (int dir = 2; dir < 4; ++dir) {
-    if (!link_is_across(v, dir)) continue;
-    sum += 2.0 / point_depth(follow_link(v, dir));
-    weight += 2.0;
-  }
-  return weight / sum;
-}
+#include "render/model/surface_filter.glsl"
 
 void main() {
   uint s = thread_index();
   if (s >= u_thread_count) return;
-  ivec2 p = owner_pixel(s);
-  uint first = sd_offset(p);
-  uint last = first + sd_count(p) - 1u;
-  vec2 original = span_depths[s];
-  vec2 current = surface_depths[s];
-  // Every point stays within the radius of where the voxelization put it, and on its side of
-  // the midpoints to the neighbouring spans' current depths (the neighbours' threads use the
-  // same midpoints, so no two spans of a column can cross).
-  float entry_lo = original.x - u_radius, exit_hi = original.y + u_radius;
-  if (s > first) entry_lo = max(entry_lo, 0.5 * (surface_depths[s - 1u].y + current.x));
-  if (s < last) exit_hi = min(exit_hi, 0.5 * (current.y + surface_depths[s + 1u].x));
-  vec2 next = current;
-  if (still_filtering(original.x))
-    next.x = clamp(smoothed_depth(surface_point(p, s, 0u), current.x), entry_lo, original.x + u_radius);
-  if (still_filtering(original.y))
-    next.y = clamp(smoothed_depth(surface_point(p, s, 1u), current.y), original.y - u_radius, exit_hi);
-  // The two sides of a thin sheet move alike; where they would cross, they meet halfway.
-  if (next.x > next.y) next = vec2(clamp(0.5 * (next.x + next.y), entry_lo, exit_hi));
-  filtered_depths[s] = next;
+  filtered_depths[s] = filter_span(owner_pixel(s), s);
 }

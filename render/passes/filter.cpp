@@ -13,14 +13,21 @@ namespace {
 // filter.comp's own buffer, after the surface data.
 enum Binding : GLuint { kFilteredDepths = binding::kSurfacesEnd };
 
+}  // namespace
+
 // 2 (radius / pixel(z))^2 = scale / z^2, pixel(z) = 2 tan(fov_y / 2) / height * z.
-double iteration_scale(const PerspectiveGrid& grid, double radius) {
+double FilterPass::iteration_scale(const PerspectiveGrid& grid, double radius) {
   const double pixel_at_unit_depth = 2 * grid.view().tan_half_y / grid.height();
   const double r = radius / pixel_at_unit_depth;
   return 2 * r * r;
 }
 
-}  // namespace
+int FilterPass::iterations(const PerspectiveGrid& grid, const SurfaceOptions& options) {
+  if (options.filter_radius <= 0 || options.max_iterations == 0) return 0;
+  // The nearest surface needs the most iterations.
+  return static_cast<int>(std::min<double>(
+      options.max_iterations, iterations_at(grid, options.filter_radius, grid.near())));
+}
 
 FilterPass::FilterPass(const gl::ShaderLibrary& shaders)
     : program_(shaders.compute("render/passes/filter.comp",
@@ -36,11 +43,7 @@ int FilterPass::run(const GpuSpanImage& image, GpuSurfaces& surfaces,
   validate(options);
   surfaces.set_filtered(-1);
   const std::size_t spans = image.span_count();
-  if (options.filter_radius <= 0 || options.max_iterations == 0 || spans == 0) return 0;
-  // The nearest surface needs the most iterations.
-  const int iterations = static_cast<int>(
-      std::min<double>(options.max_iterations,
-                       iterations_at(image.grid(), options.filter_radius, image.grid().near())));
+  const int iterations = spans == 0 ? 0 : FilterPass::iterations(image.grid(), options);
   if (iterations <= 0) return 0;
   for (int i = 0; i < 2; ++i) surfaces.filter_buffer(i).reserve(spans * 8);
   // Iteration 0 reads the span depths; then the buffers alternate.

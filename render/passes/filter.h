@@ -27,6 +27,10 @@ class FilterPass {
 
   // Iterations a point at `depth` gets (before the cap): ceil(2 (radius / pixel(depth))^2).
   static double iterations_at(const PerspectiveGrid& grid, double radius, double depth);
+  // The `scale` of n(z) = ceil(scale / z^2) (render/model/surface_filter.glsl).
+  static double iteration_scale(const PerspectiveGrid& grid, double radius);
+  // The iterations a frame runs: those of its nearest depth, capped; 0 with the filter off.
+  static int iterations(const PerspectiveGrid& grid, const SurfaceOptions& options);
 
  private:
   gl::Program program_;

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "render/passes/filter.h"
-#include "render/reference/reference_host.h"
+#include "render/model/cpu_host.h"
 #include "render_fixture.h"
 #include "shading_fixture.h"
 #include "tools/scenes/scenes.h"
@@ -19,7 +19,7 @@ namespace {
 // roughness (the median leaves out the true edges of the shape).
 double roughness(const SpanImage& spans, const std::vector<glm::uvec2>& links,
                  const std::vector<glm::uvec2>& normals) {
-  model::ReferenceHost host(spans, {});
+  model::CpuHost host(spans, {});
   std::vector<double> angles;
   for (int y = 0; y + 1 < spans.height(); ++y)
     for (int x = 0; x + 1 < spans.width(); ++x)

@@ -1,0 +1,109 @@
+#include "render/cpu/cpu_renderer.h"
+
+#include <algorithm>
+#include <atomic>
+
+#include "render/model/cpu_host.h"
+#include "render/passes/filter.h"
+
+namespace voxspan {
+
+const SpanImage& CpuRenderer::cast(const Camera& camera, std::span<const ParticleSphere> particles,
+                                   const CellStatesView& cells, const VoxelizeOptions& options,
+                                   gl::PassTimer& timer, FrameStats& stats) {
+  validate(options);
+  PerspectiveGrid grid;
+  CullCounts culled;
+  {
+    auto t = timer.cpu("frame");
+    grid = PerspectiveGrid::fit(camera, particles, options.grid, &culled, options.combine_ranks);
+  }
+  report_grid_fit(grid, culled, particles.size(), stats);
+  auto t = timer.cpu("cast");
+  const CastCounts counts =
+      caster_.run(grid, particles, cells,
+                  {options.gap_bridging, options.max_spans, options.use_cell_states}, spans_);
+  stats.set_count("tiles", counts.tiles);
+  stats.set_count("cast.cell_boxes", counts.cell_boxes);
+  stats.set_count("cast.chord_tests", counts.chord_tests);
+  stats.set_count("spans.stored", std::int64_t(spans_.spans.size()));
+  stats.set_count("spans.found", spans_.total_spans());
+  stats.set_count("pixels.capped", spans_.capped_pixels());
+  return spans_;
+}
+
+const FloatImage& CpuRenderer::shade(const SpanImage& spans, const SurfaceOptions& surfaces,
+                                     const ShadeOptions& shade, gl::PassTimer& timer,
+                                     FrameStats& stats) {
+  validate(surfaces);
+  validate(shade);
+  model::CpuHost host(spans, model::shade_uniforms(shade));
+  {
+    auto t = timer.cpu("connect");
+    host.links_ = host.per_span(
+        [&](model::ivec2 p, model::uint s) { return host.connect_span(p, s - host.sd_offset(p)); });
+    std::int64_t unlinkable = 0;
+    for (const PixelSpans& p : spans.pixels)
+      unlinkable += p.count > VX_LINK_MAX_INDEX + 1u ? p.count - VX_LINK_MAX_INDEX - 1u : 0;
+    stats.set_count("links.unlinkable_spans", unlinkable);
+  }
+  {
+    auto t = timer.cpu("filter");
+    const int iterations = spans.spans.empty() ? 0 : FilterPass::iterations(spans.grid, surfaces);
+    host.u_max_iterations = model::uint(surfaces.max_iterations);
+    host.u_radius = float(surfaces.filter_radius);
+    host.u_iteration_scale = float(FilterPass::iteration_scale(spans.grid, surfaces.filter_radius));
+    std::vector<model::vec2> next(spans.spans.size());
+    for (int i = 0; i < iterations; ++i) {
+      host.u_iteration = model::uint(i);
+      host.each_span([&](model::ivec2 p, model::uint s) { next[s] = host.filter_span(p, s); });
+      std::swap(host.depths_, next);  // iteration 0 read the span depths (depths_ empty)
+      next.resize(spans.spans.size());
+    }
+    stats.set_count("filter.iterations", iterations);
+  }
+  {
+    auto t = timer.cpu("normals");
+    host.normals_ = host.per_span(
+        [&](model::ivec2 p, model::uint s) { return host.span_normal_words(p, s); });
+  }
+  if (shade.deep_ao) {
+    auto t = timer.cpu("deep_ao");
+    host.ao_.assign(spans.pixels.size(), 1.0f);
+    host.each_pixel([&](model::ivec2 p) { host.ao_[host.pixel_index(p)] = host.deep_ao(p); });
+  }
+  auto t = timer.cpu("shade");
+  std::uint32_t most_spans = 0;
+  for (const PixelSpans& p : spans.pixels) most_spans = std::max(most_spans, p.count);
+  const int dispatches = refract_dispatch_limit(spans.width(), spans.height(), most_spans, shade);
+  if (shade.mode == ShadeMode::refractive) host.gather_block_bounds();
+  if (image_.width != spans.width() || image_.height != spans.height())
+    image_ = FloatImage(spans.width(), spans.height());
+  std::atomic<std::int64_t> unfinished{0};
+  host.each_pixel([&](model::ivec2 p) {
+    bool left = false;
+    const model::vec3 c = host.shade_pixel(p, shade.mode, dispatches, shade.march_budget, left);
+    if (left) ++unfinished;
+    image_.set(p.x, p.y, glm::vec4(c, 1.0f));
+  });
+  if (shade.mode == ShadeMode::refractive) {
+    stats.set_count("refract.dispatches", dispatches);
+    stats.set_count("refract.unfinished", unfinished.load());
+  }
+  return image_;
+}
+
+void CpuRenderer::first_hit(const SpanImage& spans, FloatImage& out) {
+  if (out.width != spans.width() || out.height != spans.height())
+    out = FloatImage(spans.width(), spans.height());
+  const model::GridUniforms g = model::grid_uniforms(spans.grid);
+  for (int y = 0; y < spans.height(); ++y)
+    for (int x = 0; x < spans.width(); ++x) {
+      const PixelSpans& p = spans.pixel(x, y);
+      const float distance =
+          p.count > 0 ? spans.spans[p.offset].entry * g.ray_scale(model::ivec2(x, y)) : 0.0f;
+      out.set(x, y, glm::vec4(distance, 0.0f, 0.0f, 0.0f));
+    }
+}
+
+}  // namespace voxspan
