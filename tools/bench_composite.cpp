@@ -216,10 +216,13 @@ class RankProbe final : public SpanStage {
   const GpuSpanImage* run(const GpuSpanImage* spans, const std::string&, gl::PassTimer& timer,
                           FrameStats&) override {
     if (capture && spans != nullptr) keep(spans->download());
-    {
-      auto t = timer.cpu("wait");
-      comm_.agree(true, {});
-    }
+    wait(timer);
+    return spans;
+  }
+  const SpanImage* run(const SpanImage* spans, const std::string&, gl::PassTimer& timer,
+                       FrameStats&) override {
+    if (capture && spans != nullptr) keep(*spans);
+    wait(timer);
     return spans;
   }
 
@@ -230,6 +233,10 @@ class RankProbe final : public SpanStage {
   std::vector<std::int64_t> to_band;  // its part of every rank's band of rows
 
  private:
+  void wait(gl::PassTimer& timer) {
+    auto t = timer.cpu("wait");
+    comm_.agree(true, {});
+  }
   void keep(const SpanImage& local) {
     grid = local.grid;
     image = encode_rows(local, 0, local.height());
@@ -438,7 +445,7 @@ class Bench {
     renderer.gpu_memory_mib = a_.budget_mib;
     renderer.composite = scheme;
     SchemeView v;
-    ViewContext c{shaders_, renderer, scene.state.spacing, {}, {}};
+    ViewContext c{shaders_, renderer, RenderBackend::gl, scene.state.spacing, {}, {}};
     c.span_stages = [&](const MergeSettings& m) {
       std::vector<std::unique_ptr<SpanStage>> stages;
       auto probe = std::make_unique<RankProbe>(comm_, m);

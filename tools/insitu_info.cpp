@@ -1,11 +1,13 @@
 // insitu-info: which renderer the library would use here, its GL version, the limits that size
 // our buffers and dispatches, and the library's version.
-//   insitu-info [--platform auto|nvidia|device|surfaceless]
+//   insitu-info [--backend auto|gl|cpu] [--platform auto|nvidia|device|surfaceless]
 // Exit status 0 on success; 1 with one error line when no context can be made.
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <string>
 
+#include "render/backend.h"
 #include "render/gl/context.h"
 #include "render/gl/info.h"
 #include "usage.h"
@@ -17,7 +19,6 @@ namespace {
 std::string mib(std::int64_t bytes) { return std::to_string(bytes / (1024 * 1024)) + " MiB"; }
 
 void print(const voxspan::gl::Info& i) {
-  std::printf("voxspan         %s\n", voxspan::version());
   std::printf("platform        %s (%s)\n", i.platform.c_str(), i.device.c_str());
   std::printf("vendor          %s\n", i.vendor.c_str());
   std::printf("renderer        %s\n", i.renderer.c_str());
@@ -40,16 +41,30 @@ void print(const voxspan::gl::Info& i) {
 }
 
 constexpr char kUsage[] =
-    "usage: insitu-info [--platform auto|nvidia|device|surfaceless]\n"
+    "usage: insitu-info [--backend auto|gl|cpu] [--platform auto|nvidia|device|surfaceless]\n"
     "  VOXSPAN_GL_PLATFORM overrides --platform when set.\n";
 
 }  // namespace
 
 int main(int argc, char** argv) {
   voxspan::gl::ContextOptions options;
+  voxspan::RenderBackend backend = voxspan::RenderBackend::automatic;
   for (int a = 1; a < argc; ++a) {
     if (!std::strcmp(argv[a], "--help") || !std::strcmp(argv[a], "-h"))
       return voxspan::tools::print_usage(stdout, kUsage);
+    if (!std::strcmp(argv[a], "--backend") && a + 1 < argc) {
+      const auto b =
+          voxspan::value_of<voxspan::RenderBackend>(voxspan::kRenderBackendNames, argv[++a]);
+      if (!b) {
+        std::fprintf(stderr,
+                     "insitu-info: error: --backend %s is not a renderer (expected auto, gl or "
+                     "cpu)\n",
+                     argv[a]);
+        return 2;
+      }
+      backend = *b;
+      continue;
+    }
     if (!std::strcmp(argv[a], "--platform") && a + 1 < argc) {
       if (!voxspan::gl::parse_platform(argv[++a], options.platform)) {
         std::fprintf(stderr,
@@ -63,8 +78,19 @@ int main(int argc, char** argv) {
     return voxspan::tools::print_usage(stderr, kUsage);
   }
   try {
-    voxspan::gl::Context context(options);
-    print(voxspan::gl::query_info(context));
+    // What a run would render with, then the GL context's facts where there is one.
+    voxspan::BackendChoice choice = voxspan::choose_backend(backend, options);
+    std::printf("voxspan         %s\n", voxspan::version());
+    std::printf("renders with    %s\n", voxspan::describe(choice).c_str());
+    if (!choice.context) {
+      try {
+        choice.context = std::make_unique<voxspan::gl::Context>(options);
+      } catch (const voxspan::Error& e) {
+        std::printf("OpenGL          none here (%s)\n", e.what());
+        return 0;
+      }
+    }
+    print(voxspan::gl::query_info(*choice.context));
     return 0;
   } catch (const voxspan::Error& e) {
     std::fprintf(stderr, "insitu-info: error: %s\n", e.what());

@@ -69,7 +69,11 @@ const Section<RendererConfig>& renderer_section() {
   using R = RendererConfig;
   static const Section<R> s{
       "renderer",
-      {schema::choice("gl_platform", &R::platform, gl::kPlatformNames,
+      {schema::choice("backend", &R::backend, kRenderBackendNames,
+                      "the GL renderer (`gl`, llvmpipe included) or the CPU one (`cpu`); `auto` "
+                      "= GL on a GPU or on the `gl_platform` named, else the CPU renderer "
+                      "(render/backend.h)"),
+       schema::choice("gl_platform", &R::platform, gl::kPlatformNames,
                       "as `VOXSPAN_GL_PLATFORM` (which overrides it)"),
        schema::flag("debug", &R::debug, "GL debug context"),
        schema::number("gpu_memory_mib", &R::gpu_memory_mib, schema::between(1, 1 << 24),

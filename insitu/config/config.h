@@ -20,6 +20,7 @@
 
 #include "insitu/config/settings.h"
 #include "insitu/config/trigger.h"
+#include "render/backend.h"
 #include "render/gl/context.h"
 
 namespace voxspan {
@@ -34,6 +35,7 @@ inline constexpr EnumName<CompositeScheme> kCompositeSchemeNames[] = {
     {"direct_send", CompositeScheme::direct_send}, {"root", CompositeScheme::root}};
 
 struct RendererConfig {
+  RenderBackend backend = RenderBackend::automatic;
   gl::Platform platform = gl::Platform::automatic;
   bool debug = false;
   double gpu_memory_mib = 512;  // budget for the tiled bit grid and span buffers

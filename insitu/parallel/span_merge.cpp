@@ -101,6 +101,8 @@ void merge_pixel(const PerspectiveGrid& grid, std::span<const Entry> entries,
   const GapRule rule(grid, x, y, settings.gap_bridging);
   auto bridged = [&](const Span& run, const Span& next) {
     if (next.entry <= run.exit) return true;  // touching or overlapping: one run of bits
+    if (settings.exact_depths)
+      return (double(next.entry) - double(run.exit)) * scale < settings.gap_bridging;
     return rule.closes(run.exit, next.entry);
   };
   merged.clear();

@@ -2,7 +2,8 @@
 // several ranks in the same perspective grid: per pixel, the union of every rank's intervals,
 // then gap bridging again (the compress pass's rule, [ZD15] sec. 3.2, 4.4: a gap closes when
 // it is shorter than g along the ray, measured between the centres of the voxels on either
-// side), then the span cap (sec. 3.1). Union is idempotent, so a ghost particle voxelized on
+// side; between the depths themselves for the CPU renderer's exact spans), then the span cap
+// (sec. 3.1). Union is idempotent, so a ghost particle voxelized on
 // two ranks does no harm, and the result does not depend on how the fluid was split: the spans
 // are those one rank would find from the union of the bit columns. A pixel that only one rank
 // saw keeps that rank's record as it is (bit for bit); a merged one gets its `inside` summed
@@ -24,6 +25,10 @@ namespace voxspan {
 struct MergeSettings {
   double gap_bridging = 0;      // g, world units along the ray; 0: no bridging
   std::uint32_t max_spans = 0;  // cap on stored spans per pixel after the merge; 0: none
+  // The spans are exact (the CPU renderer's, render/cpu/span_caster.h): a gap closes when the
+  // distance between the depths themselves is shorter than g, as the caster decides it,
+  // rather than between voxel centres.
+  bool exact_depths = false;
 };
 
 // Rows [row_begin, row_end) of `image` (its pixels with spans only).

@@ -82,7 +82,7 @@ struct InsituPipeline::Impl {
   double planned_time = 0;
   std::int64_t last_step = std::numeric_limits<std::int64_t>::min();
 
-  gl::Context context;
+  BackendChoice backend;  // its GL context, when the GL renderer draws
   std::thread::id gl_thread = std::this_thread::get_id();
   gl::ShaderLibrary shaders;
   gl::PassTimer timer;
@@ -100,8 +100,8 @@ struct InsituPipeline::Impl {
         comm(communicator),
         schedule(config),
         plan(schedule.blank()),
-        context(prepared(config, communicator)),
-        timer(context.has_gpu_timers()),
+        backend(choose_backend(config.renderer.backend, prepared(config, communicator))),
+        timer(backend.context && backend.context->has_gpu_timers()),
         writer(config.writer) {
     for (const ConfiguredView& v : config.views) view_names.push_back(v.settings->name);
     const ViewContext view_context = make_view_context();
@@ -125,7 +125,7 @@ struct InsituPipeline::Impl {
 
   // With ranks: the views fit one grid, and their span images meet in a compositor.
   ViewContext make_view_context() {
-    ViewContext c{shaders, config.renderer, spacing, {}, {}};
+    ViewContext c{shaders, config.renderer, backend.backend, spacing, {}, {}};
     if (comm == nullptr || comm->size() == 1) return c;
     c.span_stages = [this](const MergeSettings& m) {
       std::vector<std::unique_ptr<SpanStage>> stages;
@@ -157,8 +157,8 @@ struct InsituPipeline::Impl {
   }
 
   void make_current() {
-    if (std::this_thread::get_id() == gl_thread) return;
-    context.make_current();
+    if (!backend.context || std::this_thread::get_id() == gl_thread) return;
+    backend.context->make_current();
     gl_thread = std::this_thread::get_id();
   }
 
@@ -401,8 +401,7 @@ const Config& InsituPipeline::config() const { return impl_->config; }
 std::string InsituPipeline::description() const {
   const Impl& m = *impl_;
   std::ostringstream s;
-  s << m.context.description() << ", " << m.views.size()
-    << (m.views.size() == 1 ? " view" : " views");
+  s << describe(m.backend) << ", " << m.views.size() << (m.views.size() == 1 ? " view" : " views");
   for (std::size_t i = 0; i < m.views.size(); ++i)
     s << (i ? ", " : " (") << m.views[i].name << " " << m.views[i].view->description()
       << (i + 1 == m.views.size() ? ")" : "");

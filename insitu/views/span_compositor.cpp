@@ -24,26 +24,43 @@ std::vector<std::byte> SpanCompositor::merge(const SpanImage& local, FrameStats&
   return merge_rows(local.grid, received, settings_);
 }
 
-const GpuSpanImage* SpanCompositor::run(const GpuSpanImage* spans, const std::string& failure,
-                                        gl::PassTimer& timer, FrameStats& stats) {
-  const std::int64_t bytes_before = comm_.bytes_sent();
-  const Agreement agreed = comm_.agree(spans != nullptr, failure);
+void SpanCompositor::agree(bool ok, const std::string& failure) {
+  const Agreement agreed = comm_.agree(ok, failure);
   if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
-  {
-    auto t = timer.gpu("composite_download");
-    spans->download(local_);
-  }
+}
+
+bool SpanCompositor::composite(const SpanImage& local, std::int64_t bytes_before,
+                               gl::PassTimer& timer, FrameStats& stats) {
   std::vector<std::vector<std::byte>> bands;
   {
     auto t = timer.cpu("composite");
-    std::vector<std::byte> mine = merge(local_, stats);
+    std::vector<std::byte> mine = merge(local, stats);
     if (scheme_ == CompositeScheme::direct_send) bands = comm_.gather(mine);
     else bands.push_back(std::move(mine));
   }
   stats.set_count("composite.bytes_sent", comm_.bytes_sent() - bytes_before);
-  if (!comm_.root()) return nullptr;
+  if (!comm_.root()) return false;
+  decode_image(local.grid, bands, composite_);
+  return true;
+}
+
+const SpanImage* SpanCompositor::run(const SpanImage* spans, const std::string& failure,
+                                     gl::PassTimer& timer, FrameStats& stats) {
+  const std::int64_t bytes_before = comm_.bytes_sent();
+  agree(spans != nullptr, failure);
+  return composite(*spans, bytes_before, timer, stats) ? &composite_ : nullptr;
+}
+
+const GpuSpanImage* SpanCompositor::run(const GpuSpanImage* spans, const std::string& failure,
+                                        gl::PassTimer& timer, FrameStats& stats) {
+  const std::int64_t bytes_before = comm_.bytes_sent();
+  agree(spans != nullptr, failure);
+  {
+    auto t = timer.gpu("composite_download");
+    spans->download(local_);
+  }
+  if (!composite(local_, bytes_before, timer, stats)) return nullptr;
   auto t = timer.gpu("composite_upload");
-  decode_image(local_.grid, bands, composite_);
   merged_.upload(composite_);
   return &merged_;
 }

@@ -9,7 +9,8 @@
 //     simplest, for comparison: its root receives everything).
 // Counts per step: composite.bytes_sent (this rank), composite.ranks_with_spans (the ranks that
 // sent this rank pixels of the bands it merges; on the root under `root`). Times:
-// composite_download, composite (the exchange and the merge), composite_upload (root).
+// composite (the exchange and the merge), and with the GL renderer composite_download and
+// composite_upload (root): the CPU renderer's span images are in host memory already.
 #pragma once
 
 #include <string>
@@ -27,15 +28,23 @@ class SpanCompositor final : public SpanStage {
 
   const GpuSpanImage* run(const GpuSpanImage* spans, const std::string& failure,
                           gl::PassTimer& timer, FrameStats& stats) override;
+  const SpanImage* run(const SpanImage* spans, const std::string& failure, gl::PassTimer& timer,
+                       FrameStats& stats) override;
 
  private:
   // The merged bands this rank holds after the exchange.
   std::vector<std::byte> merge(const SpanImage& local, FrameStats& stats);
+  // Every rank's failure or none: throws naming the first rank that failed.
+  void agree(bool ok, const std::string& failure);
+  // The exchange and merge of `local`; true on the root, whose composite_ then holds the
+  // composite. composite.bytes_sent counts from `bytes_before`.
+  bool composite(const SpanImage& local, std::int64_t bytes_before, gl::PassTimer& timer,
+                 FrameStats& stats);
 
   Communicator& comm_;
   const MergeSettings settings_;
   const CompositeScheme scheme_;
-  SpanImage local_;      // this rank's spans, read back
+  SpanImage local_;      // this rank's spans, read back (GL renderer)
   SpanImage composite_;  // the root's composite on the CPU
   GpuSpanImage merged_;  // ... on the GPU, for the passes after this stage
 };

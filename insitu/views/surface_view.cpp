@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "insitu/views/view.h"
+#include "render/cpu/cpu_renderer.h"
 #include "render/passes/first_hit.h"
 #include "render/renderer.h"
 #include "voxspan/error.h"
@@ -107,41 +108,38 @@ const schema::Section<SurfaceSettings>& surface_section() {
   return s;
 }
 
-class SurfaceView final : public View {
- public:
-  SurfaceView(const SurfaceSettings& s, const ViewContext& c)
-      : settings_(s),
-        options_(render_options(s, c.renderer, c.particle_spacing)),
-        renderer_(c.shaders),
-        first_hit_(c.shaders),
-        stages_(c.span_stages
-                    ? c.span_stages({options_.voxelize.gap_bridging, options_.voxelize.max_spans})
-                    : std::vector<std::unique_ptr<SpanStage>>{}),
-        combine_ranks_(c.combine_ranks) {}
+// The span image `make` makes (the renderer's voxelization or cast) through the view's stages,
+// which take part even where `make` threw on this process, and then throw for every one.
+template <class Image, class Make>
+const Image* through_stages(Make&& make, const std::vector<std::unique_ptr<SpanStage>>& stages,
+                            gl::PassTimer& timer, FrameStats& stats) {
+  const Image* spans = nullptr;
+  std::string failure;
+  try {
+    spans = &make();
+  } catch (const std::exception& e) {
+    if (stages.empty()) throw;
+    failure = e.what();
+  }
+  for (const std::unique_ptr<SpanStage>& stage : stages)
+    spans = stage->run(spans, failure, timer, stats);
+  return spans;
+}
 
-  bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
-              ViewProducts& out) override {
-    RenderOptions& o = step_options_;
-    o = options_;
-    if (!step.fluid_box.empty())
-      o.shade.environment.ground_height = lowest(step.fluid_box, o.shade.environment.up);
-    // Options are checked before any GPU work, so a bad one costs nothing.
-    validate(o.surfaces);
-    validate(o.shade);
-    // With stages, every span goes on (a merge needs them all); the stages apply the cap.
-    if (!stages_.empty()) o.voxelize.max_spans = 0;
-    o.voxelize.combine_ranks = combine_ranks_;
-    const GpuSpanImage* spans = nullptr;
-    std::string failure;
-    try {
-      spans = &renderer_.voxelizer().run(step.camera, step.data.boundary, step.data.cells,
-                                         o.voxelize, timer, stats);
-    } catch (const std::exception& e) {
-      if (stages_.empty()) throw;
-      failure = e.what();  // the stages take part all the same, then throw for every rank
-    }
-    for (const std::unique_ptr<SpanStage>& stage : stages_)
-      spans = stage->run(spans, failure, timer, stats);
+// The GL renderer's frame: voxelize, the stages, shade, read back.
+class GlSurface {
+ public:
+  explicit GlSurface(const gl::ShaderLibrary& shaders) : renderer_(shaders), first_hit_(shaders) {}
+
+  bool render(const ViewStep& step, const RenderOptions& o,
+              const std::vector<std::unique_ptr<SpanStage>>& stages, gl::PassTimer& timer,
+              FrameStats& stats, ViewProducts& out) {
+    const GpuSpanImage* spans = through_stages<GpuSpanImage>(
+        [&]() -> const GpuSpanImage& {
+          return renderer_.voxelizer().run(step.camera, step.data.boundary, step.data.cells,
+                                           o.voxelize, timer, stats);
+        },
+        stages, timer, stats);
     if (spans == nullptr) return false;  // nothing to shade in this process
     const GpuFloatImage& image = renderer_.shade(*spans, o.surfaces, o.shade, timer, stats);
     {
@@ -156,6 +154,71 @@ class SurfaceView final : public View {
     return true;
   }
 
+ private:
+  Renderer renderer_;
+  FirstHitPass first_hit_;
+  GpuFloatImage depth_;
+};
+
+// The CPU renderer's: cast, the stages, shade; everything in host memory already.
+class CpuSurface {
+ public:
+  bool render(const ViewStep& step, const RenderOptions& o,
+              const std::vector<std::unique_ptr<SpanStage>>& stages, gl::PassTimer& timer,
+              FrameStats& stats, ViewProducts& out) {
+    const SpanImage* spans = through_stages<SpanImage>(
+        [&]() -> const SpanImage& {
+          return renderer_.cast(step.camera, step.data.boundary, step.data.cells, o.voxelize, timer,
+                                stats);
+        },
+        stages, timer, stats);
+    if (spans == nullptr) return false;
+    const FloatImage& image = renderer_.shade(*spans, o.surfaces, o.shade, timer, stats);
+    {
+      auto t = timer.cpu("readback");  // the copy the outputs take, as the GL renderer's
+      out.picture = image;
+    }
+    if (step.needs.first_hit_depth) {
+      auto t = timer.cpu("first_hit");
+      CpuRenderer::first_hit(*spans, out.first_hit_depth);
+    }
+    return true;
+  }
+
+ private:
+  CpuRenderer renderer_;
+};
+
+class SurfaceView final : public View {
+ public:
+  SurfaceView(const SurfaceSettings& s, const ViewContext& c)
+      : settings_(s),
+        options_(render_options(s, c.renderer, c.particle_spacing)),
+        stages_(c.span_stages
+                    ? c.span_stages({options_.voxelize.gap_bridging, options_.voxelize.max_spans,
+                                     c.backend == RenderBackend::cpu})
+                    : std::vector<std::unique_ptr<SpanStage>>{}),
+        combine_ranks_(c.combine_ranks) {
+    if (c.backend == RenderBackend::gl) gl_ = std::make_unique<GlSurface>(c.shaders);
+    else cpu_ = std::make_unique<CpuSurface>();
+  }
+
+  bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
+              ViewProducts& out) override {
+    RenderOptions& o = step_options_;
+    o = options_;
+    if (!step.fluid_box.empty())
+      o.shade.environment.ground_height = lowest(step.fluid_box, o.shade.environment.up);
+    // Options are checked before any work, so a bad one costs nothing.
+    validate(o.surfaces);
+    validate(o.shade);
+    // With stages, every span goes on (a merge needs them all); the stages apply the cap.
+    if (!stages_.empty()) o.voxelize.max_spans = 0;
+    o.voxelize.combine_ranks = combine_ranks_;
+    return gl_ ? gl_->render(step, o, stages_, timer, stats, out)
+               : cpu_->render(step, o, stages_, timer, stats, out);
+  }
+
   std::string description() const override {
     return std::string(shade_mode_name(settings_.shading)) + " " + std::to_string(settings_.width) +
            "x" + std::to_string(settings_.height);
@@ -165,11 +228,10 @@ class SurfaceView final : public View {
   const SurfaceSettings settings_;
   const RenderOptions options_;  // made once; only the ground follows the fluid
   RenderOptions step_options_;
-  Renderer renderer_;
-  FirstHitPass first_hit_;
-  GpuFloatImage depth_;
   std::vector<std::unique_ptr<SpanStage>> stages_;
   DepthRangeCombine combine_ranks_;
+  std::unique_ptr<GlSurface> gl_;  // one of the two
+  std::unique_ptr<CpuSurface> cpu_;
 };
 
 }  // namespace

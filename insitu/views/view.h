@@ -36,14 +36,19 @@ namespace voxspan {
 class SpanStage {
  public:
   virtual ~SpanStage() = default;
+  // The GL renderer's span image, on the GPU.
   virtual const GpuSpanImage* run(const GpuSpanImage* spans, const std::string& failure,
                                   gl::PassTimer& timer, FrameStats& stats) = 0;
+  // The CPU renderer's, in host memory.
+  virtual const SpanImage* run(const SpanImage* spans, const std::string& failure,
+                               gl::PassTimer& timer, FrameStats& stats) = 0;
 };
 
 // What a view is made with.
 struct ViewContext {
-  const gl::ShaderLibrary& shaders;
+  const gl::ShaderLibrary& shaders;  // the GL renderer's (unused by the CPU one)
   const RendererConfig& renderer;
+  RenderBackend backend;        // resolved: gl or cpu
   double particle_spacing = 0;  // the solver's rest spacing; 0 when unknown
   // The stages a span-image view runs between its voxelization and its surfaces, made for its
   // gap bridging and span cap (none in a single process: then it is empty).

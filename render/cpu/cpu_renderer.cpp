@@ -38,10 +38,19 @@ const FloatImage& CpuRenderer::shade(const SpanImage& spans, const SurfaceOption
   validate(surfaces);
   validate(shade);
   model::CpuHost host(spans, model::shade_uniforms(shade));
+  // The buffers of the last frame, back to buffers_ however this one ends.
+  struct Lend {
+    model::CpuHost& host;
+    model::HostBuffers& buffers;
+    Lend(model::CpuHost& h, model::HostBuffers& b) : host(h), buffers(b) { host.swap_buffers(b); }
+    ~Lend() { host.swap_buffers(buffers); }
+  } lend(host, buffers_);
+  host.depths_.clear();  // the span depths until the filter runs
   {
     auto t = timer.cpu("connect");
-    host.links_ = host.per_span(
-        [&](model::ivec2 p, model::uint s) { return host.connect_span(p, s - host.sd_offset(p)); });
+    host.fill_per_span(host.links_, [&](model::ivec2 p, model::uint s) {
+      return host.connect_span(p, s - host.sd_offset(p));
+    });
     std::int64_t unlinkable = 0;
     for (const PixelSpans& p : spans.pixels)
       unlinkable += p.count > VX_LINK_MAX_INDEX + 1u ? p.count - VX_LINK_MAX_INDEX - 1u : 0;
@@ -53,19 +62,18 @@ const FloatImage& CpuRenderer::shade(const SpanImage& spans, const SurfaceOption
     host.u_max_iterations = model::uint(surfaces.max_iterations);
     host.u_radius = float(surfaces.filter_radius);
     host.u_iteration_scale = float(FilterPass::iteration_scale(spans.grid, surfaces.filter_radius));
-    std::vector<model::vec2> next(spans.spans.size());
     for (int i = 0; i < iterations; ++i) {
       host.u_iteration = model::uint(i);
-      host.each_span([&](model::ivec2 p, model::uint s) { next[s] = host.filter_span(p, s); });
-      std::swap(host.depths_, next);  // iteration 0 read the span depths (depths_ empty)
-      next.resize(spans.spans.size());
+      host.fill_per_span(next_depths_,
+                         [&](model::ivec2 p, model::uint s) { return host.filter_span(p, s); });
+      host.depths_.swap(next_depths_);  // iteration 0 read the span depths (depths_ empty)
     }
     stats.set_count("filter.iterations", iterations);
   }
   {
     auto t = timer.cpu("normals");
-    host.normals_ = host.per_span(
-        [&](model::ivec2 p, model::uint s) { return host.span_normal_words(p, s); });
+    host.fill_per_span(host.normals_,
+                       [&](model::ivec2 p, model::uint s) { return host.span_normal_words(p, s); });
   }
   if (shade.deep_ao) {
     auto t = timer.cpu("deep_ao");

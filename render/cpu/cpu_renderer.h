@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "render/cpu/span_caster.h"
+#include "render/model/cpu_host.h"
 #include "render/float_image.h"
 #include "render/frame_stats.h"
 #include "render/gl/pass_timer.h"
@@ -50,6 +51,8 @@ class CpuRenderer {
   SpanCaster caster_;
   SpanImage spans_;
   FloatImage image_;
+  model::HostBuffers buffers_;            // the surface data, kept from frame to frame
+  std::vector<model::vec2> next_depths_;  // the filter's other buffer
 };
 
 }  // namespace voxspan

@@ -138,6 +138,7 @@ struct SpanCaster::Work {
   std::vector<Box> boxes;
   TileBins sphere_bins, box_bins;
   std::vector<std::vector<Span>> tile_spans;
+  std::vector<std::uint32_t> tile_base;  // the first span of each tile in the image
   tbb::enumerable_thread_specific<TileLists> lists;
 };
 
@@ -241,9 +242,11 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
   });
 
   // Tiles join in their order: offsets move by the spans of the tiles before.
-  std::vector<std::uint32_t> base(std::size_t(tiles) + 1, 0);
+  std::vector<std::uint32_t>& base = w.tile_base;
+  base.assign(std::size_t(tiles) + 1, 0);
   for (int t = 0; t < tiles; ++t)
-    base[std::size_t(t) + 1] = base[std::size_t(t)] + std::uint32_t(w.tile_spans[std::size_t(t)].size());
+    base[std::size_t(t) + 1] =
+        base[std::size_t(t)] + std::uint32_t(w.tile_spans[std::size_t(t)].size());
   out.spans.resize(base.back());
   tbb::parallel_for(tbb::blocked_range<int>(0, tiles), [&](const tbb::blocked_range<int>& range) {
     for (int t = range.begin(); t != range.end(); ++t) {

@@ -18,6 +18,14 @@
 
 namespace voxspan::model {
 
+// The host's per-frame vectors, which a caller keeps from frame to frame and swaps in and out
+// (CpuHost::swap_buffers), so that a steady frame allocates nothing.
+struct HostBuffers {
+  std::vector<uvec2> links, normals;
+  std::vector<float> ao;
+  std::vector<vec2> depths, block_bounds;
+};
+
 class CpuHost : public GridUniforms, public ShadeUniforms {
  public:
   CpuHost(const SpanImage& spans, const ShadeUniforms& shade)
@@ -76,6 +84,14 @@ class CpuHost : public GridUniforms, public ShadeUniforms {
       }
   }
 
+  void swap_buffers(HostBuffers& b) {
+    links_.swap(b.links);
+    normals_.swap(b.normals);
+    ao_.swap(b.ao);
+    depths_.swap(b.depths);
+    block_bounds_.swap(b.block_bounds);
+  }
+
   // f(p, span index) for every span, rows in parallel.
   template <class F> void each_span(F&& f) {
     each_pixel([&](ivec2 p) {
@@ -83,9 +99,14 @@ class CpuHost : public GridUniforms, public ShadeUniforms {
     });
   }
   template <class F> std::vector<uvec2> per_span(F&& f) {
-    std::vector<uvec2> out(spans_.spans.size());
-    each_span([&](ivec2 p, uint s) { out[s] = f(p, s); });
+    std::vector<uvec2> out;
+    fill_per_span(out, f);
     return out;
+  }
+  // out[s] = f(p, s) for every span s (of pixel p), `out` resized.
+  template <class T, class F> void fill_per_span(std::vector<T>& out, F&& f) {
+    out.resize(spans_.spans.size());
+    each_span([&](ivec2 p, uint s) { out[s] = f(p, s); });
   }
 
   template <class F> void each_pixel(F&& f) {

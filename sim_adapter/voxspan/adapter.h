@@ -87,9 +87,10 @@ class Pipeline {
   // must be cheap and must not allocate. Lets the runtime's own triggers decide.
   virtual bool wants_step(std::int64_t /*step*/, double /*time*/) { return true; }
   // Called on every step the pipeline wants, after the classification and again after
-  // process(), with the status here (ok, or why it failed). A pipeline spread over MPI ranks returns the step's status on all
-  // of them (a failure on any rank, naming it), so that every rank skips a failed step
-  // together and none waits for another; one process returns `local`.
+  // process(), with the status here (ok, or why it failed). A pipeline spread over MPI ranks
+  // returns the step's status on all of them (a failure on any rank, naming it), so that
+  // every rank skips a failed step together and none waits for another; one process returns
+  // `local`.
   virtual Status agree(const Status& local) { return local; }
   // False on the processes that must not log the step's failures (every MPI rank but one).
   virtual bool reports_failures() const { return true; }

@@ -122,9 +122,13 @@ TEST_F(DamBreakRun, StatsHaveOneCompleteLinePerRenderStep) {
     EXPECT_GT(counter(l, "boundary"), 0);
     EXPECT_EQ(counter(l, "dropped"), 0);
     EXPECT_EQ(counter(l, "culled"), 0);  // automatic framing sees every particle
-    for (const char* key : {"\"classify\":", "\"splat\":", "\"compress\":", "\"host_rss\":",
-                            "\"gpu\":", "\"glass\":", "\"water\":", "\"spans.stored\":"})
+    for (const char* key : {"\"classify\":", "\"host_rss\":", "\"gpu\":", "\"glass\":",
+                            "\"water\":", "\"spans.stored\":", "\"connect\":", "\"shade\":"})
       EXPECT_NE(l.find(key), std::string::npos) << key << " missing in " << l;
+    // The renderer's own passes: the GL one voxelizes, the CPU one casts.
+    const bool gl = l.find("\"splat\":") != std::string::npos;
+    EXPECT_EQ(l.find("\"compress\":") != std::string::npos, gl) << l;
+    EXPECT_EQ(l.find("\"cast\":") != std::string::npos, !gl) << l;
   }
 }
 

@@ -41,10 +41,11 @@ std::filesystem::path shared_folder(const std::string& name) {
   return folder;
 }
 
-std::string config_for(const std::filesystem::path& folder, int width = 96) {
+std::string config_for(const std::filesystem::path& folder, int width = 96,
+                       const std::string& more = {}) {
   return "output_folder: " + folder.string() + "\ntrigger: {every_steps: 1}\nviews:\n" +
          "  - {name: v, width: " + std::to_string(width) + ", height: 64, shading: translucent}\n" +
-         "writer: {fsync: false}\n";
+         "writer: {fsync: false}\n" + more;
 }
 
 // A block of fluid cut into slabs along x, one per rank; `count` particles per side.
@@ -106,13 +107,14 @@ TEST(MpiAdapter, BadInputOnOneRankFailsTheStepOnAllWithOneErrorLine) {
 }
 
 // A rank that throws in the middle of the step, after every rank has classified and while the
-// others voxelize: its grid is longer than a GL 3D texture may be, so its cell-state upload
-// fails inside the render pass. Every rank abandons the step, one line names the rank, and the
-// next step renders.
+// others voxelize: its grid is longer than a GL 3D texture may be, so the GL renderer's
+// cell-state upload fails inside its render pass. Every rank abandons the step, one line names
+// the rank, and the next step renders.
 TEST(MpiAdapter, ARankThatThrowsMidStepFailsTheStepOnAllAndTheRunGoesOn) {
   const auto folder = shared_folder("throws");
   test::LogCapture log;
-  Adapter adapter = adapter_from_config_text(config_for(folder), options(), MPI_COMM_WORLD);
+  Adapter adapter = adapter_from_config_text(config_for(folder, 96, "renderer: {backend: gl}\n"),
+                                             options(), MPI_COMM_WORLD);
   const Block block(12);
   // 20 000 cells along x: more than any GL's 3D texture side (16 384 on NVIDIA, 2 048 on Mesa).
   const GridView too_long = GridView::geometry_only(GridGeometry{{0, 0, 0}, 0.01, {20000, 12, 12}});

@@ -100,11 +100,11 @@ TEST(CpuRenderer, SpansWithInnerFullCellsAreTheExactReferences) {
     const SpanImage exact =
         exact_spans(spans.grid, cells.boundary, cells.view, {options.gap_bridging, 0});
     const SpanDifference d = difference(spans, exact);
-    std::printf("dam break t=%.1f: %lld spans, %lld cell boxes, largest difference %.2g layers, "
-                "%.2g radii\n",
-                t, static_cast<long long>(d.spans),
-                static_cast<long long>(stats.count("cast.cell_boxes")), d.layers,
-                d.world / shape.radius);
+    std::printf(
+        "dam break t=%.1f: %lld spans, %lld cell boxes, largest difference %.2g layers, "
+        "%.2g radii\n",
+        t, static_cast<long long>(d.spans), static_cast<long long>(stats.count("cast.cell_boxes")),
+        d.layers, d.world / shape.radius);
     EXPECT_TRUE(d.counts_equal);
     EXPECT_GT(stats.count("cast.cell_boxes"), 0);
     EXPECT_LE(d.layers, 1e-3);
@@ -126,8 +126,7 @@ TEST(CpuRenderer, PicturesAreWithinTheGpusBoundsAgainstTheReference) {
       SCOPED_TRACE(shade_mode_name(mode));
       const ShadeOptions shade = test::test_shading(mode, scene.ground_tile);
       const FloatImage& image = cpu.shade(spans, {}, shade, cpu_timer(), stats);
-      const double psnr =
-          test::compare_images(image, reference_shading(exact, shade, &sobel)).psnr;
+      const double psnr = test::compare_images(image, reference_shading(exact, shade, &sobel)).psnr;
       const double gpu =
           test::compare_images(test::shade_on_gpu(voxelized, {}, shade).image, image).psnr;
       std::printf("%-18s %-12s PSNR %5.1f dB against the reference, %5.1f dB against the GPU\n",
@@ -176,8 +175,8 @@ TEST(CpuRenderer, ThePicturesDoNotDependOnTheThreads) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     CpuRenderer cpu;
     FrameStats stats;
-    const SpanImage& spans = cpu.cast(camera, cells.boundary, cells.view, options, cpu_timer(),
-                                      stats);
+    const SpanImage& spans =
+        cpu.cast(camera, cells.boundary, cells.view, options, cpu_timer(), stats);
     ShadeOptions shade = test::test_shading(mode);
     shade.deep_ao = true;
     return cpu.shade(spans, filter, shade, cpu_timer(), stats);

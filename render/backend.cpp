@@ -1,0 +1,57 @@
+#include "render/backend.h"
+
+#include <cstdlib>
+#include <string_view>
+
+#include <tbb/info.h>
+
+#include "render/gl/info.h"
+#include "voxspan/error.h"
+
+namespace voxspan {
+
+BackendChoice choose_backend(RenderBackend wanted, const gl::ContextOptions& options) {
+  BackendChoice c;
+  if (wanted == RenderBackend::cpu) {
+    c.why = "renderer.backend: cpu";
+    return c;
+  }
+  // A GL platform named (in the config, or in VOXSPAN_GL_PLATFORM, which overrides it) asks
+  // for the GL renderer: its failure is an error.
+  const char* env = std::getenv("VOXSPAN_GL_PLATFORM");
+  const bool named = options.platform != gl::Platform::automatic ||
+                     (env != nullptr && *env != '\0' && std::string_view(env) != "auto");
+  if (wanted == RenderBackend::gl || named) {
+    c.context = std::make_unique<gl::Context>(options);
+    c.backend = RenderBackend::gl;
+    c.why = wanted == RenderBackend::gl ? "renderer.backend: gl"
+                                        : std::string("auto: a GL platform is named (") +
+                                              gl::platform_name(c.context->platform()) + ")";
+    return c;
+  }
+  try {
+    c.context = std::make_unique<gl::Context>(options);
+  } catch (const Error& e) {
+    c.why = std::string("auto: no GL context (") + e.what() + ")";
+    return c;
+  }
+  const gl::Info info = gl::query_info(*c.context);
+  if (gl::software_renderer()) {
+    c.context.reset();
+    c.why = "auto: the GL context is " + info.renderer +
+            ", a GPU emulated on the CPU; renderer.backend: gl uses it";
+    return c;
+  }
+  c.backend = RenderBackend::gl;
+  c.why = "auto: a GPU (" + info.renderer + ")";
+  return c;
+}
+
+std::string describe(const BackendChoice& choice) {
+  if (choice.backend == RenderBackend::gl)
+    return "GL renderer on " + choice.context->description() + " (" + choice.why + ")";
+  return "CPU renderer, " + std::to_string(tbb::info::default_concurrency()) + " threads (" +
+         choice.why + ")";
+}
+
+}  // namespace voxspan

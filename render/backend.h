@@ -1,0 +1,37 @@
+// render/backend.h - which renderer a process uses: the GL one (render/renderer.h) or the CPU
+// one (render/cpu/cpu_renderer.h), and why.
+//   auto  the GL renderer on a GPU; where the GL context is a software one (Mesa's llvmpipe,
+//         which emulates a GPU on the CPU) or none can be made, the CPU renderer, which casts
+//         exact spans natively and is several times faster there (docs/benchmarks.md). A GL
+//         platform named in the config (not `auto`) asks for the GL renderer, as `gl` does;
+//   gl    the GL renderer on whatever GL context the platform gives (llvmpipe included), or
+//         the context's error;
+//   cpu   the CPU renderer; no GL context is made.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "render/enum_names.h"
+#include "render/gl/context.h"
+
+namespace voxspan {
+
+enum class RenderBackend { automatic, gl, cpu };
+inline constexpr EnumName<RenderBackend> kRenderBackendNames[] = {
+    {"auto", RenderBackend::automatic}, {"gl", RenderBackend::gl}, {"cpu", RenderBackend::cpu}};
+
+struct BackendChoice {
+  RenderBackend backend = RenderBackend::cpu;  // gl or cpu
+  std::unique_ptr<gl::Context> context;        // the GL renderer's (current); null for cpu
+  std::string why;                             // "auto: the GL context is llvmpipe (...)"
+};
+
+// Makes the GL context when the choice needs one. Throws voxspan::Error with the context's
+// error when `gl` was asked for and none can be made.
+BackendChoice choose_backend(RenderBackend wanted, const gl::ContextOptions& options);
+
+// "GL renderer on EGL device 0 (...)" or "CPU renderer, 2 threads", and the reason.
+std::string describe(const BackendChoice& choice);
+
+}  // namespace voxspan
