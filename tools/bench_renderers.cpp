@@ -8,7 +8,8 @@
 // classification of the state's particles (the render step begins there), then each
 // renderer from the classification to the float image in host memory (the GL one read back,
 // as the runtime does). Milliseconds are medians over --frames frames after one warm-up.
-// "step" = classify + frame + read-back: what one view costs a render step.
+// "step" = classify + frame + read-back: what one view costs a render step. With both renderers
+// the PSNR of the CPU renderer's picture against the GL one's is printed per mode.
 //
 //   bench_renderers [--particles N] [--time T] [--state FILE] [--ritter] [--size WxH]
 //                   [--frames F] [--modes opaque,translucent,refractive] [--ao]
@@ -30,6 +31,7 @@
 #include "render/reference/exact_spans.h"
 #include "render/renderer.h"
 #include "tool_args.h"
+#include "tools/scenes/image_compare.h"
 #include "voxspan/error.h"
 #include "voxspan/stopwatch.h"
 
@@ -97,6 +99,7 @@ class Frame {
   virtual const char* name() const = 0;
   virtual void render(const Camera& camera, const Classification& c, const RenderOptions& o,
                       FrameStats& stats) = 0;
+  virtual const FloatImage& picture() const = 0;  // the last frame's
 };
 
 class GlFrame final : public Frame {
@@ -116,6 +119,7 @@ class GlFrame final : public Frame {
     }
     timer_.collect(stats);
   }
+  const FloatImage& picture() const override { return picture_; }
 
  private:
   gl::Context context_;
@@ -132,13 +136,15 @@ class CpuFrame final : public Frame {
               FrameStats& stats) override {
     const SpanImage& spans =
         renderer_.cast(camera, c.boundary, c.cell_states(), o.voxelize, timer_, stats);
-    renderer_.shade(spans, o.surfaces, o.shade, timer_, stats);
+    picture_ = &renderer_.shade(spans, o.surfaces, o.shade, timer_, stats);
     timer_.collect(stats);
   }
+  const FloatImage& picture() const override { return *picture_; }
 
  private:
   CpuRenderer renderer_;
   gl::PassTimer timer_{false};
+  const FloatImage* picture_ = nullptr;
 };
 
 RenderOptions options_for(const tools::DamBreakState& s, const Args& a) {
@@ -234,9 +240,18 @@ int run(const Args& a) {
       }
       std::printf("\n");
     }
-    if (frames.size() == 2)
-      std::printf("%-12s %-4s %8.2f x faster on the CPU renderer (step, gl / cpu)\n", "", "",
-                  median_of(samples[0], "step") / median_of(samples[1], "step"));
+    if (frames.size() == 2) {
+      const test::ImageDifference d =
+          test::compare_images(frames[0]->picture(), frames[1]->picture());
+      std::printf(
+          "%-12s %-4s %8.2f x faster on the CPU renderer (step, gl / cpu); pictures "
+          "PSNR %.1f dB, at most %d/255\n",
+          "", "", median_of(samples[0], "step") / median_of(samples[1], "step"), d.psnr,
+          d.max_levels);
+      if (csv)
+        csv << s.x.size() << ',' << a.width << ',' << a.height << ',' << shade_mode_name(mode)
+            << ",gl-cpu,psnr_db," << d.psnr << '\n';
+    }
   }
   return 0;
 }

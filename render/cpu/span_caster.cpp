@@ -7,6 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 namespace voxspan {
 namespace {
@@ -55,18 +56,6 @@ struct TileBins {
   }
   std::vector<std::uint32_t> cursor;
 };
-
-// Depth interval of the ray z * d (view space) inside a sphere; false when it misses or only
-// touches. The closest-approach form keeps precision for small, distant spheres.
-bool chord(const glm::dvec3& d, double d2, const Sphere& s, Interval& out) {
-  const double zc = glm::dot(d, s.center) / d2;
-  const glm::dvec3 perp = s.center - zc * d;
-  const double h2 = s.radius * s.radius - glm::dot(perp, perp);
-  if (!(h2 > 0)) return false;
-  const double half = std::sqrt(h2 / d2);
-  out = {zc - half, zc + half};
-  return true;
-}
 
 // Depth interval of the ray eye + z * w inside a box (slabs); false when it misses.
 bool box_chord(const glm::dvec3& eye, const glm::dvec3& w, const Box& b, Interval& out) {
@@ -124,17 +113,57 @@ PixelRect clip(const PixelRect& r, int x0, int y0, int x1, int y1) {
 }
 
 // One tile's interval lists, per pixel of the tile; a thread's, reused from tile to tile.
+// A pixel's ray is (a[x], b[y], 1) in view space (ViewFrame::view_ray).
 struct TileLists {
   std::vector<std::vector<Interval>> at = std::vector<std::vector<Interval>>(kTile * kTile);
-  std::vector<glm::dvec3> rays = std::vector<glm::dvec3>(kTile * kTile);
+  double a[kTile], b[kTile];
+  double d2[kTile * kTile];  // |ray|^2
+  // One row of one sphere: the chord's centre depth and squared half length per pixel.
+  double zc[kTile], h2[kTile];
   std::int64_t chord_tests = 0;
 };
 
+// The chords of sphere s along row y of the tile, pixels [x0, x1] (tile-local): zc and h2 per
+// pixel, as chord() computes them (the same operations in the same order), vectorizable.
+void row_chords(TileLists& l, const Sphere& s, int y, int x0, int x1) {
+  const double b = l.b[y], r2 = s.radius * s.radius;
+  const double cx = s.center.x, cy = s.center.y, cz = s.center.z;
+  for (int x = x0; x <= x1; ++x) {
+    const double a = l.a[x], d2 = l.d2[x + y * kTile];
+    const double zc = (a * cx + b * cy + cz) / d2;
+    const double px = cx - zc * a, py = cy - zc * b, pz = cz - zc;
+    l.zc[x] = zc;
+    l.h2[x] = r2 - (px * px + py * py + pz * pz);
+  }
+}
+
+// Sorts a pixel's few intervals by entry (insertion sort: most lists are short).
+void sort_by_entry(std::vector<Interval>& list) {
+  if (list.size() > 512) {
+    std::sort(list.begin(), list.end(),
+              [](const Interval& p, const Interval& q) { return p.entry < q.entry; });
+    return;
+  }
+  for (std::size_t i = 1; i < list.size(); ++i) {
+    const Interval v = list[i];
+    std::size_t j = i;
+    for (; j > 0 && list[j - 1].entry > v.entry; --j) list[j] = list[j - 1];
+    list[j] = v;
+  }
+}
+
 }  // namespace
 
+struct BinnedSphere {
+  Sphere sphere;
+  PixelRect rect;
+};
+
 struct SpanCaster::Work {
-  std::vector<Sphere> spheres;
-  std::vector<PixelRect> sphere_rects, box_rects;
+  std::vector<BinnedSphere> binned;  // sphere_bins' items, the spheres themselves
+  std::vector<Sphere> spheres, sorted_spheres;
+  std::vector<PixelRect> sphere_rects, box_rects, sorted_rects;
+  std::vector<std::uint32_t> order;
   std::vector<Box> boxes;
   TileBins sphere_bins, box_bins;
   std::vector<std::vector<Span>> tile_spans;
@@ -160,23 +189,59 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
   const ViewFrame& view = grid.view();
   const double near = grid.near(), far = grid.grid_far();
 
-  w.spheres.clear();
-  w.sphere_rects.clear();
-  for (const ParticleSphere& p : particles) {
-    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) &&
-          std::isfinite(p.radius) && p.radius > 0))
-      continue;
-    const Sphere s{view.to_view(glm::dvec3(p.x, p.y, p.z)), p.radius};
-    if (s.center.z + s.radius <= near) continue;
-    const PixelRect r = grid.sphere_pixels(s.center, s.radius);
-    if (r.empty()) continue;
-    w.spheres.push_back(s);
-    w.sphere_rects.push_back(r);
+  // Every sphere to view space with the pixels it may cover, in parallel; then those in view.
+  w.spheres.resize(particles.size());
+  w.sphere_rects.resize(particles.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, particles.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const ParticleSphere& p = particles[i];
+                        w.sphere_rects[i] = {};
+                        if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) &&
+                              std::isfinite(p.radius) && p.radius > 0))
+                          continue;
+                        w.spheres[i] = {view.to_view(glm::dvec3(p.x, p.y, p.z)), p.radius};
+                        if (w.spheres[i].center.z + p.radius <= near) continue;
+                        w.sphere_rects[i] = grid.sphere_pixels(w.spheres[i].center, p.radius);
+                      }
+                    });
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (w.sphere_rects[i].empty()) continue;
+    w.spheres[kept] = w.spheres[i];
+    w.sphere_rects[kept++] = w.sphere_rects[i];
   }
+  w.spheres.resize(kept);
+  w.sphere_rects.resize(kept);
+  // Nearest first: the bins keep this order, so each pixel's chords arrive almost sorted by
+  // entry and its sort has little to do (a ray through thick fluid meets dozens of spheres).
+  w.order.resize(kept);
+  for (std::size_t i = 0; i < kept; ++i) w.order[i] = std::uint32_t(i);
+  tbb::parallel_sort(w.order.begin(), w.order.end(), [&](std::uint32_t p, std::uint32_t q) {
+    return w.spheres[p].center.z - w.spheres[p].radius <
+           w.spheres[q].center.z - w.spheres[q].radius;
+  });
+  w.sorted_spheres.resize(kept);
+  w.sorted_rects.resize(kept);
+  for (std::size_t i = 0; i < kept; ++i) {
+    w.sorted_spheres[i] = w.spheres[w.order[i]];
+    w.sorted_rects[i] = w.sphere_rects[w.order[i]];
+  }
+  std::swap(w.spheres, w.sorted_spheres);
+  std::swap(w.sphere_rects, w.sorted_rects);
   if (settings.use_cell_states) cell_boxes(grid, cells, w.boxes, w.box_rects);
   else w.boxes.clear(), w.box_rects.clear();
   w.sphere_bins.fill(width, height, w.sphere_rects);
   w.box_bins.fill(width, height, w.box_rects);
+  // Each tile's spheres side by side, in the bins' order: the tiles read them as a stream.
+  w.binned.resize(w.sphere_bins.items.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, w.binned.size(), 8192),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                        const std::uint32_t i = w.sphere_bins.items[k];
+                        w.binned[k] = {w.spheres[i], w.sphere_rects[i]};
+                      }
+                    });
   const int tiles_x = w.sphere_bins.nx, tiles = tiles_x * w.sphere_bins.ny;
   w.tile_spans.resize(std::size_t(tiles));
   for (TileLists& l : w.lists) l.chord_tests = 0;
@@ -187,26 +252,33 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
       const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
       const int x1 = std::min(x0 + kTile, width) - 1, y1 = std::min(y0 + kTile, height) - 1;
       const auto local = [&](int x, int y) { return std::size_t(x - x0 + (y - y0) * kTile); };
+      for (int x = x0; x <= x1; ++x) l.a[x - x0] = view.view_ray(x, y0).x;
+      for (int y = y0; y <= y1; ++y) l.b[y - y0] = view.view_ray(x0, y).y;
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
           l.at[local(x, y)].clear();
-          l.rays[local(x, y)] = view.view_ray(x, y);
+          const double a = l.a[x - x0], b = l.b[y - y0];
+          l.d2[local(x, y)] = a * a + b * b + 1.0;
         }
       const auto keep = [&](std::vector<Interval>& list, Interval iv) {
         iv.entry = std::max(iv.entry, near);
         iv.exit = std::min(iv.exit, far);
         if (iv.entry < iv.exit) list.push_back(iv);
       };
-      for (std::uint32_t i : w.sphere_bins.of(std::size_t(t))) {
-        const Sphere& s = w.spheres[i];
-        const PixelRect r = clip(w.sphere_rects[i], x0, y0, x1, y1);
+      const std::size_t first = w.sphere_bins.start[std::size_t(t)];
+      const std::size_t last = w.sphere_bins.start[std::size_t(t) + 1];
+      for (std::size_t k = first; k < last; ++k) {
+        const Sphere& s = w.binned[k].sphere;
+        const PixelRect r = clip(w.binned[k].rect, x0, y0, x1, y1);
         l.chord_tests += r.area();
-        for (int y = r.y0; y <= r.y1; ++y)
-          for (int x = r.x0; x <= r.x1; ++x) {
-            const glm::dvec3& d = l.rays[local(x, y)];
-            Interval iv;
-            if (chord(d, glm::dot(d, d), s, iv)) keep(l.at[local(x, y)], iv);
+        for (int y = r.y0 - y0; y <= r.y1 - y0; ++y) {
+          row_chords(l, s, y, r.x0 - x0, r.x1 - x0);
+          for (int x = r.x0 - x0; x <= r.x1 - x0; ++x) {
+            if (!(l.h2[x] > 0)) continue;
+            const double half = std::sqrt(l.h2[x] / l.d2[x + y * kTile]);
+            keep(l.at[std::size_t(x + y * kTile)], {l.zc[x] - half, l.zc[x] + half});
           }
+        }
       }
       // Sec. 4.3: inner-full cells are fluid whose particles were left out.
       for (std::uint32_t i : w.box_bins.of(std::size_t(t))) {
@@ -224,9 +296,8 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
           std::vector<Interval>& list = l.at[local(x, y)];
-          std::sort(list.begin(), list.end(),
-                    [](const Interval& a, const Interval& b) { return a.entry < b.entry; });
-          const double scale = glm::length(l.rays[local(x, y)]);
+          sort_by_entry(list);
+          const double scale = std::sqrt(l.d2[local(x, y)]);
           builder.begin();
           std::size_t k = 0;
           while (k < list.size()) {
