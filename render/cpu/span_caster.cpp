@@ -74,38 +74,122 @@ bool box_chord(const glm::dvec3& eye, const glm::dvec3& w, const Box& b, Interva
   return z0 < z1;
 }
 
-// The runs of inner-full cells along x, as world boxes, with the pixels each may cover.
-void cell_boxes(const PerspectiveGrid& grid, const CellStatesView& cells, std::vector<Box>& boxes,
+// A box of cells [lo, hi) in cell indices.
+struct CellBox {
+  glm::ivec3 lo, hi;
+};
+
+// The inner-full cells as few boxes (greedy: runs along x, runs of equal runs along y, then
+// along z): the union is the same, and a ray through a calm body of water meets a few boxes
+// instead of one cell after another.
+// Scratch, kept from frame to frame: the boxes still growing along z, the next ones, and one
+// z-layer's rectangles (x runs grown along y).
+struct BoxScratch {
+  std::vector<CellBox> open, next, slab;
+};
+
+void merge_inner_full(const CellStatesView& cells, std::vector<CellBox>& out, BoxScratch& w) {
+  out.clear();
+  std::vector<CellBox>&open = w.open, &next = w.next, &slab = w.slab;
+  open.clear();
+  const auto nx = std::size_t(cells.dims[0]), ny = std::size_t(cells.dims[1]);
+  for (int k = 0; k <= cells.dims[2]; ++k) {
+    slab.clear();
+    if (k < cells.dims[2]) {
+      std::size_t row_start = 0;  // first rectangle still growing along y
+      for (int j = 0; j < cells.dims[1]; ++j) {
+        const std::uint8_t* row = cells.states + nx * (std::size_t(j) + ny * std::size_t(k));
+        const std::size_t before = slab.size();
+        for (int i = 0; i < cells.dims[0];) {
+          if (row[i] != cell::kInnerFull) {
+            ++i;
+            continue;
+          }
+          int end = i + 1;
+          while (end < cells.dims[0] && row[end] == cell::kInnerFull) ++end;
+          // Grow the rectangle of the row before with the same x run, else start one.
+          bool grown = false;
+          for (std::size_t r = row_start; r < before && !grown; ++r)
+            if (slab[r].lo.x == i && slab[r].hi.x == end && slab[r].hi.y == j) {
+              slab[r].hi.y = j + 1;
+              grown = true;
+            }
+          if (!grown) slab.push_back({{i, j, k}, {end, j + 1, k + 1}});
+          i = end;
+        }
+        // Rectangles that did not reach this row are finished along y.
+        std::size_t keep = row_start;
+        for (std::size_t r = row_start; r < slab.size(); ++r)
+          if (slab[r].hi.y < j + 1) std::swap(slab[keep++], slab[r]);
+        row_start = keep;
+      }
+    }
+    // Grow the open boxes by this layer's equal rectangles; the rest of them close.
+    next.clear();
+    for (const CellBox& b : open) {
+      bool grown = false;
+      for (CellBox& r : slab)
+        if (r.lo.x == b.lo.x && r.hi.x == b.hi.x && r.lo.y == b.lo.y && r.hi.y == b.hi.y &&
+            r.lo.z == k && k < cells.dims[2]) {
+          next.push_back({b.lo, {b.hi.x, b.hi.y, k + 1}});
+          r.lo.z = -1;  // taken
+          grown = true;
+          break;
+        }
+      if (!grown) out.push_back(b);
+    }
+    for (const CellBox& r : slab)
+      if (r.lo.z >= 0) next.push_back(r);
+    std::swap(open, next);
+  }
+}
+
+// The pixels whose centre rays may meet a world box: the bounds of its projected corners when
+// all lie in front of the eye (the projection of a box is the hull of its corners'), else the
+// bounds of its bounding sphere.
+PixelRect box_pixels(const PerspectiveGrid& grid, const Box& b) {
+  const ViewFrame& v = grid.view();
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 p =
+        v.to_view({c & 1 ? b.hi.x : b.lo.x, c & 2 ? b.hi.y : b.lo.y, c & 4 ? b.hi.z : b.lo.z});
+    if (!(p.z > 0))
+      return grid.sphere_pixels(v.to_view(0.5 * (b.lo + b.hi)), 0.5 * glm::length(b.hi - b.lo));
+    // Pixel coordinates of the centre ray through p: ndc = 2 (px + 0.5) / size - 1.
+    const double px = (p.x / p.z / v.tan_half_x + 1) * 0.5 * v.width - 0.5;
+    const double py = (1 - p.y / p.z / v.tan_half_y) * 0.5 * v.height - 0.5;
+    x0 = std::min(x0, px), x1 = std::max(x1, px), y0 = std::min(y0, py), y1 = std::max(y1, py);
+  }
+  // A margin of a pixel for rounding; clipped to the image.
+  PixelRect r{int(std::ceil(std::max(x0 - 1, -1.0))), int(std::ceil(std::max(y0 - 1, -1.0))),
+              int(std::floor(std::min(x1 + 1, double(v.width)))),
+              int(std::floor(std::min(y1 + 1, double(v.height))))};
+  r.x0 = std::max(r.x0, 0), r.y0 = std::max(r.y0, 0);
+  r.x1 = std::min(r.x1, v.width - 1), r.y1 = std::min(r.y1, v.height - 1);
+  return r;
+}
+
+// The inner-full cells as world boxes, with the pixels each may cover.
+void cell_boxes(const PerspectiveGrid& grid, const CellStatesView& cells,
+                std::vector<CellBox>& merged, BoxScratch& scratch, std::vector<Box>& boxes,
                 std::vector<PixelRect>& rects) {
   boxes.clear();
   rects.clear();
   if (cells.empty() || !(cells.cell_size > 0)) return;
+  merge_inner_full(cells, merged, scratch);
   const double h = cells.cell_size;
   const glm::dvec3 origin(cells.origin[0], cells.origin[1], cells.origin[2]);
-  const auto nx = std::size_t(cells.dims[0]), ny = std::size_t(cells.dims[1]);
-  for (int k = 0; k < cells.dims[2]; ++k)
-    for (int j = 0; j < cells.dims[1]; ++j) {
-      const std::uint8_t* row = cells.states + nx * (std::size_t(j) + ny * std::size_t(k));
-      for (int i = 0; i < cells.dims[0];) {
-        if (row[i] != cell::kInnerFull) {
-          ++i;
-          continue;
-        }
-        int end = i + 1;
-        while (end < cells.dims[0] && row[end] == cell::kInnerFull) ++end;
-        // Faces as render/cell_march.h computes them, so that touching boxes meet exactly.
-        const Box b{{origin.x + double(i) * h, origin.y + double(j) * h, origin.z + double(k) * h},
-                    {origin.x + double(end) * h, origin.y + double(j + 1) * h,
-                     origin.z + double(k + 1) * h}};
-        const glm::dvec3 size = b.hi - b.lo;
-        const PixelRect r =
-            grid.sphere_pixels(grid.view().to_view(0.5 * (b.lo + b.hi)), 0.5 * glm::length(size));
-        i = end;
-        if (r.empty()) continue;
-        boxes.push_back(b);
-        rects.push_back(r);
-      }
-    }
+  for (const CellBox& c : merged) {
+    // Faces as render/cell_march.h computes them, so that touching boxes meet exactly.
+    const Box b{{origin.x + double(c.lo.x) * h, origin.y + double(c.lo.y) * h,
+                 origin.z + double(c.lo.z) * h},
+                {origin.x + double(c.hi.x) * h, origin.y + double(c.hi.y) * h,
+                 origin.z + double(c.hi.z) * h}};
+    const PixelRect r = box_pixels(grid, b);
+    if (r.empty()) continue;
+    boxes.push_back(b);
+    rects.push_back(r);
+  }
 }
 
 PixelRect clip(const PixelRect& r, int x0, int y0, int x1, int y1) {
@@ -165,6 +249,8 @@ struct SpanCaster::Work {
   std::vector<PixelRect> sphere_rects, box_rects, sorted_rects;
   std::vector<std::uint32_t> order;
   std::vector<Box> boxes;
+  std::vector<CellBox> cell_boxes;
+  BoxScratch box_scratch;
   TileBins sphere_bins, box_bins;
   std::vector<std::vector<Span>> tile_spans;
   std::vector<std::uint32_t> tile_base;  // the first span of each tile in the image
@@ -229,7 +315,8 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
   }
   std::swap(w.spheres, w.sorted_spheres);
   std::swap(w.sphere_rects, w.sorted_rects);
-  if (settings.use_cell_states) cell_boxes(grid, cells, w.boxes, w.box_rects);
+  if (settings.use_cell_states)
+    cell_boxes(grid, cells, w.cell_boxes, w.box_scratch, w.boxes, w.box_rects);
   else w.boxes.clear(), w.box_rects.clear();
   w.sphere_bins.fill(width, height, w.sphere_rects);
   w.box_bins.fill(width, height, w.box_rects);
