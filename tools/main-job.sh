@@ -21,7 +21,7 @@ fi
 build_seconds=$((SECONDS - start))
 
 echo "main job: renderer"
-build/tools/insitu-info | grep -E "^(platform|renderer|OpenGL) "
+build/tools/insitu-info | grep -E "^(renders with|platform|renderer|OpenGL) "
 
 out=main-job-output
 rm -rf "$out"

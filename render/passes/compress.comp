@@ -41,14 +41,15 @@ uniform uint u_scratch_spans;    // spans per pixel the scratch holds
 uniform uint u_span_base;        // copy, rescan: this tile's first span in the image
 uniform uint u_rescan_count;     // rescan: pixels listed
 
-uint g_pixel;        // tile pixel of this thread
-uint g_image_pixel;  // its index in the span image
-uint g_offset;       // copy, rescan: its first span
+uint g_pixel = 0u;        // tile pixel of this thread (set first thing in main; initialized
+                          // so that Mesa does not warn of a read before it)
+uint g_image_pixel = 0u;  // its index in the span image
+uint g_offset = 0u;       // copy, rescan: its first span
 
 uvec4 column_chunk(uint chunk) { return bits[chunk * u_tile_pixels + g_pixel]; }
 
 #if !defined(COMPRESS_COPY) && !defined(COMPRESS_RESCAN)
-float g_last_exit;
+float g_last_exit = 0.0;
 
 void on_span(uint index, float entry, float exit) {
   if (index < u_scratch_spans) scratch_spans[index * u_tile_pixels + g_pixel] = vec2(entry, exit);
