@@ -221,19 +221,42 @@ void row_chords(TileLists& l, const Sphere& s, int y, int x0, int x1) {
   }
 }
 
-// Sorts a pixel's few intervals by entry (insertion sort: most lists are short).
-void sort_by_entry(std::vector<Interval>& list) {
-  if (list.size() > 512) {
-    std::sort(list.begin(), list.end(),
-              [](const Interval& p, const Interval& q) { return p.entry < q.entry; });
+// Adds an interval to a pixel's union: `list` holds the union so far as disjoint intervals in
+// depth order, gaps shorter than `gap` along the ray (depth difference times `scale`) closed.
+// The same components, and the same comparisons, as sorting every interval by entry and
+// merging in one sweep; but a ray through thick fluid meets dozens of spheres whose chords
+// mostly overlap the last interval (the spheres come nearest first), so the list stays short
+// and most additions only move its last exit.
+void add_interval(std::vector<Interval>& list, Interval iv, double scale, double gap) {
+  // Whether b, which starts no earlier than a, joins a's run.
+  const auto joins = [&](const Interval& a, const Interval& b) {
+    return b.entry <= a.exit || (b.entry - a.exit) * scale < gap;
+  };
+  if (list.empty() || list.back().entry <= iv.entry) {
+    if (!list.empty() && joins(list.back(), iv))
+      list.back().exit = std::max(list.back().exit, iv.exit);
+    else list.push_back(iv);
     return;
   }
-  for (std::size_t i = 1; i < list.size(); ++i) {
-    const Interval v = list[i];
-    std::size_t j = i;
-    for (; j > 0 && list[j - 1].entry > v.entry; --j) list[j] = list[j - 1];
-    list[j] = v;
+  // The first interval that starts after iv, and the one before it.
+  std::size_t k =
+      std::size_t(std::upper_bound(list.begin(), list.end(), iv.entry,
+                                   [](double e, const Interval& c) { return e < c.entry; }) -
+                  list.begin());
+  std::size_t at = k;
+  if (k > 0 && joins(list[k - 1], iv)) {
+    at = k - 1;
+    list[at].exit = std::max(list[at].exit, iv.exit);
+  } else {
+    list.insert(list.begin() + std::ptrdiff_t(k), iv);
   }
+  // The run may now reach the intervals after it.
+  std::size_t next = at + 1;
+  while (next < list.size() && joins(list[at], list[next])) {
+    list[at].exit = std::max(list[at].exit, list[next].exit);
+    ++next;
+  }
+  list.erase(list.begin() + std::ptrdiff_t(at + 1), list.begin() + std::ptrdiff_t(next));
 }
 
 }  // namespace
@@ -299,8 +322,8 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
   }
   w.spheres.resize(kept);
   w.sphere_rects.resize(kept);
-  // Nearest first: the bins keep this order, so each pixel's chords arrive almost sorted by
-  // entry and its sort has little to do (a ray through thick fluid meets dozens of spheres).
+  // Nearest first: the bins keep this order, so each pixel's chords arrive almost in depth
+  // order and most of them only move the last exit of its union (add_interval).
   w.order.resize(kept);
   for (std::size_t i = 0; i < kept; ++i) w.order[i] = std::uint32_t(i);
   tbb::parallel_sort(w.order.begin(), w.order.end(), [&](std::uint32_t p, std::uint32_t q) {
@@ -347,10 +370,11 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
           const double a = l.a[x - x0], b = l.b[y - y0];
           l.d2[local(x, y)] = a * a + b * b + 1.0;
         }
-      const auto keep = [&](std::vector<Interval>& list, Interval iv) {
+      const auto keep = [&](std::size_t pixel, Interval iv) {
         iv.entry = std::max(iv.entry, near);
         iv.exit = std::min(iv.exit, far);
-        if (iv.entry < iv.exit) list.push_back(iv);
+        if (iv.entry < iv.exit)
+          add_interval(l.at[pixel], iv, std::sqrt(l.d2[pixel]), settings.gap_bridging);
       };
       const std::size_t first = w.sphere_bins.start[std::size_t(t)];
       const std::size_t last = w.sphere_bins.start[std::size_t(t) + 1];
@@ -363,7 +387,7 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
           for (int x = r.x0 - x0; x <= r.x1 - x0; ++x) {
             if (!(l.h2[x] > 0)) continue;
             const double half = std::sqrt(l.h2[x] / l.d2[x + y * kTile]);
-            keep(l.at[std::size_t(x + y * kTile)], {l.zc[x] - half, l.zc[x] + half});
+            keep(std::size_t(x + y * kTile), {l.zc[x] - half, l.zc[x] + half});
           }
         }
       }
@@ -373,8 +397,7 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
         for (int y = r.y0; y <= r.y1; ++y)
           for (int x = r.x0; x <= r.x1; ++x) {
             Interval iv;
-            if (box_chord(view.eye, view.world_ray(x, y), w.boxes[i], iv))
-              keep(l.at[local(x, y)], iv);
+            if (box_chord(view.eye, view.world_ray(x, y), w.boxes[i], iv)) keep(local(x, y), iv);
           }
       }
       std::vector<Span>& spans = w.tile_spans[std::size_t(t)];
@@ -382,18 +405,9 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
       SpanListBuilder builder(spans, settings.max_spans);
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
-          std::vector<Interval>& list = l.at[local(x, y)];
-          sort_by_entry(list);
           const double scale = std::sqrt(l.d2[local(x, y)]);
           builder.begin();
-          std::size_t k = 0;
-          while (k < list.size()) {
-            Interval cur = list[k++];
-            while (k < list.size() && (list[k].entry <= cur.exit ||
-                                       (list[k].entry - cur.exit) * scale < settings.gap_bridging))
-              cur.exit = std::max(cur.exit, list[k++].exit);
-            builder.add(cur.entry, cur.exit, scale);
-          }
+          for (const Interval& iv : l.at[local(x, y)]) builder.add(iv.entry, iv.exit, scale);
           out.pixels[std::size_t(x) + std::size_t(y) * std::size_t(width)] = builder.end();
         }
     }

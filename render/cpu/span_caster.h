@@ -7,11 +7,12 @@
 // (render/reference/exact_spans.h) up to rounding at cell faces: the two share no code but
 // the list rule, and the tests hold them to each other.
 //
-// Work: screen tiles of kTile^2 pixels in parallel (oneTBB); each tile walks the spheres and
-// cell boxes whose pixel rectangles touch it, sphere by sphere over the pixels it covers, so
-// the cost follows the spheres' footprints, not pixels x candidates. Inner-full cells go in
-// as runs along x (one box per run). Memory: the spans and one interval list per pixel of the
-// tiles in flight; tiles join in their order, so the image does not depend on the threads.
+// Work: screen tiles of kTile^2 pixels in parallel (oneTBB); each tile walks the spheres
+// (nearest first, packed per tile) and cell boxes whose pixel rectangles touch it, sphere by
+// sphere over the pixels it covers, so the cost follows the spheres' footprints, not pixels x
+// candidates; each chord joins its pixel's union at once (most only move its last exit).
+// Inner-full cells go in merged into few boxes. Memory: the spans and one union per pixel of
+// the tiles in flight; tiles join in their order, so the image does not depend on the threads.
 #pragma once
 
 #include <cstdint>
