@@ -1,8 +1,5 @@
 #include "render/backend.h"
 
-#include <cstdlib>
-#include <string_view>
-
 #include <tbb/info.h>
 
 #include "render/gl/info.h"
@@ -18,10 +15,8 @@ BackendChoice choose_backend(RenderBackend wanted, const gl::ContextOptions& opt
   }
   // A GL platform named (in the config, or in VOXSPAN_GL_PLATFORM, which overrides it) asks
   // for the GL renderer: its failure is an error.
-  const char* env = std::getenv("VOXSPAN_GL_PLATFORM");
-  const bool named = options.platform != gl::Platform::automatic ||
-                     (env != nullptr && *env != '\0' && std::string_view(env) != "auto");
-  if (wanted == RenderBackend::gl || named) {
+  if (wanted == RenderBackend::gl ||
+      gl::requested_platform(options.platform) != gl::Platform::automatic) {
     c.context = std::make_unique<gl::Context>(options);
     c.backend = RenderBackend::gl;
     c.why = wanted == RenderBackend::gl ? "renderer.backend: gl"

@@ -15,8 +15,15 @@ constexpr std::size_t kBindingCap = std::size_t(1) << 30;
 
 }  // namespace
 
-void report_grid_fit(const PerspectiveGrid& grid, const CullCounts& culled, std::size_t input,
-                     FrameStats& stats) {
+PerspectiveGrid fit_frame(const Camera& camera, std::span<const ParticleSphere> particles,
+                          const VoxelizeOptions& options, gl::PassTimer& timer, FrameStats& stats) {
+  PerspectiveGrid grid;
+  CullCounts culled;
+  {
+    auto t = timer.cpu("frame");
+    grid = PerspectiveGrid::fit(camera, particles, options.grid, &culled, options.combine_ranks);
+  }
+  const std::size_t input = particles.size();
   stats.set_count("particles.input", static_cast<std::int64_t>(input));
   stats.set_count("particles.visible", culled.visible);
   stats.set_count("particles.invalid", culled.invalid);
@@ -29,6 +36,7 @@ void report_grid_fit(const PerspectiveGrid& grid, const CullCounts& culled, std:
   stats.set_figure("grid.far", grid.far());
   stats.set_figure("grid.k_d", grid.k_d());
   stats.set_figure("grid.alpha_degrees", grid.alpha_degrees());
+  return grid;
 }
 
 void validate(const VoxelizeOptions& o) {
@@ -58,13 +66,7 @@ const GpuSpanImage& Voxelizer::run(const Camera& camera, std::span<const Particl
                                    const CellStatesView& cells, const VoxelizeOptions& options,
                                    gl::PassTimer& timer, FrameStats& stats) {
   validate(options);
-  PerspectiveGrid grid;
-  CullCounts culled;
-  {
-    auto t = timer.cpu("frame");
-    grid = PerspectiveGrid::fit(camera, particles, options.grid, &culled, options.combine_ranks);
-  }
-  report_grid_fit(grid, culled, particles.size(), stats);
+  const PerspectiveGrid grid = fit_frame(camera, particles, options, timer, stats);
   // Every count is reported every frame, zero or not, so each step's record has the same keys.
   for (const char* name : {"tiles", "bin.entries", "bin.large", "voxels", "spans.stored",
                            "spans.found", "pixels.capped"})

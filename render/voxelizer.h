@@ -53,10 +53,11 @@ struct VoxelizeOptions {
 // Throws voxspan::Error naming the option that is out of range.
 void validate(const VoxelizeOptions& options);
 
-// The counts and figures of a frame's grid fit (particles.*, grid.*), as both renderers report
-// them.
-void report_grid_fit(const PerspectiveGrid& grid, const CullCounts& culled, std::size_t input,
-                     FrameStats& stats);
+// A frame's perspective grid, fitted to the particles the camera sees (options.grid,
+// options.combine_ranks), timed as "frame", with its counts and figures (particles.*, grid.*)
+// in `stats`: the first step of both renderers.
+PerspectiveGrid fit_frame(const Camera& camera, std::span<const ParticleSphere> particles,
+                          const VoxelizeOptions& options, gl::PassTimer& timer, FrameStats& stats);
 
 class Voxelizer {
  public:

@@ -173,11 +173,7 @@ class CpuSurface {
         },
         stages, timer, stats);
     if (spans == nullptr) return false;
-    const FloatImage& image = renderer_.shade(*spans, o.surfaces, o.shade, timer, stats);
-    {
-      auto t = timer.cpu("readback");  // the copy the outputs take, as the GL renderer's
-      out.picture = image;
-    }
+    renderer_.shade(*spans, o.surfaces, o.shade, timer, stats, out.picture);
     if (step.needs.first_hit_depth) {
       auto t = timer.cpu("first_hit");
       CpuRenderer::first_hit(*spans, out.first_hit_depth);

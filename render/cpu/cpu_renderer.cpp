@@ -12,13 +12,7 @@ const SpanImage& CpuRenderer::cast(const Camera& camera, std::span<const Particl
                                    const CellStatesView& cells, const VoxelizeOptions& options,
                                    gl::PassTimer& timer, FrameStats& stats) {
   validate(options);
-  PerspectiveGrid grid;
-  CullCounts culled;
-  {
-    auto t = timer.cpu("frame");
-    grid = PerspectiveGrid::fit(camera, particles, options.grid, &culled, options.combine_ranks);
-  }
-  report_grid_fit(grid, culled, particles.size(), stats);
+  const PerspectiveGrid grid = fit_frame(camera, particles, options, timer, stats);
   auto t = timer.cpu("cast");
   const CastCounts counts =
       caster_.run(grid, particles, cells,
@@ -35,6 +29,13 @@ const SpanImage& CpuRenderer::cast(const Camera& camera, std::span<const Particl
 const FloatImage& CpuRenderer::shade(const SpanImage& spans, const SurfaceOptions& surfaces,
                                      const ShadeOptions& shade, gl::PassTimer& timer,
                                      FrameStats& stats) {
+  this->shade(spans, surfaces, shade, timer, stats, image_);
+  return image_;
+}
+
+void CpuRenderer::shade(const SpanImage& spans, const SurfaceOptions& surfaces,
+                        const ShadeOptions& shade, gl::PassTimer& timer, FrameStats& stats,
+                        FloatImage& image) {
   validate(surfaces);
   validate(shade);
   model::CpuHost host(spans, model::shade_uniforms(shade));
@@ -85,20 +86,19 @@ const FloatImage& CpuRenderer::shade(const SpanImage& spans, const SurfaceOption
   for (const PixelSpans& p : spans.pixels) most_spans = std::max(most_spans, p.count);
   const int dispatches = refract_dispatch_limit(spans.width(), spans.height(), most_spans, shade);
   if (shade.mode == ShadeMode::refractive) host.gather_block_bounds();
-  if (image_.width != spans.width() || image_.height != spans.height())
-    image_ = FloatImage(spans.width(), spans.height());
+  if (image.width != spans.width() || image.height != spans.height())
+    image = FloatImage(spans.width(), spans.height());
   std::atomic<std::int64_t> unfinished{0};
   host.each_pixel([&](model::ivec2 p) {
     bool left = false;
     const model::vec3 c = host.shade_pixel(p, shade.mode, dispatches, shade.march_budget, left);
     if (left) ++unfinished;
-    image_.set(p.x, p.y, glm::vec4(c, 1.0f));
+    image.set(p.x, p.y, glm::vec4(c, 1.0f));
   });
   if (shade.mode == ShadeMode::refractive) {
     stats.set_count("refract.dispatches", dispatches);
     stats.set_count("refract.unfinished", unfinished.load());
   }
-  return image_;
 }
 
 void CpuRenderer::first_hit(const SpanImage& spans, FloatImage& out) {

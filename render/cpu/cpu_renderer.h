@@ -42,6 +42,10 @@ class CpuRenderer {
   // elsewhere: a composite of several ranks). Valid until the next shade().
   const FloatImage& shade(const SpanImage& spans, const SurfaceOptions& surfaces,
                           const ShadeOptions& shade, gl::PassTimer& timer, FrameStats& stats);
+  // The same into `image` (resized when its size differs): a caller that keeps the picture
+  // (the runtime's view products) saves copying it.
+  void shade(const SpanImage& spans, const SurfaceOptions& surfaces, const ShadeOptions& shade,
+             gl::PassTimer& timer, FrameStats& stats, FloatImage& image);
 
   // Per pixel the distance along the ray to the first span's entry (0: none), in the first
   // channel, as the GPU's FirstHitPass writes it.

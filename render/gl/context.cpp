@@ -140,16 +140,6 @@ DisplayAttempt open_surfaceless() {
       "Mesa surfaceless");
 }
 
-Platform requested_platform(Platform configured) {
-  const char* env = std::getenv("VOXSPAN_GL_PLATFORM");
-  if (env == nullptr || *env == '\0') return configured;
-  Platform p;
-  if (!parse_platform(env, p))
-    throw make_error("VOXSPAN_GL_PLATFORM=", env,
-                     " is not a platform (expected auto, nvidia, device or surfaceless)");
-  return p;
-}
-
 bool debug_requested(bool configured) {
   const char* env = std::getenv("VOXSPAN_GL_DEBUG");
   return configured || (env != nullptr && std::strcmp(env, "0") != 0 && *env != '\0');
@@ -193,6 +183,16 @@ EGLContext create_core_context(EGLDisplay display, bool debug, std::string& fail
 }
 
 }  // namespace
+
+Platform requested_platform(Platform configured) {
+  const char* env = std::getenv("VOXSPAN_GL_PLATFORM");
+  if (env == nullptr || *env == '\0') return configured;
+  Platform p;
+  if (!parse_platform(env, p))
+    throw make_error("VOXSPAN_GL_PLATFORM=", env,
+                     " is not a platform (expected auto, nvidia, device or surfaceless)");
+  return p;
+}
 
 const char* platform_name(Platform platform) { return name_of(kPlatformNames, platform).data(); }
 

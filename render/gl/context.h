@@ -26,6 +26,9 @@ inline constexpr EnumName<Platform> kPlatformNames[] = {{"auto", Platform::autom
 const char* platform_name(Platform platform);
 // Accepts the names above; false for anything else.
 bool parse_platform(std::string_view text, Platform& platform);
+// The platform a Context made with `configured` tries: VOXSPAN_GL_PLATFORM when set, else
+// `configured`. Throws voxspan::Error naming the variable when it holds no platform's name.
+Platform requested_platform(Platform configured);
 
 struct ContextOptions {
   Platform platform = Platform::automatic;

@@ -30,15 +30,10 @@ DepthRangeCombine over_parts(const std::vector<test::Particles>& parts, const Ca
   return [all](const DepthRange&) { return all; };
 }
 
-// Each part voxelized alone, its bands exchanged and merged as SpanCompositor does.
-SpanImage composite(const std::vector<test::Particles>& parts, const Camera& camera,
-                    VoxelizeOptions options) {
-  const MergeSettings merge{options.gap_bridging, options.max_spans};
-  options.max_spans = 0;  // the ranks keep every span; the merge caps
-  options.combine_ranks = over_parts(parts, camera, options.grid);
-  std::vector<SpanImage> images;
-  for (const test::Particles& p : parts) images.push_back(test::voxelize(camera, p, options));
-  const int ranks = int(parts.size());
+// The ranks' span images merged as direct send merges them: each band of rows from every
+// image, then the bands put together.
+SpanImage composite(const std::vector<SpanImage>& images, const MergeSettings& merge) {
+  const int ranks = int(images.size());
   std::vector<std::vector<std::byte>> bands;
   for (int r = 0; r < ranks; ++r) {
     const RowBand band = band_of(r, ranks, images[0].height());
@@ -48,6 +43,17 @@ SpanImage composite(const std::vector<test::Particles>& parts, const Camera& cam
     bands.push_back(merge_rows(images[0].grid, received, merge));
   }
   return decode_image(images[0].grid, bands);
+}
+
+// Each part voxelized alone, its bands exchanged and merged as SpanCompositor does.
+SpanImage composite(const std::vector<test::Particles>& parts, const Camera& camera,
+                    VoxelizeOptions options) {
+  const MergeSettings merge{options.gap_bridging, options.max_spans};
+  options.max_spans = 0;  // the ranks keep every span; the merge caps
+  options.combine_ranks = over_parts(parts, camera, options.grid);
+  std::vector<SpanImage> images;
+  for (const test::Particles& p : parts) images.push_back(test::voxelize(camera, p, options));
+  return composite(images, merge);
 }
 
 struct Case {
@@ -139,15 +145,7 @@ TEST(SpanMerge, RanksWithGhostsAndTheirOwnCellStatesGiveTheSpansOfOneProcess) {
   std::vector<SpanImage> images;
   for (const Classification& c : parts)
     images.push_back(test::voxelize(camera, c.boundary, options, c.cell_states()));
-  std::vector<std::vector<std::byte>> bands;
-  for (int r = 0; r < ranks; ++r) {
-    const RowBand band = band_of(r, ranks, images[0].height());
-    std::vector<std::vector<std::byte>> received;
-    for (const SpanImage& image : images)
-      received.push_back(encode_rows(image, band.begin, band.end));
-    bands.push_back(merge_rows(images[0].grid, received, merge));
-  }
-  const SpanImage merged = decode_image(images[0].grid, bands);
+  const SpanImage merged = composite(images, merge);
   EXPECT_TRUE(test::same_spans(merged, one, 1e-5))
       << test::compare_spans(merged, one).summary() << test::describe_mismatches(merged, one, 6);
 }
