@@ -48,6 +48,8 @@ void validate(const ShadeOptions& o) {
     throw make_error("environment ground_height = ", e.ground_height, " is not finite");
   if (!(e.ground_tile > 0) || !std::isfinite(e.ground_tile))
     throw make_error("environment ground_tile = ", e.ground_tile, " must be > 0");
+  if (!(e.ground_contact >= 0) || !std::isfinite(e.ground_contact))
+    throw make_error("environment ground_contact = ", e.ground_contact, " must be >= 0");
   if (!(e.ground_fade >= 0) || !std::isfinite(e.ground_fade))
     throw make_error("environment ground_fade = ", e.ground_fade, " must be >= 0 (0 = 40 tiles)");
   for (auto [name, c] : {std::pair{"sky_zenith", e.sky_zenith},

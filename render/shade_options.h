@@ -43,10 +43,21 @@ struct Material {
 // A sky gradient over an infinite ground plane dot(x, up) = ground_height carrying a checker of
 // side ground_tile, fading into the horizon colour over ground_fade, and a directional sun.
 struct Environment {
+  // The fluid rests on a floor at `floor_height` (where an SPH solver's wall lies, half a
+  // `spacing` under its lowest particles): the ground there, and the contact up to those
+  // particles' centres, so that no ray meets the union's bumpy bottom as a free surface.
+  void rest_on_floor(double floor_height, double spacing) {
+    ground_height = floor_height;
+    ground_contact = 0.5 * spacing;
+  }
+
   glm::dvec3 up{0, 1, 0};
   double ground_height = 0;
   double ground_tile = 0.1;
   double ground_fade = 0;  // 0: 40 tiles
+  // Up to this height above the ground the fluid's lower surface rests on it: a ray leaving the
+  // fluid there downwards goes on unbent to the ground (column_march.glsl); 0: nowhere.
+  double ground_contact = 0;
   glm::dvec3 sky_zenith{0.22, 0.42, 0.8};
   glm::dvec3 sky_horizon{0.78, 0.84, 0.9};
   glm::dvec3 ground_light{0.8, 0.76, 0.68};

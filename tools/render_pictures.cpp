@@ -103,7 +103,7 @@ RenderOptions picture_options(const tools::DamBreakState& s, double alpha) {
   shade.material.absorption = glm::dvec3(5.0, 1.8, 0.7) / s.length;
   shade.material.scatter_color = {0.05, 0.16, 0.25};
   shade.environment.up = s.up;
-  shade.environment.ground_height = s.ground - 0.5 * s.spacing;
+  shade.environment.rest_on_floor(s.ground, s.spacing);
   shade.environment.ground_tile = s.length / 3;
   shade.environment.sun_direction = s.up + glm::dvec3(0.35, -0.3, 0.2);
   shade.ao.radius = 4 * s.spacing;

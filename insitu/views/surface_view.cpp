@@ -24,7 +24,7 @@ glm::dvec3 sun_direction(glm::dvec3 up) {
   return up + 0.35 * a + 0.45 * b;
 }
 
-// The lowest point of the box along `up`: the ground plane lies there.
+// The lowest point of the box along `up`.
 double lowest(const Bounds& box, glm::dvec3 up) {
   up = glm::normalize(up);
   double low = 1e300;
@@ -33,6 +33,13 @@ double lowest(const Bounds& box, glm::dvec3 up) {
         low, glm::dot(up, glm::dvec3(k & 1 ? box.hi[0] : box.lo[0], k & 2 ? box.hi[1] : box.lo[1],
                                      k & 4 ? box.hi[2] : box.lo[2])));
   return low;
+}
+
+// The floor the fluid rests on, seen from the spheres' box: half a spacing above its lowest
+// point, where a solver's wall lies with the default radius (one spacing); for any radius the
+// union's bottom lies under it.
+double floor_height(const Bounds& sphere_box, glm::dvec3 up, double spacing) {
+  return lowest(sphere_box, up) + 0.5 * spacing;
 }
 
 RenderOptions render_options(const SurfaceSettings& view, const RendererConfig& renderer,
@@ -194,7 +201,8 @@ class SurfaceView final : public View {
                     ? c.span_stages({options_.voxelize.gap_bridging, options_.voxelize.max_spans,
                                      c.backend == RenderBackend::cpu})
                     : std::vector<std::unique_ptr<SpanStage>>{}),
-        combine_ranks_(c.combine_ranks) {
+        combine_ranks_(c.combine_ranks),
+        spacing_(c.particle_spacing) {
     if (c.backend == RenderBackend::gl) gl_ = std::make_unique<GlSurface>(c.shaders);
     else cpu_ = std::make_unique<CpuSurface>();
   }
@@ -204,7 +212,8 @@ class SurfaceView final : public View {
     RenderOptions& o = step_options_;
     o = options_;
     if (!step.fluid_box.empty())
-      o.shade.environment.ground_height = lowest(step.fluid_box, o.shade.environment.up);
+      o.shade.environment.rest_on_floor(
+          floor_height(step.fluid_box, o.shade.environment.up, spacing_), spacing_);
     // Options are checked before any work, so a bad one costs nothing.
     validate(o.surfaces);
     validate(o.shade);
@@ -226,6 +235,7 @@ class SurfaceView final : public View {
   RenderOptions step_options_;
   std::vector<std::unique_ptr<SpanStage>> stages_;
   DepthRangeCombine combine_ranks_;
+  const double spacing_;
   std::unique_ptr<GlSurface> gl_;  // one of the two
   std::unique_ptr<CpuSurface> cpu_;
 };

@@ -12,7 +12,8 @@
 // reflection of the environment on entering; on leaving it follows the larger of the refracted
 // and the reflected share, so near and past the critical angle it reflects and stays inside:
 // total internal reflection), is absorbed (Beer-Lambert) and lit by scattering along every
-// stretch inside, and leaves to the environment at the grid's boundary. After `u_bounces` hits
+// stretch inside, and leaves to the environment at the grid's boundary, or ends on the ground
+// (opaque, the fluid resting on it) where it reaches the ground plane. After `u_bounces` hits
 // past the first entry it goes straight on, still absorbed.
 //
 // One call of march_step() handles one event (a boundary crossed or a column left), so the
@@ -20,7 +21,7 @@
 // iterations) and resumes the RayState in a later dispatch.
 //
 // Host needs: links.glsl, surface_geometry.glsl, octahedral.glsl, lighting.glsl, shade_modes.glsl
-// and their needs; u_bounces, u_near, u_grid_far, u_log2_step; vec2 sd_block_bounds(ivec2): the
+// and their needs; u_bounces, u_near, u_grid_far, u_log2_step, u_ground_contact; vec2 sd_block_bounds(ivec2): the
 // nearest entry and farthest exit depth in a block of VX_BLOCK^2 columns ((3e38, -3e38) when it
 // holds no span), over the surface depths.
 #ifndef VX_MODEL_COLUMN_MARCH
@@ -121,25 +122,41 @@ RayState ray_start(ivec2 p) {
   return s;
 }
 
-// Moves the ray to `point`, absorbing and scattering on the way when inside.
-RayState ray_advance(RayState s, vec3 point) {
-  if (s.inside) {
-    vec3 t = transmittance(length(point - s.origin));
-    s.color += s.throughput * (vec3(1.0f) - t) * u_scatter_color * s.occlusion;
-    s.throughput *= t;
-  }
-  s.origin = point;
-  return s;
-}
-
 RayState ray_leave(RayState s) {
   s.color += s.throughput * environment(view_to_world_point(s.anchor), view_to_world_direction(s.dir));
   s.marching = false;
   return s;
 }
 
+// Height of view-space point v above the ground plane.
+float above_ground(vec3 v) { return dot(view_to_world_point(v), u_env_up) - u_ground_height; }
+
+// Moves the ray to `point`, absorbing and scattering on the way when inside. The ground is
+// opaque and the fluid rests on it: a ray that reaches it, from inside or outside, ends there
+// and takes its colour. Without this, a ray in water lying on the ground would reach the
+// union's bottom, just below the plane, and meet it as a free surface: past the critical angle
+// it reflects totally and runs on inside the thin layer (the refraction's speckles).
+RayState ray_advance(RayState s, vec3 point) {
+  float h0 = above_ground(s.origin);
+  float h1 = above_ground(point);
+  bool grounded = h0 >= 0.0f && h1 < 0.0f;
+  if (grounded) point = mix(s.origin, point, h0 / (h0 - h1));
+  if (s.inside) {
+    vec3 t = transmittance(length(point - s.origin));
+    s.color += s.throughput * (vec3(1.0f) - t) * u_scatter_color * s.occlusion;
+    s.throughput *= t;
+  }
+  s.origin = point;
+  return grounded ? ray_leave(s) : s;
+}
+
 // A hit at s.origin, the outward normal n (view space); `entering`: from outside into fluid.
 RayState ray_interface(RayState s, vec3 n, bool entering) {
+  // Leaving downwards where the fluid rests on the ground: no interface with air there; the ray
+  // goes on inside, unbent, until ray_advance() ends it on the ground.
+  if (!entering && above_ground(s.origin) < u_ground_contact &&
+      dot(view_to_world_direction(s.dir), u_env_up) < 0.0f)
+    return s;
   if (s.bounces <= 0) {
     s.inside = entering;
     return s;
@@ -264,7 +281,8 @@ PyramidExit pyramid_exit(vec3 o, vec3 d, ivec2 lo, ivec2 hi) {
 // it finds.
 RayState skip_block(RayState s, PyramidExit e, ivec2 b0, ivec2 b1) {
   vec3 p = s.origin + e.s * s.dir;
-  s.origin = p;
+  s = ray_advance(s, p);
+  if (!s.marching) return s;
   if (e.side == 2) return ray_leave(s);
   vec2 xy = vec2((p.x / (p.z * u_tan_half.x) + 1.0f) * 0.5f * float(u_image.x),
                  (1.0f - p.y / (p.z * u_tan_half.y)) * 0.5f * float(u_image.y));
@@ -337,6 +355,7 @@ RayState march_step(RayState s) {
     if (forward ? b <= z_end : b >= z_end) {
       float t = d.z != 0.0f ? (b - o.z) / d.z : 0.0f;
       s = ray_advance(s, o + t * d);
+      if (!s.marching) return s;
       s.hint = next;
       s = remember_crossing(s, q, uint(next));
       bool inside_after = forward ? (next & 1) == 0 : (next & 1) == 1;
@@ -345,6 +364,7 @@ RayState march_step(RayState s) {
     }
   }
   s = ray_advance(s, o + s_end * d);
+  if (!s.marching) return s;
   if (!in_image(next_pixel)) return ray_leave(s);
   s.pixel = next_pixel;
   s.hint = VX_HINT_SIDE;

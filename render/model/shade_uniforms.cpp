@@ -17,6 +17,7 @@ ShadeUniforms shade_uniforms(const ShadeOptions& o) {
   u.u_env_axis_b = vec3(glm::cross(up, a));
   u.u_ground_height = float(e.ground_height);
   u.u_ground_tile = float(e.ground_tile);
+  u.u_ground_contact = float(e.ground_contact);
   u.u_ground_fade = float(e.ground_fade > 0 ? e.ground_fade : 40 * e.ground_tile);
   u.u_sky_zenith = vec3(e.sky_zenith);
   u.u_sky_horizon = vec3(e.sky_horizon);
@@ -43,6 +44,7 @@ void set_shade_uniforms(const gl::Program& p, const ShadeUniforms& u) {
   p.set("u_env_axis_b", u.u_env_axis_b);
   p.set("u_ground_height", u.u_ground_height);
   p.set("u_ground_tile", u.u_ground_tile);
+  p.set("u_ground_contact", u.u_ground_contact);
   p.set("u_ground_fade", u.u_ground_fade);
   p.set("u_sky_zenith", u.u_sky_zenith);
   p.set("u_sky_horizon", u.u_sky_horizon);

@@ -8,6 +8,7 @@ uniform vec3 u_env_axis_b;
 uniform float u_ground_height;
 uniform float u_ground_tile;
 uniform float u_ground_fade;
+uniform float u_ground_contact;
 uniform vec3 u_sky_zenith;
 uniform vec3 u_sky_horizon;
 uniform vec3 u_ground_light;

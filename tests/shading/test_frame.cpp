@@ -94,6 +94,7 @@ TEST(Refraction, MarchesResumedOverManyDispatchesComplete) {
                                            *particles, options);
     ShadeOptions shade = test::test_shading(ShadeMode::refractive);
     shade.bounces = 8;
+    shade.environment.ground_height = -1e3;  // far below: no ray ends on it early
     const test::GpuResult whole = test::shade_on_gpu(spans, {}, shade);
     shade.march_budget = 3;  // a few column events per ray and dispatch
     const test::GpuResult pieces = test::shade_on_gpu(spans, {}, shade);
@@ -121,6 +122,7 @@ TEST(Refraction, AMarchLongerThanOneDispatchCompletes) {
       test::hand_made(8, 8, std::vector<std::vector<Span>>(64, column), 1.0, 12.0);
   ShadeOptions shade = test::test_shading(ShadeMode::refractive);
   shade.material.absorption = {0.2, 0.1, 0.05};
+  shade.environment.ground_height = -1e3;  // the eye is at height 0: keep the ground off its rays
   const test::GpuResult gpu = test::shade_on_gpu(spans, {}, shade);
   EXPECT_GT(gpu.stats.count("refract.events"), 64 * 1400);
   EXPECT_GE(gpu.stats.count("refract.dispatches"), 2);
@@ -136,6 +138,56 @@ TEST(Refraction, AMarchLongerThanOneDispatchCompletes) {
           .image;
   EXPECT_LT(gpu.image.at(4, 4).r, 0.95f * empty.at(4, 4).r);
   EXPECT_GT(gpu.image.at(4, 4).r, 0.05f);
+}
+
+TEST(Refraction, WaterRestingOnTheGroundShowsTheGroundThroughIt) {
+  // A layer three particles thick on the ground (y = 0, its lowest particles half a spacing
+  // above it), its top particles jittered so that the free surface tilts this way and that,
+  // seen from above at 35 degrees: rays enter through the tilted top and reach the bottom past
+  // the critical angle. Were the union's bottom a water-air surface, they would reflect totally
+  // and run on inside the layer, gathering scattered light (blue speckles: the refraction's
+  // speckles of the dam break's thin surge). Resting on the opaque ground, every ray ends on it,
+  // through a few spacings of water: no pixel gathers more than that much scattering.
+  const double s = 0.01;
+  test::Particles layer = test::lattice_block({-0.3, 0, -0.3}, {60, 3, 60}, s, float(s));
+  std::uint32_t seed = 7;
+  for (ParticleSphere& p : layer)
+    if (p.y > 2 * s) {
+      seed = seed * 1664525u + 1013904223u;
+      p.y += float(s * 0.6 * (double(seed >> 8) / double(1u << 24) - 0.5));
+    }
+  const Camera camera = test::look_at({0, 0.35, -0.5}, {0, 0, 0}, 160, 96, 40);
+  VoxelizeOptions options;
+  options.gap_bridging = s;
+  const SpanImage spans = test::voxelize(camera, layer, options);
+  ShadeOptions shade = test::test_shading(ShadeMode::refractive, 0.12);
+  shade.material.absorption = {2, 2, 2};     // per unit: a few percent over the layer
+  shade.material.scatter_color = {0, 0, 1};  // scattering shows as blue over red
+  shade.environment.rest_on_floor(0, s);
+  auto most_blue = [&](const ShadeOptions& o, int* bluer_than) {
+    const FloatImage image = test::shade_on_gpu(spans, {}, o).image;
+    float most = 0;
+    *bluer_than = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        const glm::vec4 c = image.at(x, y);
+        most = std::max(most, c.b - c.r);
+        if (c.b - c.r > 0.2f) ++*bluer_than;
+      }
+    return most;
+  };
+  int resting = 0, floating = 0;
+  const float most = most_blue(shade, &resting);
+  ShadeOptions apart = shade;  // the ground under the union's bottom, no contact: the old rule
+  apart.environment.ground_height = -0.5 * s;
+  apart.environment.ground_contact = 0;
+  const float most_apart = most_blue(apart, &floating);
+  std::printf(
+      "blue over red: at most %.3f resting on the ground, %.3f apart (%d pixels over 0.2)\n", most,
+      most_apart, floating);
+  EXPECT_EQ(resting, 0);
+  EXPECT_LT(most, 0.2f);
+  EXPECT_GT(floating, 0) << "the scene should show the totally reflected rays without the contact";
 }
 
 TEST(Renderer, FullFrameFromParticles) {
