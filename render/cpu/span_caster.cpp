@@ -1,6 +1,7 @@
 #include "render/cpu/span_caster.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <vector>
 
@@ -192,6 +193,12 @@ void cell_boxes(const PerspectiveGrid& grid, const CellStatesView& cells,
   }
 }
 
+// A float's bits as an unsigned integer of the same order (negatives below positives).
+std::uint32_t sortable_bits(float f) {
+  const auto u = std::bit_cast<std::uint32_t>(f);
+  return (u & 0x80000000u) != 0 ? ~u : u | 0x80000000u;
+}
+
 PixelRect clip(const PixelRect& r, int x0, int y0, int x1, int y1) {
   return {std::max(r.x0, x0), std::max(r.y0, y0), std::min(r.x1, x1), std::min(r.y1, y1)};
 }
@@ -201,7 +208,8 @@ PixelRect clip(const PixelRect& r, int x0, int y0, int x1, int y1) {
 struct TileLists {
   std::vector<std::vector<Interval>> at = std::vector<std::vector<Interval>>(kTile * kTile);
   double a[kTile], b[kTile];
-  double d2[kTile * kTile];  // |ray|^2
+  double d2[kTile * kTile];     // |ray|^2
+  double scale[kTile * kTile];  // |ray|: a depth difference's length along the ray
   // One row of one sphere: the chord's centre depth and squared half length per pixel.
   double zc[kTile], h2[kTile];
   std::int64_t chord_tests = 0;
@@ -270,7 +278,7 @@ struct SpanCaster::Work {
   std::vector<BinnedSphere> binned;  // sphere_bins' items, the spheres themselves
   std::vector<Sphere> spheres, sorted_spheres;
   std::vector<PixelRect> sphere_rects, box_rects, sorted_rects;
-  std::vector<std::uint32_t> order;
+  std::vector<std::uint64_t> order;
   std::vector<Box> boxes;
   std::vector<CellBox> cell_boxes;
   BoxScratch box_scratch;
@@ -324,17 +332,19 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
   w.sphere_rects.resize(kept);
   // Nearest first: the bins keep this order, so each pixel's chords arrive almost in depth
   // order and most of them only move the last exit of its union (add_interval).
+  // Sorted as (nearest depth, index) keys packed in 64 bits: no indirection in the sort.
   w.order.resize(kept);
-  for (std::size_t i = 0; i < kept; ++i) w.order[i] = std::uint32_t(i);
-  tbb::parallel_sort(w.order.begin(), w.order.end(), [&](std::uint32_t p, std::uint32_t q) {
-    return w.spheres[p].center.z - w.spheres[p].radius <
-           w.spheres[q].center.z - w.spheres[q].radius;
-  });
+  for (std::size_t i = 0; i < kept; ++i)
+    w.order[i] = std::uint64_t(sortable_bits(float(w.spheres[i].center.z - w.spheres[i].radius)))
+                     << 32 |
+                 std::uint64_t(i);
+  tbb::parallel_sort(w.order.begin(), w.order.end());
   w.sorted_spheres.resize(kept);
   w.sorted_rects.resize(kept);
   for (std::size_t i = 0; i < kept; ++i) {
-    w.sorted_spheres[i] = w.spheres[w.order[i]];
-    w.sorted_rects[i] = w.sphere_rects[w.order[i]];
+    const std::size_t from = std::size_t(w.order[i] & 0xffffffffu);
+    w.sorted_spheres[i] = w.spheres[from];
+    w.sorted_rects[i] = w.sphere_rects[from];
   }
   std::swap(w.spheres, w.sorted_spheres);
   std::swap(w.sphere_rects, w.sorted_rects);
@@ -369,12 +379,13 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
           l.at[local(x, y)].clear();
           const double a = l.a[x - x0], b = l.b[y - y0];
           l.d2[local(x, y)] = a * a + b * b + 1.0;
+          l.scale[local(x, y)] = std::sqrt(l.d2[local(x, y)]);
         }
       const auto keep = [&](std::size_t pixel, Interval iv) {
         iv.entry = std::max(iv.entry, near);
         iv.exit = std::min(iv.exit, far);
         if (iv.entry < iv.exit)
-          add_interval(l.at[pixel], iv, std::sqrt(l.d2[pixel]), settings.gap_bridging);
+          add_interval(l.at[pixel], iv, l.scale[pixel], settings.gap_bridging);
       };
       const std::size_t first = w.sphere_bins.start[std::size_t(t)];
       const std::size_t last = w.sphere_bins.start[std::size_t(t) + 1];
@@ -405,7 +416,7 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
       SpanListBuilder builder(spans, settings.max_spans);
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
-          const double scale = std::sqrt(l.d2[local(x, y)]);
+          const double scale = l.scale[local(x, y)];
           builder.begin();
           for (const Interval& iv : l.at[local(x, y)]) builder.add(iv.entry, iv.exit, scale);
           out.pixels[std::size_t(x) + std::size_t(y) * std::size_t(width)] = builder.end();
