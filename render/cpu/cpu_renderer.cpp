@@ -63,11 +63,11 @@ void CpuRenderer::shade(const SpanImage& spans, const SurfaceOptions& surfaces,
     host.u_max_iterations = model::uint(surfaces.max_iterations);
     host.u_radius = float(surfaces.filter_radius);
     host.u_iteration_scale = float(FilterPass::iteration_scale(spans.grid, surfaces.filter_radius));
-    for (int i = 0; i < iterations; ++i) {
-      host.u_iteration = model::uint(i);
+    for (int pass = 0; iterations > 0 && pass < FilterPass::kPasses; ++pass) {
+      host.u_filter_pass = model::uint(pass);
       host.fill_per_span(next_depths_,
                          [&](model::ivec2 p, model::uint s) { return host.filter_span(p, s); });
-      host.depths_.swap(next_depths_);  // iteration 0 read the span depths (depths_ empty)
+      host.depths_.swap(next_depths_);  // pass 0 read the span depths (depths_ empty)
     }
     stats.set_count("filter.iterations", iterations);
   }

@@ -37,7 +37,7 @@ class CpuHost : public GridUniforms, public ShadeUniforms {
   std::vector<float> ao_;
   std::vector<vec2> depths_;
   // render/model/surface_filter.glsl's uniforms.
-  uint u_iteration = 0u, u_max_iterations = 0u;
+  uint u_filter_pass = 0u, u_max_iterations = 0u;
   float u_radius = 0.0f, u_iteration_scale = 0.0f;
 
   uint sd_count(ivec2 p) const { return record(p).count; }

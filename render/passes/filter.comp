@@ -1,6 +1,6 @@
-// One iteration of the surface filter ([ZD15] sec. 3.4, 4.6; render/passes/filter.h): one
-// thread per span, the rule in render/model/surface_filter.glsl, from surface_depths (the
-// previous iteration) into filtered_depths.
+// One pass of the surface filter ([ZD15] sec. 3.4, 4.6; render/passes/filter.h): one thread per
+// span, the rule in render/model/surface_filter.glsl, from surface_depths (the previous pass's)
+// into filtered_depths.
 layout(local_size_x = 64) in;
 
 #define SPAN_IMAGE_ACCESS readonly
@@ -15,7 +15,7 @@ layout(std430, binding = FILTERED_DEPTHS_BINDING) writeonly buffer FilteredDepth
   vec2 filtered_depths[];
 };
 
-uniform uint u_iteration;         // 0-based
+uniform uint u_filter_pass;       // 0 .. 3
 uniform uint u_max_iterations;
 uniform float u_radius;           // world units
 uniform float u_iteration_scale;  // n(z) = ceil(u_iteration_scale / z^2)

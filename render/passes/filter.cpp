@@ -46,15 +46,15 @@ int FilterPass::run(const GpuSpanImage& image, GpuSurfaces& surfaces,
   const int iterations = spans == 0 ? 0 : FilterPass::iterations(image.grid(), options);
   if (iterations <= 0) return 0;
   for (int i = 0; i < 2; ++i) surfaces.filter_buffer(i).reserve(spans * 8);
-  // Iteration 0 reads the span depths; then the buffers alternate.
+  // Pass 0 reads the span depths; then the buffers alternate.
   set_grid_uniforms(program_, image.grid());
   program_.set("u_max_iterations", static_cast<unsigned>(options.max_iterations));
   program_.set("u_radius", float(options.filter_radius));
   program_.set("u_iteration_scale", float(iteration_scale(image.grid(), options.filter_radius)));
-  for (int i = 0; i < iterations; ++i) {
+  for (int i = 0; i < kPasses; ++i) {
     surfaces.bind(image);
     surfaces.filter_buffer(i % 2).bind(GL_SHADER_STORAGE_BUFFER, kFilteredDepths);
-    program_.set("u_iteration", static_cast<unsigned>(i));
+    program_.set("u_filter_pass", static_cast<unsigned>(i));
     dispatch_threads(program_, spans);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     surfaces.set_filtered(i % 2);

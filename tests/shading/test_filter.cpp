@@ -161,6 +161,49 @@ TEST(Filter, ThinNoisySheetSurvives) {
   EXPECT_LT(spread_after, 0.3 * spread_before) << "the noise should be smoothed away";
 }
 
+TEST(Filter, EqualsTheIteratedKernelWhereTheSurfaceIsLinkedAllRound) {
+  // A surface linked all round (one span per pixel, small noise on the depths): away from the
+  // image's edges, where the links end, the filter's passes give what n iterations of the
+  // 3x3 binomial kernel on 1/z give, to float rounding.
+  const int w = 64, h = 64, n = 8;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> noise(-0.002f, 0.002f);
+  std::vector<std::vector<Span>> columns(std::size_t(w) * h);
+  for (auto& c : columns) c.push_back({3.0f + noise(rng), 3.5f + noise(rng)});
+  const SpanImage spans = test::hand_made(w, h, columns);
+  SurfaceOptions filter;
+  filter.filter_radius = 1.0;  // far beyond the noise: the bounds do not act
+  filter.max_iterations = n;
+  const test::GpuResult r =
+      test::shade_on_gpu(spans, filter, test::test_shading(ShadeMode::opaque));
+  ASSERT_EQ(r.stats.count("filter.iterations"), n);
+  // The iterated kernel, in double, on the entries' reciprocal depths.
+  std::vector<double> inv(std::size_t(w) * h), next(inv.size());
+  for (std::size_t i = 0; i < inv.size(); ++i) inv[i] = 1.0 / spans.spans[i].entry;
+  for (int it = 0; it < n; ++it) {
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        double sum = 0, weight = 0;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            if (x + dx < 0 || x + dx >= w || y + dy < 0 || y + dy >= h) continue;
+            const double k = (dx == 0 ? 2 : 1) * (dy == 0 ? 2 : 1);
+            sum += k * inv[std::size_t(x + dx) + std::size_t(y + dy) * w];
+            weight += k;
+          }
+        next[std::size_t(x) + std::size_t(y) * w] = sum / weight;
+      }
+    std::swap(inv, next);
+  }
+  double worst = 0;
+  for (int y = n; y < h - n; ++y)
+    for (int x = n; x < w - n; ++x) {
+      const std::size_t i = std::size_t(x) + std::size_t(y) * w;
+      worst = std::max(worst, std::abs(double(r.depths[i].x) - 1.0 / inv[i]));
+    }
+  EXPECT_LT(worst, 2e-6) << "largest difference from the iterated kernel, away from the edges";
+}
+
 TEST(Filter, IterationsFollowTheDepth) {
   const SpanImage spans = test::hand_made(100, 100, std::vector<std::vector<Span>>(10000));
   const double pixel = 2 * spans.grid.view().tan_half_y / spans.height();  // at depth 1
