@@ -35,6 +35,11 @@ void validate(const SurfaceOptions& o) {
     throw make_error("filter max_iterations = ", o.max_iterations, " is outside 0..1000");
 }
 
+glm::dvec3 Material::water_absorption(double depth) {
+  const glm::dvec3 water = Material{}.absorption;
+  return water * (std::log(10.0) / (water.r * depth));
+}
+
 void validate(const ShadeOptions& o) {
   const Material& m = o.material;
   check_color("absorption", m.absorption);

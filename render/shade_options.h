@@ -38,6 +38,10 @@ struct Material {
   double ior = 1.33;
   glm::dvec3 scatter_color{0.02, 0.06, 0.09};
   glm::dvec3 albedo{0.35, 0.55, 0.8};
+
+  // Clear water's tint (the default absorption's proportions) at any scale: red keeps a
+  // tenth of its light through `depth` world units of fluid, green and blue more.
+  static glm::dvec3 water_absorption(double depth);
 };
 
 // A sky gradient over an infinite ground plane dot(x, up) = ground_height carrying a checker of

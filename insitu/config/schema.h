@@ -214,6 +214,16 @@ Key<T> vec3(std::string name, std::array<double, 3> T::*member, std::string help
       [name](yaml::MapReader& r, std::array<double, 3>& v) { r.get_vec3(name, v); });
 }
 
+template <class T>
+Key<T> vec3_or_auto(std::string name, std::optional<std::array<double, 3>> T::*member,
+                    std::string help) {
+  return make_key<T, std::optional<std::array<double, 3>>>(
+      name, member, "[x, y, z] or `auto`", std::move(help),
+      [name](yaml::MapReader& r, std::optional<std::array<double, 3>>& v) {
+        r.get_auto_vec3(name, v);
+      });
+}
+
 // A list of distinct, non-empty names.
 template <class T>
 Key<T> names(std::string name, std::vector<std::string> T::*member, std::string help) {

@@ -232,6 +232,18 @@ bool MapReader::get_vec3(std::string_view key, std::array<double, 3>& out) {
   return true;
 }
 
+bool MapReader::get_auto_vec3(std::string_view key, std::optional<std::array<double, 3>>& out) {
+  YAML::Node value = find(key);
+  if (value.IsDefined() && value.IsScalar() && value.Scalar() == "auto") {
+    out.reset();
+    return true;
+  }
+  std::array<double, 3> v{};
+  if (!get_vec3(key, v)) return false;
+  out = v;
+  return true;
+}
+
 bool MapReader::get_names(std::string_view key, std::vector<std::string>& out) {
   YAML::Node value = find(key);
   if (!value.IsDefined()) return false;

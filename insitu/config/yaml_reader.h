@@ -71,6 +71,8 @@ class MapReader {
   bool get_auto_int(std::string_view key, std::optional<std::int64_t>& out, std::int64_t min,
                     std::int64_t max);
   bool get_vec3(std::string_view key, std::array<double, 3>& out);
+  // `auto` (std::nullopt) or three numbers as get_vec3 checks them.
+  bool get_auto_vec3(std::string_view key, std::optional<std::array<double, 3>>& out);
   // A list of distinct, non-empty names.
   bool get_names(std::string_view key, std::vector<std::string>& out);
   template <class E>

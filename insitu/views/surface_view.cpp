@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "insitu/views/view.h"
 #include "render/cpu/cpu_renderer.h"
@@ -42,6 +43,11 @@ double floor_height(const Bounds& sphere_box, glm::dvec3 up, double spacing) {
   return lowest(sphere_box, up) + 0.5 * spacing;
 }
 
+// The box's smallest side: the depth scale of `absorption: auto`.
+double smallest_side(const Bounds& box) {
+  return std::min({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]});
+}
+
 RenderOptions render_options(const SurfaceSettings& view, const RendererConfig& renderer,
                              double spacing) {
   if (!(spacing > 0) || !std::isfinite(spacing))
@@ -60,7 +66,7 @@ RenderOptions render_options(const SurfaceSettings& view, const RendererConfig& 
   shade.mode = view.shading;
   shade.deep_ao = view.deep_ao;
   shade.ao.radius = 4 * spacing;
-  shade.material.absorption = vec(view.absorption);
+  if (view.absorption) shade.material.absorption = vec(*view.absorption);
   shade.material.ior = view.ior;
   shade.bounces = view.bounces;
   shade.environment.up = vec(view.camera.up);
@@ -78,7 +84,7 @@ void check_surface(yaml::MapReader& r, SurfaceSettings& v) {
                       "must be a multiple of 32 (a column's layers are stored in 32-bit words); "
                       "got " +
                           std::to_string(v.max_layers));
-  if (r.has("absorption") && (v.absorption[0] < 0 || v.absorption[1] < 0 || v.absorption[2] < 0))
+  if (v.absorption && ((*v.absorption)[0] < 0 || (*v.absorption)[1] < 0 || (*v.absorption)[2] < 0))
     r.checker().error(r.find("absorption"), r.path("absorption"), "must not be negative");
 }
 
@@ -105,8 +111,11 @@ const schema::Section<SurfaceSettings>& surface_section() {
                                   "4.6); 0 = off; `auto` = the particle spacing"),
            schema::integer("max_layers", &S::max_layers, 32, 1 << 20,
                            "cap on depth layers, a multiple of 32"),
-           schema::vec3("absorption", &S::absorption,
-                        "Beer-Lambert absorption per world unit, RGB, >= 0"),
+           schema::vec3_or_auto("absorption", &S::absorption,
+                                "Beer-Lambert absorption per world unit, RGB, >= 0; `auto` = "
+                                "clear water's tint, scaled to the fluid: red keeps a tenth "
+                                "through the smallest side of the fluid's box at the first "
+                                "render step (kept for the run)"),
            schema::number("ior", &S::ior, schema::between(1, 4),
                           "refractive index (refractive mode)"),
            schema::integer("bounces", &S::bounces, 0, 16,
@@ -211,6 +220,10 @@ class SurfaceView final : public View {
               ViewProducts& out) override {
     RenderOptions& o = step_options_;
     o = options_;
+    if (!settings_.absorption && !auto_absorption_ && !step.fluid_box.empty())
+      auto_absorption_ =
+          Material::water_absorption(std::max(smallest_side(step.fluid_box), spacing_));
+    if (auto_absorption_) o.shade.material.absorption = *auto_absorption_;
     if (!step.fluid_box.empty())
       o.shade.environment.rest_on_floor(
           floor_height(step.fluid_box, o.shade.environment.up, spacing_), spacing_);
@@ -236,7 +249,8 @@ class SurfaceView final : public View {
   std::vector<std::unique_ptr<SpanStage>> stages_;
   DepthRangeCombine combine_ranks_;
   const double spacing_;
-  std::unique_ptr<GlSurface> gl_;  // one of the two
+  std::optional<glm::dvec3> auto_absorption_;  // absorption: auto, fixed at the first box
+  std::unique_ptr<GlSurface> gl_;              // one of the two
   std::unique_ptr<CpuSurface> cpu_;
 };
 

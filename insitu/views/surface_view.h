@@ -27,7 +27,7 @@ struct SurfaceSettings : CloneAs<SurfaceSettings, ViewSettings> {
   int max_spans = 0;          // stored spans per pixel; 0 = no cap (exact lists)
   std::optional<double> filter_radius;  // world units; nullopt = auto; 0 = off
   int max_layers = 16384;               // cap on depth layers, a multiple of 32 (paper: 16384)
-  Vec3d absorption{0.45, 0.12, 0.05};   // Beer-Lambert, per world unit, RGB
+  std::optional<Vec3d> absorption;      // Beer-Lambert, per world unit, RGB; nullopt = auto
   double ior = 1.33;                    // refractive index (refractive mode)
   int bounces = 3;                      // refraction/reflection bounces (refractive mode)
   bool operator==(const SurfaceSettings&) const = default;
