@@ -14,10 +14,12 @@
 // the particles near its part as ghosts; the ranks' span images are composited exactly and
 // rank 0 writes the same pictures one process would.
 // --spacing: the particles' rest spacing (else the config's classification.particle_spacing,
-// else estimated from the first file: the median nearest-neighbour distance). --radius: the
-// sphere radius where a file has none (default: the spacing). --arrays: PySPH particle arrays
-// to read (default: all). Exit status 0 when every file was read and rendered, 1 otherwise,
-// 2 on bad arguments; each failure is one line on stderr naming the file.
+// else the first file's own: PySPH's mass and density, else estimated from its positions: the
+// median nearest-neighbour distance). --radius: the sphere radius where a file has none
+// (default: the spacing). --arrays: PySPH particle arrays to read, or `all` (default: the
+// fluid's, picked by name or motion and printed: insitu/io/read_pysph_hdf5.cpp). Exit status 0 when
+// every file was read and rendered, 1 otherwise, 2 on bad arguments; each failure is one line on
+// stderr naming the file.
 #include <mpi.h>
 
 #include <cstdio>
@@ -163,7 +165,16 @@ int render(const Options& o, const Ranks& ranks) {
     const voxspan::Config config = offline_config(o);
     // The first file is read before the runtime starts: it may give the spacing.
     voxspan::ParticleData first = voxspan::read_particles(o.files[0], o.read);
+    if (talk && !first.chosen.empty()) std::printf("reading %s\n", first.chosen.c_str());
     double spacing = o.spacing > 0 ? o.spacing : config.classification.particle_spacing.value_or(0);
+    if (!(spacing > 0) && first.spacing) {
+      spacing = *first.spacing;
+      if (talk)
+        std::printf(
+            "particle spacing %.6g (from the particles' mass and density; --spacing "
+            "sets it)\n",
+            spacing);
+    }
     if (!(spacing > 0)) {
       spacing = voxspan::estimate_particle_spacing(first.positions);
       if (!(spacing > 0))

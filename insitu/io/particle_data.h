@@ -24,6 +24,8 @@ struct ParticleData {
   std::vector<Attribute> attributes;
   std::optional<double> time;        // simulated time, when the file says
   std::optional<std::int64_t> step;  // step/iteration, when the file says
+  std::optional<double> spacing;     // the rest spacing, when the file gives it (PySPH: m, rho)
+  std::string chosen;                // what of the file was read, when it had a choice
 
   std::size_t size() const { return positions.size(); }
   const Attribute* attribute(std::string_view name) const;
@@ -33,7 +35,8 @@ struct ParticleData {
 };
 
 struct ParticleReadOptions {
-  // PySPH: the particle arrays to read (e.g. {"fluid"}); empty = every array in the file.
+  // PySPH: the particle arrays to read (e.g. {"fluid"}); {"all"}: every array; empty: the
+  // fluid's (kPickFluid in read_pysph_hdf5.cpp).
   std::vector<std::string> arrays;
 };
 

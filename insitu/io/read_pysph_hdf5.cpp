@@ -5,10 +5,16 @@
 //   /particles/<array>/constants/...       (not read)
 // Positions are x, y, z (z = 0 for 2D runs); u, v, w become the vector attribute "velocity";
 // every other stored per-particle property is a scalar attribute. Several arrays (fluid,
-// boundary...) are concatenated, keeping the attributes all of them have.
+// boundary...) are concatenated, keeping the attributes all of them have. With no arrays named
+// the fluid's are read: the arrays named like a fluid ("fluid" in the name), else those whose
+// particles move, else every one (a file written at rest with other names), and ParticleData
+// says which and why. The spacing is the median of (m / rho)^(1 / dimensions) when the arrays
+// store mass and density.
 #include <hdf5.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <map>
 
 #include "insitu/io/particle_data.h"
@@ -111,6 +117,64 @@ ArrayData read_array(hid_t particles, const std::string& name, const std::string
   return out;
 }
 
+bool named_like_fluid(std::string name) {
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return name.find("fluid") != std::string::npos;
+}
+
+bool moves(const ArrayData& a) {
+  for (const char* v : {"u", "v", "w"}) {
+    auto it = a.properties.find(v);
+    if (it != a.properties.end() &&
+        std::any_of(it->second.begin(), it->second.end(), [](double x) { return x != 0; }))
+      return true;
+  }
+  return false;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  return list;
+}
+
+// The arrays a file's fluid is when none are named (see the file's comment), and why.
+std::vector<std::size_t> pick_fluid(const std::vector<std::string>& names,
+                                    const std::vector<ArrayData>& arrays, std::string& why) {
+  std::vector<std::size_t> named, moving, all;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (named_like_fluid(names[i])) named.push_back(i);
+    if (moves(arrays[i])) moving.push_back(i);
+    all.push_back(i);
+  }
+  if (!named.empty() && named.size() < names.size()) {
+    why = "named like a fluid";
+    return named;
+  }
+  if (!moving.empty() && moving.size() < names.size()) {
+    why = "their particles move, the others' do not";
+    return moving;
+  }
+  why = "no array is named like a fluid or alone in moving";
+  return all;
+}
+
+// The median of (m / rho)^(1 / dims) over the arrays' particles; nullopt without m and rho.
+std::optional<double> spacing_from_mass(const std::vector<const ArrayData*>& arrays, int dims) {
+  std::vector<double> d;
+  for (const ArrayData* a : arrays) {
+    auto m = a->properties.find("m"), rho = a->properties.find("rho");
+    if (m == a->properties.end() || rho == a->properties.end()) return std::nullopt;
+    for (std::size_t i = 0; i < a->count; ++i)
+      if (m->second[i] > 0 && rho->second[i] > 0)
+        d.push_back(std::pow(m->second[i] / rho->second[i], 1.0 / dims));
+  }
+  if (d.empty()) return std::nullopt;
+  std::nth_element(d.begin(), d.begin() + std::ptrdiff_t(d.size() / 2), d.end());
+  return d[d.size() / 2];
+}
+
 }  // namespace
 
 ParticleData read_pysph_hdf5(const std::filesystem::path& path,
@@ -125,35 +189,49 @@ ParticleData read_pysph_hdf5(const std::filesystem::path& path,
   if (!particles.valid()) throw make_error(file, ": no /particles group (not a PySPH output file)");
 
   std::vector<std::string> available = member_names(particles.get());
-  std::vector<std::string> names = options.arrays.empty() ? available : options.arrays;
+  const bool everything = options.arrays.size() == 1 && options.arrays[0] == "all";
+  std::vector<std::string> names =
+      options.arrays.empty() || everything ? available : options.arrays;
   for (const std::string& n : names)
-    if (std::find(available.begin(), available.end(), n) == available.end()) {
-      std::string list;
-      for (const auto& a : available) list += (list.empty() ? "" : ", ") + a;
-      throw make_error(file, ": no particle array \"", n, "\" (the file has: ", list, ")");
-    }
+    if (std::find(available.begin(), available.end(), n) == available.end())
+      throw make_error(file, ": no particle array \"", n, "\" (the file has: ", joined(available),
+                       ")");
   if (names.empty()) throw make_error(file, ": no particle arrays under /particles");
 
-  std::vector<ArrayData> arrays;
-  for (const std::string& n : names) arrays.push_back(read_array(particles.get(), n, file));
+  std::vector<ArrayData> read;
+  for (const std::string& n : names) read.push_back(read_array(particles.get(), n, file));
+  std::vector<std::size_t> picked(names.size());
+  for (std::size_t i = 0; i < picked.size(); ++i) picked[i] = i;
+  std::string why;
+  if (options.arrays.empty()) picked = pick_fluid(names, read, why);
+  std::vector<const ArrayData*> arrays;
+  std::vector<std::string> chosen, others;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const bool in = std::find(picked.begin(), picked.end(), i) != picked.end();
+    if (in) arrays.push_back(&read[i]), chosen.push_back(names[i]);
+    else others.push_back(names[i]);
+  }
 
   ParticleData data;
   // Properties every array has, except the positions and velocities handled below.
   std::vector<std::string> common;
-  for (const auto& [prop, values] : arrays.front().properties) {
+  for (const auto& [prop, values] : arrays.front()->properties) {
     if (prop == "x" || prop == "y" || prop == "z" || prop == "u" || prop == "v" || prop == "w")
       continue;
     bool everywhere = std::all_of(arrays.begin(), arrays.end(),
-                                  [&](const ArrayData& a) { return a.properties.count(prop); });
+                                  [&](const ArrayData* a) { return a->properties.count(prop); });
     if (everywhere) common.push_back(prop);
   }
-  bool velocity = std::all_of(arrays.begin(), arrays.end(), [](const ArrayData& a) {
-    return a.properties.count("u") && a.properties.count("v");
+  bool velocity = std::all_of(arrays.begin(), arrays.end(), [](const ArrayData* a) {
+    return a->properties.count("u") && a->properties.count("v");
   });
   for (const std::string& prop : common) data.attributes.push_back({prop, 1, {}});
   if (velocity) data.attributes.push_back({"velocity", 3, {}});
 
-  for (const ArrayData& a : arrays) {
+  bool three_d = false;
+  for (const ArrayData* array : arrays) {
+    const ArrayData& a = *array;
+    three_d = three_d || a.properties.count("z") > 0;
     const auto& x = a.properties.at("x");
     const auto& y = a.properties.at("y");
     auto z = a.properties.find("z");
@@ -179,6 +257,10 @@ ParticleData read_pysph_hdf5(const std::filesystem::path& path,
     long long count = 0;
     if (read_scalar_attribute(solver.get(), "count", H5T_NATIVE_LLONG, count)) data.step = count;
   }
+  data.spacing = spacing_from_mass(arrays, three_d ? 3 : 2);
+  if (options.arrays.empty())
+    data.chosen = "PySPH arrays " + joined(chosen) + " (" + why + ")" +
+                  (others.empty() ? "" : "; left out: " + joined(others) + " (--arrays picks)");
   adopt_radius_attribute(data);
   return data;
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 
@@ -112,15 +113,15 @@ void write_dataset(hid_t group, const char* name, const std::vector<double>& val
 }
 
 void write_array(hid_t particles, const char* name, const std::vector<std::array<double, 3>>& xyz,
-                 bool three_d, const std::vector<std::string>& extra) {
+                 bool three_d, const std::vector<std::string>& extra, bool still = false) {
   hid_t g = H5Gcreate2(particles, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   hid_t arrays = H5Gcreate2(g, "arrays", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   hid_t constants = H5Gcreate2(g, "constants", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   std::vector<double> x, y, z, u, v, w, m, rho;
   for (std::size_t i = 0; i < xyz.size(); ++i) {
     x.push_back(xyz[i][0]), y.push_back(xyz[i][1]), z.push_back(xyz[i][2]);
-    u.push_back(1.0 + i), v.push_back(2.0), w.push_back(-1.0), m.push_back(0.001),
-        rho.push_back(1000 + i);
+    u.push_back(still ? 0.0 : 1.0 + i), v.push_back(still ? 0.0 : 2.0),
+        w.push_back(still ? 0.0 : -1.0), m.push_back(0.001), rho.push_back(1000 + i);
   }
   write_dataset(arrays, "x", x);
   write_dataset(arrays, "y", y);
@@ -163,8 +164,9 @@ void write_pysph_file(const std::filesystem::path& path) {
 TEST(PySphParticles, ReadsEveryArrayWithTimeStepAndCommonProperties) {
   test::TempFolder dir;
   write_pysph_file(dir / "dam_break_1500.hdf5");
-  ParticleData d = read_particles(dir / "dam_break_1500.hdf5");
+  ParticleData d = read_particles(dir / "dam_break_1500.hdf5", {{"all"}});
   ASSERT_EQ(d.size(), 5u);
+  EXPECT_TRUE(d.chosen.empty());
   EXPECT_DOUBLE_EQ(d.positions[2][2], 0.3);
   EXPECT_DOUBLE_EQ(d.positions[4][0], -2);
   EXPECT_EQ(d.time, 0.75);
@@ -193,6 +195,32 @@ TEST(PySphParticles, SelectsArraysByName) {
       << e;
   std::ofstream(dir / "fake.h5") << "not hdf5";
   EXPECT_NE(error_of(dir / "fake.h5").find("not an HDF5 file"), std::string::npos);
+}
+
+TEST(PySphParticles, WithoutNamesTheFluidIsReadAndTheSpacingComesFromMassAndDensity) {
+  test::TempFolder dir;
+  write_pysph_file(dir / "named.hdf5");  // arrays fluid and solid, both moving
+  const ParticleData named = read_particles(dir / "named.hdf5");
+  EXPECT_EQ(named.size(), 3u);
+  EXPECT_EQ(named.chosen,
+            "PySPH arrays fluid (named like a fluid); left out: solid (--arrays picks)");
+  // m = 0.001, rho = 1000..1002: (m / rho)^(1/3) about 0.01 (the median particle has 1001).
+  ASSERT_TRUE(named.spacing.has_value());
+  EXPECT_NEAR(*named.spacing, std::cbrt(0.001 / 1001), 1e-12);
+
+  hid_t f = H5Fcreate((dir / "moving.h5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t particles = H5Gcreate2(f, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  write_array(particles, "tank", {{0, 0, 0}, {1, 0, 0}}, true, {}, /*still=*/true);
+  write_array(particles, "water", {{0.5, 0.5, 0.5}}, true, {});
+  H5Gclose(particles);
+  H5Fclose(f);
+  const ParticleData moving = read_particles(dir / "moving.h5");
+  ASSERT_EQ(moving.size(), 1u);
+  EXPECT_DOUBLE_EQ(moving.positions[0][0], 0.5);
+  EXPECT_EQ(moving.chosen,
+            "PySPH arrays water (their particles move, the others' do not); left out: tank "
+            "(--arrays picks)");
+  EXPECT_EQ(read_particles(dir / "moving.h5", {{"all"}}).size(), 3u);
 }
 
 TEST(PySphParticles, TwoDimensionalRunsGetZeroZ) {
