@@ -1,17 +1,32 @@
 #include "insitu/outputs/exr_image.h"
 
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfDeepFrameBuffer.h>
+#include <OpenEXR/ImfDeepScanLineOutputFile.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfStdIO.h>
+
+#include <initializer_list>
+#include <vector>
 
 #include "insitu/outputs/atomic_file.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
 
-std::string encode_exr_channel(const FloatImage& image, const std::string& channel) {
+namespace {
+
+struct Component {
+  const char* channel;
+  int index;  // 0..3: r, g, b, a
+};
+
+// The image's components as FLOAT channels of a ZIP-compressed scanline file, in memory.
+std::string encode_components(const FloatImage& image, std::initializer_list<Component> components,
+                              const char* what) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgba.size() != 4 * std::size_t(image.width) * std::size_t(image.height))
     throw make_error("EXR image: ", image.width, "x", image.height, " with ", image.rgba.size(),
@@ -19,14 +34,15 @@ std::string encode_exr_channel(const FloatImage& image, const std::string& chann
   try {
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
-    header.channels().insert(channel, Imf::Channel(Imf::FLOAT));
     Imf::FrameBuffer frame;
-    // The r component of every RGBA pixel, rows top first.
+    // Rows top first; a component every 4 floats.
     const std::size_t pixel = 4 * sizeof(float);
-    frame.insert(
-        channel,
-        Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(image.rgba.data())),
-                   pixel, pixel * std::size_t(image.width)));
+    char* base = const_cast<char*>(reinterpret_cast<const char*>(image.rgba.data()));
+    for (const Component& c : components) {
+      header.channels().insert(c.channel, Imf::Channel(Imf::FLOAT));
+      frame.insert(c.channel, Imf::Slice(Imf::FLOAT, base + std::size_t(c.index) * sizeof(float),
+                                         pixel, pixel * std::size_t(image.width)));
+    }
     Imf::StdOSStream stream;
     {
       Imf::OutputFile file(stream, header);
@@ -35,7 +51,68 @@ std::string encode_exr_channel(const FloatImage& image, const std::string& chann
     }
     return stream.str();
   } catch (const std::exception& e) {
-    throw make_error("OpenEXR could not encode the ", channel, " image: ", e.what());
+    throw make_error("OpenEXR could not encode the ", what, " image: ", e.what());
+  }
+}
+
+}  // namespace
+
+std::string encode_exr_channel(const FloatImage& image, const std::string& channel) {
+  return encode_components(image, {{channel.c_str(), 0}}, channel.c_str());
+}
+
+std::string encode_exr_rgba(const FloatImage& image) {
+  return encode_components(image, {{"R", 0}, {"G", 1}, {"B", 2}, {"A", 3}}, "RGBA");
+}
+
+std::string encode_deep_exr(const SpanImage& spans) {
+  const int width = spans.width(), height = spans.height();
+  if (width <= 0 || height <= 0 || spans.pixels.size() != std::size_t(width) * height)
+    throw make_error("deep EXR image: the span image is ", width, "x", height, " with ",
+                     spans.pixels.size(), " pixel records");
+  // Per pixel its sample count and where its samples start in the channels' arrays.
+  const std::size_t n = spans.pixels.size();
+  std::vector<unsigned> counts(n);
+  std::vector<float> z, z_back;
+  z.reserve(spans.spans.size());
+  z_back.reserve(spans.spans.size());
+  std::vector<std::size_t> first(n);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t p = std::size_t(x) + std::size_t(y) * width;
+      const double scale = spans.grid.view().ray_scale(x, y);
+      first[p] = z.size();
+      counts[p] = spans.pixels[p].count;
+      for (const Span& s : spans.spans_at(x, y)) {
+        z.push_back(float(double(s.entry) * scale));
+        z_back.push_back(float(double(s.exit) * scale));
+      }
+    }
+  std::vector<float*> z_at(n), z_back_at(n);
+  for (std::size_t p = 0; p < n; ++p) z_at[p] = z.data() + first[p];
+  for (std::size_t p = 0; p < n; ++p) z_back_at[p] = z_back.data() + first[p];
+  try {
+    Imf::Header header(width, height);
+    header.setType(Imf::DEEPSCANLINE);
+    header.compression() = Imf::ZIPS_COMPRESSION;
+    header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
+    header.channels().insert("ZBack", Imf::Channel(Imf::FLOAT));
+    Imf::DeepFrameBuffer frame;
+    frame.insertSampleCountSlice(Imf::Slice(Imf::UINT, reinterpret_cast<char*>(counts.data()),
+                                            sizeof(unsigned), sizeof(unsigned) * width));
+    frame.insert("Z", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(z_at.data()),
+                                     sizeof(float*), sizeof(float*) * width, sizeof(float)));
+    frame.insert("ZBack", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(z_back_at.data()),
+                                         sizeof(float*), sizeof(float*) * width, sizeof(float)));
+    Imf::StdOSStream stream;
+    {
+      Imf::DeepScanLineOutputFile file(stream, header);
+      file.setFrameBuffer(frame);
+      file.writePixels(height);
+    }
+    return stream.str();
+  } catch (const std::exception& e) {
+    throw make_error("OpenEXR could not encode the deep image: ", e.what());
   }
 }
 

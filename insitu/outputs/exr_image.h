@@ -8,11 +8,20 @@
 #include <string>
 
 #include "render/float_image.h"
+#include "render/span_image.h"
 
 namespace voxspan {
 
 // One FLOAT channel named `channel` from the r component of `image`.
 std::string encode_exr_channel(const FloatImage& image, const std::string& channel);
+
+// The picture's R, G, B, A as FLOAT channels (linear, as shaded).
+std::string encode_exr_rgba(const FloatImage& image);
+
+// An OpenEXR 2.0 deep scanline image of the span image: per pixel one sample per stored span,
+// channels Z (its entry) and ZBack (its exit) as distances from the eye along the unit ray
+// through the pixel's centre; ZIPS-compressed, row 0 at the top.
+std::string encode_deep_exr(const SpanImage& spans);
 
 // encode_exr_channel + write_file_atomically (temp name, fsync when sync, rename). Throws
 // WriteError on I/O failure, voxspan::Error when OpenEXR refuses the image.

@@ -11,6 +11,7 @@ OutputKind png_output_kind();    // insitu/outputs/png_output.cpp
 OutputKind vdb_output_kind();    // insitu/outputs/vdb_output.cpp
 OutputKind vtk_output_kind();    // insitu/outputs/vtk_output.cpp
 OutputKind depth_output_kind();  // insitu/outputs/depth_output.cpp
+OutputKind exr_output_kind();    // insitu/outputs/exr_output.cpp
 OutputKind stats_output_kind();  // insitu/outputs/stats_output.cpp
 
 namespace {
@@ -19,8 +20,8 @@ Kinds make_kinds() {
   Kinds k;
   k.views = {surface_view_kind()};
   // Stats last: its line reports the time the other outputs took on the step.
-  k.outputs = {png_output_kind(), vdb_output_kind(), vtk_output_kind(), depth_output_kind(),
-               stats_output_kind()};
+  k.outputs = {png_output_kind(),   vdb_output_kind(), vtk_output_kind(),
+               depth_output_kind(), exr_output_kind(), stats_output_kind()};
   for (const ViewKind& v : k.views) k.config.views.push_back(v.config);
   for (const OutputKind& o : k.outputs) k.config.outputs.push_back(o.config);
   return k;

@@ -167,6 +167,10 @@ class GlSurface {
       first_hit_.run(*spans, depth_);
       depth_.download(out.first_hit_depth);
     }
+    if (step.needs.spans) {
+      auto t = timer.gpu("span_readback");
+      spans->download(out.spans);
+    }
     return true;
   }
 
@@ -194,6 +198,7 @@ class CpuSurface {
       auto t = timer.cpu("first_hit");
       CpuRenderer::first_hit(*spans, out.first_hit_depth);
     }
+    if (step.needs.spans) out.spans = *spans;  // the products' storage is reused
     return true;
   }
 

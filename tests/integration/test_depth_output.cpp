@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "deep_exr_reader.h"
 #include "output_files.h"
 #include "temp_folder.h"
 #include "tools/scenes/lattice.h"
@@ -145,6 +146,74 @@ writer: {fsync: false}
   // A depth layer here is 0.17 % of the depth (pixel angle 24/60 degrees times tan 14 degrees,
   // docs/design.md "Voxelization"); an entry lies within a layer of the exact one. Two layers:
   EXPECT_LE(worst, 0.0035) << both << " pixels hit in both";
+}
+
+// outputs.exr beside outputs.depth in one run on `backend`: the deep image's first sample of
+// every pixel is the depth image's distance, its samples in order, each span's exit behind its
+// entry; the colour companion is the picture (alpha 1).
+void check_deep_exr_output(const std::string& backend) {
+  SCOPED_TRACE("renderer " + backend);
+  test::TempFolder dir;
+  const test::LatticeScene block = test::make_lattice_block(12, 0.01, 0.007f);
+  const std::string yaml =
+      "output_folder: " + dir.path().string() + "\nrenderer: {backend: " + backend + "}" + R"(
+trigger: {every_steps: 1}
+views:
+  - name: corner
+    width: 80
+    height: 60
+    shading: translucent
+    camera: {eye: [0.35, -0.2, 0.25], target: [0.06, 0.06, 0.06], up: [0, 0, 1], fov: 24}
+outputs:
+  png: {enabled: false}
+  stats: {enabled: false}
+  depth: {enabled: true, trigger: {every_steps: 1}}
+  exr: {enabled: true, trigger: {every_steps: 1}}
+writer: {fsync: false}
+)";
+  std::vector<double> x, y, z;
+  for (const ParticleSphere& p : block.all) x.push_back(p.x), y.push_back(p.y), z.push_back(p.z);
+  {
+    AdapterOptions options;
+    options.classify.particle_spacing = block.spacing;
+    Adapter adapter = adapter_from_config_text(yaml, options, "exr.yaml");
+    ASSERT_TRUE(
+        adapter.execute(4, 0.0, ParticleView::soa(x.data(), y.data(), z.data(), x.size())).ok());
+    adapter.finish();
+    EXPECT_NE(adapter.summary().find("1 deep EXR images"), std::string::npos) << adapter.summary();
+  }
+  EXPECT_TRUE(test::temporaries_under(dir.path()).empty());
+  const ExrDepth flat = read_exr(dir / "depth" / "corner_00000004.exr");
+  const test::DeepExr deep = test::read_deep_exr(dir / "exr" / "corner_00000004.exr");
+  ASSERT_EQ(deep.width, 80);
+  ASSERT_EQ(deep.height, 60);
+  int hits = 0;
+  for (std::size_t p = 0; p < deep.z.size(); ++p) {
+    ASSERT_EQ(deep.z[p].empty(), flat.z[p] == 0) << "pixel " << p;
+    if (deep.z[p].empty()) continue;
+    ++hits;
+    EXPECT_NEAR(deep.z[p][0], flat.z[p], 1e-6 * flat.z[p]) << "pixel " << p;
+    for (std::size_t k = 0; k < deep.z[p].size(); ++k) {
+      EXPECT_LT(deep.z[p][k], deep.z_back[p][k]) << "pixel " << p << " sample " << k;
+      if (k > 0) {
+        EXPECT_GE(deep.z[p][k], deep.z_back[p][k - 1]) << "pixel " << p;
+      }
+    }
+  }
+  EXPECT_GT(hits, 80 * 60 / 5);
+  Imf::InputFile color((dir / "exr" / "corner_color_00000004.exr").c_str());
+  std::vector<float> alpha(80 * 60, 0.0f);
+  Imf::FrameBuffer frame;
+  frame.insert("A", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(alpha.data()), sizeof(float),
+                               sizeof(float) * 80));
+  color.setFrameBuffer(frame);
+  color.readPixels(0, 59);
+  for (float a : alpha) ASSERT_EQ(a, 1.0f);
+}
+
+TEST(DeepExrOutput, EveryViewsSpansAndItsPictureAsOpenExrOnBothRenderers) {
+  check_deep_exr_output("cpu");
+  check_deep_exr_output("gl");
 }
 
 }  // namespace

@@ -1,0 +1,77 @@
+// outputs.exr: each rendered view's spans as an OpenEXR 2.0 deep scanline image for
+// compositors (Nuke, Houdini, OpenEXR's own tools): <folder>/<view>_<step>.exr holds per pixel
+// one deep sample per span, Z its entry and ZBack its exit, as distances from the eye along
+// the unit ray through the pixel's centre (docs/runtime.md, "Depth images"), and
+// <folder>/<view>_color_<step>.exr the shaded picture, R G B A as linear 32-bit floats. The
+// span image and the picture are copied into a pooled slot on the solver's thread; the
+// encoding and the writing (each file atomically) run on the writer's.
+#include "insitu/outputs/atomic_file.h"
+#include "insitu/outputs/exr_image.h"
+#include "insitu/outputs/output.h"
+#include "insitu/outputs/pooled_jobs.h"
+
+namespace voxspan {
+namespace {
+
+struct ExrSettings : CloneAs<ExrSettings, OutputSettings> {
+  ExrSettings() : CloneAs(false, "exr", TriggerSpec{100, 0, false, true}) {}
+  bool operator==(const ExrSettings&) const = default;
+};
+
+const schema::Section<ExrSettings>& exr_section() {
+  static const schema::Section<ExrSettings> s{"outputs.exr", output_keys<ExrSettings>()};
+  return s;
+}
+
+class ExrOutput final : public Output {
+ public:
+  ExrOutput(const ExrSettings&, const OutputContext& c)
+      : folder_(c.folder),
+        view_names_(c.view_names.begin(), c.view_names.end()),
+        sync_(c.fsync),
+        jobs_(c.writer, c.slots, [this](Slot& s) { run(s); }) {}
+
+  void write(const OutputStep& step) override {
+    for (std::size_t v = 0; v < step.views.size(); ++v) {
+      const ViewResult& r = step.views[v];
+      if (r.spans == nullptr || r.picture == nullptr) continue;  // failed, or not this rank's
+      jobs_.submit("deep EXR image", [&](Slot& s) {
+        s.view = v;
+        s.step = step.data.step;
+        s.spans = *r.spans;  // the slot's vectors keep their capacity
+        s.picture = *r.picture;
+      });
+    }
+  }
+  OutputTally tally() const override { return jobs_.tally(); }
+
+ private:
+  struct Slot {
+    SpanImage spans;
+    FloatImage picture;
+    std::size_t view = 0;
+    std::int64_t step = 0;
+  };
+
+  void run(const Slot& s) const {
+    const std::string& name = view_names_[s.view];
+    write_file_atomically(folder_ / step_file_name(name, s.step, "exr"), encode_deep_exr(s.spans),
+                          sync_);
+    write_file_atomically(folder_ / step_file_name(name + "_color", s.step, "exr"),
+                          encode_exr_rgba(s.picture), sync_);
+  }
+
+  std::filesystem::path folder_;
+  std::vector<std::string> view_names_;
+  bool sync_;
+  PooledJobs<Slot> jobs_;
+};
+
+}  // namespace
+
+OutputKind exr_output_kind() {
+  return output_kind<ExrSettings, ExrOutput>("exr", "deep EXR images", exr_section(),
+                                             {.picture = true, .spans = true}, false, true);
+}
+
+}  // namespace voxspan
