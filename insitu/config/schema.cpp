@@ -41,5 +41,6 @@ Range at_least(double min) { return {min, HUGE_VAL, false}; }
 Range above(double min) { return {min, HUGE_VAL, true}; }
 Range between(double min, double max) { return {min, max, false}; }
 Range above_up_to(double min, double max) { return {min, max, true}; }
+Range any_number() { return {-HUGE_VAL, HUGE_VAL, false}; }
 
 }  // namespace voxspan::schema

@@ -137,6 +137,7 @@ Range at_least(double min);                 // [min, inf)
 Range above(double min);                    // (min, inf)
 Range between(double min, double max);      // [min, max]
 Range above_up_to(double min, double max);  // (min, max]
+Range any_number();                         // finite
 
 // "integer 1..16384", "integer >= 0".
 std::string integer_type(std::int64_t min, std::int64_t max);

@@ -80,6 +80,7 @@ bool Range::contains(double v) const {
 }
 
 std::string Range::text() const {
+  if (std::isinf(min) && std::isinf(max)) return "number";
   if (std::isinf(max))
     return (min_open ? "number above " : "number of at least ") + number_text(min);
   return "number in " + std::string(min_open ? "(" : "[") + number_text(min) + ", " +

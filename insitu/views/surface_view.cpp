@@ -71,7 +71,12 @@ RenderOptions render_options(const SurfaceSettings& view, const RendererConfig& 
   shade.bounces = view.bounces;
   shade.environment.up = vec(view.camera.up);
   shade.environment.sun_direction = sun_direction(shade.environment.up);
-  shade.environment.ground_tile = 12 * spacing;
+  shade.environment.ground_tile = view.ground_tile.value_or(12 * spacing);
+  shade.environment.ground_light = vec(view.ground_light);
+  shade.environment.ground_dark = vec(view.ground_dark);
+  shade.environment.sky_zenith = vec(view.sky_zenith);
+  shade.environment.sky_horizon = vec(view.sky_horizon);
+  if (view.ground_height) shade.environment.ground_height = *view.ground_height;
   validate(v);
   validate(o.surfaces);
   validate(shade);
@@ -86,6 +91,12 @@ void check_surface(yaml::MapReader& r, SurfaceSettings& v) {
                           std::to_string(v.max_layers));
   if (v.absorption && ((*v.absorption)[0] < 0 || (*v.absorption)[1] < 0 || (*v.absorption)[2] < 0))
     r.checker().error(r.find("absorption"), r.path("absorption"), "must not be negative");
+  for (auto [key, c] : {std::pair{"ground_light", v.ground_light},
+                        {"ground_dark", v.ground_dark},
+                        {"sky_zenith", v.sky_zenith},
+                        {"sky_horizon", v.sky_horizon}})
+    if (r.has(key) && (c[0] < 0 || c[1] < 0 || c[2] < 0))
+      r.checker().error(r.find(key), r.path(key), "a colour must not be negative");
 }
 
 const schema::Section<SurfaceSettings>& surface_section() {
@@ -119,7 +130,20 @@ const schema::Section<SurfaceSettings>& surface_section() {
            schema::number("ior", &S::ior, schema::between(1, 4),
                           "refractive index (refractive mode)"),
            schema::integer("bounces", &S::bounces, 0, 16,
-                           "refraction/reflection bounces (refractive mode)")}),
+                           "refraction/reflection bounces (refractive mode)"),
+           schema::number_or_auto("ground_height", &S::ground_height, schema::any_number(),
+                                  "height of the ground plane along the camera's `up`, world "
+                                  "units; `auto` = the floor under the fluid, half a spacing "
+                                  "under its lowest spheres (each step)"),
+           schema::number_or_auto("ground_tile", &S::ground_tile, schema::above(0),
+                                  "side of the ground's checker, world units; `auto` = 12 "
+                                  "particle spacings"),
+           schema::vec3("ground_light", &S::ground_light, "the ground's light squares, linear RGB"),
+           schema::vec3("ground_dark", &S::ground_dark, "the ground's dark squares, linear RGB"),
+           schema::vec3("sky_zenith", &S::sky_zenith, "the sky overhead, linear RGB"),
+           schema::vec3("sky_horizon", &S::sky_horizon,
+                        "the sky at the horizon (and the ground's fade into the distance), "
+                        "linear RGB")}),
       check_surface};
   return s;
 }
@@ -229,7 +253,7 @@ class SurfaceView final : public View {
       auto_absorption_ =
           Material::water_absorption(std::max(smallest_side(step.fluid_box), spacing_));
     if (auto_absorption_) o.shade.material.absorption = *auto_absorption_;
-    if (!step.fluid_box.empty())
+    if (!step.fluid_box.empty() && !settings_.ground_height)
       o.shade.environment.rest_on_floor(
           floor_height(step.fluid_box, o.shade.environment.up, spacing_), spacing_);
     // Options are checked before any work, so a bad one costs nothing.

@@ -19,6 +19,8 @@
 
 namespace voxspan {
 
+inline Vec3d array_of(glm::dvec3 v) { return {v.x, v.y, v.z}; }
+
 struct SurfaceSettings : CloneAs<SurfaceSettings, ViewSettings> {
   ShadeMode shading = ShadeMode::translucent;
   bool deep_ao = false;
@@ -30,6 +32,14 @@ struct SurfaceSettings : CloneAs<SurfaceSettings, ViewSettings> {
   std::optional<Vec3d> absorption;      // Beer-Lambert, per world unit, RGB; nullopt = auto
   double ior = 1.33;                    // refractive index (refractive mode)
   int bounces = 3;                      // refraction/reflection bounces (refractive mode)
+  // What surrounds the fluid (render/model/environment.glsl): the ground plane's height
+  // (nullopt = the floor under the fluid) and checker side (nullopt = 12 spacings), and the
+  // colours, by default render/shade_options.h's.
+  std::optional<double> ground_height, ground_tile;
+  Vec3d ground_light = array_of(Environment{}.ground_light);
+  Vec3d ground_dark = array_of(Environment{}.ground_dark);
+  Vec3d sky_zenith = array_of(Environment{}.sky_zenith);
+  Vec3d sky_horizon = array_of(Environment{}.sky_horizon);
   bool operator==(const SurfaceSettings&) const = default;
 };
 

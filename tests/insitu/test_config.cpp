@@ -65,6 +65,12 @@ views:
     absorption: [0.5, 0.2, 0.1]
     ior: 1.5
     bounces: 4
+    ground_height: -0.25
+    ground_tile: 0.5
+    ground_light: [0.9, 0.9, 0.9]
+    ground_dark: [0.1, 0.1, 0.2]
+    sky_zenith: [0, 0, 0.5]
+    sky_horizon: [1, 1, 1]
   - name: top
     shading: opaque
     camera: {direction: [0, 0, -1], up: [0, 1, 0], margin: 1.2}
@@ -107,12 +113,20 @@ writer: {queue_size: 3, when_full: drop, fsync: false}
   EXPECT_EQ(side.absorption, (Vec3d{0.5, 0.2, 0.1}));
   EXPECT_DOUBLE_EQ(side.ior, 1.5);
   EXPECT_EQ(side.bounces, 4);
+  EXPECT_EQ(side.ground_height, -0.25);
+  EXPECT_EQ(side.ground_tile, 0.5);
+  EXPECT_EQ(side.ground_light, (Vec3d{0.9, 0.9, 0.9}));
+  EXPECT_EQ(side.ground_dark, (Vec3d{0.1, 0.1, 0.2}));
+  EXPECT_EQ(side.sky_zenith, (Vec3d{0, 0, 0.5}));
+  EXPECT_EQ(side.sky_horizon, (Vec3d{1, 1, 1}));
   const SurfaceSettings& top = view(c, 1);
   EXPECT_EQ(top.shading, ShadeMode::opaque);
   EXPECT_TRUE(top.camera.automatic);
   EXPECT_EQ(top.camera.direction, (Vec3d{0, 0, -1}));
   EXPECT_DOUBLE_EQ(top.camera.margin, 1.2);
   EXPECT_FALSE(top.gap.has_value());  // auto
+  EXPECT_FALSE(top.absorption.has_value());
+  EXPECT_FALSE(top.ground_height.has_value());
   EXPECT_EQ(c.renderer.platform, gl::Platform::surfaceless);
   EXPECT_TRUE(c.renderer.debug);
   EXPECT_DOUBLE_EQ(c.renderer.gpu_memory_mib, 128);
@@ -191,6 +205,10 @@ TEST(Config, WrongTypesAndBadValuesNameKeyAndLine) {
       {"views:\n  - name: a/b\n", "views[0].name: must be letters, digits"},
       {"views:\n  - name: a\n  - name: a\n", "views[1].name: \"a\" names two views"},
       {"views:\n  - gap: -1\n", "views[0].gap: expected a number of at least 0"},
+      {"views:\n  - ground_tile: 0\n", "views[0].ground_tile: expected a number above 0"},
+      {"views:\n  - ground_dark: [0, -1, 0]\n",
+       "views[0].ground_dark: a colour must not be negative"},
+      {"views:\n  - absorption: clear\n", "views[0].absorption: expected three numbers"},
       {"views: main\n", "views: expected a list of views"},
       {"trigger: {every_steps: -3}\n", "trigger.every_steps: expected an integer from 0"},
       {"trigger: {first: maybe}\n", "trigger.first: expected true or false; got \"maybe\""},

@@ -10,6 +10,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -43,6 +44,7 @@ struct Contrast {
   double tint = 0;       // mean (blue - red) / 255 of the water pixels minus the background's
   double luminance = 0;  // mean of the water pixels, 0..1
   int water = 0, background = 0;
+  int grey_background = 0;  // background pixels whose channels are within 10/255 of each other
 };
 
 // Water: pixels with a hit whose 5x5 neighbourhood is all hits (silhouettes left out);
@@ -70,6 +72,7 @@ Contrast contrast(const test::DecodedPng& png, const std::vector<float>& z) {
       } else if (all(x, y, false)) {
         tint_back += tint;
         ++c.background;
+        c.grey_background += std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}) <= 10;
       }
     }
   if (c.water > 0 && c.background > 0) {
@@ -143,6 +146,18 @@ TEST(DefaultView, TheWaterIsClearlyVisibleAtOneCentimetreAndAtAHundredMetres) {
       EXPECT_LT(old.tint, 0.08) << "absorption in metres: clear at 1 cm";
     }
   }
+}
+
+TEST(DefaultView, TheGroundAndTheSkyAreTheViewsToChoose) {
+  // A red ground and a green sky: every background pixel is one or the other (or, far off, the
+  // ground faded into the sky), none the default grey.
+  const Contrast c =
+      render_dam_break(1.0,
+                       "views: [{name: main, ground_light: [1, 0, 0], ground_dark: [1, 0, 0], "
+                       "sky_zenith: [0, 1, 0], sky_horizon: [0, 1, 0]}]");
+  ASSERT_GT(c.background, 1000);
+  EXPECT_LT(c.grey_background, c.background / 100)
+      << c.grey_background << " of " << c.background << " background pixels grey";
 }
 
 }  // namespace
