@@ -21,9 +21,11 @@
 // iterations) and resumes the RayState in a later dispatch.
 //
 // Host needs: links.glsl, surface_geometry.glsl, octahedral.glsl, lighting.glsl, shade_modes.glsl
-// and their needs; u_bounces, u_near, u_grid_far, u_log2_step, u_ground_contact; vec2 sd_block_bounds(ivec2): the
-// nearest entry and farthest exit depth in a block of VX_BLOCK^2 columns ((3e38, -3e38) when it
-// holds no span), over the surface depths.
+// and their needs; u_bounces, u_near, u_grid_far, u_log2_step, u_ground_contact; vec2
+// sd_block_bounds(ivec2): the nearest entry and farthest exit depth in a block of VX_BLOCK^2
+// columns ((3e38, -3e38) when it holds no span), and vec2 sd_block_inside(ivec2): the largest
+// entry and the smallest exit of the columns' first spans (x = 3e38 when a column has none),
+// both over the surface depths.
 #ifndef VX_MODEL_COLUMN_MARCH
 #define VX_MODEL_COLUMN_MARCH
 
@@ -275,10 +277,10 @@ PyramidExit pyramid_exit(vec3 o, vec3 d, ivec2 lo, ivec2 hi) {
   return e;
 }
 
-// Outside the fluid, a block of VX_BLOCK x VX_BLOCK columns with no surface between the depths
-// where the ray enters and leaves its pyramid is crossed in one step (sd_block_bounds: the
-// block's nearest entry and farthest exit): the march skips empty space without changing what
-// it finds.
+// A block of VX_BLOCK x VX_BLOCK columns that the ray crosses without meeting a boundary is
+// crossed in one step (outside: no surface between the depths where the ray enters and leaves
+// the block's pyramid; inside: every column's first span holds them), absorbed on the way when
+// inside: the march skips empty space and deep water without changing what it finds.
 RayState skip_block(RayState s, PyramidExit e, ivec2 b0, ivec2 b1) {
   vec3 p = s.origin + e.s * s.dir;
   s = ray_advance(s, p);
@@ -295,19 +297,27 @@ RayState skip_block(RayState s, PyramidExit e, ivec2 b0, ivec2 b1) {
   return s;
 }
 
-// One event: the next boundary of the current column, the step into the next column, or, outside
-// the fluid, the step across an empty block.
+// One event: the next boundary of the current column, the step into the next column, or the
+// step across a block: outside the fluid one with no surface in the ray's depth range there,
+// inside it one whose columns' first spans all hold that depth range (the ray stays inside
+// every column it crosses: none of their boundaries lies on its way).
 RayState march_step(RayState s) {
   ivec2 q = s.pixel;
   vec3 o = s.origin;
   vec3 d = s.dir;
-  if (!s.inside) {
+  {
     ivec2 b0 = (q / VX_BLOCK) * VX_BLOCK;
     ivec2 b1 = min(b0 + ivec2(VX_BLOCK - 1), u_image - ivec2(1));
-    vec2 bounds = sd_block_bounds(q / VX_BLOCK);
     PyramidExit block = pyramid_exit(o, d, b0, b1);
     float z_block = o.z + block.s * d.z;
-    if (max(o.z, z_block) < bounds.x || min(o.z, z_block) > bounds.y) return skip_block(s, block, b0, b1);
+    float z_lo = min(o.z, z_block), z_hi = max(o.z, z_block);
+    if (!s.inside) {
+      vec2 bounds = sd_block_bounds(q / VX_BLOCK);
+      if (z_hi < bounds.x || z_lo > bounds.y) return skip_block(s, block, b0, b1);
+    } else {
+      vec2 held = sd_block_inside(q / VX_BLOCK);
+      if (z_lo > held.x && z_hi < held.y) return skip_block(s, block, b0, b1);
+    }
   }
   // Where the ray leaves this column's pyramid (or the grid's depth range).
   PyramidExit column = pyramid_exit(o, d, q, q);

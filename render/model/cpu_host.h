@@ -23,7 +23,7 @@ namespace voxspan::model {
 struct HostBuffers {
   std::vector<uvec2> links, normals;
   std::vector<float> ao;
-  std::vector<vec2> depths, block_bounds;
+  std::vector<vec2> depths, block_bounds, block_inside;
 };
 
 class CpuHost : public GridUniforms, public ShadeUniforms {
@@ -53,6 +53,9 @@ class CpuHost : public GridUniforms, public ShadeUniforms {
   vec2 sd_block_bounds(ivec2 block) const {
     return block_bounds_[std::size_t(block.x) + std::size_t(block.y) * std::size_t(blocks_x_)];
   }
+  vec2 sd_block_inside(ivec2 block) const {
+    return block_inside_[std::size_t(block.x) + std::size_t(block.y) * std::size_t(blocks_x_)];
+  }
 
   std::size_t pixel_index(ivec2 p) const {
     return std::size_t(p.x) + std::size_t(p.y) * std::size_t(u_image.x);
@@ -68,18 +71,28 @@ class CpuHost : public GridUniforms, public ShadeUniforms {
 #include "render/model/column_march.glsl"
 #include "render/model/deep_ao.glsl"
 
-  // The nearest entry and farthest exit per block of VX_BLOCK^2 columns, for the march.
+  // Per block of VX_BLOCK^2 columns, for the march: the nearest entry and farthest exit, and
+  // the largest entry and smallest exit of the columns' first spans.
   void gather_block_bounds() {
     blocks_x_ = (u_image.x + VX_BLOCK - 1) / VX_BLOCK;
     const int blocks_y = (u_image.y + VX_BLOCK - 1) / VX_BLOCK;
-    block_bounds_.assign(std::size_t(blocks_x_) * std::size_t(blocks_y), vec2(3.0e38f, -3.0e38f));
+    const std::size_t blocks = std::size_t(blocks_x_) * std::size_t(blocks_y);
+    block_bounds_.assign(blocks, vec2(3.0e38f, -3.0e38f));
+    block_inside_.assign(blocks, vec2(-3.0e38f, 3.0e38f));
     for (int y = 0; y < u_image.y; ++y)
       for (int x = 0; x < u_image.x; ++x) {
+        const std::size_t k =
+            std::size_t(x / VX_BLOCK) + std::size_t(y / VX_BLOCK) * std::size_t(blocks_x_);
         const uint n = sd_count(ivec2(x, y));
-        if (n == 0) continue;
-        vec2& b = block_bounds_[std::size_t(x / VX_BLOCK) +
-                                std::size_t(y / VX_BLOCK) * std::size_t(blocks_x_)];
-        b.x = min(b.x, sd_depths(sd_offset(ivec2(x, y))).x);
+        vec2& inside = block_inside_[k];
+        if (n == 0) {
+          inside.x = 3.0e38f;  // a column without fluid: the ray cannot stay inside
+          continue;
+        }
+        const vec2 first = sd_depths(sd_offset(ivec2(x, y)));
+        inside = vec2(max(inside.x, first.x), min(inside.y, first.y));
+        vec2& b = block_bounds_[k];
+        b.x = min(b.x, first.x);
         b.y = max(b.y, sd_depths(sd_offset(ivec2(x, y)) + n - 1).y);
       }
   }
@@ -90,6 +103,7 @@ class CpuHost : public GridUniforms, public ShadeUniforms {
     ao_.swap(b.ao);
     depths_.swap(b.depths);
     block_bounds_.swap(b.block_bounds);
+    block_inside_.swap(b.block_inside);
   }
 
   // f(p, span index) for every span, rows in parallel.
@@ -139,7 +153,7 @@ class CpuHost : public GridUniforms, public ShadeUniforms {
  private:
   const PixelSpans& record(ivec2 p) const { return spans_.pixels[pixel_index(p)]; }
   const SpanImage& spans_;
-  std::vector<vec2> block_bounds_;
+  std::vector<vec2> block_bounds_, block_inside_;
   int blocks_x_ = 1;
 };
 

@@ -8,17 +8,28 @@ layout(local_size_x = 64) in;
 
 #include "render/passes/shade_common.glsl"
 
-// Per block of 8 x 8 columns (VX_BLOCK): the largest ~bits of its nearest entry depth and the
-// largest bits of its farthest exit depth (positive floats order as their bits), both 0 when
-// the block holds no span; REFRACT_BEGIN gathers them.
+// Per block of 8 x 8 columns (VX_BLOCK), four words (positive floats order as their bits): the
+// largest ~bits of its nearest entry depth and the largest bits of its farthest exit depth,
+// both 0 when the block holds no span; the largest bits of its columns' first entries (those of
+// 3e38 when a column has no span) and the largest ~bits of their first exits. REFRACT_BEGIN
+// gathers them.
 layout(std430, binding = BLOCK_BOUNDS_BINDING) buffer BlockBounds { uint block_bounds[]; };
 uniform int u_blocks_x;
 
+uint block_word(ivec2 block) { return 4u * uint(block.x + block.y * u_blocks_x); }
+
 vec2 sd_block_bounds(ivec2 block) {
-  uint i = 2u * uint(block.x + block.y * u_blocks_x);
+  uint i = block_word(block);
   uint far_bits = block_bounds[i + 1u];
   if (far_bits == 0u) return vec2(3.0e38, -3.0e38);
   return vec2(uintBitsToFloat(~block_bounds[i]), uintBitsToFloat(far_bits));
+}
+
+vec2 sd_block_inside(ivec2 block) {
+  uint i = block_word(block);
+  uint exit_bits = block_bounds[i + 3u];
+  if (exit_bits == 0u) return vec2(3.0e38, -3.0e38);
+  return vec2(uintBitsToFloat(block_bounds[i + 2u]), uintBitsToFloat(~exit_bits));
 }
 
 #include "render/model/column_march.glsl"
@@ -79,11 +90,16 @@ void main() {
   rays[i] = pack_ray(ray_start(p));
   uint n = sd_count(p);
   atomicMax(most_spans, n);
+  uint b = block_word(p / VX_BLOCK);
   if (n > 0u) {
     uint base = sd_offset(p);
-    uint b = 2u * uint(p.x / VX_BLOCK + (p.y / VX_BLOCK) * u_blocks_x);
-    atomicMax(block_bounds[b], ~floatBitsToUint(sd_depths(base).x));
+    vec2 first = sd_depths(base);
+    atomicMax(block_bounds[b], ~floatBitsToUint(first.x));
     atomicMax(block_bounds[b + 1u], floatBitsToUint(sd_depths(base + n - 1u).y));
+    atomicMax(block_bounds[b + 2u], floatBitsToUint(first.x));
+    atomicMax(block_bounds[b + 3u], ~floatBitsToUint(first.y));
+  } else {
+    atomicMax(block_bounds[b + 2u], floatBitsToUint(3.0e38));
   }
 #elif defined(REFRACT_MARCH)
   RayState s = unpack_ray(rays[i]);

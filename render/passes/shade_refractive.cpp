@@ -40,8 +40,8 @@ RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfac
   const int blocks_x = (image.width() + kBlock - 1) / kBlock;
   const std::size_t blocks =
       std::size_t(blocks_x) * std::size_t((image.height() + kBlock - 1) / kBlock);
-  blocks_.reserve(blocks * 8);
-  blocks_.clear(0, blocks * 8);
+  blocks_.reserve(blocks * 16);  // four words per block (shade_refractive.comp)
+  blocks_.clear(0, blocks * 16);
   const auto bind = [&] {
     surfaces.bind(image);
     gl::bind_storage({{out.buffer(), binding::kShadedImage},
