@@ -305,18 +305,22 @@ RayState march_step(RayState s) {
   ivec2 q = s.pixel;
   vec3 o = s.origin;
   vec3 d = s.dir;
-  {
-    ivec2 b0 = (q / VX_BLOCK) * VX_BLOCK;
-    ivec2 b1 = min(b0 + ivec2(VX_BLOCK - 1), u_image - ivec2(1));
+  ivec2 b0 = (q / VX_BLOCK) * VX_BLOCK;
+  ivec2 b1 = min(b0 + ivec2(VX_BLOCK - 1), u_image - ivec2(1));
+  if (!s.inside) {
+    vec2 bounds = sd_block_bounds(q / VX_BLOCK);
     PyramidExit block = pyramid_exit(o, d, b0, b1);
     float z_block = o.z + block.s * d.z;
-    float z_lo = min(o.z, z_block), z_hi = max(o.z, z_block);
-    if (!s.inside) {
-      vec2 bounds = sd_block_bounds(q / VX_BLOCK);
-      if (z_hi < bounds.x || z_lo > bounds.y) return skip_block(s, block, b0, b1);
-    } else {
-      vec2 held = sd_block_inside(q / VX_BLOCK);
-      if (z_lo > held.x && z_hi < held.y) return skip_block(s, block, b0, b1);
+    if (max(o.z, z_block) < bounds.x || min(o.z, z_block) > bounds.y)
+      return skip_block(s, block, b0, b1);
+  } else {
+    // The ray's depth is monotonic along it: both ends in the range hold it all. The cheap test
+    // of its start comes first, so that a splash, whose blocks rarely qualify, pays little.
+    vec2 held = sd_block_inside(q / VX_BLOCK);
+    if (o.z > held.x && o.z < held.y) {
+      PyramidExit block = pyramid_exit(o, d, b0, b1);
+      float z_block = o.z + block.s * d.z;
+      if (z_block > held.x && z_block < held.y) return skip_block(s, block, b0, b1);
     }
   }
   // Where the ray leaves this column's pyramid (or the grid's depth range).
