@@ -190,7 +190,7 @@ struct InsituPipeline::Impl {
         ++totals.frames;
         results[i].picture = &v.products.picture;
         if (needs.first_hit_depth) results[i].first_hit_depth = &v.products.first_hit_depth;
-        if (needs.spans) results[i].spans = &v.products.spans;
+        if (needs.spans) results[i].spans = v.products.shaded_spans;
       } catch (const std::exception& e) {
         timer.collect(stats);  // closes the scopes of the failed frame
         ++totals.failed_views;

@@ -191,9 +191,11 @@ class GlSurface {
       first_hit_.run(*spans, depth_);
       depth_.download(out.first_hit_depth);
     }
+    out.shaded_spans = nullptr;
     if (step.needs.spans) {
       auto t = timer.gpu("span_readback");
       spans->download(out.spans);
+      out.shaded_spans = &out.spans;
     }
     return true;
   }
@@ -222,7 +224,7 @@ class CpuSurface {
       auto t = timer.cpu("first_hit");
       CpuRenderer::first_hit(*spans, out.first_hit_depth);
     }
-    if (step.needs.spans) out.spans = *spans;  // the products' storage is reused
+    out.shaded_spans = step.needs.spans ? spans : nullptr;  // no copy: the outputs copy it
     return true;
   }
 

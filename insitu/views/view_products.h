@@ -37,7 +37,10 @@ struct ViewResult {
 struct ViewProducts {
   FloatImage picture;          // linear RGBA, row 0 at the top
   FloatImage first_hit_depth;  // when asked: distance to the first entry in r, 0: no fluid
-  SpanImage spans;             // when asked: the span image (after the stages: the composite)
+  // When asked: the span image the picture was shaded from (after the stages: the composite),
+  // valid for this step: the CPU renderer's own, or the GL renderer's read back into `spans`.
+  const SpanImage* shaded_spans = nullptr;
+  SpanImage spans;
 };
 
 }  // namespace voxspan

@@ -39,6 +39,16 @@ double roughness(const SpanImage& spans, const std::vector<glm::uvec2>& links,
   return angles[angles.size() / 2];
 }
 
+// One span per pixel of a w x h image, entry and exit each with independent uniform noise of
+// +-amplitude: a sheet linked all round.
+SpanImage noisy_sheet(int w, int h, float entry, float exit, float amplitude, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> noise(-amplitude, amplitude);
+  std::vector<std::vector<Span>> columns(std::size_t(w) * std::size_t(h));
+  for (auto& c : columns) c.push_back({entry + noise(rng), exit + noise(rng)});
+  return test::hand_made(w, h, columns);
+}
+
 TEST(Filter, HundredIterationsOnTheDamBreakStayStable) {
   test::DamBreak shape;
   shape.spacing = 0.02;
@@ -141,12 +151,7 @@ TEST(Filter, SilhouettesDoNotBleedAndFlatSurfacesStay) {
 TEST(Filter, ThinNoisySheetSurvives) {
   // A sheet 0.004 thick (about 3 layers at 14 degrees) whose entry and exit depths carry
   // independent noise of +-0.0015: the filter smooths both sides without letting them cross.
-  const int w = 32, h = 32;
-  std::mt19937 rng(9);
-  std::uniform_real_distribution<float> noise(-0.0015f, 0.0015f);
-  std::vector<std::vector<Span>> columns(std::size_t(w) * h);
-  for (auto& c : columns) c.push_back({3.0f + noise(rng), 3.004f + noise(rng)});
-  const SpanImage spans = test::hand_made(w, h, columns);
+  const SpanImage spans = noisy_sheet(32, 32, 3.0f, 3.004f, 0.0015f, 9);
   SurfaceOptions filter;
   filter.filter_radius = 0.5;
   filter.max_iterations = 50;
@@ -166,11 +171,7 @@ TEST(Filter, EqualsTheIteratedKernelWhereTheSurfaceIsLinkedAllRound) {
   // image's edges, where the links end, the filter's passes give what n iterations of the
   // 3x3 binomial kernel on 1/z give, to float rounding.
   const int w = 64, h = 64, n = 8;
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<float> noise(-0.002f, 0.002f);
-  std::vector<std::vector<Span>> columns(std::size_t(w) * h);
-  for (auto& c : columns) c.push_back({3.0f + noise(rng), 3.5f + noise(rng)});
-  const SpanImage spans = test::hand_made(w, h, columns);
+  const SpanImage spans = noisy_sheet(w, h, 3.0f, 3.5f, 0.002f, 3);
   SurfaceOptions filter;
   filter.filter_radius = 1.0;  // far beyond the noise: the bounds do not act
   filter.max_iterations = n;
