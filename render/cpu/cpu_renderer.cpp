@@ -5,6 +5,7 @@
 
 #include "render/model/cpu_host.h"
 #include "render/passes/filter.h"
+#include "voxspan/error.h"
 
 namespace voxspan {
 
@@ -101,15 +102,21 @@ void CpuRenderer::shade(const SpanImage& spans, const SurfaceOptions& surfaces,
   }
 }
 
-void CpuRenderer::first_hit(const SpanImage& spans, FloatImage& out) {
+void CpuRenderer::first_hit(const SpanImage& spans, FloatImage& out,
+                            std::span<const glm::vec2> depths) {
+  if (!depths.empty() && depths.size() != spans.spans.size())
+    throw make_error("first_hit: ", depths.size(), " surface depths for ", spans.spans.size(),
+                     " spans");
   if (out.width != spans.width() || out.height != spans.height())
     out = FloatImage(spans.width(), spans.height());
   const model::GridUniforms g = model::grid_uniforms(spans.grid);
   for (int y = 0; y < spans.height(); ++y)
     for (int x = 0; x < spans.width(); ++x) {
       const PixelSpans& p = spans.pixel(x, y);
-      const float distance =
-          p.count > 0 ? spans.spans[p.offset].entry * g.ray_scale(model::ivec2(x, y)) : 0.0f;
+      float distance = 0.0f;
+      if (p.count > 0)
+        distance = (depths.empty() ? spans.spans[p.offset].entry : depths[p.offset].x) *
+                   g.ray_scale(model::ivec2(x, y));
       out.set(x, y, glm::vec4(distance, 0.0f, 0.0f, 0.0f));
     }
 }

@@ -48,8 +48,13 @@ class CpuRenderer {
              gl::PassTimer& timer, FrameStats& stats, FloatImage& image);
 
   // Per pixel the distance along the ray to the first span's entry (0: none), in the first
-  // channel, as the GPU's FirstHitPass writes it.
-  static void first_hit(const SpanImage& spans, FloatImage& out);
+  // channel, as the GPU's FirstHitPass writes it. With `depths` (per span the (entry, exit)
+  // view depths after the filter: surface_depths(), or GpuSurfaces::download_depths) the
+  // filtered entry instead: the surface the picture shows.
+  static void first_hit(const SpanImage& spans, FloatImage& out,
+                        std::span<const glm::vec2> depths = {});
+  // The per-span depths the last shade() drew its surfaces at; empty where no filter ran.
+  std::span<const glm::vec2> surface_depths() const { return buffers_.depths; }
 
  private:
   SpanCaster caster_;

@@ -1,0 +1,161 @@
+#!/usr/bin/env python3
+"""tools/plot_peers.py - the charts of docs/results.md from the CSVs `bench_peers --csv` writes.
+
+For each CSV (one scene each) a panel of first-hit error (99th percentile, particle radii)
+against time per frame, every configuration of every method a point, on log-log axes, the
+Pareto front (no other point both faster and more exact) drawn through its points and our
+defaults starred; a second figure of PSNR against time (the same shading for all); and a third
+of stacked per-stage bars of each method's default (or first) configuration. The front and
+whether each of our defaults lies on it are printed, and written as FRONT.csv beside the chart.
+
+    python3 tools/plot_peers.py OUT_PREFIX RUN1.csv [RUN2.csv ...]
+
+writes OUT_PREFIX_pareto.png, OUT_PREFIX_psnr.png, OUT_PREFIX_stages.png, OUT_PREFIX_front.csv.
+Errors at float rounding (under 1e-4 radii) are drawn at 1e-4. Needs matplotlib.
+"""
+import csv
+import math
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+COLOUR = {"exact": "black", "cpu": "tab:blue", "gl": "tab:green", "openvdb": "tab:red",
+          "vtk": "tab:purple"}
+FLOOR = 1e-4
+
+
+def read(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        for k in ("total_ms", "first_hit_p99_r", "first_hit_median_r", "psnr_db"):
+            r[k] = float(r[k])
+        r["default"] = r["default"] == "1"
+        r["missed"] = int(r["missed"])
+        r["extra"] = int(r["extra"])
+    return rows
+
+
+def front(rows, error):
+    """The rows no other row beats on time and error both (ties kept)."""
+    out = []
+    for r in rows:
+        e = error(r)
+        if not any(o["total_ms"] <= r["total_ms"] and error(o) <= e and
+                   (o["total_ms"] < r["total_ms"] or error(o) < e) for o in rows):
+            out.append(r)
+    return sorted(out, key=lambda r: r["total_ms"])
+
+
+def p99(r):
+    return max(FLOOR, r["first_hit_p99_r"])
+
+
+def inv_psnr(r):
+    return -min(r["psnr_db"], 99.0)
+
+
+def title(rows, path):
+    r = rows[0]
+    return f"{path.rsplit('/', 1)[-1]}: {r['particles']} particles, {r['width']}x{r['height']}"
+
+
+def scatter(ax, rows, y, on_front):
+    for fam in COLOUR:
+        pts = [r for r in rows if r["family"] == fam]
+        if pts:
+            ax.scatter([r["total_ms"] for r in pts], [y(r) for r in pts], c=COLOUR[fam],
+                       s=22, label=fam, zorder=3)
+    for r in rows:
+        if r["default"]:
+            ax.scatter([r["total_ms"]], [y(r)], marker="*", s=260, facecolors="none",
+                       edgecolors=COLOUR[r["family"]], linewidths=1.5, zorder=4)
+            ax.annotate(f"{r['family']} default", (r["total_ms"], y(r)), textcoords="offset points",
+                        xytext=(6, 6), fontsize=8)
+    ax.plot([r["total_ms"] for r in on_front], [y(r) for r in on_front], "k:", lw=1,
+            label="Pareto front", zorder=2)
+    ax.set_xscale("log")
+    ax.set_xlabel("time per frame, ms (median)")
+    ax.grid(True, which="both", alpha=0.3)
+
+
+def main(argv):
+    if len(argv) < 3:
+        print(__doc__)
+        return 2
+    prefix, paths = argv[1], argv[2:]
+    scenes = [(p, read(p)) for p in paths]
+    fig, axes = plt.subplots(1, len(scenes), figsize=(6.4 * len(scenes), 5), squeeze=False)
+    fig2, axes2 = plt.subplots(1, len(scenes), figsize=(6.4 * len(scenes), 5), squeeze=False)
+    front_rows = []
+    for i, (path, rows) in enumerate(scenes):
+        f = front(rows, p99)
+        scatter(axes[0][i], rows, p99, f)
+        axes[0][i].set_yscale("log")
+        axes[0][i].set_ylabel("first-hit error, 99th percentile (particle radii)")
+        axes[0][i].set_title(title(rows, path), fontsize=9)
+        f2 = front(rows, inv_psnr)
+        scatter(axes2[0][i], rows, lambda r: min(r["psnr_db"], 99.0), f2)
+        axes2[0][i].set_ylabel("PSNR of the first-hit shading, dB (inf drawn at 99)")
+        axes2[0][i].set_title(title(rows, path), fontsize=9)
+        for r in rows:
+            if r["default"] or r["family"] == "exact":
+                on1, on2 = r in f, r in f2
+                print(f"{path}: {r['family']} {r['settings']}: {r['total_ms']:.1f} ms, p99 "
+                      f"{r['first_hit_p99_r']:.3g} r, PSNR {r['psnr_db']:.1f} dB; on the p99 "
+                      f"front: {on1}, on the PSNR front: {on2}")
+        for r in f:
+            front_rows.append((path, r["family"], r["settings"], r["total_ms"],
+                               r["first_hit_p99_r"], r["psnr_db"]))
+    axes[0][0].legend(fontsize=8)
+    axes2[0][0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(prefix + "_pareto.png", dpi=110)
+    fig2.tight_layout()
+    fig2.savefig(prefix + "_psnr.png", dpi=110)
+    with open(prefix + "_front.csv", "w", newline="") as out:
+        w = csv.writer(out)
+        w.writerow(["scene", "family", "settings", "total_ms", "first_hit_p99_r", "psnr_db"])
+        w.writerows(front_rows)
+
+    # Stacked stages of each family's default (or first) configuration, first scene.
+    path, rows = scenes[0]
+    picks = []
+    for fam in COLOUR:
+        pts = [r for r in rows if r["family"] == fam]
+        if pts:
+            picks.append(next((r for r in pts if r["default"]), pts[0]))
+    fig3, ax = plt.subplots(figsize=(8, 4.5))
+    stage_names = []
+    for r in picks:
+        parts = r["stages"].split()
+        r["stage_ms"] = {parts[k]: float(parts[k + 1]) for k in range(0, len(parts) - 1, 2)}
+        for s in r["stage_ms"]:
+            if s not in stage_names:
+                stage_names.append(s)
+    cmap = plt.get_cmap("tab20")
+    for j, r in enumerate(picks):
+        bottom = 0.0
+        for k, s in enumerate(stage_names):
+            v = r["stage_ms"].get(s, 0.0)
+            if v > 0:
+                ax.bar(j, v, bottom=bottom, color=cmap(k % 20),
+                       label=s if s not in ax.get_legend_handles_labels()[1] else None)
+                bottom += v
+        if not r["stage_ms"]:
+            ax.bar(j, r["total_ms"], color="grey")
+    ax.set_xticks(range(len(picks)))
+    ax.set_xticklabels([f"{r['family']}\n{r['settings']}" for r in picks], fontsize=8)
+    ax.set_ylabel("ms per frame (median)")
+    ax.set_title(title(rows, path) + ": stages", fontsize=9)
+    ax.legend(fontsize=7, ncol=2)
+    fig3.tight_layout()
+    fig3.savefig(prefix + "_stages.png", dpi=110)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
