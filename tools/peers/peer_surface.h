@@ -13,8 +13,11 @@
 namespace voxspan::tools {
 
 struct PeerSurface {
-  std::vector<float> first_hit;      // +infinity: the ray meets no surface
-  std::vector<float> thickness;      // 0: none; empty: the method gives no thickness
+  std::vector<float> first_hit;  // +infinity: the ray meets no surface
+  std::vector<float> thickness;  // 0: none
+  // Per pixel the stretches of the ray inside the fluid, as distances along it: entry, exit,
+  // entry, exit, ... in order (what a compositor or our shading needs of a surface).
+  std::vector<std::vector<float>> spans;
   std::map<std::string, double> ms;  // per stage, and "total"
   std::size_t elements = 0;          // what the method built: voxels, triangles, spans
   std::string note;                  // what the reader should know (dropped particles, ...)

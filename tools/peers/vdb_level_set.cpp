@@ -3,6 +3,7 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/LevelSetFilter.h>
 #include <openvdb/tools/ParticlesToLevelSet.h>
+#include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/RayIntersector.h>
 
 #include <cmath>
@@ -77,26 +78,40 @@ PeerSurface vdb_level_set_surface(const std::vector<float>& x, const std::vector
   const std::size_t pixels = std::size_t(camera.width) * camera.height;
   out.first_hit.assign(pixels, std::numeric_limits<float>::infinity());
   out.thickness.assign(pixels, 0.0f);
+  out.spans.assign(pixels, {});
   using Intersector = openvdb::tools::LevelSetRayIntersector<openvdb::FloatGrid>;
   const Intersector intersector(*grid);
-  const double step = 1e-3 * options.voxel;  // past a crossing before looking for the next
+  // A crossing is an entry or an exit as the field is negative (inside) or not a tenth of a
+  // voxel past it, where the level set's gradient (1) far outweighs the crossing's rounding;
+  // the next crossing is looked for from there.
+  const double past = 0.1 * options.voxel;
   tbb::parallel_for(tbb::blocked_range<int>(0, camera.height), [&](const auto& rows) {
     Intersector local = intersector;  // one per task: the intersector is not thread safe
+    const openvdb::FloatGrid::ConstAccessor values = grid->getConstAccessor();
+    const openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>
+        sample(values, grid->transform());
     for (int py = rows.begin(); py < rows.end(); ++py)
       for (int px = 0; px < camera.width; ++px) {
         const glm::dvec3 d = glm::normalize(view.world_ray(px, py));
         const openvdb::Vec3R eye(view.eye.x, view.eye.y, view.eye.z), dir(d.x, d.y, d.z);
         const std::size_t i = std::size_t(px) + std::size_t(py) * camera.width;
-        double t0 = 0, entry = 0, inside = 0;
+        double t0 = 0, inside = 0, entry = 0;
+        bool in = sample.wsSample(eye) < 0;  // the eye in the fluid: inside from it on
         for (int k = 0; k < kMaxCrossings; ++k) {
           openvdb::math::Ray<double> ray(eye, dir, t0);
           openvdb::Vec3R hit;
           double t = 0;
           if (!local.intersectsWS(ray, hit, t)) break;
           if (k == 0) out.first_hit[i] = float(t);
-          if (k % 2 == 0) entry = t;
-          else inside += t - entry;
-          t0 = t + step;
+          t0 = t + past;
+          const bool entering = sample.wsSample(eye + t0 * dir) < 0;
+          if (entering && !in) {
+            entry = t;
+          } else if (!entering && in) {
+            inside += t - entry;
+            out.spans[i].insert(out.spans[i].end(), {float(entry), float(t)});
+          }
+          in = entering;
         }
         out.thickness[i] = float(inside);
       }

@@ -108,11 +108,11 @@ int run(const Args& a) {
     if (r < 0) continue;
     for (const auto& [stage, ms] : s.ms) times[stage].push_back(ms);
   }
-  std::printf("%s\n", s.settings.c_str());
+  std::printf("%s\n", s.note.c_str());
   std::printf("median of %d runs:", a.runs);
   for (const char* stage : {"interpolate", "contour", "bvh", "cast", "total"})
     std::printf("  %s %.1f ms", stage, quantile(times[stage], 0.5));
-  std::printf("\ntriangles: %zu\n", s.triangles);
+  std::printf("\ntriangles: %zu\n", s.elements);
 
   const ViewFrame view(camera);
   std::vector<double> depth_err, signed_err, radial_err, thick_err;

@@ -266,11 +266,11 @@ PeerSurface vtk_sph_surface(const std::vector<float>& x, const std::vector<float
     throw make_error("vtk_sph_surface: ", vertex_count,
                      " mesh vertices; Embree indices are 32 bit");
   const std::vector<std::uint32_t> tri = triangle_indices(mesh);
-  out.triangles = tri.size() / 3;
+  out.elements = tri.size() / 3;
   const RTCDevice device = embree_device();
   EmbreeScene scene(device);
   double outward = 1;
-  if (out.triangles > 0) {
+  if (out.elements > 0) {
     vtkFloatArray* points = vtkFloatArray::SafeDownCast(mesh->GetPoints()->GetData());
     if (points == nullptr) throw make_error("vtk_sph_surface: the mesh's points are not float");
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -278,7 +278,7 @@ PeerSurface vtk_sph_surface(const std::vector<float>& x, const std::vector<float
                                                           RTC_FORMAT_FLOAT3, 3 * sizeof(float),
                                                           static_cast<std::size_t>(vertex_count)));
     auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), out.triangles));
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), out.elements));
     if (v == nullptr || i == nullptr) {
       rtcReleaseGeometry(g);
       throw make_error("vtk_sph_surface: Embree could not allocate the mesh's buffers");
@@ -307,6 +307,7 @@ PeerSurface vtk_sph_surface(const std::vector<float>& x, const std::vector<float
   const auto pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(hgt);
   out.first_hit.assign(pixels, std::numeric_limits<float>::infinity());
   out.thickness.assign(pixels, 0.0f);
+  out.spans.assign(pixels, {});
   // Past a hit by more than float's rounding of t, so that the next query cannot find the same
   // triangle again (or its neighbour across a shared edge), yet far less than any feature the
   // volume can resolve.
@@ -338,8 +339,10 @@ PeerSurface vtk_sph_surface(const std::vector<float>& x, const std::vector<float
             if (depth++ == 0) entered_at = t;
           } else if (depth == 0) {
             inside += t;  // the eye is inside the fluid: inside from the eye on
+            out.spans[k].insert(out.spans[k].end(), {0.0f, t});
           } else if (--depth == 0) {
             inside += t - entered_at;
+            out.spans[k].insert(out.spans[k].end(), {entered_at, t});
           }
           tnear = t + std::max(eps_voxel, 1e-6f * t);
         }
@@ -356,7 +359,7 @@ PeerSurface vtk_sph_surface(const std::vector<float>& x, const std::vector<float
                 VTK_VERSION, options.quintic ? "quintic" : "cubic", h / spacing,
                 options.voxel / spacing, grid.dims[0], grid.dims[1], grid.dims[2], options.iso,
                 vtk_smp_backend().c_str(), RTC_VERSION_STRING, kBuildQualityName);
-  out.settings = text;
+  out.note = text;
   return out;
 }
 

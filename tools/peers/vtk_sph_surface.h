@@ -4,26 +4,12 @@
 // camera (render/camera.h) as our renderer's.
 #pragma once
 
-#include <map>
-#include <string>
 #include <vector>
 
+#include "peer_surface.h"
 #include "render/camera.h"
 
 namespace voxspan::tools {
-
-// A peer's surface seen from a camera: per pixel (row-major, row 0 at the top, as
-// ViewFrame::world_ray(x, y) casts) the distance from the eye along the unit ray to the first
-// hit (+infinity: none), and the time of each stage in ms.
-struct PeerSurface {
-  std::vector<float> first_hit;
-  // Total length of the ray inside the surface (0: none), from all mesh hits along the ray,
-  // paired into entering/leaving by the side of the triangle each hit is on.
-  std::vector<float> thickness;
-  std::map<std::string, double> ms;  // "interpolate", "contour", "bvh", "cast", "total"
-  std::size_t triangles = 0;
-  std::string settings;  // a short text of the settings, for the benchmark's table
-};
 
 struct VtkSphOptions {
   double voxel = 0;             // volume spacing (world)
