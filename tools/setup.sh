@@ -15,6 +15,10 @@ packages=(
   libopenmpi-dev openmpi-bin                         # many ranks
   libembree-dev                                      # Embree against the CPU caster (tools/bench_embree)
   libgtest-dev gfortran clang-format                 # tests (gfortran: the Fortran bindings)
+  python3-pysph python3-h5py                         # PySPH's 3D dam break, a solver not ours
+                                                     # (test_default_view_pysph); it brings g++
+                                                     # and python3-dev for the Cython it compiles;
+                                                     # without h5py it writes .npz, not .hdf5
 )
 if [[ ${1:-} == --media ]]; then
   packages+=(ffmpeg python3-matplotlib)              # the main job's video and charts

@@ -2,20 +2,23 @@
 //   /solver_data            attributes t (time), dt, count (iteration)
 //   /particles/<array>/arrays/<property>   one dataset per property, N values (N * stride
 //                           for strided properties); properties not stored are empty datasets
+//                           (attribute stored = false); an array with no particles at the
+//                           time (an inlet's fluid at first) has its stored ones empty
 //   /particles/<array>/constants/...       (not read)
-// Positions are x, y, z (z = 0 for 2D runs); u, v, w become the vector attribute "velocity";
-// every other stored per-particle property is a scalar attribute. Several arrays (fluid,
-// boundary...) are concatenated, keeping the attributes all of them have. With no arrays named
-// the fluid's are read: the arrays named like a fluid ("fluid" in the name), else those whose
+// Positions are x, y, z (z = 0 for 2D runs, stored or not); u, v, w become the vector attribute
+// "velocity"; every other stored per-particle property is a scalar attribute. Several arrays
+// (fluid, boundary...) are concatenated, keeping the attributes all of them have. With no arrays
+// named the fluid's are read: the arrays named like a fluid ("fluid" in the name), else those whose
 // particles move, else every one (a file written at rest with other names), and ParticleData
 // says which and why. The spacing is the median of (m / rho)^(1 / dimensions) when the arrays
-// store mass and density.
+// store mass and density (2 dimensions when every z is the same).
 #include <hdf5.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "insitu/io/particle_data.h"
 #include "voxspan/error.h"
@@ -79,9 +82,25 @@ template <class T> bool read_scalar_attribute(hid_t object, const char* name, hi
   return attr.valid() && H5Aread(attr.get(), type, &out) >= 0;
 }
 
+// Whether PySPH stored a property (its "stored" attribute). h5py writes numpy's bool as an
+// enum over int8, which HDF5 converts to no integer type: its byte is read as it is.
+bool stored_flag(hid_t set) {
+  if (H5Aexists(set, "stored") <= 0) return false;
+  Handle attr(H5Aopen(set, "stored", H5P_DEFAULT), H5Aclose);
+  if (!attr.valid()) return false;
+  Handle type(H5Aget_type(attr.get()), H5Tclose);
+  Handle native(H5Tget_native_type(type.get(), H5T_DIR_ASCEND), H5Tclose);
+  unsigned char bytes[8] = {};
+  if (!native.valid() || H5Tget_size(native.get()) > sizeof bytes ||
+      H5Aread(attr.get(), native.get(), bytes) < 0)
+    return false;
+  return std::any_of(std::begin(bytes), std::end(bytes), [](unsigned char b) { return b != 0; });
+}
+
 // One particle array's stored properties, as doubles.
 struct ArrayData {
   std::size_t count = 0;
+  bool empty = false;  // no particles at this time (its stored properties empty)
   std::map<std::string, std::vector<double>> properties;  // 1 value per particle
 };
 
@@ -91,6 +110,7 @@ ArrayData read_array(hid_t particles, const std::string& name, const std::string
     throw make_error(file, ": particle array \"", name, "\" has no \"arrays\" group");
   ArrayData out;
   bool counted = false;
+  std::vector<std::string> stored_empty;
   for (const std::string& prop : member_names(arrays.get())) {
     Handle set(H5Dopen2(arrays.get(), prop.c_str(), H5P_DEFAULT), H5Dclose);
     if (!set.valid()) continue;
@@ -99,7 +119,12 @@ ArrayData read_array(hid_t particles, const std::string& name, const std::string
     H5T_class_t cls = H5Tget_class(type.get());
     if (cls != H5T_INTEGER && cls != H5T_FLOAT) continue;
     hssize_t n = H5Sget_simple_extent_npoints(space.get());
-    if (n <= 0) continue;  // not stored
+    if (n <= 0) {
+      // Not stored, or stored with no particles: an array can be empty at times (PySPH's
+      // inlet/outlet examples start with no fluid).
+      if (stored_flag(set.get())) stored_empty.push_back(prop);
+      continue;
+    }
     int stride = 1;
     read_scalar_attribute(set.get(), "stride", H5T_NATIVE_INT, stride);
     if (stride != 1) continue;  // per-particle tensors and the like: not an attribute we draw
@@ -109,6 +134,11 @@ ArrayData read_array(hid_t particles, const std::string& name, const std::string
     if (!counted) out.count = values.size(), counted = true;
     if (values.size() != out.count) continue;  // not per particle
     out.properties.emplace(prop, std::move(values));
+  }
+  if (!counted && std::find(stored_empty.begin(), stored_empty.end(), "x") != stored_empty.end()) {
+    for (const std::string& prop : stored_empty)
+      out.properties.emplace(prop, std::vector<double>{});
+    out.empty = true;
   }
   for (const char* axis : {"x", "y"})
     if (!out.properties.count(axis))
@@ -212,26 +242,37 @@ ParticleData read_pysph_hdf5(const std::filesystem::path& path,
     else others.push_back(names[i]);
   }
 
+  // An array with no particles now has no say in which attributes the others share.
+  std::vector<const ArrayData*> filled;
+  for (const ArrayData* a : arrays)
+    if (!a->empty) filled.push_back(a);
+
   ParticleData data;
   // Properties every array has, except the positions and velocities handled below.
   std::vector<std::string> common;
-  for (const auto& [prop, values] : arrays.front()->properties) {
+  for (const auto& [prop, values] : (filled.empty() ? arrays : filled).front()->properties) {
     if (prop == "x" || prop == "y" || prop == "z" || prop == "u" || prop == "v" || prop == "w")
       continue;
-    bool everywhere = std::all_of(arrays.begin(), arrays.end(),
+    bool everywhere = std::all_of(filled.begin(), filled.end(),
                                   [&](const ArrayData* a) { return a->properties.count(prop); });
     if (everywhere) common.push_back(prop);
   }
-  bool velocity = std::all_of(arrays.begin(), arrays.end(), [](const ArrayData* a) {
+  bool velocity = std::all_of(filled.begin(), filled.end(), [](const ArrayData* a) {
     return a->properties.count("u") && a->properties.count("v");
   });
   for (const std::string& prop : common) data.attributes.push_back({prop, 1, {}});
   if (velocity) data.attributes.push_back({"velocity", 3, {}});
 
+  // PySPH's 2D runs store z too, all 0: a flat fluid is 2D, its mass an area's.
   bool three_d = false;
-  for (const ArrayData* array : arrays) {
+  std::optional<double> first_z;
+  for (const ArrayData* array : filled) {
     const ArrayData& a = *array;
-    three_d = three_d || a.properties.count("z") > 0;
+    if (auto zs = a.properties.find("z"); zs != a.properties.end() && !zs->second.empty()) {
+      if (!first_z) first_z = zs->second.front();
+      three_d = three_d || std::any_of(zs->second.begin(), zs->second.end(),
+                                       [&](double v) { return v != *first_z; });
+    }
     const auto& x = a.properties.at("x");
     const auto& y = a.properties.at("y");
     auto z = a.properties.find("z");
@@ -257,7 +298,7 @@ ParticleData read_pysph_hdf5(const std::filesystem::path& path,
     long long count = 0;
     if (read_scalar_attribute(solver.get(), "count", H5T_NATIVE_LLONG, count)) data.step = count;
   }
-  data.spacing = spacing_from_mass(arrays, three_d ? 3 : 2);
+  data.spacing = spacing_from_mass(filled, three_d ? 3 : 2);
   if (options.arrays.empty())
     data.chosen = "PySPH arrays " + joined(chosen) + " (" + why + ")" +
                   (others.empty() ? "" : "; left out: " + joined(others) + " (--arrays picks)");

@@ -95,12 +95,17 @@ void write_dataset(hid_t group, const char* name, const std::vector<double>& val
   hid_t space = H5Screate_simple(1, &n, nullptr);
   hid_t set = H5Dcreate2(group, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   if (n > 0) H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
-  // PySPH's per-property attributes: stored (bool), name, type, default.
+  // PySPH's per-property attributes: stored (numpy's bool, which h5py writes as an enum over
+  // int8), name, type, default.
   hid_t scalar = H5Screate(H5S_SCALAR);
-  hid_t flag = H5Acreate2(set, "stored", H5T_NATIVE_HBOOL, scalar, H5P_DEFAULT, H5P_DEFAULT);
-  hbool_t s = stored;
-  H5Awrite(flag, H5T_NATIVE_HBOOL, &s);
+  hid_t boolean = H5Tenum_create(H5T_NATIVE_SCHAR);
+  const signed char no = 0, yes = 1;
+  H5Tenum_insert(boolean, "FALSE", &no);
+  H5Tenum_insert(boolean, "TRUE", &yes);
+  hid_t flag = H5Acreate2(set, "stored", boolean, scalar, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(flag, boolean, stored ? &yes : &no);
   H5Aclose(flag);
+  H5Tclose(boolean);
   hid_t text = H5Tcopy(H5T_C_S1);
   H5Tset_size(text, std::strlen(name));
   hid_t attr = H5Acreate2(set, "name", text, scalar, H5P_DEFAULT, H5P_DEFAULT);
@@ -236,6 +241,27 @@ TEST(PySphParticles, TwoDimensionalRunsGetZeroZ) {
   EXPECT_DOUBLE_EQ(d.positions[1][2], 0);
   EXPECT_FALSE(d.time.has_value());
   EXPECT_EQ(d.attribute("velocity")->values[5], 0.f);
+}
+
+// As PySPH writes a 2D run (trivial_inlet_outlet): z stored, all 0, the mass an area's; and
+// an array with no particles yet, its stored properties empty.
+TEST(PySphParticles, TwoDimensionalRunsWithZStoredAndAnEmptyFluid) {
+  test::TempFolder dir;
+  hid_t f = H5Fcreate((dir / "inlet.h5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t particles = H5Gcreate2(f, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  write_array(particles, "fluid", {}, true, {});
+  write_array(particles, "inlet", {{0, 0, 0}, {0.1, 0, 0}, {0.2, 0, 0}}, true, {"p"});
+  H5Gclose(particles);
+  H5Fclose(f);
+  const ParticleData fluid = read_particles(dir / "inlet.h5");
+  EXPECT_EQ(fluid.size(), 0u);
+  EXPECT_EQ(fluid.chosen,
+            "PySPH arrays fluid (named like a fluid); left out: inlet (--arrays picks)");
+  const ParticleData all = read_particles(dir / "inlet.h5", {{"all"}});
+  ASSERT_EQ(all.size(), 3u);
+  EXPECT_NE(all.attribute("p"), nullptr);  // the empty array has no say
+  ASSERT_TRUE(all.spacing.has_value());
+  EXPECT_NEAR(*all.spacing, std::sqrt(0.001 / 1001), 1e-12);
 }
 
 }  // namespace

@@ -6,11 +6,6 @@
 // measured beside it: nearly invisible at 1 cm.
 #include <gtest/gtest.h>
 
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfInputFile.h>
-
-#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -22,65 +17,12 @@
 #include "tools/scenes/scenes.h"
 #include "voxspan/adapter.h"
 #include "voxspan/insitu.h"
+#include "water_contrast.h"
 
 namespace voxspan {
 namespace {
 
-std::vector<float> read_depth(const std::filesystem::path& path, int& width, int& height) {
-  Imf::InputFile file(path.c_str());
-  const Imath::Box2i window = file.header().dataWindow();
-  width = window.max.x - window.min.x + 1;
-  height = window.max.y - window.min.y + 1;
-  std::vector<float> z(std::size_t(width) * height, 0.0f);
-  Imf::FrameBuffer frame;
-  frame.insert("Z", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(z.data()), sizeof(float),
-                               sizeof(float) * std::size_t(width)));
-  file.setFrameBuffer(frame);
-  file.readPixels(window.min.y, window.max.y);
-  return z;
-}
-
-struct Contrast {
-  double tint = 0;       // mean (blue - red) / 255 of the water pixels minus the background's
-  double luminance = 0;  // mean of the water pixels, 0..1
-  int water = 0, background = 0;
-  int grey_background = 0;  // background pixels whose channels are within 10/255 of each other
-};
-
-// Water: pixels with a hit whose 5x5 neighbourhood is all hits (silhouettes left out);
-// background: pixels whose 5x5 neighbourhood has none.
-Contrast contrast(const test::DecodedPng& png, const std::vector<float>& z) {
-  const auto all = [&](int x, int y, bool hit) {
-    for (int dy = -2; dy <= 2; ++dy)
-      for (int dx = -2; dx <= 2; ++dx) {
-        const int u = std::clamp(x + dx, 0, png.width - 1),
-                  v = std::clamp(y + dy, 0, png.height - 1);
-        if ((z[std::size_t(u) + std::size_t(v) * png.width] > 0) != hit) return false;
-      }
-    return true;
-  };
-  double tint_water = 0, tint_back = 0, lum = 0;
-  Contrast c;
-  for (int y = 0; y < png.height; ++y)
-    for (int x = 0; x < png.width; ++x) {
-      const std::uint8_t* p = &png.rgba[4 * (std::size_t(x) + std::size_t(y) * png.width)];
-      const double tint = (double(p[2]) - double(p[0])) / 255;
-      if (all(x, y, true)) {
-        tint_water += tint;
-        lum += (double(p[0]) + p[1] + p[2]) / (3 * 255.0);
-        ++c.water;
-      } else if (all(x, y, false)) {
-        tint_back += tint;
-        ++c.background;
-        c.grey_background += std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}) <= 10;
-      }
-    }
-  if (c.water > 0 && c.background > 0) {
-    c.tint = tint_water / c.water - tint_back / c.background;
-    c.luminance = lum / c.water;
-  }
-  return c;
-}
+using test::Contrast;
 
 // The dam break collapsing (column width 0.3, t = 0.3 s) scaled to a column `width` wide,
 // rendered by the default view; `view` is extra view config ("" = none at all).
@@ -122,11 +64,11 @@ writer: {fsync: false}
   const test::DecodedPng png = test::read_png_file(picture);
   EXPECT_TRUE(png.ok) << png.error;
   int w = 0, h = 0;
-  const std::vector<float> depth = read_depth(dir / "depth" / "main_00000001.exr", w, h);
+  const std::vector<float> depth = test::read_depth_exr(dir / "depth" / "main_00000001.exr", w, h);
   EXPECT_EQ(w, png.width);
   EXPECT_EQ(h, png.height);
   if (!png.ok || w != png.width || h != png.height) return {};
-  return contrast(png, depth);
+  return test::water_contrast(png, depth);
 }
 
 TEST(DefaultView, TheWaterIsClearlyVisibleAtOneCentimetreAndAtAHundredMetres) {
