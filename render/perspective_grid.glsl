@@ -37,7 +37,8 @@ vec3 world_ray(ivec2 pixel) {
 float ray_scale(ivec2 pixel) { return length(view_ray(pixel)); }
 
 // d_i = d_0 (1 + K_d)^i.
-float layer_depth(uint i) { return u_near * exp2(float(i) * u_log2_step); }
+float layer_depth_at(float i) { return u_near * exp2(i * u_log2_step); }
+float layer_depth(uint i) { return layer_depth_at(float(i)); }
 float layer_of(float depth) { return log2(depth / u_near) * u_inv_log2_step; }
 // Layer holding `depth`, clamped to [0, L - 1].
 uint layer_index(float depth) {

@@ -104,7 +104,8 @@ const GpuSpanImage& Voxelizer::run(const Camera& camera, std::span<const Particl
   bits_.fit(layout.tile_bytes);
   compress_.begin_frame();
   const SplatSettings splat{options.gap_bridging, options.surface_splat, options.splat_threads};
-  const CompressSettings compress{options.gap_bridging, options.max_spans, options.scratch_spans};
+  const CompressSettings compress{options.gap_bridging, options.max_spans, options.scratch_spans,
+                                  options.span_edges};
   std::uint32_t spans = 0;
   std::int64_t voxels = 0;
   for (int i = 0; i < layout.count(); ++i) {

@@ -39,6 +39,11 @@ struct VoxelizeOptions {
   bool surface_splat = true;    // with g > 0, mark only entry/exit voxels where 2 r < g
   std::uint32_t max_spans = 0;  // cap on stored spans per pixel (sec. 3.1); 0 = no cap
   int scratch_spans = 8;        // spans per pixel the compress pass keeps between its passes
+  // Where a span's entry and exit lie in the voxels that end it (the CPU renderer's are exact).
+  // Centres are closer to the exact pictures (docs/results.md), but spans of two ranks that
+  // meet in one voxel run then leave a voxel's gap between them: compositing stays exact with
+  // the faces only, so they are the default.
+  SpanEdges span_edges = SpanEdges::outer;
   bool use_cell_states = true;  // skip inner-empty, fill inner-full cells (sec. 4.3)
   Binning binning = Binning::per_tile_lists;
   SplatThreads splat_threads = SplatThreads::automatic;

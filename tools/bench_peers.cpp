@@ -8,7 +8,8 @@
 //             sphere of the pixel's 8x8 bin, in double; the yardstick, and a method of its own
 //   cpu, gl   our renderers, classification to picture (opaque, the runtime's defaults), and
 //             one setting changed at a time: gap bridging, span cap, inner-cell skipping, and
-//             for the GL one's voxelization the angle resolution, the layer cap, the tile budget
+//             for the GL one's voxelization the angle resolution, the span ends (the voxels'
+//             outer faces or centres), the layer cap, the tile budget
 //             (the depth filter is a look, the same for all: its cost is in the stages)
 //   openvdb   ParticlesToLevelSet at voxels from the radius to a quarter of it, without and with
 //             mean-value smoothing, then its level-set ray intersector
@@ -380,6 +381,12 @@ std::vector<OurSetting> our_settings(const tools::DamBreakState& s, bool gl, boo
     for (double alpha : {28.0, 7.0, 3.5})
       add("alpha " + fmt("%g", alpha),
           [&](RenderOptions& o) { o.voxelize.grid.alpha_degrees = alpha; });
+    add("span ends at voxel centres",
+        [](RenderOptions& o) { o.voxelize.span_edges = SpanEdges::middle; });
+    add("alpha 28, ends at centres", [](RenderOptions& o) {
+      o.voxelize.grid.alpha_degrees = 28;
+      o.voxelize.span_edges = SpanEdges::middle;
+    });
     add("layers <= 1024", [](RenderOptions& o) { o.voxelize.grid.max_layers = 1024; });
     add("tile budget 64 MiB",
         [](RenderOptions& o) { o.voxelize.tiles.memory_budget = std::size_t(64) << 20; });

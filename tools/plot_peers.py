@@ -11,10 +11,16 @@ whether each of our defaults lies on it are printed, and written as FRONT.csv be
     python3 tools/plot_peers.py OUT_PREFIX RUN1.csv [RUN2.csv ...]
 
 writes OUT_PREFIX_pareto.png, OUT_PREFIX_psnr.png, OUT_PREFIX_stages.png, OUT_PREFIX_front.csv.
-Errors at float rounding (under 1e-4 radii) are drawn at 1e-4. Needs matplotlib.
+Errors at float rounding (under 1e-4 radii) are drawn at 1e-4.
+
+    python3 tools/plot_peers.py --scaling OUT.png RUN1.csv [RUN2.csv ...]
+
+draws each family's default (or first) configuration's time against the particle count (at the
+most common image size) and against the pixel count (at the most common particle count), on
+log-log axes. Needs matplotlib.
 """
+import collections
 import csv
-import math
 import sys
 
 import matplotlib
@@ -90,7 +96,42 @@ def scatter(ax, rows, y, on_front):
     ax.grid(True, which="both", alpha=0.3)
 
 
+def scaling(out, paths):
+    rows = [r for p in paths for r in read(p)]
+    picks = {}
+    for r in rows:
+        key = (r["family"], int(r["particles"]), int(r["width"]) * int(r["height"]))
+        if r["default"] or key not in picks:
+            if r["default"] or not picks.get(key, {}).get("default"):
+                picks[key] = r
+    sizes = collections.Counter(k[2] for k in picks)
+    counts = collections.Counter(k[1] for k in picks)
+    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.8))
+    for fam in COLOUR:
+        by_n = sorted((k[1], r["total_ms"]) for k, r in picks.items()
+                      if k[0] == fam and k[2] == sizes.most_common(1)[0][0])
+        by_px = sorted((k[2], r["total_ms"]) for k, r in picks.items()
+                       if k[0] == fam and k[1] == counts.most_common(1)[0][0])
+        if len(by_n) > 1:
+            a.plot(*zip(*by_n), "o-", color=COLOUR[fam], label=fam)
+        if len(by_px) > 1:
+            b.plot(*zip(*by_px), "o-", color=COLOUR[fam], label=fam)
+    a.set_xlabel(f"particles ({sizes.most_common(1)[0][0]} pixels)")
+    b.set_xlabel(f"pixels ({counts.most_common(1)[0][0]} particles)")
+    for ax in (a, b):
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_ylabel("ms per frame (median), default settings")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    return 0
+
+
 def main(argv):
+    if len(argv) >= 3 and argv[1] == "--scaling":
+        return scaling(argv[2], argv[3:])
     if len(argv) < 3:
         print(__doc__)
         return 2
@@ -115,6 +156,22 @@ def main(argv):
                 print(f"{path}: {r['family']} {r['settings']}: {r['total_ms']:.1f} ms, p99 "
                       f"{r['first_hit_p99_r']:.3g} r, PSNR {r['psnr_opaque_db']:.1f} dB; on the "
                       f"p99 front: {on1}, on the PSNR front: {on2}")
+        print(f"{path}: time ratios at equal error (each other method's configuration against the "
+              "fastest of ours at least as exact in first-hit p99 and opaque PSNR):")
+        ours = [r for r in rows if r["family"] in ("cpu", "gl")]
+        for r in rows:
+            if r["family"] in ("cpu", "gl"):
+                continue
+            match = [o for o in ours if o["first_hit_p99_r"] <= r["first_hit_p99_r"] + 1e-3 and
+                     o["psnr_opaque_db"] >= r["psnr_opaque_db"] - 0.1]
+            if match:
+                best = min(match, key=lambda o: o["total_ms"])
+                print(f"  {r['family']} {r['settings']}: {r['total_ms']:.1f} ms, p99 "
+                      f"{r['first_hit_p99_r']:.3g} r, {r['psnr_opaque_db']:.1f} dB; ours "
+                      f"{best['family']} {best['settings']}: {best['total_ms']:.1f} ms: "
+                      f"{r['total_ms'] / best['total_ms']:.1f}x")
+            else:
+                print(f"  {r['family']} {r['settings']}: none of ours as exact")
         for r in f:
             front_rows.append((path, r["family"], r["settings"], r["total_ms"],
                                r["first_hit_p99_r"], r["psnr_opaque_db"]))

@@ -13,6 +13,7 @@
 
 uniform float u_gap;  // g, world units along the ray; 0 = no bridging
 uniform float u_center_gap_scale;  // 1 + K_d / 2
+uniform float u_edge_offset;  // where a span's ends lie in its end voxels: 0 outer faces, 0.5 centres
 
 uvec4 column_chunk(uint chunk);
 void on_span(uint index, float entry, float exit);
@@ -24,10 +25,15 @@ struct ColumnRuns {
   uint start, end;  // its first layer and (once its run ended) the layer after its last
   uint found;
   float inside;
+  bool clipped;     // the pending run reached the end of the scanned range
 };
 
 void emit_span(inout ColumnRuns s) {
-  float entry = layer_depth(s.start), exit = layer_depth(s.end);
+  // A run of one voxel keeps its faces (its centre would be an empty span), and so do ends at
+  // the near plane or the end of the range: they are clipped there, no surface.
+  float offset = s.end - s.start > 1u ? u_edge_offset : 0.0;
+  float entry = layer_depth_at(float(s.start) + (s.start > 0u ? offset : 0.0));
+  float exit = layer_depth_at(float(s.end) - (s.clipped ? 0.0 : offset));
   on_span(s.found, entry, exit);
   s.inside += (exit - entry) * s.scale;
   ++s.found;
@@ -94,7 +100,7 @@ LayerRun next_layer_run(inout CellMarch m) {
 // hold fluid: render/passes/depth_bounds.glsl); returns the number of spans found and their
 // total length along the ray in `inside`.
 uint scan_column(ivec2 pixel, uint first_chunk, uint last_chunk, out float inside) {
-  ColumnRuns s = ColumnRuns(ray_scale(pixel), false, false, 0u, 0u, 0u, 0.0);
+  ColumnRuns s = ColumnRuns(ray_scale(pixel), false, false, 0u, 0u, 0u, 0.0, false);
   float z0 = max(u_near, layer_depth(first_chunk * 128u));
   float z1 = min(u_grid_far, layer_depth((last_chunk + 1u) * 128u));
   CellMarch march = march_begin(u_eye, world_ray(pixel), z0, z1);
@@ -119,7 +125,10 @@ uint scan_column(ivec2 pixel, uint first_chunk, uint last_chunk, out float insid
     }
   }
   // A run reaching the end of the range ends there: nothing is set beyond it.
-  if (s.in_run) s.end = (last_chunk + 1u) * 128u;
+  if (s.in_run) {
+    s.end = (last_chunk + 1u) * 128u;
+    s.clipped = true;
+  }
   if (s.pending) emit_span(s);
   inside = s.inside;
   return s.found;

@@ -59,6 +59,7 @@ void CompressPass::set_uniforms(const gl::Program& p, const TileLayout& layout,
   set_bit_uniforms(p, layout, tile);
   p.set("u_gap", float(settings.gap_bridging));
   p.set("u_center_gap_scale", float(1 + image.grid().k_d() / 2));
+  p.set("u_edge_offset", settings.span_edges == SpanEdges::middle ? 0.5f : 0.0f);
   p.set("u_cap", settings.max_spans);
   p.set("u_scratch_spans", static_cast<unsigned>(settings.scratch_spans));
   set_depth_block_uniforms(p, image.grid());

@@ -20,10 +20,16 @@
 
 namespace voxspan {
 
+// Where the compress pass puts a span's entry and exit within the voxels at its ends: their
+// outer faces (the span holds every set voxel whole) or their centres (each end half a voxel
+// in, an unbiased estimate of a surface that lies anywhere in its voxel).
+enum class SpanEdges { outer, middle };
+
 struct CompressSettings {
   double gap_bridging = 0;      // g, world units along the ray
   std::uint32_t max_spans = 0;  // cap on stored spans per pixel; 0 = none
   int scratch_spans = 8;        // spans per pixel kept from the count pass
+  SpanEdges span_edges = SpanEdges::outer;
 };
 
 struct CompressTallies {

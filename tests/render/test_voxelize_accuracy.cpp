@@ -64,6 +64,41 @@ TEST(VoxelizeAccuracy, DamBreakAtThreeSteps) {
   }
 }
 
+// Span ends at the end voxels' centres (VoxelizeOptions::span_edges): within half a layer of the
+// exact boundaries where faces are within one, the inside length no longer a voxel long per
+// span, and ends clipped by the near plane still at it.
+TEST(VoxelizeAccuracy, SpanEndsAtVoxelCentresAreWithinHalfALayer) {
+  test::DamBreak shape;
+  shape.spacing = 0.02;
+  shape.radius = 0.02;
+  Case c{test::dam_break(shape, 0.15), {}, {}};
+  c.camera = test::frame_scene(c.particles, {0.4, -0.5, -1}, 192, 108);
+  c.options.gap_bridging = shape.spacing;
+  c.options.grid.alpha_degrees = 2;
+  const test::SpanComparison faces = check(c, "dam break, ends at faces");
+  c.options.span_edges = SpanEdges::middle;
+  const test::SpanComparison centres = check(c, "dam break, ends at centres");
+  c.options.span_edges = SpanEdges::outer;
+  const SpanImage at_faces = test::voxelize(c.camera, c.particles, c.options);
+  c.options.span_edges = SpanEdges::middle;
+  const SpanImage at_centres = test::voxelize(c.camera, c.particles, c.options);
+  const SpanImage ref = exact_spans(at_centres.grid, c.particles, {}, {c.options.gap_bridging, 0});
+  const double half_faces = test::compare_spans(at_faces, ref, 0.5).boundary_match();
+  const double half_centres = test::compare_spans(at_centres, ref, 0.5).boundary_match();
+  std::printf("boundaries within half a layer: faces %.4f, centres %.4f\n", half_faces,
+              half_centres);
+  EXPECT_GE(half_centres, 0.995);
+  EXPECT_LT(half_faces, half_centres);
+  EXPECT_LT(std::abs(centres.inside_sum_error()), std::abs(faces.inside_sum_error()) / 2)
+      << "faces " << faces.summary() << "\ncentres " << centres.summary();
+  const Camera inside = test::look_at({0.15, 0.3, 0.15}, {1.0, 0.25, 0.2}, 96, 64);
+  const SpanImage from_inside = test::voxelize(inside, test::dam_break(shape, 0.0), c.options);
+  for (int y = 0; y < from_inside.height(); ++y)
+    for (int x = 0; x < from_inside.width(); ++x)
+      ASSERT_EQ(from_inside.spans_at(x, y)[0].entry, float(from_inside.grid.near()))
+          << x << "," << y;
+}
+
 TEST(VoxelizeAccuracy, TwentyFourLayersCappedAtSeven) {
   // Sheets two spheres thick, 0.2 apart along the view direction, filling the image.
   Case c{test::stacked_layers(24, 24, 2, 0.05, 0.045, 0.2), {}, {}};
