@@ -89,8 +89,8 @@ std::int64_t gpu_bytes_bound(const Scene& scene, const Frame& gl) {
       std::int64_t(scene.voxelize.tiles.memory_budget),
       pixels * std::int64_t((gl.spans.grid.layers() + 127) / 128 * 16 +
                             scratch_bytes_per_pixel(scene.voxelize.scratch_spans)));
-  return 16 * std::int64_t(scene.particles.size()) + 16 * pixels + (8 + 64) * spans + tile +
-         (std::int64_t(4) << 20);
+  return 16 * std::int64_t(scene.particles.size()) + 36 * pixels + 52 * spans +
+         4 * gl.stats.count("bin.entries") + tile + (std::int64_t(4) << 20);
 }
 
 namespace {

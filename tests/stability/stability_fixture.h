@@ -77,9 +77,10 @@ struct Bounds {
 Checked check_both(const Scene& scene, const Bounds& bounds = {});
 
 // The bound on the GL renderer's GPU memory in one frame (bytes), from what it must hold: the
-// particles (16 B), per pixel its record (16 B), its spans (8 B each) and the surfaces' per-span
-// data (links, normals, depths, AO: 64 B per span), the bits and scratch of the image (or of
-// one tile of the memory budget when smaller), plus 4 MiB for the passes' fixed buffers.
+// particles (16 B each), per pixel its span record, its picture and its AO (36 B), per span the
+// span, its owner, links, normals and the filter's two depth buffers (52 B), the tile lists
+// (4 B per entry), the bits and scratch of the image (or of one tile of the memory budget when
+// smaller), plus 4 MiB for the passes' small and fixed buffers.
 std::int64_t gpu_bytes_bound(const Scene& scene, const Frame& gl);
 
 }  // namespace voxspan::test

@@ -271,5 +271,43 @@ TEST(Stability, ParticleCountThatChangesEveryStep) {
               static_cast<long long>(adapter.render_steps()), double(peak) / (1 << 20));
 }
 
+// A step the renderers refuse (a copy of the fluid 1e20 world units away, past the float
+// range) through the Adapter: a clear error status naming the depth, counted in failed_steps,
+// the grid the adapter builds over both copies bounded, and the next step renders as before.
+TEST(Stability, RefusedStepThroughTheAdapterIsCountedAndTheNextRenders) {
+  const test::Particles block = test::lattice_block({0, 0, 0}, {10, 6, 6}, 0.05, 0.05);
+  AdapterOptions options;
+  options.classify.particle_spacing = 0.05;
+  Adapter adapter(options);
+  auto pipeline =
+      std::make_shared<BothRenderers>(test::look_at({1.6, 0.9, -1.0}, {0.5, 0.3, 0.3}, 96, 64));
+  adapter.set_pipeline(pipeline);
+  std::vector<float> x, y, z;
+  for (const ParticleSphere& p : block) x.push_back(p.x), y.push_back(p.y), z.push_back(p.z);
+  const auto view = ParticleView::soa(x.data(), y.data(), z.data(), x.size()).with_radius(0.05);
+  // The same block, and a second copy of it moved 1e20 along the view direction.
+  std::vector<float> fx = x, fy = y, fz = z;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    fx.push_back(x[i] - 1.1e20f * 0.73f), fy.push_back(y[i] - 1.1e20f * 0.34f),
+        fz.push_back(z[i] + 1.1e20f * 0.6f);
+  }
+  const auto far = ParticleView::soa(fx.data(), fy.data(), fz.data(), fx.size()).with_radius(0.05);
+  ASSERT_TRUE(adapter.execute(1, 0.0, view).ok());
+  const Status refused = adapter.execute(2, 0.1, far);
+  EXPECT_EQ(refused.code, StatusCode::pipeline_failed);
+  EXPECT_NE(refused.message.find("world units from the eye, beyond the 1e+18"), std::string::npos)
+      << refused.message;
+  EXPECT_EQ(adapter.failed_steps(), 1);
+  // The grid the adapter built over both copies grew its cells instead of its cell count:
+  // 2^20 cells at most for so few particles (it used to take the option's 2^27, about 3 GB of
+  // cell arrays and 4 s for this step).
+  EXPECT_LE(adapter.last_classification().geometry.cell_count(), std::size_t(1) << 20);
+  ASSERT_TRUE(adapter.execute(3, 0.2, view).ok());
+  adapter.finish();
+  ASSERT_EQ(pipeline->steps.size(), 2u);
+  EXPECT_TRUE(test::identical(pipeline->steps[0].gl.spans, pipeline->steps[1].gl.spans));
+  EXPECT_EQ(pipeline->steps[0].cpu.images[2].rgba, pipeline->steps[1].cpu.images[2].rgba);
+}
+
 }  // namespace
 }  // namespace voxspan
