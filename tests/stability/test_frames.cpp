@@ -1,9 +1,10 @@
 // The stability suite's frames that are hard for what they hold rather than for their shape:
-// scenes at 1e-6 and 1e6 world units (the same picture as at unit scale), NaN and infinite
-// particles (left out, counted, the picture that of the clean particles), an empty frame (the
-// environment alone, no spans, no error), and a particle count that changes every step
-// through the public Adapter (each step's picture right, nothing kept from the step before,
-// nothing growing). Both renderers each time (stability_fixture.h).
+// scenes from 1e-12 to 1e12 world units (the same picture as at unit scale) and past 1e18
+// (refused), NaN and infinite particles (left out, counted, the picture that of the clean
+// particles), an empty frame (the environment alone, no spans, no error), and through the
+// public Adapter a particle count that changes every step (each step's picture right, nothing
+// kept from the step before, nothing growing) and a refused step. Both renderers each time
+// (stability_fixture.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
