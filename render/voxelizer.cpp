@@ -13,6 +13,12 @@ namespace {
 // NVIDIA breaks on single bindings of 2 GiB or more (GPU-NOTES); 1 GiB keeps clear of it.
 constexpr std::size_t kBindingCap = std::size_t(1) << 30;
 
+// Both renderers' passes after the grid work in float and square view-space lengths (the GL
+// splat's chords, the shading models' vectors), which overflows past about 1e19 world units:
+// the GL renderer then lost every chord without a word, the CPU one shaded wrongly. A margin
+// of 10.
+constexpr double kFarthestDepth = 1e18;
+
 }  // namespace
 
 PerspectiveGrid fit_frame(const Camera& camera, std::span<const ParticleSphere> particles,
@@ -36,6 +42,9 @@ PerspectiveGrid fit_frame(const Camera& camera, std::span<const ParticleSphere> 
   stats.set_figure("grid.far", grid.far());
   stats.set_figure("grid.k_d", grid.k_d());
   stats.set_figure("grid.alpha_degrees", grid.alpha_degrees());
+  if (grid.grid_far() > kFarthestDepth)
+    throw make_error("the frame reaches ", grid.far(), " world units from the eye, beyond the ",
+                     kFarthestDepth, " the renderers' float passes hold; scale the scene down");
   return grid;
 }
 

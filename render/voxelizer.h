@@ -60,7 +60,9 @@ void validate(const VoxelizeOptions& options);
 
 // A frame's perspective grid, fitted to the particles the camera sees (options.grid,
 // options.combine_ranks), timed as "frame", with its counts and figures (particles.*, grid.*)
-// in `stats`: the first step of both renderers.
+// in `stats`: the first step of both renderers. Throws voxspan::Error (its stats filled in)
+// when the visible particles reach past 1e18 world units from the eye: the passes after it
+// work in float, whose squares of lengths overflow there.
 PerspectiveGrid fit_frame(const Camera& camera, std::span<const ParticleSphere> particles,
                           const VoxelizeOptions& options, gl::PassTimer& timer, FrameStats& stats);
 
@@ -70,8 +72,8 @@ class Voxelizer {
   explicit Voxelizer(const gl::ShaderLibrary& shaders);
 
   // Voxelizes one frame. The result stays valid until the next run(). Throws voxspan::Error on
-  // bad options or a budget too small for one tile row; bad particles (NaN, radius <= 0) are
-  // counted and skipped, never an error.
+  // bad options, a budget too small for one tile row, or a frame deeper than fit_frame takes;
+  // bad particles (NaN, radius <= 0) are counted and skipped, never an error.
   const GpuSpanImage& run(const Camera& camera, std::span<const ParticleSphere> particles,
                           const CellStatesView& cells, const VoxelizeOptions& options,
                           gl::PassTimer& timer, FrameStats& stats);

@@ -176,6 +176,11 @@ GridGeometry Classifier::Work::bounds_geometry(const detail::Positions<T>& pos, 
   GridGeometry g;
   g.cell_size = cs;
   if (!(box.lo[0] <= box.hi[0])) return g;  // no finite particle: an empty grid
+  // Few particles spread far apart: coarser cells keep the grid bounded, by the option and by
+  // the particles (64 cells each, 2^20 at least): one stray particle far from the fluid would
+  // otherwise cost the option's cells (2^27 by default: about 3 GB and seconds) every step.
+  const double most =
+      std::min(double(options.max_built_cells), std::max(double(1 << 20), 64.0 * double(n)));
   for (;;) {
     double cells = 1;
     for (int a = 0; a < 3; ++a) {
@@ -186,9 +191,8 @@ GridGeometry Classifier::Work::bounds_geometry(const detail::Positions<T>& pos, 
       g.dims[std::size_t(a)] = extent < 1e9 ? int(extent) : 1000000000;
       cells *= extent;
     }
-    if (cells <= double(options.max_built_cells)) break;
-    // Few particles spread far apart: coarser cells keep the grid bounded.
-    g.cell_size *= std::cbrt(cells / double(options.max_built_cells)) * 1.01;
+    if (cells <= most) break;
+    g.cell_size *= std::cbrt(cells / most) * 1.01;
   }
   return g;
 }

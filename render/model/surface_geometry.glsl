@@ -65,8 +65,12 @@ vec3 sobel_normal_view(SurfacePoint v) {
   vec3 ld = sobel_corner(l, 3);
   vec3 ru = sobel_corner(r, 2);
   vec3 rd = sobel_corner(r, 3);
-  vec3 tx = (ru - lu) + 2.0f * (r.position - l.position) + (rd - ld);  // towards +x
-  vec3 ty = (ld - lu) + 2.0f * (d.position - u.position) + (rd - ru);  // towards row + 1
+  // In units of v's depth: the cross product of world lengths is an area, whose squares under-
+  // or overflow floats at scene scales past 1e-7 or 1e11 world units; relative to the depth
+  // the numbers are the same at every scale.
+  float unit = 1.0f / c.z;
+  vec3 tx = ((ru - lu) + 2.0f * (r.position - l.position) + (rd - ld)) * unit;  // towards +x
+  vec3 ty = ((ld - lu) + 2.0f * (d.position - u.position) + (rd - ru)) * unit;  // towards row + 1
   vec3 n = cross(tx, ty);
   float len = length(n);
   // Out of the fluid: towards the eye at an entry, away from it at an exit.

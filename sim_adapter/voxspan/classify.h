@@ -47,7 +47,8 @@ struct ClassifyOptions {
   bool include_ghosts = true;
   // Names of the particle attributes to compact beside the spheres.
   std::vector<std::string> attributes;
-  // A grid the adapter builds never has more cells than this: its cells grow instead.
+  // A grid the adapter builds never has more cells than this, nor more than 64 per particle
+  // (2^20 at least): its cells grow instead.
   std::size_t max_built_cells = std::size_t(1) << 27;
 };
 
