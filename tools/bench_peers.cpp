@@ -25,7 +25,8 @@
 // surface after the filter (median, 99th percentile, max over the pixels both hit, in particle
 // radii) and before it ("raw"), silhouette pixels missed and extra, the 99th percentile of the
 // length inside the fluid (thickness, radii) and the PSNR of both pictures.
-// Milliseconds are medians over --frames frames after one warm-up.
+// Milliseconds are medians over --frames frames after one warm-up, the frames taken in turns
+// (each method one frame, then each again), so that a shared machine's load falls on all alike.
 //
 //   bench_peers [--particles N] [--time T] [--state FILE] [--ritter] [--size WxH] [--frames F]
 //               [--methods exact,cpu,gl,openvdb,vtk] [--quick] [--check] [--csv FILE]
@@ -322,17 +323,18 @@ Errors errors_of(const PeerSurface& m, const Seen& m_seen, const PeerSurface& re
   return e;
 }
 
-// Runs a method one warm-up and `frames` timed frames; the stage times are medians.
-PeerSurface timed(const Method& m, int frames) {
-  PeerSurface last = m.run();
+// Stage times of a method's frames: medians, per stage.
+struct Timing {
   std::map<std::string, std::vector<double>> ms;
-  for (int f = 0; f < frames; ++f) {
-    last = m.run();
-    for (const auto& [stage, t] : last.ms) ms[stage].push_back(t);
+  std::map<std::string, double> medians() const {
+    std::map<std::string, double> out;
+    for (const auto& [stage, t] : ms) out[stage] = tools::median(t);
+    return out;
   }
-  for (auto& [stage, t] : ms) last.ms[stage] = tools::median(t);
-  return last;
-}
+  void add(const PeerSurface& s) {
+    for (const auto& [stage, t] : s.ms) ms[stage].push_back(t);
+  }
+};
 
 std::string fmt(const char* f, double v) {
   char text[64];
@@ -491,7 +493,7 @@ int run(const Args& a) {
         out.ms["total"] = ms;
         return out;
       }};
-  const PeerSurface ref = timed(exact, a.frames);
+  const PeerSurface ref = exact.run();  // the warm-up of the exact method, and the yardstick
   const RenderOptions shading = default_options(s);
   const Seen ref_seen = seen(ref, grid, shading);
 
@@ -513,10 +515,26 @@ int run(const Args& a) {
               "PSNR o", "PSNR t", "stages (ms)");
   std::int64_t ref_hits = 0;
   for (float d : ref_seen.first_hit) ref_hits += d < kNone;
+  // Errors from each method's warm-up frame (its surfaces are the same every frame), then the
+  // timed frames taken in turns, method after method, so that the shared machine's load drifts
+  // alike over all of them.
   int failed = 0;
+  std::vector<Errors> errors;
+  std::vector<PeerSurface> firsts;
   for (const Method& m : methods) {
-    const PeerSurface out = m.family == "exact" ? ref : timed(m, a.frames);
-    const Errors e = errors_of(out, seen(out, grid, shading), ref, ref_seen, radius);
+    PeerSurface out = m.family == "exact" ? ref : m.run();
+    errors.push_back(errors_of(out, seen(out, grid, shading), ref, ref_seen, radius));
+    out.first_hit.clear(), out.thickness.clear(), out.spans.clear();
+    firsts.push_back(std::move(out));
+  }
+  std::vector<Timing> timing(methods.size());
+  for (int f = 0; f < a.frames; ++f)
+    for (std::size_t i = 0; i < methods.size(); ++i) timing[i].add(methods[i].run());
+  for (std::size_t i = 0; i < methods.size(); ++i) {
+    const Method& m = methods[i];
+    const Errors& e = errors[i];
+    const PeerSurface& out = firsts[i];
+    const std::map<std::string, double> ms = timing[i].medians();
     if (a.check) {
       const bool same = e.p99 < 1e-4 && e.missed == 0 && e.extra == 0 &&
                         std::isinf(e.psnr_opaque) && std::isinf(e.psnr_translucent);
@@ -528,21 +546,19 @@ int run(const Args& a) {
       }
     }
     std::string stages;
-    for (const auto& [stage, ms] : out.ms)
-      if (stage != "total") stages += stage + " " + fmt("%.1f", ms) + " ";
+    for (const auto& [stage, t] : ms)
+      if (stage != "total") stages += stage + " " + fmt("%.1f", t) + " ";
     std::printf("%-8s %-26s %8.1f %7.3f %7.3f %7.3f %7.3f %6lld %6lld %7.3f %6.1f %6.1f  %s%s\n",
-                m.family.c_str(), (m.settings + (m.is_default ? " *" : "")).c_str(),
-                out.ms.at("total"), e.median, e.p99, e.max, e.raw_p99,
-                static_cast<long long>(e.missed), static_cast<long long>(e.extra), e.thickness_p99,
-                e.psnr_opaque, e.psnr_translucent, stages.c_str(),
-                out.note.empty() ? "" : ("[" + out.note + "]").c_str());
-    std::fflush(stdout);
+                m.family.c_str(), (m.settings + (m.is_default ? " *" : "")).c_str(), ms.at("total"),
+                e.median, e.p99, e.max, e.raw_p99, static_cast<long long>(e.missed),
+                static_cast<long long>(e.extra), e.thickness_p99, e.psnr_opaque, e.psnr_translucent,
+                stages.c_str(), out.note.empty() ? "" : ("[" + out.note + "]").c_str());
     if (csv)
       csv << s.x.size() << ',' << a.width << ',' << a.height << ',' << m.family << ",\""
-          << m.settings << "\"," << int(m.is_default) << ',' << out.ms.at("total") << ','
-          << e.median << ',' << e.p99 << ',' << e.max << ',' << e.raw_p99 << ',' << e.missed << ','
-          << e.extra << ',' << e.thickness_p99 << ',' << e.psnr_opaque << ',' << e.psnr_translucent
-          << ',' << out.elements << ",\"" << stages << "\",\"" << out.note << "\"\n";
+          << m.settings << "\"," << int(m.is_default) << ',' << ms.at("total") << ',' << e.median
+          << ',' << e.p99 << ',' << e.max << ',' << e.raw_p99 << ',' << e.missed << ',' << e.extra
+          << ',' << e.thickness_p99 << ',' << e.psnr_opaque << ',' << e.psnr_translucent << ','
+          << out.elements << ",\"" << stages << "\",\"" << out.note << "\"\n";
   }
   std::printf("\n* the runtime's default settings; r = the particle radius\n");
   return failed == 0 ? 0 : 1;

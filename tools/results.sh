@@ -20,9 +20,9 @@ run() {  # name, then bench_peers' flags
   echo "results: $name"
   "$bench" "$@" --csv "$out/$name.csv" | tee "$out/$name.txt"
 }
-run dambreak_100k_T0 --particles 1e5 --time 0 --state build/dambreak_100k_T0.bin --size 640x360
-run dambreak_100k_T2 --particles 1e5 --time 2 --state build/dambreak_100k_T2.bin --size 640x360
-run dambreak_20k_T5 --particles 2e4 --time 5 --state build/dambreak_20k_T5.bin --size 640x360
+run dambreak_100k_T0 --particles 1e5 --time 0 --state build/dambreak_100k_T0.bin --size 640x360 --frames 5
+run dambreak_100k_T2 --particles 1e5 --time 2 --state build/dambreak_100k_T2.bin --size 640x360 --frames 5
+run dambreak_20k_T5 --particles 2e4 --time 5 --state build/dambreak_20k_T5.bin --size 640x360 --frames 5
 $py tools/plot_peers.py "$out/dambreak" "$out/dambreak_100k_T0.csv" "$out/dambreak_100k_T2.csv" \
   "$out/dambreak_20k_T5.csv" | tee "$out/fronts.txt"
 
