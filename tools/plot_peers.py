@@ -10,7 +10,8 @@ whether each of our defaults lies on it are printed, and written as FRONT.csv be
 
     python3 tools/plot_peers.py OUT_PREFIX RUN1.csv [RUN2.csv ...]
 
-writes OUT_PREFIX_pareto.png, OUT_PREFIX_psnr.png, OUT_PREFIX_stages.png, OUT_PREFIX_front.csv.
+writes OUT_PREFIX_pareto.png, OUT_PREFIX_psnr.png, OUT_PREFIX_stages.png, OUT_PREFIX_front.csv
+and OUT_PREFIX_tables.md (every row of every scene as a Markdown table, front rows marked).
 Errors at float rounding (under 1e-4 radii) are drawn at 1e-4.
 
     python3 tools/plot_peers.py --scaling OUT.png RUN1.csv [RUN2.csv ...]
@@ -156,6 +157,13 @@ def main(argv):
                 print(f"{path}: {r['family']} {r['settings']}: {r['total_ms']:.1f} ms, p99 "
                       f"{r['first_hit_p99_r']:.3g} r, PSNR {r['psnr_opaque_db']:.1f} dB; on the "
                       f"p99 front: {on1}, on the PSNR front: {on2}")
+        for fam in ("cpu", "gl"):
+            own = [r for r in rows if r["family"] in (fam, "openvdb", "vtk")]
+            fo = front(own, p99, 1e-3)
+            for r in own:
+                if r["default"]:
+                    print(f"{path}: {fam} default on the front of the {fam} renderer's settings "
+                          f"and the peers': {r in fo}")
         print(f"{path}: time ratios at equal error (each other method's configuration against the "
               "fastest of ours at least as exact in first-hit p99 and opaque PSNR):")
         ours = [r for r in rows if r["family"] in ("cpu", "gl")]
@@ -175,6 +183,20 @@ def main(argv):
         for r in f:
             front_rows.append((path, r["family"], r["settings"], r["total_ms"],
                                r["first_hit_p99_r"], r["psnr_opaque_db"]))
+    with open(prefix + "_tables.md", "w") as md:
+        for path, rows in scenes:
+            f = front(rows, p99, 1e-3)
+            md.write(f"#### {title(rows, path)}\n\n| method | settings | ms | first hit p99 (r) | "
+                     "raw p99 (r) | missed / extra px | thickness p99 (r) | PSNR opaque / "
+                     "translucent (dB) | on the front |\n|---|---|---|---|---|---|---|---|---|\n")
+            for r in rows:
+                star = " (default)" if r["default"] else ""
+                md.write(f"| {r['family']} | {r['settings']}{star} | {r['total_ms']:.1f} | "
+                         f"{r['first_hit_p99_r']:.3f} | {r['raw_first_hit_p99_r']:.3f} | "
+                         f"{r['missed']} / {r['extra']} | {float(r['thickness_p99_r']):.3f} | "
+                         f"{r['psnr_opaque_db']:.1f} / {r['psnr_translucent_db']:.1f} | "
+                         f"{'yes' if r in f else ''} |\n")
+            md.write("\n")
     axes[0][0].legend(fontsize=8)
     axes2[0][0].legend(fontsize=8)
     fig.tight_layout()
