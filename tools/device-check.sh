@@ -15,6 +15,8 @@
 #   shading_*.txt      bench_shading: the same two scales, every mode, with and without deep AO;
 #   renderers_*.txt    bench_renderers: the GL renderer on the GPU against the CPU renderer on
 #                      the machine's cores, per pass, and the PSNR of their pictures;
+#   peers_*.txt        bench_peers: both renderers over their settings (GL on the GPU) against
+#                      OpenVDB's and VTK's paths and the exact caster (docs/results.md);
 #   insitu.txt         bench_insitu: the in-situ cost against the WCSPH solver at the main job's
 #                      settings, one render every 10 steps (when the bundle carries it);
 #   composite.txt      bench_composite on 2 ranks sharing the GPU at 1920x1080, when the machine
@@ -71,6 +73,8 @@ if ((quick)); then
     --save-spans "$out/spans.bin"
   step shading_small "$bin/bench_shading" --ritter --particles 2e4 --size 320x180 --frames 2
   step renderers_small "$bin/bench_renderers" --ritter --particles 2e4 --size 320x180 --frames 2
+  step peers_small "$bin/bench_peers" --ritter --particles 2e4 --size 320x180 --frames 1 --quick \
+    --check
   [[ -x $bin/bench_insitu ]] &&
     step insitu "$bin/bench_insitu" --particles 5000 --start 0.1 --steps 20 --render-every 10 \
       --vdb-every 20
@@ -82,6 +86,7 @@ else
   # The GPU against the CPU renderer on this machine's cores: times and the pictures' PSNR.
   step renderers_1080p "$bin/bench_renderers" --ritter --particles 1e6 --time 0.25 \
     --size 1920x1080 --frames 3
+  step peers_640x360 "$bin/bench_peers" --ritter --particles 1e5 --size 640x360 --frames 3
   step voxelize_7m "$bin/bench_voxelize" --particles 7e6 --all-particles --size 1920x1080 \
     --alpha 1 --max-layers 16384 --budget-mib 1024 --budget-mib 256 --frames 10 --json
   step shading_7m "$bin/bench_shading" --ritter --all-particles --particles 7e6 --size 1920x1080 \
