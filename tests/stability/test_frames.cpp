@@ -203,6 +203,20 @@ class BothRenderers : public Pipeline {
   Camera camera_;
 };
 
+// An adapter that builds its own grid (spacing 0.05) and renders each step on both renderers
+// from one camera: the two Adapter cases' set-up.
+AdapterOptions spacing_005() {
+  AdapterOptions options;
+  options.classify.particle_spacing = 0.05;
+  return options;
+}
+struct AdapterOnBothRenderers {
+  Adapter adapter{spacing_005()};
+  std::shared_ptr<BothRenderers> pipeline =
+      std::make_shared<BothRenderers>(test::look_at({1.6, 0.9, -1.0}, {0.5, 0.3, 0.3}, 96, 64));
+  AdapterOnBothRenderers() { adapter.set_pipeline(pipeline); }
+};
+
 // The particle count changes every step (a solver adding and removing particles, and steps
 // with none at all), through Adapter::execute with a grid the adapter builds: each step's
 // classification counts its particles (NaN ones dropped and counted), each picture passes the
@@ -215,12 +229,9 @@ TEST(Stability, ParticleCountThatChangesEveryStep) {
   const test::Particles block = test::lattice_block({0, 0, 0}, {20, 12, 12}, 0.05, 0.05);
   const std::size_t counts[] = {1500, 0, 2880, 1, 700, 0, 2000, 37};
   constexpr std::size_t steps = std::size(counts);
-  AdapterOptions options;
-  options.classify.particle_spacing = 0.05;
-  Adapter adapter(options);
-  auto pipeline =
-      std::make_shared<BothRenderers>(test::look_at({1.6, 0.9, -1.0}, {0.5, 0.3, 0.3}, 96, 64));
-  adapter.set_pipeline(pipeline);
+  AdapterOnBothRenderers run;
+  Adapter& adapter = run.adapter;
+  const std::shared_ptr<BothRenderers>& pipeline = run.pipeline;
   std::int64_t step = 0;
   for (int round = 0; round < 3; ++round)
     for (std::size_t n : counts) {
@@ -277,12 +288,9 @@ TEST(Stability, ParticleCountThatChangesEveryStep) {
 // the grid the adapter builds over both copies bounded, and the next step renders as before.
 TEST(Stability, RefusedStepThroughTheAdapterIsCountedAndTheNextRenders) {
   const test::Particles block = test::lattice_block({0, 0, 0}, {10, 6, 6}, 0.05, 0.05);
-  AdapterOptions options;
-  options.classify.particle_spacing = 0.05;
-  Adapter adapter(options);
-  auto pipeline =
-      std::make_shared<BothRenderers>(test::look_at({1.6, 0.9, -1.0}, {0.5, 0.3, 0.3}, 96, 64));
-  adapter.set_pipeline(pipeline);
+  AdapterOnBothRenderers run;
+  Adapter& adapter = run.adapter;
+  const std::shared_ptr<BothRenderers>& pipeline = run.pipeline;
   std::vector<float> x, y, z;
   for (const ParticleSphere& p : block) x.push_back(p.x), y.push_back(p.y), z.push_back(p.z);
   const auto view = ParticleView::soa(x.data(), y.data(), z.data(), x.size()).with_radius(0.05);
