@@ -99,15 +99,10 @@ bool parse(int argc, char** argv, Options& o) {
   return true;
 }
 
-// Every file is a render step: the config's render, PNG and stats triggers become "every
-// step"; the snapshots keep their own triggers, counted in files.
+// Every file is a render step (offline_config).
 voxspan::Config offline_config(const Options& o) {
-  voxspan::Config c =
-      o.config.empty() ? voxspan::default_config() : voxspan::load_config_file(o.config);
-  if (!o.output.empty()) c.output_folder = o.output;
-  const voxspan::TriggerSpec every{1, 0, true, true};
-  c.trigger = c.output("png").trigger = c.output("stats").trigger = every;
-  return c;
+  return voxspan::offline_config(
+      o.config.empty() ? voxspan::default_config() : voxspan::load_config_file(o.config), o.output);
 }
 
 // The solver's view of a file's particles: positions as doubles (AoS), radii when the file has

@@ -12,6 +12,13 @@ namespace voxspan {
 
 Config default_config() { return default_config(registered_kinds().config); }
 
+Config offline_config(Config config, const std::string& output_folder) {
+  if (!output_folder.empty()) config.output_folder = output_folder;
+  const TriggerSpec every{1, 0, true, true};
+  config.trigger = config.output("png").trigger = config.output("stats").trigger = every;
+  return config;
+}
+
 Config load_config_string(std::string_view yaml, std::string_view source_name) {
   return read_config(yaml, source_name, registered_kinds().config);
 }

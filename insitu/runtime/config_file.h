@@ -13,6 +13,10 @@ namespace voxspan {
 
 // Every key at its default: one surface view "main", PNG frames and stats on.
 Config default_config();
+// A config for rendering particles the caller already has (files, arrays): every call is a
+// render step, so the render, PNG and stats triggers become "every step"; the snapshots keep
+// their own triggers. `output_folder` replaces the config's when not empty.
+Config offline_config(Config config, const std::string& output_folder = {});
 // Throws voxspan::Error listing every problem ("<source>:<line>:<col>: <key path>: ...").
 Config load_config_file(const std::filesystem::path& path);
 Config load_config_string(std::string_view yaml, std::string_view source_name = "<config>");

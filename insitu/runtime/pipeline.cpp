@@ -399,6 +399,8 @@ PipelineTotals InsituPipeline::totals() const {
 
 const Config& InsituPipeline::config() const { return impl_->config; }
 
+std::span<const ViewResult> InsituPipeline::latest_views() const { return impl_->results; }
+
 std::string InsituPipeline::description() const {
   const Impl& m = *impl_;
   std::ostringstream s;

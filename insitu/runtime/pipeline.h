@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,9 @@ class InsituPipeline final : public Pipeline {
 
   PipelineTotals totals() const;
   const Config& config() const;
+  // The latest render step's views (name and picture; the picture is null where the view
+  // failed or, in an MPI job, on every rank but the root), valid until the next step.
+  std::span<const ViewResult> latest_views() const;
   // One line: the GL platform and renderer, the views and the enabled outputs.
   std::string description() const;
 

@@ -1,0 +1,52 @@
+"""Voxspan: in-situ rendering of SPH fluids, from Python.
+
+The adapter inside a solver's step loop (numpy arrays are viewed, never copied)::
+
+    import voxspan
+    adapter = voxspan.Adapter.from_config_file("insitu.yaml", spacing=dx)
+    for step in range(steps):
+        ...advance the solver...
+        status = adapter.execute(step, t, x, y, z, scalars={"density": rho},
+                                 vectors={"velocity": (u, v, w)})
+    adapter.finish()
+    print(adapter.summary())
+
+Offline, for arrays a notebook already has::
+
+    pictures = voxspan.render(positions)          # {view name: (h, w, 4) uint8 array}
+    data = voxspan.read_particles("dam_break_3d_1000.hdf5")
+
+The configuration keys are those of docs/runtime.md; errors of the library are voxspan.Error
+with its message; arrays that cannot be viewed are TypeError or ValueError naming them.
+"""
+
+from ._voxspan import (Adapter, Error, Grid, Status, StatusCode, __version__, estimate_spacing,
+                       read_particles)
+
+__all__ = ["Adapter", "Error", "Grid", "Status", "StatusCode", "__version__", "estimate_spacing",
+           "read_particles", "render"]
+
+
+def render(x, y=None, z=None, *, config=None, output="voxspan-output", spacing=None, radius=None,
+           scalars=None, vectors=None, step=0, time=0.0, linear=False):
+    """Renders particles the caller already has, once, through the same runtime as a run:
+    writes the config's files (PNG frames and stats by default) into `output` and returns the
+    pictures as {view name: (height, width, 4) array} (uint8 sRGB as the PNG files; linear=True:
+    float32 linear RGBA). Positions as one (n, 3) array x or as x, y, z. spacing: the rest
+    spacing (default: estimated, the median nearest-neighbour distance); radius: the sphere
+    radius (default: the spacing); config: a YAML file (default: every key at its default).
+    Raises voxspan.Error when the particles cannot be rendered."""
+    if spacing is None:
+        import numpy
+        positions = x if y is None else numpy.stack([x, y, z], axis=1)
+        spacing = estimate_spacing(positions)
+        if not spacing > 0:
+            raise Error("cannot estimate the particle spacing (fewer than two distinct "
+                        "particles); pass spacing=")
+    with Adapter.from_config_file(config, spacing=spacing, radius=radius, offline=True,
+                                  output=output) as adapter:
+        status = adapter.execute_last(step, time, x, y, z, scalars=scalars or {},
+                                      vectors=vectors or {})
+        if not status:
+            raise Error(status.message)
+        return adapter.pictures(linear=linear)
