@@ -380,6 +380,24 @@ double spacing_estimate(const py::object& positions) {
   return estimate_particle_spacing(p);
 }
 
+// Where the library will read the particles of these arrays: the address and byte stride of
+// each axis as execute() views them (the tests compare them with numpy's own).
+py::list viewed_axes(const py::object& x, const py::object& y, const py::object& z) {
+  StepArrays arrays;
+  build_step(arrays, x, y, z, py::none(), std::nullopt, py::dict(), py::dict(), std::nullopt);
+  py::list out;
+  for (int a = 0; a < 3; ++a) {
+    const StridedScalars& s = arrays.view.axis(a);
+    out.append(py::make_tuple(reinterpret_cast<std::uintptr_t>(s.data), s.stride));
+  }
+  return out;
+}
+
+py::array png_file(const std::string& path) {
+  ImageRGBA8 image = read_png(path);
+  return owning_array(std::move(image.pixels), {image.height, image.width, 4});
+}
+
 }  // namespace
 }  // namespace voxspan::python
 
@@ -510,6 +528,11 @@ PYBIND11_MODULE(_voxspan, m) {
         "((n, 3) float64), radii (or None), attributes ({name: array}), time, step, spacing "
         "(PySPH: from mass and density) and chosen (the arrays read). arrays: PySPH arrays to "
         "read, ['all'], or [] for the fluid's. Raises voxspan.Error naming the file.");
+  m.def("read_png", &png_file, py::arg("path"),
+        "A PNG file as a (height, width, 4) uint8 array (sRGB RGBA, row 0 at the top).");
+  m.def("_viewed_axes", &viewed_axes, py::arg("x"), py::arg("y") = py::none(),
+        py::arg("z") = py::none(),
+        "[(address, byte stride)] of the x, y, z the library reads for these positions.");
   m.def("estimate_spacing", &spacing_estimate, py::arg("positions"),
         "The particle spacing of an (n, 3) array: the median nearest-neighbour distance.");
 }

@@ -15,6 +15,8 @@ packages=(
   libopenmpi-dev openmpi-bin                         # many ranks
   libembree-dev                                      # Embree against the CPU caster (tools/bench_embree)
   libgtest-dev gfortran clang-format                 # tests (gfortran: the Fortran bindings)
+  pybind11-dev python3-dev python3-numpy            # the Python module voxspan
+  python3-pytest python3-mpi4py                      # its tests (pytest; two ranks through mpi4py)
   python3-pysph python3-h5py                         # PySPH's 3D dam break, a solver not ours
                                                      # (test_default_view_pysph); it brings g++
                                                      # and python3-dev for the Cython it compiles;

@@ -21,10 +21,10 @@ with its message; arrays that cannot be viewed are TypeError or ValueError namin
 """
 
 from ._voxspan import (Adapter, Error, Grid, Status, StatusCode, __version__, estimate_spacing,
-                       read_particles)
+                       read_particles, read_png)
 
 __all__ = ["Adapter", "Error", "Grid", "Status", "StatusCode", "__version__", "estimate_spacing",
-           "read_particles", "render"]
+           "read_particles", "read_png", "render"]
 
 
 def render(x, y=None, z=None, *, config=None, output="voxspan-output", spacing=None, radius=None,

@@ -1,0 +1,44 @@
+"""mpiexec -n N python3 mpi_check.py OUTDIR: the adapter on every rank of mpi4py's
+COMM_WORLD, each with its slab of a water block (owned particles, then the neighbours' within
+three spacings as ghosts); rank 0's pictures must equal, to 1/255, those of one process that
+renders the whole block. Exit status 0 when they do."""
+import sys
+
+import numpy
+from mpi4py import MPI
+
+import voxspan
+from conftest import SPACING, VIEWS, water_block
+
+comm = MPI.COMM_WORLD
+rank, size = comm.Get_rank(), comm.Get_size()
+out = sys.argv[1]
+block = water_block(24, 10, 8)
+block[:, 2] += 0.02 * numpy.sin(7 * block[:, 0])  # a wavy surface, not a lattice's flat top
+
+edges = numpy.linspace(block[:, 0].min(), block[:, 0].max() + 1e-9, size + 1)
+lo, hi = edges[rank], edges[rank + 1]
+own = (block[:, 0] >= lo) & (block[:, 0] < hi)
+near = ~own & (block[:, 0] >= lo - 3 * SPACING) & (block[:, 0] < hi + 3 * SPACING)
+part = numpy.ascontiguousarray(numpy.concatenate([block[own], block[near]]))
+
+config = VIEWS + f"output_folder: {out}/ranks\n"
+with voxspan.Adapter.from_config_text(config, spacing=SPACING, comm=comm) as adapter:
+    status = adapter.execute_last(0, 0.0, part, owned=int(own.sum()))
+    ranks = adapter.pictures()
+if not status:
+    print(f"rank {rank}: {status.message}", file=sys.stderr)
+    sys.exit(1)
+if rank != 0:
+    sys.exit(0 if not ranks else 1)  # the pictures exist on rank 0 only
+
+one = voxspan.Adapter.from_config_text(VIEWS + f"output_folder: {out}/one\n", spacing=SPACING)
+assert one.execute_last(0, 0.0, block).ok
+alone = one.pictures()
+one.finish()
+worst = 0
+for view, picture in alone.items():
+    d = numpy.abs(picture.astype(int) - ranks[view].astype(int)).max()
+    print(f"view {view}: {size} ranks against one process, largest difference {d}/255")
+    worst = max(worst, d)
+sys.exit(0 if worst <= 1 else 1)

@@ -1,0 +1,35 @@
+"""Offline use: the readers and render() for arrays a notebook already has."""
+import subprocess
+
+import numpy
+
+import voxspan
+from conftest import SPACING
+
+
+def test_render_returns_the_pictures_it_writes(tmp_path, block):
+    pictures = voxspan.render(block, output=str(tmp_path))
+    assert list(pictures) == ["main"]  # the default view
+    picture = pictures["main"]
+    assert picture.dtype == numpy.uint8 and picture.shape[2] == 4
+    png = voxspan.read_png(str(next(tmp_path.rglob("main_*.png"))))
+    assert numpy.array_equal(png, picture)
+    # the water stands out from the background
+    assert numpy.any(picture[:, :, :3] != picture[0, 0, :3])
+
+
+def test_render_estimates_the_spacing(tmp_path, block):
+    assert abs(voxspan.estimate_spacing(block) - SPACING) < 1e-9
+    given = voxspan.render(block, spacing=SPACING, output=str(tmp_path / "a"))
+    estimated = voxspan.render(block[:, 0], block[:, 1], block[:, 2], output=str(tmp_path / "b"))
+    assert numpy.array_equal(given["main"], estimated["main"])
+
+
+def test_read_particles_round_trip(tmp_path, block):
+    csv = tmp_path / "p.csv"
+    numpy.savetxt(csv, numpy.column_stack([block, numpy.arange(len(block))]), delimiter=",",
+                  header="x,y,z,density", comments="")
+    data = voxspan.read_particles(str(csv))
+    assert numpy.allclose(data["positions"], block)
+    assert numpy.allclose(data["attributes"]["density"], numpy.arange(len(block)))
+    assert data["positions"].flags.owndata is False  # the reader's buffer, not a copy
