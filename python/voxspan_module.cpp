@@ -56,8 +56,7 @@ ScalarType float_type(const py::array& a, const std::string& argument) {
   const py::dtype d = a.dtype();
   if (d.kind() == 'f' && native_order(d) && (d.itemsize() == 4 || d.itemsize() == 8))
     return d.itemsize() == 4 ? ScalarType::float32 : ScalarType::float64;
-  throw py::type_error(argument + " must be float32 or float64, got " +
-                       text(d));
+  throw py::type_error(argument + " must be float32 or float64, got " + text(d));
 }
 
 // Stride `stride` (bytes) along one axis of `a`, checked to be viewable without a copy.
@@ -67,10 +66,12 @@ std::size_t viewable_stride(const py::array& a, py::ssize_t stride, py::ssize_t 
   if (length > 1 && stride <= 0)
     throw py::value_error(argument +
                           " has a negative or zero stride, which cannot be viewed; pass "
-                          "numpy.ascontiguousarray(" + argument + ")");
+                          "numpy.ascontiguousarray(" +
+                          argument + ")");
   if (reinterpret_cast<std::uintptr_t>(a.data()) % item != 0 ||
       std::size_t(stride < 0 ? -stride : stride) % item != 0)
-    throw py::value_error(argument + " is not aligned to its element size, which cannot be "
+    throw py::value_error(argument +
+                          " is not aligned to its element size, which cannot be "
                           "viewed; pass a copy (numpy.ascontiguousarray)");
   return length > 1 ? std::size_t(stride) : item;
 }
@@ -113,15 +114,15 @@ IndexArray index_array(py::handle object, const std::string& argument, std::size
   const py::dtype d = a.dtype();
   if ((d.kind() != 'i' && d.kind() != 'u') || !native_order(d) ||
       (d.itemsize() != 4 && d.itemsize() != 8))
-    throw py::type_error(argument + " must be a 32- or 64-bit integer array, got " +
-                         text(d));
+    throw py::type_error(argument + " must be a 32- or 64-bit integer array, got " + text(d));
   if (a.ndim() != 1 || std::size_t(a.shape(0)) != count)
     throw py::value_error(argument + " must be one-dimensional with " + std::to_string(count) +
-                          " entries, got shape " +
-                          text(py::cast(a.request().shape)));
+                          " entries, got shape " + text(py::cast(a.request().shape)));
   if (count > 1 && a.strides(0) != d.itemsize())
-    throw py::value_error(argument + " must be contiguous (the grid's index arrays have no "
-                          "stride); pass numpy.ascontiguousarray(" + argument + ")");
+    throw py::value_error(argument +
+                          " must be contiguous (the grid's index arrays have no "
+                          "stride); pass numpy.ascontiguousarray(" +
+                          argument + ")");
   const bool is_signed = d.kind() == 'i';
   const IndexType type = d.itemsize() == 4 ? (is_signed ? IndexType::int32 : IndexType::uint32)
                                            : (is_signed ? IndexType::int64 : IndexType::uint64);
@@ -144,11 +145,13 @@ struct Grid {
     const int given = !offsets.is_none() + !begin.is_none() + !cell_of.is_none();
     if (given > 1 || begin.is_none() != end.is_none())
       throw py::value_error("grid: give one of offsets, begin and end, or cell_of");
-    if (!offsets.is_none()) v = GridView::offsets(geometry, index_array(offsets, "grid.offsets", cells + 1));
+    if (!offsets.is_none())
+      v = GridView::offsets(geometry, index_array(offsets, "grid.offsets", cells + 1));
     if (!begin.is_none())
       v = GridView::begin_end(geometry, index_array(begin, "grid.begin", cells),
                               index_array(end, "grid.end", cells));
-    if (!cell_of.is_none()) v = GridView::cell_index(geometry, index_array(cell_of, "grid.cell_of", count));
+    if (!cell_of.is_none())
+      v = GridView::cell_index(geometry, index_array(cell_of, "grid.cell_of", count));
     if (!order.is_none()) {
       if (offsets.is_none() && begin.is_none())
         throw py::value_error("grid: order needs offsets or begin and end");
@@ -209,7 +212,8 @@ void build_step(StepArrays& s, const py::object& x, const py::object& y, const p
       if (parts.size() != 3)
         throw py::value_error(argument + " must be an (n, 3) array or three arrays");
       for (int k = 0; k < 3; ++k)
-        c[std::size_t(k)] = column(parts[std::size_t(k)], argument + "[" + std::to_string(k) + "]", n);
+        c[std::size_t(k)] =
+            column(parts[std::size_t(k)], argument + "[" + std::to_string(k) + "]", n);
     } else {
       c = columns3(value, argument, n);
     }
@@ -253,8 +257,7 @@ py::dict stats_dict(const StepStats& s) {
 }
 
 // A numpy array that owns `values` (moved to the heap, freed with the array): no copy.
-template <class T>
-py::array owning_array(std::vector<T> values, std::vector<py::ssize_t> shape) {
+template <class T> py::array owning_array(std::vector<T> values, std::vector<py::ssize_t> shape) {
   auto* held = new std::vector<T>(std::move(values));
   py::capsule free_it(held, [](void* p) { delete static_cast<std::vector<T>*>(p); });
   return py::array_t<T>(shape, held->data(), free_it);
@@ -429,28 +432,30 @@ PYBIND11_MODULE(_voxspan, m) {
                    "The solver's neighbour-search grid (voxspan/grid.h): geometry and one of "
                    "offsets (cells + 1), begin and end (cells each), or cell_of (per particle); "
                    "order (per particle) with cell ranges; index_base 1 for Fortran indices.")
-      .def(py::init([](std::array<double, 3> origin, double cell_size, std::array<int, 3> dims,
-                       py::object offsets, py::object begin, py::object end, py::object cell_of,
-                       py::object order, int index_base) {
-             return Grid{{origin, cell_size, dims}, offsets, begin, end, cell_of, order, index_base};
-           }),
-           py::arg("origin"), py::arg("cell_size"), py::arg("dims"), py::kw_only(),
-           py::arg("offsets") = py::none(), py::arg("begin") = py::none(),
-           py::arg("end") = py::none(), py::arg("cell_of") = py::none(),
-           py::arg("order") = py::none(), py::arg("index_base") = 0);
+      .def(
+          py::init([](std::array<double, 3> origin, double cell_size, std::array<int, 3> dims,
+                      py::object offsets, py::object begin, py::object end, py::object cell_of,
+                      py::object order, int index_base) {
+            return Grid{{origin, cell_size, dims}, offsets, begin, end, cell_of, order, index_base};
+          }),
+          py::arg("origin"), py::arg("cell_size"), py::arg("dims"), py::kw_only(),
+          py::arg("offsets") = py::none(), py::arg("begin") = py::none(),
+          py::arg("end") = py::none(), py::arg("cell_of") = py::none(),
+          py::arg("order") = py::none(), py::arg("index_base") = 0);
 
   auto factory = [](bool text) {
-    return [text](const std::optional<std::string>& source, std::optional<double> spacing,
-                  std::optional<double> radius, std::optional<int> full_count,
-                  std::optional<double> cell_size, bool validate,
-                  std::vector<std::string> attributes, py::object comm, bool offline,
-                  std::string output) {
-      PyAdapter::Settings s{spacing, radius, cell_size, full_count, validate,
-                            std::move(attributes), std::move(comm), offline, std::move(output)};
-      Config config = text ? load_config_string(source.value_or(""), "<config text>")
-                           : config_of(source);
-      return std::make_unique<PyAdapter>(std::move(config), s);
-    };
+    return
+        [text](const std::optional<std::string>& source, std::optional<double> spacing,
+               std::optional<double> radius, std::optional<int> full_count,
+               std::optional<double> cell_size, bool validate, std::vector<std::string> attributes,
+               py::object comm, bool offline, std::string output) {
+          PyAdapter::Settings s{spacing,         radius,   cell_size,
+                                full_count,      validate, std::move(attributes),
+                                std::move(comm), offline,  std::move(output)};
+          Config config =
+              text ? load_config_string(source.value_or(""), "<config text>") : config_of(source);
+          return std::make_unique<PyAdapter>(std::move(config), s);
+        };
   };
   auto settings_args = [](auto&& def, const char* first) {
     return def(py::arg(first), py::kw_only(), py::arg("spacing") = py::none(),
@@ -461,17 +466,21 @@ PYBIND11_MODULE(_voxspan, m) {
   };
 
   py::class_<PyAdapter> adapter(m, "Adapter", "The adapter with the in-situ runtime behind it.");
-  settings_args([&](auto... args) {
-    adapter.def_static("from_config_file", factory(false), args...,
-                       "An adapter configured by a YAML file (None: every key at its default). "
-                       "spacing: the particles' rest spacing; radius: their sphere radius "
-                       "(default: the spacing); comm: an mpi4py communicator; offline: every "
-                       "call a render step; output: the output folder. Raises voxspan.Error.");
-  }, "path");
-  settings_args([&](auto... args) {
-    adapter.def_static("from_config_text", factory(true), args...,
-                       "from_config_file with the YAML text itself.");
-  }, "yaml");
+  settings_args(
+      [&](auto... args) {
+        adapter.def_static("from_config_file", factory(false), args...,
+                           "An adapter configured by a YAML file (None: every key at its default). "
+                           "spacing: the particles' rest spacing; radius: their sphere radius "
+                           "(default: the spacing); comm: an mpi4py communicator; offline: every "
+                           "call a render step; output: the output folder. Raises voxspan.Error.");
+      },
+      "path");
+  settings_args(
+      [&](auto... args) {
+        adapter.def_static("from_config_text", factory(true), args...,
+                           "from_config_file with the YAML text itself.");
+      },
+      "yaml");
 
   auto execute = [](bool last) {
     return [last](PyAdapter& a, std::int64_t step, double time, py::object x, py::object y,
@@ -498,21 +507,20 @@ PYBIND11_MODULE(_voxspan, m) {
     adapter.def("execute_last", execute(true), args...,
                 "execute() for the solver's last step: triggers with `last` fire on it.");
   });
-  adapter
-      .def("finish", &PyAdapter::finish, "Waits for the files still being written.")
+  adapter.def("finish", &PyAdapter::finish, "Waits for the files still being written.")
       .def("summary", [](const PyAdapter& a) { return a.adapter().summary(); })
       .def("description", [](const PyAdapter& a) { return a.pipeline().description(); })
       .def("pictures", &PyAdapter::pictures, py::arg("linear") = false,
            "The latest render step's pictures: {view name: (height, width, 4) array}, uint8 "
            "sRGB as the PNG files (linear=True: float32 linear RGBA).")
-      .def("is_render_step", [](const PyAdapter& a, std::int64_t step, double time) {
-             return a.adapter().is_render_step(step, time);
-           })
-      .def_property_readonly("last_stats",
-                             [](const PyAdapter& a) { return stats_dict(a.adapter().last_stats()); })
+      .def("is_render_step", [](const PyAdapter& a, std::int64_t step,
+                                double time) { return a.adapter().is_render_step(step, time); })
+      .def_property_readonly(
+          "last_stats", [](const PyAdapter& a) { return stats_dict(a.adapter().last_stats()); })
       .def_property_readonly("seconds_in_situ",
                              [](const PyAdapter& a) { return a.adapter().seconds_in_situ(); })
-      .def_property_readonly("steps_seen", [](const PyAdapter& a) { return a.adapter().steps_seen(); })
+      .def_property_readonly("steps_seen",
+                             [](const PyAdapter& a) { return a.adapter().steps_seen(); })
       .def_property_readonly("render_steps",
                              [](const PyAdapter& a) { return a.adapter().render_steps(); })
       .def_property_readonly("failed_steps",
