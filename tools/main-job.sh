@@ -11,10 +11,11 @@ cd "$(dirname "$0")/.."
 start=$SECONDS
 
 tools/setup.sh --media
-# Only what the job runs (the tests and benchmarks build with tools/build.sh).
-echo "main job: building the solver and the library (Release)"
+# What the job runs, and the Python module (build/python: the README's `import voxspan`); the
+# tests and benchmarks build with tools/build.sh.
+echo "main job: building the solver, the library and its Python module (Release)"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DVOXSPAN_WERROR=ON >/dev/null
-if ! cmake --build build -j"$(nproc)" --target dambreak insitu-info >build/main-job-build.log 2>&1; then
+if ! cmake --build build -j"$(nproc)" --target dambreak insitu-info voxspan_python >build/main-job-build.log 2>&1; then
   grep -E -B2 -A8 "error" build/main-job-build.log | head -60
   echo "main job: the build failed (build/main-job-build.log)"; exit 1
 fi
