@@ -1,0 +1,51 @@
+#include "insitu/views/color_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+
+namespace voxspan {
+namespace {
+
+// The published stops, sRGB 0xRRGGBB, evenly spaced over [0, 1].
+constexpr std::uint32_t kViridis[] = {0x440154, 0x482475, 0x414487, 0x355f8d, 0x2a788e, 0x21918c,
+                                      0x22a884, 0x44bf70, 0x7ad151, 0xbddf26, 0xfde725};
+constexpr std::uint32_t kPlasma[] = {0x0d0887, 0x41049d, 0x6a00a8, 0x8f0da4, 0xb12a90, 0xcc4778,
+                                     0xe16462, 0xf2844b, 0xfca636, 0xfcce25, 0xf0f921};
+constexpr std::uint32_t kInferno[] = {0x000004, 0x160b39, 0x420a68, 0x6a176e, 0x932667, 0xbc3754,
+                                      0xdd513a, 0xf37819, 0xfca50a, 0xf6d746, 0xfcffa4};
+constexpr std::uint32_t kCoolwarm[] = {0x3b4cc0, 0x7b9ff9, 0xdddcdc, 0xf49a7b, 0xb40426};
+constexpr std::uint32_t kGray[] = {0x000000, 0xffffff};
+
+std::span<const std::uint32_t> stops(ColorMap map) {
+  switch (map) {
+    case ColorMap::viridis: return kViridis;
+    case ColorMap::plasma: return kPlasma;
+    case ColorMap::inferno: return kInferno;
+    case ColorMap::coolwarm: return kCoolwarm;
+    case ColorMap::gray: return kGray;
+  }
+  return kGray;
+}
+
+float srgb_to_linear(std::uint32_t byte) {
+  const float c = float(byte) / 255.0f;
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+glm::vec3 linear_rgb(std::uint32_t hex) {
+  return {srgb_to_linear((hex >> 16) & 0xff), srgb_to_linear((hex >> 8) & 0xff),
+          srgb_to_linear(hex & 0xff)};
+}
+
+}  // namespace
+
+glm::vec3 map_color(ColorMap map, double t) {
+  const std::span<const std::uint32_t> s = stops(map);
+  const double x = std::isnan(t) ? 0.0 : std::clamp(t, 0.0, 1.0) * double(s.size() - 1);
+  const std::size_t k = std::min(std::size_t(x), s.size() - 2);
+  const float f = float(x - double(k));
+  return glm::mix(linear_rgb(s[k]), linear_rgb(s[k + 1]), f);
+}
+
+}  // namespace voxspan

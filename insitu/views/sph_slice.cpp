@@ -1,0 +1,167 @@
+#include "insitu/views/sph_slice.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "voxspan/error.h"
+
+namespace voxspan {
+
+double kernel_support(SphKernel kernel) { return kernel == SphKernel::quintic ? 3.0 : 2.0; }
+
+double kernel_value(SphKernel kernel, double r, double h) {
+  const double q = r / h;
+  const double h3 = h * h * h;
+  constexpr double pi = std::numbers::pi;
+  switch (kernel) {
+    case SphKernel::cubic_spline: {
+      const double s = 1.0 / (pi * h3);
+      if (q < 1) return s * (1 - 1.5 * q * q * (1 - 0.5 * q));
+      if (q < 2) return s * 0.25 * (2 - q) * (2 - q) * (2 - q);
+      return 0;
+    }
+    case SphKernel::wendland_c2: {
+      if (q >= 2) return 0;
+      const double t = 1 - 0.5 * q;
+      return 21.0 / (16.0 * pi * h3) * t * t * t * t * (2 * q + 1);
+    }
+    case SphKernel::quintic: {
+      if (q >= 3) return 0;
+      auto p5 = [](double x) { return x > 0 ? x * x * x * x * x : 0.0; };
+      return 1.0 / (120.0 * pi * h3) * (p5(3 - q) - 6 * p5(2 - q) + 15 * p5(1 - q));
+    }
+  }
+  return 0;
+}
+
+SlicePlane SlicePlane::make(glm::dvec3 origin, glm::dvec3 normal, double width, double height,
+                            glm::dvec3 up) {
+  SlicePlane p;
+  p.origin = origin;
+  p.normal = glm::normalize(normal);
+  glm::dvec3 v = up - glm::dot(up, p.normal) * p.normal;
+  if (glm::length(v) < 1e-9 * glm::length(up)) {
+    // `up` along the normal: the axis least aligned with the normal instead
+    const glm::dvec3 a = glm::abs(p.normal);
+    const glm::dvec3 axis = a.x <= a.y && a.x <= a.z ? glm::dvec3(1, 0, 0)
+                            : a.y <= a.z             ? glm::dvec3(0, 1, 0)
+                                                     : glm::dvec3(0, 0, 1);
+    v = axis - glm::dot(axis, p.normal) * p.normal;
+  }
+  p.v = glm::normalize(v);
+  p.u = glm::cross(p.v, p.normal);
+  p.width = width;
+  p.height = height;
+  return p;
+}
+
+glm::dvec3 SlicePlane::pixel_centre(int i, int j, int image_width, int image_height) const {
+  const double s = ((i + 0.5) / image_width - 0.5) * width;
+  const double t = (0.5 - (j + 0.5) / image_height) * height;
+  return origin + s * u + t * v;
+}
+
+namespace {
+
+// A particle near the plane: its position, and (m / rho) A and m / rho.
+struct Near {
+  glm::dvec3 p;
+  double volume_value, volume;
+};
+
+double magnitude(const AttributeView& a, std::size_t i) {
+  if (a.components == 1) return a.component[0][i];
+  const double x = a.component[0][i], y = a.component[1][i], z = a.component[2][i];
+  return std::sqrt(x * x + y * y + z * z);
+}
+
+}  // namespace
+
+void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
+                       const SlicePlane& plane, int width, int height, SliceImage& out) {
+  if (!(q.smoothing_length > 0))
+    throw make_error("slice: the smoothing length must be positive; got ", q.smoothing_length);
+  const AttributeView* quantity = particles.find_attribute(q.name);
+  if (quantity == nullptr)
+    throw make_error("slice: the solver passes no attribute \"", q.name, "\"");
+  const AttributeView* mass = particles.find_attribute(q.mass);
+  const AttributeView* density = particles.find_attribute(q.density);
+  const bool per_particle_volume = mass != nullptr && density != nullptr;
+  if (!per_particle_volume && !(q.rest_volume > 0))
+    throw make_error("slice: no \"", q.mass, "\" and \"", q.density,
+                     "\" attributes and no rest volume (particle spacing)");
+
+  const double h = q.smoothing_length;
+  const double support = kernel_support(q.kernel) * h;
+  std::vector<Near> near;
+  for (std::size_t i = 0; i < particles.owned_count(); ++i) {
+    if (!particles.position_finite(i)) continue;
+    const auto a = particles.position(i);
+    const glm::dvec3 p(a[0], a[1], a[2]);
+    if (std::abs(glm::dot(p - plane.origin, plane.normal)) >= support) continue;
+    const double volume =
+        per_particle_volume ? magnitude(*mass, i) / magnitude(*density, i) : q.rest_volume;
+    const double value = magnitude(*quantity, i);
+    if (!std::isfinite(volume) || !std::isfinite(value)) continue;
+    near.push_back({p, volume * value, volume});
+  }
+
+  // Bins of the support's size on the plane: a pixel's particles are in the 3x3 around it.
+  const int bx = std::max(1, int(std::ceil(plane.width / support)));
+  const int by = std::max(1, int(std::ceil(plane.height / support)));
+  auto bin_of = [&](glm::dvec3 p, int& x, int& y) {
+    const glm::dvec3 d = p - plane.origin;
+    x = int(std::floor((glm::dot(d, plane.u) + 0.5 * plane.width) / support));
+    y = int(std::floor((glm::dot(d, plane.v) + 0.5 * plane.height) / support));
+    return x >= -1 && x <= bx && y >= -1 && y <= by;
+  };
+  // Counting sort of the near particles into (bx + 2) x (by + 2) bins (one ring outside).
+  const auto bins = std::size_t(bx + 2) * std::size_t(by + 2);
+  std::vector<std::uint32_t> start(bins + 1, 0);
+  std::vector<std::uint32_t> bin(near.size(), std::uint32_t(bins));
+  for (std::size_t k = 0; k < near.size(); ++k) {
+    int x, y;
+    if (!bin_of(near[k].p, x, y)) continue;
+    bin[k] = std::uint32_t(std::size_t(x + 1) + std::size_t(bx + 2) * std::size_t(y + 1));
+    ++start[bin[k] + 1];
+  }
+  for (std::size_t b = 0; b < bins; ++b) start[b + 1] += start[b];
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1), sorted(start[bins]);
+  for (std::size_t k = 0; k < near.size(); ++k)
+    if (bin[k] < bins) sorted[fill[bin[k]]++] = std::uint32_t(k);
+
+  out.width = width;
+  out.height = height;
+  out.values.assign(std::size_t(width) * std::size_t(height), 0.0f);
+  out.weight.assign(out.values.size(), 0.0f);
+  out.particles_near = near.size();
+  tbb::parallel_for(0, height, [&](int j) {
+    for (int i = 0; i < width; ++i) {
+      const glm::dvec3 x = plane.pixel_centre(i, j, width, height);
+      int cx, cy;
+      bin_of(x, cx, cy);
+      double sum = 0, weight = 0;
+      for (int y = cy - 1; y <= cy + 1; ++y)
+        for (int xb = cx - 1; xb <= cx + 1; ++xb) {
+          if (xb < -1 || xb > bx || y < -1 || y > by) continue;
+          const std::size_t b = std::size_t(xb + 1) + std::size_t(bx + 2) * std::size_t(y + 1);
+          for (std::uint32_t s = start[b]; s < start[b + 1]; ++s) {
+            const Near& n = near[sorted[s]];
+            const double w = kernel_value(q.kernel, glm::length(x - n.p), h);
+            sum += n.volume_value * w;
+            weight += n.volume * w;
+          }
+        }
+      const std::size_t pixel = std::size_t(i) + std::size_t(width) * std::size_t(j);
+      out.weight[pixel] = float(weight);
+      out.values[pixel] = weight > 0 ? float(q.shepard ? sum / weight : sum) : 0.0f;
+    }
+  });
+  out.pixels_reached = std::size_t(
+      std::count_if(out.weight.begin(), out.weight.end(), [](float w) { return w > 0; }));
+}
+
+}  // namespace voxspan

@@ -1,0 +1,75 @@
+// insitu/views/sph_slice.h - a particle quantity interpolated with the SPH kernel on a plane at
+// any position and orientation ([BIDDISCOMBE] sec. 2, ../shared/papers/003): at each pixel x,
+//   A(x) = sum_j (m_j / rho_j) A_j W(|x - x_j|, h)
+// over the particles whose support reaches x, optionally divided by sum_j (m_j / rho_j) W
+// (Shepard normalisation: a uniform field is exactly flat, also near the free surface where the
+// plain sum falls off). m and rho come from named attributes; without them every particle has
+// the rest volume spacing^3. A vector attribute contributes its magnitude. Only owned
+// particles count (ghosts are another rank's), so the sum over ranks is the one-process sum.
+// What the `slice` view kind will draw; the sums are done in double, stored as float.
+// Costs: one pass over the particles (those within the support of the plane are binned on
+// it), then per pixel the particles of the 3x3 bins around it; rows in parallel (oneTBB).
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "render/enum_names.h"
+#include "voxspan/particles.h"
+
+namespace voxspan {
+
+enum class SphKernel : std::uint8_t { cubic_spline, wendland_c2, quintic };
+inline constexpr EnumName<SphKernel> kSphKernelNames[] = {{"cubic_spline", SphKernel::cubic_spline},
+                                                          {"wendland_c2", SphKernel::wendland_c2},
+                                                          {"quintic", SphKernel::quintic}};
+
+// The kernel's support radius in units of h: 2 (cubic spline, Wendland C2), 3 (quintic).
+double kernel_support(SphKernel kernel);
+// The 3D kernel W(r, h), normalised to integrate to 1 over space: Monaghan's cubic spline,
+// Wendland's C2, Morris's quintic spline (the forms and constants of PySPH's kernels).
+double kernel_value(SphKernel kernel, double r, double h);
+
+// A rectangle of the plane through `origin` with unit normal `normal`: `width` along u and
+// `height` along v (u, v, normal right-handed; v is the projection of `up` onto the plane, or
+// of another axis when `up` is along the normal). Pixel (i, j) of a W x H image, row 0 at the
+// top, has its centre at
+//   origin + ((i + 0.5) / W - 0.5) * width * u + (0.5 - (j + 0.5) / H) * height * v.
+struct SlicePlane {
+  glm::dvec3 origin{0};
+  glm::dvec3 normal{0, 1, 0};
+  glm::dvec3 u{1, 0, 0}, v{0, 0, 1};
+  double width = 1, height = 1;
+
+  static SlicePlane make(glm::dvec3 origin, glm::dvec3 normal, double width, double height,
+                         glm::dvec3 up = {0, 0, 1});
+  glm::dvec3 pixel_centre(int i, int j, int image_width, int image_height) const;
+};
+
+struct SliceQuantity {
+  std::string_view name;           // the interpolated attribute (scalar, or vector: magnitude)
+  std::string_view mass = "mass";  // attribute names; when either is missing, m / rho is
+  std::string_view density = "density";  // rest_volume for every particle
+  double rest_volume = 0;
+  SphKernel kernel = SphKernel::cubic_spline;
+  double smoothing_length = 0;  // h, world units (> 0)
+  bool shepard = false;
+};
+
+struct SliceImage {
+  int width = 0, height = 0;
+  std::vector<float> values;       // row 0 at the top; 0 where no particle reaches
+  std::vector<float> weight;       // sum_j (m_j / rho_j) W: 0 where no particle reaches
+  std::size_t particles_near = 0;  // owned particles whose support reaches the plane
+  std::size_t pixels_reached = 0;  // pixels with a positive weight
+};
+
+// Interpolates `q` on `plane` into a width x height image, reusing out's storage. Throws
+// voxspan::Error naming the attribute when the quantity is missing, or when h is not positive.
+void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
+                       const SlicePlane& plane, int width, int height, SliceImage& out);
+
+}  // namespace voxspan

@@ -1,0 +1,183 @@
+// The SPH slice's interpolation (insitu/views/sph_slice.h) against the sum computed in double
+// over every particle, kernel by kernel; a uniform field flat under Shepard normalisation; the
+// kernels normalised; a plane that misses the fluid; and the colour maps' ends.
+#include "insitu/views/sph_slice.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "insitu/views/color_map.h"
+#include "voxspan/error.h"
+
+namespace voxspan {
+namespace {
+
+constexpr double kSpacing = 0.1;
+
+// A jittered lattice block of nx x ny x nz particles with mass, density and a smooth field.
+struct Particles {
+  std::vector<double> x, y, z, mass, density, field;
+  std::vector<float> velocity;  // AoS, float: a vector attribute of the other scalar type
+
+  explicit Particles(int nx, int ny, int nz) {
+    std::uint64_t seed = 12345;
+    auto jitter = [&] {
+      seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+      return (double(seed >> 11) / double(1ULL << 53) - 0.5) * 0.3 * kSpacing;
+    };
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+          x.push_back((i + 0.5) * kSpacing + jitter());
+          y.push_back((j + 0.5) * kSpacing + jitter());
+          z.push_back((k + 0.5) * kSpacing + jitter());
+          density.push_back(1000 + 20 * std::sin(7 * x.back()));
+          mass.push_back(1000 * kSpacing * kSpacing * kSpacing *
+                         (1 + 0.1 * std::cos(5 * y.back())));
+          field.push_back(std::sin(3 * x.back()) + z.back() * z.back());
+          for (double c : {1.0 + x.back(), -2.0 * y.back(), 0.5}) velocity.push_back(float(c));
+        }
+  }
+  ParticleView view() const {
+    return ParticleView::soa(x.data(), y.data(), z.data(), x.size())
+        .with_scalar("mass", mass.data())
+        .with_scalar("density", density.data())
+        .with_scalar("field", field.data())
+        .with_vector("velocity", velocity.data());
+  }
+};
+
+// The SPH sum at `p` over every particle, in double, by brute force.
+double reference(const Particles& s, const SliceQuantity& q, glm::dvec3 p, bool vector) {
+  double sum = 0, weight = 0;
+  for (std::size_t i = 0; i < s.x.size(); ++i) {
+    const double r = glm::length(p - glm::dvec3(s.x[i], s.y[i], s.z[i]));
+    const double w = kernel_value(q.kernel, r, q.smoothing_length);
+    double a = s.field[i];
+    if (vector) {
+      const float* v = &s.velocity[3 * i];
+      a = std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
+    }
+    sum += s.mass[i] / s.density[i] * a * w;
+    weight += s.mass[i] / s.density[i] * w;
+  }
+  return q.shepard ? (weight > 0 ? sum / weight : 0) : sum;
+}
+
+TEST(SphSlice, EqualsTheDoubleSumAtSamplePointsForEveryKernel) {
+  const Particles s(16, 12, 10);
+  const SlicePlane plane = SlicePlane::make({0.8, 0.6, 0.5}, {0.3, 1, 0.2}, 1.8, 1.2);
+  for (const auto& [name, kernel] : kSphKernelNames)
+    for (bool shepard : {false, true})
+      for (const char* quantity : {"field", "velocity"}) {
+        SliceQuantity q;
+        q.name = quantity;
+        q.kernel = kernel;
+        q.smoothing_length = 1.3 * kSpacing;
+        q.shepard = shepard;
+        SliceImage image;
+        interpolate_slice(s.view(), q, plane, 45, 30, image);
+        ASSERT_GT(image.pixels_reached, 300u);
+        double worst = 0;
+        for (int j = 0; j < 30; j += 3)
+          for (int i = 0; i < 45; i += 4) {
+            const double want =
+                reference(s, q, plane.pixel_centre(i, j, 45, 30), quantity[0] == 'v');
+            const double got = image.values[std::size_t(i + 45 * j)];
+            if (std::abs(want) > 1e-3)
+              worst = std::max(worst, std::abs(got - want) / std::abs(want));
+            else EXPECT_NEAR(got, want, 1e-8);
+          }
+        EXPECT_LT(worst, 1e-5) << name << (shepard ? " with Shepard " : " ") << quantity;
+      }
+}
+
+TEST(SphSlice, AUniformFieldIsFlatWithShepardAwayFromTheFreeSurface) {
+  const Particles s(20, 20, 20);
+  std::vector<double> three(s.x.size(), 3.0);
+  const ParticleView view = s.view().with_scalar("three", three.data());
+  const SlicePlane plane = SlicePlane::make({1.0, 1.0, 1.0}, {0, 0, 1}, 2.0, 2.0);
+  SliceQuantity q;
+  q.name = "three";
+  q.smoothing_length = 1.3 * kSpacing;
+  q.shepard = true;
+  SliceImage image;
+  interpolate_slice(view, q, plane, 40, 40, image);
+  double flat = 0;
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 40; ++i) {
+      const glm::dvec3 p = plane.pixel_centre(i, j, 40, 40);
+      const double margin = std::min({p.x, 2.0 - p.x, p.y, 2.0 - p.y});
+      if (margin > 0.3)
+        flat = std::max(flat, std::abs(image.values[std::size_t(i + 40 * j)] - 3.0));
+    }
+  EXPECT_LT(flat, 1e-6);
+}
+
+TEST(SphSlice, KernelsIntegrateToOne) {
+  for (const auto& [name, kernel] : kSphKernelNames) {
+    const double h = 0.7, support = kernel_support(kernel) * h;
+    double integral = 0;
+    const int n = 20000;
+    for (int k = 0; k < n; ++k) {  // 4 pi r^2 W(r) dr, midpoint rule
+      const double r = (k + 0.5) / n * support;
+      integral += 4 * std::numbers::pi * r * r * kernel_value(kernel, r, h) * support / n;
+    }
+    EXPECT_NEAR(integral, 1.0, 1e-6) << name;
+    EXPECT_EQ(kernel_value(kernel, support * 1.0001, h), 0.0) << name;
+  }
+}
+
+TEST(SphSlice, APlaneThatMissesTheFluidReachesNoPixel) {
+  const Particles s(8, 8, 8);
+  SliceQuantity q;
+  q.name = "field";
+  q.smoothing_length = 0.13;
+  SliceImage image;
+  interpolate_slice(s.view(), q, SlicePlane::make({0, 0, 5}, {0, 0, 1}, 1, 1), 16, 16, image);
+  EXPECT_EQ(image.pixels_reached, 0u);
+  EXPECT_EQ(image.particles_near, 0u);
+}
+
+TEST(SphSlice, AMissingQuantityOrVolumeIsAnErrorNamingIt) {
+  const Particles s(4, 4, 4);
+  SliceQuantity q;
+  q.name = "pressure";
+  q.smoothing_length = 0.13;
+  SliceImage image;
+  const SlicePlane plane = SlicePlane::make({0.2, 0.2, 0.2}, {0, 1, 0}, 1, 1);
+  EXPECT_THROW(
+      {
+        try {
+          interpolate_slice(s.view(), q, plane, 8, 8, image);
+        } catch (const Error& e) {
+          EXPECT_NE(std::string(e.what()).find("\"pressure\""), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      Error);
+  q.name = "field";
+  q.mass = "m";  // the solver passes none by that name, and no rest volume was given
+  EXPECT_THROW(interpolate_slice(s.view(), q, plane, 8, 8, image), Error);
+  q.rest_volume = kSpacing * kSpacing * kSpacing;
+  EXPECT_NO_THROW(interpolate_slice(s.view(), q, plane, 8, 8, image));
+}
+
+TEST(ColorMap, EndsAreThePublishedColoursAndLuminanceRisesAlongViridis) {
+  const glm::vec3 low = map_color(ColorMap::viridis, 0), high = map_color(ColorMap::viridis, 1);
+  EXPECT_NEAR(low.r, std::pow((0x44 / 255.0 + 0.055) / 1.055, 2.4), 1e-5);
+  EXPECT_NEAR(high.g, std::pow((0xe7 / 255.0 + 0.055) / 1.055, 2.4), 1e-5);
+  auto luminance = [](glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; };
+  for (int k = 0; k < 100; ++k)
+    EXPECT_LT(luminance(map_color(ColorMap::viridis, k / 100.0)),
+              luminance(map_color(ColorMap::viridis, (k + 1) / 100.0)));
+  EXPECT_EQ(map_color(ColorMap::gray, -1), glm::vec3(0));
+  EXPECT_EQ(map_color(ColorMap::gray, std::nan("")), glm::vec3(0));
+  EXPECT_EQ(map_color(ColorMap::gray, 2), glm::vec3(1));
+}
+
+}  // namespace
+}  // namespace voxspan
