@@ -50,6 +50,14 @@ struct Particles {
   }
 };
 
+// The quantity `name` with h = 1.3 spacings and the defaults otherwise.
+SliceQuantity quantity(const char* name) {
+  SliceQuantity q;
+  q.name = name;
+  q.smoothing_length = 1.3 * kSpacing;
+  return q;
+}
+
 // The SPH sum at `p` over every particle, in double, by brute force.
 double reference(const Particles& s, const SliceQuantity& q, glm::dvec3 p, bool vector) {
   double sum = 0, weight = 0;
@@ -72,11 +80,9 @@ TEST(SphSlice, EqualsTheDoubleSumAtSamplePointsForEveryKernel) {
   const SlicePlane plane = SlicePlane::make({0.8, 0.6, 0.5}, {0.3, 1, 0.2}, 1.8, 1.2);
   for (const auto& [name, kernel] : kSphKernelNames)
     for (bool shepard : {false, true})
-      for (const char* quantity : {"field", "velocity"}) {
-        SliceQuantity q;
-        q.name = quantity;
+      for (const char* name_of_quantity : {"field", "velocity"}) {
+        SliceQuantity q = quantity(name_of_quantity);
         q.kernel = kernel;
-        q.smoothing_length = 1.3 * kSpacing;
         q.shepard = shepard;
         SliceImage image;
         interpolate_slice(s.view(), q, plane, 45, 30, image);
@@ -85,13 +91,13 @@ TEST(SphSlice, EqualsTheDoubleSumAtSamplePointsForEveryKernel) {
         for (int j = 0; j < 30; j += 3)
           for (int i = 0; i < 45; i += 4) {
             const double want =
-                reference(s, q, plane.pixel_centre(i, j, 45, 30), quantity[0] == 'v');
+                reference(s, q, plane.pixel_centre(i, j, 45, 30), name_of_quantity[0] == 'v');
             const double got = image.values[std::size_t(i + 45 * j)];
             if (std::abs(want) > 1e-3)
               worst = std::max(worst, std::abs(got - want) / std::abs(want));
             else EXPECT_NEAR(got, want, 1e-8);
           }
-        EXPECT_LT(worst, 1e-5) << name << (shepard ? " with Shepard " : " ") << quantity;
+        EXPECT_LT(worst, 1e-5) << name << (shepard ? " with Shepard " : " ") << name_of_quantity;
       }
 }
 
@@ -100,9 +106,7 @@ TEST(SphSlice, AUniformFieldIsFlatWithShepardAwayFromTheFreeSurface) {
   std::vector<double> three(s.x.size(), 3.0);
   const ParticleView view = s.view().with_scalar("three", three.data());
   const SlicePlane plane = SlicePlane::make({1.0, 1.0, 1.0}, {0, 0, 1}, 2.0, 2.0);
-  SliceQuantity q;
-  q.name = "three";
-  q.smoothing_length = 1.3 * kSpacing;
+  SliceQuantity q = quantity("three");
   q.shepard = true;
   SliceImage image;
   interpolate_slice(view, q, plane, 40, 40, image);
@@ -133,9 +137,7 @@ TEST(SphSlice, KernelsIntegrateToOne) {
 
 TEST(SphSlice, APlaneThatMissesTheFluidReachesNoPixel) {
   const Particles s(8, 8, 8);
-  SliceQuantity q;
-  q.name = "field";
-  q.smoothing_length = 0.13;
+  const SliceQuantity q = quantity("field");
   SliceImage image;
   interpolate_slice(s.view(), q, SlicePlane::make({0, 0, 5}, {0, 0, 1}, 1, 1), 16, 16, image);
   EXPECT_EQ(image.pixels_reached, 0u);
@@ -144,9 +146,7 @@ TEST(SphSlice, APlaneThatMissesTheFluidReachesNoPixel) {
 
 TEST(SphSlice, AMissingQuantityOrVolumeIsAnErrorNamingIt) {
   const Particles s(4, 4, 4);
-  SliceQuantity q;
-  q.name = "pressure";
-  q.smoothing_length = 0.13;
+  SliceQuantity q = quantity("pressure");
   SliceImage image;
   const SlicePlane plane = SlicePlane::make({0.2, 0.2, 0.2}, {0, 1, 0}, 1, 1);
   EXPECT_THROW(
