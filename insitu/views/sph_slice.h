@@ -36,7 +36,8 @@ double kernel_value(SphKernel kernel, double r, double h);
 // A rectangle of the plane through `origin` with unit normal `normal`: `width` along u and
 // `height` along v (u, v, normal right-handed; v is the projection of `up` onto the plane, or
 // of another axis when `up` is along the normal). Pixel (i, j) of a W x H image, row 0 at the
-// top, has its centre at
+// top, has its centre at (the picture shows the plane as seen from the side its normal points
+// to: with normal -y and up +z, +x is to the right)
 //   origin + ((i + 0.5) / W - 0.5) * width * u + (0.5 - (j + 0.5) / H) * height * v.
 struct SlicePlane {
   glm::dvec3 origin{0};

@@ -1,0 +1,238 @@
+#include "insitu/views/slice_view.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "insitu/views/view.h"
+#include "voxspan/error.h"
+#include "voxspan/log.h"
+
+namespace voxspan {
+namespace {
+
+glm::dvec3 vec(const Vec3d& v) { return {v[0], v[1], v[2]}; }
+
+const schema::Section<SlicePlaneConfig>& plane_section() {
+  using P = SlicePlaneConfig;
+  static const schema::Section<P> s{
+      "views[i].plane",
+      {schema::vec3_or_auto("origin", &P::origin,
+                            "a point of the plane; `auto` = the centre of the fluid's box"),
+       schema::vec3("normal", &P::normal, "the plane's normal (any length but 0)")},
+      [](yaml::MapReader& r, P& p) {
+        if (r.has("normal") && !(glm::length(vec(p.normal)) > 0))
+          r.checker().error(r.find("normal"), r.path("normal"), "must not be zero");
+      }};
+  return s;
+}
+
+// `range`: `auto` or [min, max] with min < max.
+schema::Key<SliceSettings> range_key() {
+  schema::Key<SliceSettings> k;
+  k.name = "range";
+  k.type = "[min, max] or `auto`";
+  k.help = "the values at the colour map's ends; `auto` = the step's smallest and largest";
+  k.read = [](yaml::MapReader& r, SliceSettings& s) {
+    if (!r.has("range")) return;
+    const YAML::Node n = r.find("range");
+    if (n.IsScalar() && n.Scalar() == "auto") {
+      s.range.reset();
+      return;
+    }
+    double lo = 0, hi = 0;
+    bool ok = n.IsSequence() && n.size() == 2;
+    try {
+      if (ok) lo = n[0].as<double>(), hi = n[1].as<double>();
+    } catch (const YAML::Exception&) {
+      ok = false;
+    }
+    if (!ok || !std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
+      r.checker().error(n, r.path("range"), "expected `auto` or [min, max] with min < max");
+      return;
+    }
+    s.range = std::array<double, 2>{lo, hi};
+  };
+  k.emit = [](YAML::Emitter& e, const SliceSettings& s) {
+    if (!s.range) e << "auto";
+    else e << YAML::Flow << YAML::BeginSeq << (*s.range)[0] << (*s.range)[1] << YAML::EndSeq;
+  };
+  return k;
+}
+
+const schema::Section<SliceSettings>& slice_section() {
+  using S = SliceSettings;
+  static const schema::Section<S> s{
+      "views[i]",
+      view_keys<S>(
+          "slice",
+          {schema::text("quantity", &S::quantity,
+                        "the particle attribute interpolated on the plane (a vector: its "
+                        "magnitude); required"),
+           schema::choice("kernel", &S::kernel, kSphKernelNames,
+                          "the SPH kernel W (3D, normalised)"),
+           schema::number_or_auto("smoothing_length", &S::smoothing_length, schema::above(0),
+                                  "h, world units; `auto` = 1.3 particle spacings"),
+           schema::flag("shepard", &S::shepard,
+                        "divide by the sum of (m / rho) W: a uniform field stays flat up to "
+                        "the free surface"),
+           schema::text("mass", &S::mass,
+                        "the mass attribute; without it or `density`, m / rho = spacing^3"),
+           schema::text("density", &S::density, "the density attribute"),
+           schema::map<S, SlicePlaneConfig>("plane", &S::plane, plane_section(),
+                                            "the plane: `origin` and `normal`"),
+           schema::number_or_auto("extent", &S::extent, schema::above(0),
+                                  "the plane's width in the picture, world units (the height "
+                                  "follows the picture's aspect); `auto` = the fluid's box "
+                                  "as the plane sees it"),
+           schema::choice("color_map", &S::color_map, kColorMapNames, "the colour map"),
+           range_key(),
+           schema::integer("isolines", &S::isolines, 0, 64,
+                           "isolines, evenly spaced inside the range; 0: none")}),
+      [](yaml::MapReader& r, S& v) {
+        if (v.quantity.empty())
+          r.checker().error(r.find("kind"), r.path("quantity"),
+                            "a slice view needs `quantity` (the attribute it shows)");
+      }};
+  return s;
+}
+
+// The plane's rectangle for this step: the settings, or fitted around the fluid's box.
+SlicePlane plane_for(const SliceSettings& s, const Bounds& box, int width, int height) {
+  const bool have_box = !box.empty();
+  const glm::dvec3 lo = have_box ? vec(box.lo) : glm::dvec3(-0.5);
+  const glm::dvec3 hi = have_box ? vec(box.hi) : glm::dvec3(0.5);
+  const glm::dvec3 origin = s.plane.origin ? vec(*s.plane.origin) : 0.5 * (lo + hi);
+  const double aspect = double(width) / double(height);
+  SlicePlane p = SlicePlane::make(origin, vec(s.plane.normal), 1, 1, vec(s.camera.up));
+  double w = s.extent.value_or(0);
+  if (!s.extent) {
+    double su = 0, sv = 0;  // the box's half extents along u and v, around the origin
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+      su = std::max(su, std::abs(glm::dot(corner - origin, p.u)));
+      sv = std::max(sv, std::abs(glm::dot(corner - origin, p.v)));
+    }
+    w = 2.1 * std::max({su, sv * aspect, 1e-300});
+  }
+  p.width = w;
+  p.height = w / aspect;
+  return p;
+}
+
+class SliceView final : public View {
+ public:
+  SliceView(const SliceSettings& s, const ViewContext& c)
+      : settings_(s), spacing_(c.particle_spacing) {
+    if (c.span_stages)
+      throw make_error("view ", s.name, ": kind `slice` does not run in MPI jobs yet");
+    if (!s.smoothing_length && !(spacing_ > 0))
+      throw make_error("view ", s.name,
+                       ": smoothing_length is `auto` but the particle spacing is unknown; set it");
+  }
+
+  bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& /*stats*/,
+              ViewProducts& out) override {
+    if (step.data.particles == nullptr) throw make_error("slice: the step has no particles");
+    const int w = settings_.width, h = settings_.height;
+    const SlicePlane plane = plane_for(settings_, step.fluid_box, w, h);
+    {
+      auto t = timer.cpu("slice_sum");
+      SliceQuantity q;
+      q.name = settings_.quantity;
+      q.mass = settings_.mass;
+      q.density = settings_.density;
+      q.rest_volume = spacing_ * spacing_ * spacing_;
+      q.kernel = settings_.kernel;
+      q.smoothing_length = settings_.smoothing_length.value_or(kAutoSmoothingFactor * spacing_);
+      q.shepard = settings_.shepard;
+      interpolate_slice(*step.data.particles, q, plane, w, h, values_);
+    }
+    if (values_.pixels_reached == 0) {
+      ++misses_;
+      log_warning("view ", settings_.name, ": step ", step.data.step,
+                  ": the slice plane reaches no particle (", misses_, " steps so far)");
+    }
+    auto t = timer.cpu("slice_draw");
+    draw(out.picture);
+    if (step.needs.first_hit_depth) out.first_hit_depth = FloatImage(w, h);  // no surface
+    out.shaded_spans = nullptr;
+    return true;
+  }
+
+  std::string description() const override {
+    return "slice of " + settings_.quantity + " " + std::to_string(settings_.width) + "x" +
+           std::to_string(settings_.height);
+  }
+
+ private:
+  std::array<double, 2> range() const {
+    if (settings_.range) return *settings_.range;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::size_t k = 0; k < values_.values.size(); ++k)
+      if (values_.weight[k] > 0)
+        lo = std::min(lo, double(values_.values[k])), hi = std::max(hi, double(values_.values[k]));
+    if (!(lo <= hi)) return {0, 1};
+    if (hi - lo <= 1e-12 * std::max(std::abs(lo), std::abs(hi))) {
+      const double pad = lo == 0 ? 0.5 : 0.01 * std::abs(lo);
+      return {lo - pad, hi + pad};
+    }
+    return {lo, hi};
+  }
+
+  // The colour-mapped values, isolines darkened, no-fluid pixels dark, the colour bar.
+  void draw(FloatImage& picture) const {
+    const int w = settings_.width, h = settings_.height;
+    if (picture.width != w || picture.height != h) picture = FloatImage(w, h);
+    const auto [lo, hi] = range();
+    const double scale = 1.0 / (hi - lo);
+    const int lines = settings_.isolines;
+    auto level = [&](std::size_t k) {
+      return std::floor((values_.values[k] - lo) * scale * (lines + 1));
+    };
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) {
+        const std::size_t k = std::size_t(i) + std::size_t(w) * std::size_t(j);
+        if (!(values_.weight[k] > 0)) {
+          picture.set(i, j, glm::vec4(0.02f, 0.02f, 0.025f, 1.0f));
+          continue;
+        }
+        glm::vec3 c = map_color(settings_.color_map, (values_.values[k] - lo) * scale);
+        if (lines > 0) {
+          const double mine = level(k);
+          const bool edge = (i + 1 < w && values_.weight[k + 1] > 0 && level(k + 1) != mine) ||
+                            (j + 1 < h && values_.weight[k + std::size_t(w)] > 0 &&
+                             level(k + std::size_t(w)) != mine);
+          if (edge) c *= 0.25f;
+        }
+        picture.set(i, j, glm::vec4(c, 1.0f));
+      }
+    // The colour bar: the map from the range's top (hi) to its bottom (lo), right edge.
+    const int bar = std::max(4, w / 40), x0 = w - 2 * bar, top = h / 10, bottom = h - h / 10;
+    if (x0 <= 0 || bottom - top < 2) return;
+    for (int j = top; j < bottom; ++j)
+      for (int i = x0; i < x0 + bar; ++i)
+        picture.set(i, j,
+                    glm::vec4(map_color(settings_.color_map,
+                                        double(bottom - 1 - j) / double(bottom - 1 - top)),
+                              1.0f));
+  }
+
+  const SliceSettings settings_;
+  const double spacing_;
+  SliceImage values_;
+  std::int64_t misses_ = 0;
+};
+
+}  // namespace
+
+ViewKind slice_view_kind() {
+  ViewKind kind = view_kind<SliceSettings, SliceView>("slice", slice_section());
+  kind.config.reference = [] {
+    return slice_section().reference() + "\n#### `views[i].plane` (kind `slice`)\n\n" +
+           plane_section().reference();
+  };
+  return kind;
+}
+
+}  // namespace voxspan
