@@ -71,6 +71,13 @@ void Communicator::min(std::span<double> v) {
   bytes_sent_ += std::int64_t(v.size_bytes());
 }
 
+void Communicator::sum(std::span<double> v) {
+  check(MPI_Allreduce(MPI_IN_PLACE, v.data(), as_count(v.size(), "sum"), MPI_DOUBLE, MPI_SUM,
+                      mpi_->comm),
+        "Allreduce");
+  bytes_sent_ += std::int64_t(v.size_bytes());
+}
+
 void Communicator::max(std::span<double> v) {
   check(MPI_Allreduce(MPI_IN_PLACE, v.data(), as_count(v.size(), "max"), MPI_DOUBLE, MPI_MAX,
                       mpi_->comm),

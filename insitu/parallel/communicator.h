@@ -42,6 +42,7 @@ class Communicator {
   void min(std::span<double> values);
   void max(std::span<double> values);
   void sum(std::span<std::int64_t> values);
+  void sum(std::span<double> values);
   // Rank `root`'s text on every rank.
   std::string broadcast(const std::string& text, int root = 0);
   // Every rank's bytes, on the root only (in rank order; empty elsewhere).

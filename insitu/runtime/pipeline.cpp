@@ -133,6 +133,7 @@ struct InsituPipeline::Impl {
       return stages;
     };
     c.combine_ranks = [this](const DepthRange& local) { return combine_depths(*comm, local); };
+    c.comm = comm;
     return c;
   }
 

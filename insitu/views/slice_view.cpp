@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "insitu/parallel/communicator.h"
 #include "insitu/views/view.h"
 #include "voxspan/error.h"
 #include "voxspan/log.h"
@@ -123,9 +124,7 @@ SlicePlane plane_for(const SliceSettings& s, const Bounds& box, int width, int h
 class SliceView final : public View {
  public:
   SliceView(const SliceSettings& s, const ViewContext& c)
-      : settings_(s), spacing_(c.particle_spacing) {
-    if (c.span_stages)
-      throw make_error("view ", s.name, ": kind `slice` does not run in MPI jobs yet");
+      : settings_(s), spacing_(c.particle_spacing), comm_(c.comm) {
     if (!s.smoothing_length && !(spacing_ > 0))
       throw make_error("view ", s.name,
                        ": smoothing_length is `auto` but the particle spacing is unknown; set it");
@@ -146,8 +145,9 @@ class SliceView final : public View {
       q.kernel = settings_.kernel;
       q.smoothing_length = settings_.smoothing_length.value_or(kAutoSmoothingFactor * spacing_);
       q.shepard = settings_.shepard;
-      interpolate_slice(*step.data.particles, q, plane, w, h, values_);
+      interpolate(*step.data.particles, q, plane);
     }
+    if (comm_ != nullptr && !comm_->root()) return false;  // the root draws the picture
     if (values_.pixels_reached == 0) {
       ++misses_;
       log_warning("view ", settings_.name, ": step ", step.data.step,
@@ -166,6 +166,29 @@ class SliceView final : public View {
   }
 
  private:
+  // The slice of this process's owned particles; in an MPI job the sum over every rank's
+  // (exact: each particle counts on one rank). Every rank takes part in the sums even when its
+  // own part failed, then all throw, naming the failure, so that none waits for another.
+  void interpolate(const ParticleView& particles, const SliceQuantity& q, const SlicePlane& plane) {
+    std::string failure;
+    try {
+      interpolate_slice(particles, q, plane, settings_.width, settings_.height, values_);
+    } catch (const std::exception& e) {
+      failure = e.what();
+    }
+    if (comm_ == nullptr) {
+      if (!failure.empty()) throw Error(failure);
+      return;
+    }
+    std::int64_t failed[1] = {failure.empty() ? 0 : 1};
+    comm_->sum(failed);
+    if (failed[0] > 0)
+      throw make_error(failure.empty() ? "the slice failed on another rank" : failure);
+    comm_->sum(values_.sum);
+    comm_->sum(values_.weight);
+    finish_slice(values_, q.shepard);
+  }
+
   std::array<double, 2> range() const {
     if (settings_.range) return *settings_.range;
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -220,6 +243,7 @@ class SliceView final : public View {
 
   const SliceSettings settings_;
   const double spacing_;
+  Communicator* const comm_;  // null in one process
   SliceImage values_;
   std::int64_t misses_ = 0;
 };

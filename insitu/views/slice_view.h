@@ -5,7 +5,8 @@
 //
 // Reads: every owned particle the solver passes (positions, the quantity, mass and density),
 // the fluid's box (the automatic plane origin and extent). Writes: the picture. Runs on the
-// CPU whichever renderer draws the surfaces. Not yet in MPI jobs (refused at start-up).
+// CPU whichever renderer draws the surfaces. In an MPI job every rank sums its owned
+// particles' part and rank 0 draws the sum of all (exact).
 #pragma once
 
 #include <array>

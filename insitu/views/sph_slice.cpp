@@ -136,7 +136,8 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
   out.width = width;
   out.height = height;
   out.values.assign(std::size_t(width) * std::size_t(height), 0.0f);
-  out.weight.assign(out.values.size(), 0.0f);
+  out.sum.assign(out.values.size(), 0.0);
+  out.weight.assign(out.values.size(), 0.0);
   out.particles_near = near.size();
   tbb::parallel_for(0, height, [&](int j) {
     for (int i = 0; i < width; ++i) {
@@ -156,12 +157,20 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
           }
         }
       const std::size_t pixel = std::size_t(i) + std::size_t(width) * std::size_t(j);
-      out.weight[pixel] = float(weight);
-      out.values[pixel] = weight > 0 ? float(q.shepard ? sum / weight : sum) : 0.0f;
+      out.sum[pixel] = sum;
+      out.weight[pixel] = weight;
     }
   });
-  out.pixels_reached = std::size_t(
-      std::count_if(out.weight.begin(), out.weight.end(), [](float w) { return w > 0; }));
+  finish_slice(out, q.shepard);
+}
+
+void finish_slice(SliceImage& image, bool shepard) {
+  image.pixels_reached = 0;
+  for (std::size_t k = 0; k < image.values.size(); ++k) {
+    const double w = image.weight[k], s = image.sum[k];
+    image.values[k] = w > 0 ? float(shepard ? s / w : s) : 0.0f;
+    image.pixels_reached += w > 0 ? 1 : 0;
+  }
 }
 
 }  // namespace voxspan

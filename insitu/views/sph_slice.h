@@ -63,7 +63,8 @@ struct SliceQuantity {
 struct SliceImage {
   int width = 0, height = 0;
   std::vector<float> values;       // row 0 at the top; 0 where no particle reaches
-  std::vector<float> weight;       // sum_j (m_j / rho_j) W: 0 where no particle reaches
+  std::vector<double> sum;         // sum_j (m_j / rho_j) A_j W (what ranks add up)
+  std::vector<double> weight;      // sum_j (m_j / rho_j) W: 0 where no particle reaches
   std::size_t particles_near = 0;  // owned particles whose support reaches the plane
   std::size_t pixels_reached = 0;  // pixels with a positive weight
 };
@@ -72,5 +73,8 @@ struct SliceImage {
 // voxspan::Error naming the attribute when the quantity is missing, or when h is not positive.
 void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
                        const SlicePlane& plane, int width, int height, SliceImage& out);
+// The values (and pixels_reached) from the sums, as interpolate_slice leaves them: again after
+// the sums of every rank's owned particles were added up, which gives one process's slice.
+void finish_slice(SliceImage& image, bool shepard);
 
 }  // namespace voxspan

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "insitu/config/config.h"
+#include "insitu/parallel/communicator.h"
 #include "insitu/parallel/span_merge.h"
 #include "insitu/views/view_products.h"
 #include "insitu/views/view_framing.h"
@@ -55,6 +56,8 @@ struct ViewContext {
   std::function<std::vector<std::unique_ptr<SpanStage>>(const MergeSettings&)> span_stages;
   // Makes every process fit the same perspective grid (empty in a single process).
   DepthRangeCombine combine_ranks;
+  // The job's ranks, for views that combine their parts themselves (null in one process).
+  Communicator* comm = nullptr;
 };
 
 struct ViewStep {
