@@ -66,12 +66,6 @@ glm::dvec3 SlicePlane::pixel_centre(int i, int j, int image_width, int image_hei
 
 namespace {
 
-// A particle near the plane: its position, and (m / rho) A and m / rho.
-struct Near {
-  glm::dvec3 p;
-  double volume_value, volume;
-};
-
 double magnitude(const AttributeView& a, std::size_t i) {
   if (a.components == 1) return a.component[0][i];
   const double x = a.component[0][i], y = a.component[1][i], z = a.component[2][i];
@@ -96,7 +90,8 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
 
   const double h = q.smoothing_length;
   const double support = kernel_support(q.kernel) * h;
-  std::vector<Near> near;
+  std::vector<SliceImage::Near>& near = out.near;
+  near.clear();
   for (std::size_t i = 0; i < particles.owned_count(); ++i) {
     if (!particles.position_finite(i)) continue;
     const auto a = particles.position(i);
@@ -120,8 +115,10 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
   };
   // Counting sort of the near particles into (bx + 2) x (by + 2) bins (one ring outside).
   const auto bins = std::size_t(bx + 2) * std::size_t(by + 2);
-  std::vector<std::uint32_t> start(bins + 1, 0);
-  std::vector<std::uint32_t> bin(near.size(), std::uint32_t(bins));
+  std::vector<std::uint32_t>& start = out.bin_start;
+  std::vector<std::uint32_t>& bin = out.bin_of;
+  start.assign(bins + 1, 0);
+  bin.assign(near.size(), std::uint32_t(bins));
   for (std::size_t k = 0; k < near.size(); ++k) {
     int x, y;
     if (!bin_of(near[k].p, x, y)) continue;
@@ -129,7 +126,10 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
     ++start[bin[k] + 1];
   }
   for (std::size_t b = 0; b < bins; ++b) start[b + 1] += start[b];
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1), sorted(start[bins]);
+  std::vector<std::uint32_t>& fill = out.bin_fill;
+  std::vector<std::uint32_t>& sorted = out.sorted;
+  fill.assign(start.begin(), start.end() - 1);
+  sorted.resize(start[bins]);
   for (std::size_t k = 0; k < near.size(); ++k)
     if (bin[k] < bins) sorted[fill[bin[k]]++] = std::uint32_t(k);
 
@@ -150,7 +150,7 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
           if (xb < -1 || xb > bx || y < -1 || y > by) continue;
           const std::size_t b = std::size_t(xb + 1) + std::size_t(bx + 2) * std::size_t(y + 1);
           for (std::uint32_t s = start[b]; s < start[b + 1]; ++s) {
-            const Near& n = near[sorted[s]];
+            const SliceImage::Near& n = near[sorted[s]];
             const double w = kernel_value(q.kernel, glm::length(x - n.p), h);
             sum += n.volume_value * w;
             weight += n.volume * w;

@@ -67,6 +67,14 @@ struct SliceImage {
   std::vector<double> weight;      // sum_j (m_j / rho_j) W: 0 where no particle reaches
   std::size_t particles_near = 0;  // owned particles whose support reaches the plane
   std::size_t pixels_reached = 0;  // pixels with a positive weight
+
+  // Working storage, kept from step to step (a step with stable sizes allocates nothing).
+  struct Near {
+    glm::dvec3 p;
+    double volume_value, volume;  // (m / rho) A and m / rho
+  };
+  std::vector<Near> near;
+  std::vector<std::uint32_t> bin_start, bin_fill, bin_of, sorted;
 };
 
 // Interpolates `q` on `plane` into a width x height image, reusing out's storage. Throws
