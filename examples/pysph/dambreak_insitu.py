@@ -9,9 +9,10 @@ the adapter is attached through Solver.add_post_step_callback and renders the fl
 (--arrays, comma-separated; default: fluid) every N solver steps (--render-every; default:
 PySPH's output frequency --pfreq, so that every rendered step is also a file PySPH writes), the
 initial state and the last step, with the views and outputs of the YAML config (default:
-insitu.yaml beside this script: two views as PNG, the stats, an OpenVDB snapshot at the end).
+insitu.yaml beside this script: two views of the water and a slice of the pressure as PNG, the
+stats, an OpenVDB snapshot at the end).
 
-The particles are handed over as PySPH holds them: x, y, z, u, v, w, rho and p of the array,
+The particles are handed over as PySPH holds them: x, y, z, u, v, w, rho, p and m of the array,
 numpy views of its own memory, not copies, under PySPH's names (rho, p, velocity), as the
 HDF5 reader of render_particles names them (with several arrays named, they are concatenated
 first, which copies). The post-step callback runs after the integrator's step and before
@@ -68,16 +69,16 @@ class Insitu:
 
     def particles(self):
         """Views of the arrays' own memory (one array), else concatenated copies."""
-        names = ("x", "y", "z", "u", "v", "w", "rho", "p")
+        names = ("x", "y", "z", "u", "v", "w", "rho", "p", "m")
         if len(self.arrays) == 1:
             return [getattr(self.arrays[0], n) for n in names]
         return [numpy.concatenate([getattr(pa, n) for pa in self.arrays]) for n in names]
 
     def render(self, step, t, last=False):
-        x, y, z, u, v, w, rho, p = self.particles()
+        x, y, z, u, v, w, rho, p, m = self.particles()
         start = time.perf_counter()
         call = self.adapter.execute_last if last else self.adapter.execute
-        status = call(step, t, x, y, z, scalars={"rho": rho, "p": p},
+        status = call(step, t, x, y, z, scalars={"rho": rho, "p": p, "m": m},
                       vectors={"velocity": (u, v, w)})
         self.python_seconds += time.perf_counter() - start
         self.rendered = step

@@ -45,7 +45,7 @@ if done.returncode != 0:
     sys.exit("pysph_check: render_particles failed")
 
 worst = 0
-for view in ("translucent", "refractive"):
+for view in ("translucent", "refractive", "pressure"):
     live = sorted((work / "insitu" / "frames").glob(f"{view}_*.png"))
     files_ = sorted((offline / "frames").glob(f"{view}_*.png"))
     if len(live) != len(chosen) or len(files_) != len(chosen):
