@@ -121,6 +121,13 @@ SlicePlane plane_for(const SliceSettings& s, const Bounds& box, int width, int h
   return p;
 }
 
+// A depth image with no fluid surface in it, reusing its storage (a render step whose sizes are
+// stable allocates nothing).
+void no_surface(FloatImage& depth, int width, int height) {
+  if (depth.width != width || depth.height != height) depth = FloatImage(width, height);
+  else std::fill(depth.rgba.begin(), depth.rgba.end(), 0.0f);
+}
+
 class SliceView final : public View {
  public:
   SliceView(const SliceSettings& s, const ViewContext& c)
@@ -155,7 +162,7 @@ class SliceView final : public View {
     }
     auto t = timer.cpu("slice_draw");
     draw(out.picture);
-    if (step.needs.first_hit_depth) out.first_hit_depth = FloatImage(w, h);  // no surface
+    if (step.needs.first_hit_depth) no_surface(out.first_hit_depth, w, h);
     out.shaded_spans = nullptr;
     return true;
   }
