@@ -27,21 +27,32 @@
 
 namespace dambreak {
 
+float DamBreak::pressure_of(float rho) const {
+  const float s = rho * float(1 / config_.rest_density), s2 = s * s, s4 = s2 * s2;
+  const float p_min = config_.tension_free ? 0.0f : -std::numeric_limits<float>::max();
+  return std::max(p_min, float(b_) * (s4 * s2 * s - 1));
+}
+
 void DamBreak::compute_fluid_pressure() {
   Fluid& f = fluid_;
   f.p_over_rho2.resize(f.size());
   f.volume.resize(f.size());
   const float m = mass_;
-  const float inv_rho0 = float(1 / config_.rest_density), b = float(b_);
-  const float p_min = config_.tension_free ? 0.0f : -std::numeric_limits<float>::max();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, f.size(), 1 << 12),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                        const float s = f.rho[i] * inv_rho0, s2 = s * s, s4 = s2 * s2;
-                        f.p_over_rho2[i] =
-                            std::max(p_min, b * (s4 * s2 * s - 1)) / (f.rho[i] * f.rho[i]);
+                        f.p_over_rho2[i] = pressure_of(f.rho[i]) / (f.rho[i] * f.rho[i]);
                         f.volume[i] = m / f.rho[i];
                       }
+                    });
+}
+
+void DamBreak::pressure(std::vector<float>& out) const {
+  out.resize(fluid_.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 1 << 12),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i)
+                        out[i] = pressure_of(fluid_.rho[i]);
                     });
 }
 

@@ -186,6 +186,8 @@ int run(const Options& o) {
   double adapter_seconds = 0;
   std::vector<double> step_seconds;
   dambreak::CellOrder merged;
+  std::vector<float> pressure;
+  std::vector<double> ids;  // exact up to 2^53
   for (long step = 1;; ++step) {
     if (o.until > 0 ? sim.nondimensional_time() >= o.until : step > o.steps) break;
     const auto ts = Clock::now();
@@ -198,10 +200,20 @@ int run(const Options& o) {
     }
 
     const dambreak::Fluid& f = sim.fluid();
+    // The pressure and the ids as numbers cost a pass over the particles: on render steps only.
+    if (final_step || adapter->is_render_step(step, sim.time())) {
+      sim.pressure(pressure);
+      ids.assign(f.id.begin(), f.id.end());
+    } else {
+      pressure.resize(f.size());
+      ids.resize(f.size());
+    }
     const auto particles = voxspan::ParticleView::soa(f.x.data(), f.y.data(), f.z.data(), f.size())
                                .with_owned(sim.owned_count())
                                .with_vector("velocity", f.vx.data(), f.vy.data(), f.vz.data())
-                               .with_scalar("density", f.rho.data());
+                               .with_scalar("density", f.rho.data())
+                               .with_scalar("pressure", pressure.data())
+                               .with_scalar("id", ids.data());
     const voxspan::GridView grid = adapter_grid(sim, merged);
     const auto ta = Clock::now();
     const voxspan::Status status = final_step

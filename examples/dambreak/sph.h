@@ -106,6 +106,9 @@ class DamBreak {
 
   // Of the owned particles: a distributed run combines the ranks' (decomposition.h).
   Diagnostics diagnostics() const;
+  // Each particle's pressure (owned, then ghosts) from its current density, by the equation of
+  // state the forces use, into `out` (resized): what the solver shows, not what it stores.
+  void pressure(std::vector<float>& out) const;
 
  private:
   void drift(float dt);
@@ -115,6 +118,7 @@ class DamBreak {
   void gather_state(std::size_t first, const std::vector<std::uint32_t>& permutation);
   int fluid_ranges(std::size_t cell, std::array<Range, 18>& out) const;
   void compute_fluid_pressure();
+  float pressure_of(float rho) const;  // Tait's equation of state, clamped when tension-free
   void extrapolate_wall_pressure();
   void compute_rates();
   void compute_forces();

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <span>
 
 namespace voxspan::schema {
 void emit_value(YAML::Emitter& e, bool v) { e << v; }
@@ -12,9 +13,20 @@ void emit_value(YAML::Emitter& e, std::int64_t v) { e << v; }
 void emit_value(YAML::Emitter& e, double v) { e << yaml::number_text(v); }
 void emit_value(YAML::Emitter& e, const std::string& v) { e << v; }
 
-void emit_value(YAML::Emitter& e, const std::array<double, 3>& v) {
+namespace {
+void emit_numbers(YAML::Emitter& e, std::span<const double> v) {
   e << YAML::Flow << YAML::BeginSeq;
   for (double x : v) emit_value(e, x);
+  e << YAML::EndSeq;
+}
+}  // namespace
+
+void emit_value(YAML::Emitter& e, const std::array<double, 2>& v) { emit_numbers(e, v); }
+void emit_value(YAML::Emitter& e, const std::array<double, 3>& v) { emit_numbers(e, v); }
+
+void emit_value(YAML::Emitter& e, const std::vector<std::int64_t>& v) {
+  e << YAML::Flow << YAML::BeginSeq;
+  for (std::int64_t x : v) emit_value(e, x);
   e << YAML::EndSeq;
 }
 
@@ -42,5 +54,27 @@ Range above(double min) { return {min, HUGE_VAL, true}; }
 Range between(double min, double max) { return {min, max, false}; }
 Range above_up_to(double min, double max) { return {min, max, true}; }
 Range any_number() { return {-HUGE_VAL, HUGE_VAL, false}; }
+
+bool read_interval(yaml::MapReader& r, const std::string& name, Interval& v) {
+  if (!r.has(name)) return false;
+  const YAML::Node n = r.find(name);
+  if (n.IsScalar() && n.Scalar() == "auto") {
+    v.reset();
+    return true;
+  }
+  double lo = 0, hi = 0;
+  bool ok = n.IsSequence() && n.size() == 2;
+  try {
+    if (ok) lo = n[0].as<double>(), hi = n[1].as<double>();
+  } catch (const YAML::Exception&) {
+    ok = false;
+  }
+  if (!ok || !std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
+    r.checker().error(n, r.path(name), "expected `auto` or [min, max] with min < max");
+    return false;
+  }
+  v = std::array<double, 2>{lo, hi};
+  return true;
+}
 
 }  // namespace voxspan::schema

@@ -115,8 +115,10 @@ void emit_value(YAML::Emitter& e, int v);
 void emit_value(YAML::Emitter& e, std::int64_t v);
 void emit_value(YAML::Emitter& e, double v);
 void emit_value(YAML::Emitter& e, const std::string& v);
+void emit_value(YAML::Emitter& e, const std::array<double, 2>& v);
 void emit_value(YAML::Emitter& e, const std::array<double, 3>& v);
 void emit_value(YAML::Emitter& e, const std::vector<std::string>& v);
+void emit_value(YAML::Emitter& e, const std::vector<std::int64_t>& v);
 template <class V> void emit_value(YAML::Emitter& e, const std::optional<V>& v) {
   if (v) emit_value(e, *v);
   else e << "auto";
@@ -222,6 +224,28 @@ Key<T> vec3_or_auto(std::string name, std::optional<std::array<double, 3>> T::*m
       name, member, "[x, y, z] or `auto`", std::move(help),
       [name](yaml::MapReader& r, std::optional<std::array<double, 3>>& v) {
         r.get_auto_vec3(name, v);
+      });
+}
+
+// `auto` or [min, max] with finite min < max.
+using Interval = std::optional<std::array<double, 2>>;
+bool read_interval(yaml::MapReader& r, const std::string& name, Interval& v);
+
+template <class T>
+Key<T> interval_or_auto(std::string name, Interval T::*member, std::string help) {
+  return make_key<T, Interval>(
+      name, member, "[min, max] or `auto`", std::move(help),
+      [name](yaml::MapReader& r, Interval& v) { read_interval(r, name, v); });
+}
+
+// A list of distinct integers in [min, max] (kept sorted).
+template <class T>
+Key<T> integers(std::string name, std::vector<std::int64_t> T::*member, std::int64_t min,
+                std::int64_t max, std::string help) {
+  return make_key<T, std::vector<std::int64_t>>(
+      name, member, "list of " + integer_type(min, max), std::move(help),
+      [name, min, max](yaml::MapReader& r, std::vector<std::int64_t>& v) {
+        r.get_integers(name, v, min, max);
       });
 }
 

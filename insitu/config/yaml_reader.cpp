@@ -267,4 +267,33 @@ bool MapReader::get_names(std::string_view key, std::vector<std::string>& out) {
   return true;
 }
 
+bool MapReader::get_integers(std::string_view key, std::vector<std::int64_t>& out, std::int64_t min,
+                             std::int64_t max) {
+  YAML::Node value = find(key);
+  if (!value.IsDefined()) return false;
+  std::vector<std::int64_t> v;
+  bool ok = value.IsSequence() || value.IsNull();
+  for (std::size_t i = 0; ok && value.IsSequence() && i < value.size(); ++i) {
+    try {
+      v.push_back(value[i].as<std::int64_t>());
+      ok = v.back() >= min && v.back() <= max;
+    } catch (const YAML::Exception&) {
+      ok = false;
+    }
+  }
+  if (!ok) {
+    checker_.error(value, path(key),
+                   "expected a list of integers in [" + std::to_string(min) + ", " +
+                       std::to_string(max) + "]; got " + describe(value));
+    return false;
+  }
+  std::sort(v.begin(), v.end());
+  if (std::adjacent_find(v.begin(), v.end()) != v.end()) {
+    checker_.error(value, path(key), "an integer given twice");
+    return false;
+  }
+  out = std::move(v);
+  return true;
+}
+
 }  // namespace voxspan::yaml

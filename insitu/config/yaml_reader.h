@@ -75,6 +75,9 @@ class MapReader {
   bool get_auto_vec3(std::string_view key, std::optional<std::array<double, 3>>& out);
   // A list of distinct, non-empty names.
   bool get_names(std::string_view key, std::vector<std::string>& out);
+  // A list of distinct integers in [min, max], sorted.
+  bool get_integers(std::string_view key, std::vector<std::int64_t>& out, std::int64_t min,
+                    std::int64_t max);
   template <class E>
   bool get_enum(std::string_view key, E& out, std::span<const EnumName<E>> names) {
     std::string text;

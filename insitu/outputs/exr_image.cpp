@@ -1,6 +1,9 @@
 #include "insitu/outputs/exr_image.h"
 
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfDoubleAttribute.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfVecAttribute.h>
 #include <OpenEXR/ImfDeepFrameBuffer.h>
 #include <OpenEXR/ImfDeepScanLineOutputFile.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -9,6 +12,7 @@
 #include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfStdIO.h>
 
+#include <functional>
 #include <initializer_list>
 #include <vector>
 
@@ -24,9 +28,11 @@ struct Component {
   int index;  // 0..3: r, g, b, a
 };
 
-// The image's components as FLOAT channels of a ZIP-compressed scanline file, in memory.
+// The image's components as FLOAT channels of a ZIP-compressed scanline file, in memory, with
+// `annotate` adding to its header.
 std::string encode_components(const FloatImage& image, std::initializer_list<Component> components,
-                              const char* what) {
+                              const char* what,
+                              const std::function<void(Imf::Header&)>& annotate = {}) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgba.size() != 4 * std::size_t(image.width) * std::size_t(image.height))
     throw make_error("EXR image: ", image.width, "x", image.height, " with ", image.rgba.size(),
@@ -34,6 +40,7 @@ std::string encode_components(const FloatImage& image, std::initializer_list<Com
   try {
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
+    if (annotate) annotate(header);
     Imf::FrameBuffer frame;
     // Rows top first; a component every 4 floats.
     const std::size_t pixel = 4 * sizeof(float);
@@ -63,6 +70,21 @@ std::string encode_exr_channel(const FloatImage& image, const std::string& chann
 
 std::string encode_exr_rgba(const FloatImage& image) {
   return encode_components(image, {{"R", 0}, {"G", 1}, {"B", 2}, {"A", 3}}, "RGBA");
+}
+
+std::string encode_exr_field(const FieldImage& f) {
+  return encode_components(f.values, {{"value", 0}, {"weight", 1}}, "slice", [&](Imf::Header& h) {
+    const auto v3 = [](glm::dvec3 p) { return Imath::V3d(p.x, p.y, p.z); };
+    h.insert("voxspan:quantity", Imf::StringAttribute(f.quantity));
+    h.insert("voxspan:origin", Imf::V3dAttribute(v3(f.origin)));
+    h.insert("voxspan:u", Imf::V3dAttribute(v3(f.u)));
+    h.insert("voxspan:v", Imf::V3dAttribute(v3(f.v)));
+    h.insert("voxspan:width", Imf::DoubleAttribute(f.width));
+    h.insert("voxspan:height", Imf::DoubleAttribute(f.height));
+    h.insert("voxspan:pixel_to_world",
+             Imf::StringAttribute("origin + ((i + 0.5) / W - 0.5) * width * u + "
+                                  "(0.5 - (j + 0.5) / H) * height * v, row j = 0 at the top"));
+  });
 }
 
 std::string encode_deep_exr(const SpanImage& spans) {

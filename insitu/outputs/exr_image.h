@@ -8,6 +8,7 @@
 #include <string>
 
 #include "render/float_image.h"
+#include "insitu/views/view_products.h"
 #include "render/span_image.h"
 
 namespace voxspan {
@@ -22,6 +23,13 @@ std::string encode_exr_rgba(const FloatImage& image);
 // channels Z (its entry) and ZBack (its exit) as distances from the eye along the unit ray
 // through the pixel's centre; ZIPS-compressed, row 0 at the top.
 std::string encode_deep_exr(const SpanImage& spans);
+
+// A slice's raw values as FLOAT channels `value` (the quantity, 0 where no particle reaches) and
+// `weight` (sum_j (m_j / rho_j) W: 0 there), with the plane's pixel-to-world mapping in the
+// header (docs/runtime.md, "Depth images"): voxspan:quantity (string), voxspan:origin,
+// voxspan:u, voxspan:v (v3d), voxspan:width, voxspan:height (double, world units) and
+// voxspan:pixel_to_world, the formula as text.
+std::string encode_exr_field(const FieldImage& field);
 
 // encode_exr_channel + write_file_atomically (temp name, fsync when sync, rename). Throws
 // WriteError on I/O failure, voxspan::Error when OpenEXR refuses the image.

@@ -4,7 +4,9 @@
 // the unit ray through the pixel's centre (docs/runtime.md, "Depth images"), and
 // <folder>/<view>_color_<step>.exr the shaded picture, R G B A as linear 32-bit floats. The
 // span image and the picture are copied into a pooled slot on the solver's thread; the
-// encoding and the writing (each file atomically) run on the writer's.
+// encoding and the writing (each file atomically) run on the writer's. A slice view has no
+// spans: its file is <folder>/<view>_<step>.exr with its raw values as 32-bit floats (channels
+// `value` and `weight`) and the plane's pixel-to-world mapping in the header.
 #include "insitu/outputs/atomic_file.h"
 #include "insitu/outputs/exr_image.h"
 #include "insitu/outputs/output.h"
@@ -34,13 +36,24 @@ class ExrOutput final : public Output {
   void write(const OutputStep& step) override {
     for (std::size_t v = 0; v < step.views.size(); ++v) {
       const ViewResult& r = step.views[v];
-      if (r.spans == nullptr || r.picture == nullptr) continue;  // failed, or not this rank's
-      jobs_.submit("deep EXR image", [&](Slot& s) {
-        s.view = v;
-        s.step = step.data.step;
-        s.spans = *r.spans;  // the slot's vectors keep their capacity
-        s.picture = *r.picture;
-      });
+      if (r.picture == nullptr) continue;  // failed, or not this rank's
+      if (r.field != nullptr) {
+        jobs_.submit("slice EXR image", [&](Slot& s) {
+          s.view = v;
+          s.step = step.data.step;
+          s.field = *r.field;  // the slot's vectors keep their capacity
+          s.is_field = true;
+          s.picture = *r.picture;
+        });
+      } else if (r.spans != nullptr) {
+        jobs_.submit("deep EXR image", [&](Slot& s) {
+          s.view = v;
+          s.step = step.data.step;
+          s.spans = *r.spans;
+          s.is_field = false;
+          s.picture = *r.picture;
+        });
+      }
     }
   }
   OutputTally tally() const override { return jobs_.tally(); }
@@ -48,6 +61,8 @@ class ExrOutput final : public Output {
  private:
   struct Slot {
     SpanImage spans;
+    FieldImage field;
+    bool is_field = false;
     FloatImage picture;
     std::size_t view = 0;
     std::int64_t step = 0;
@@ -55,8 +70,8 @@ class ExrOutput final : public Output {
 
   void run(const Slot& s) const {
     const std::string& name = view_names_[s.view];
-    write_file_atomically(folder_ / step_file_name(name, s.step, "exr"), encode_deep_exr(s.spans),
-                          sync_);
+    write_file_atomically(folder_ / step_file_name(name, s.step, "exr"),
+                          s.is_field ? encode_exr_field(s.field) : encode_deep_exr(s.spans), sync_);
     write_file_atomically(folder_ / step_file_name(name + "_color", s.step, "exr"),
                           encode_exr_rgba(s.picture), sync_);
   }
@@ -71,7 +86,8 @@ class ExrOutput final : public Output {
 
 OutputKind exr_output_kind() {
   return output_kind<ExrSettings, ExrOutput>("exr", "deep EXR images", exr_section(),
-                                             {.picture = true, .spans = true}, false, true);
+                                             {.picture = true, .spans = true, .field = true}, false,
+                                             true);
 }
 
 }  // namespace voxspan

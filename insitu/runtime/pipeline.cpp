@@ -179,7 +179,7 @@ struct InsituPipeline::Impl {
       ViewState& v = views[i];
       FrameStats& stats = record.views[i].second;
       stats.zero();
-      results[i] = {v.name, nullptr, nullptr};
+      results[i] = {v.name, nullptr, nullptr, nullptr, nullptr, &stats};
       try {
         const Camera camera = v.framing.update(step_box);
         const bool shown =
@@ -192,6 +192,7 @@ struct InsituPipeline::Impl {
         results[i].picture = &v.products.picture;
         if (needs.first_hit_depth) results[i].first_hit_depth = &v.products.first_hit_depth;
         if (needs.spans) results[i].spans = v.products.shaded_spans;
+        if (needs.field) results[i].field = v.products.shaded_field;
       } catch (const std::exception& e) {
         timer.collect(stats);  // closes the scopes of the failed frame
         ++totals.failed_views;

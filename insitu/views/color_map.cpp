@@ -48,4 +48,13 @@ glm::vec3 map_color(ColorMap map, double t) {
   return glm::mix(linear_rgb(s[k]), linear_rgb(s[k + 1]), f);
 }
 
+std::array<double, 2> display_range(double lo, double hi) {
+  if (!(lo <= hi) || !std::isfinite(lo) || !std::isfinite(hi)) return {0, 1};
+  if (hi - lo <= 1e-12 * std::max(std::abs(lo), std::abs(hi))) {
+    const double pad = lo == 0 ? 0.5 : 0.01 * std::abs(lo);
+    return {lo - pad, hi + pad};
+  }
+  return {lo, hi};
+}
+
 }  // namespace voxspan

@@ -5,6 +5,7 @@
 // encoding (insitu/outputs/png_image.h) expect. Standard library and glm only.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -22,5 +23,9 @@ inline constexpr EnumName<ColorMap> kColorMapNames[] = {{"viridis", ColorMap::vi
 
 // The colour at t in [0, 1] (clamped; NaN gives the map's lowest colour), linear RGB.
 glm::vec3 map_color(ColorMap map, double t);
+
+// The automatic range for values from lo to hi: [lo, hi], widened about them when (nearly)
+// equal so that the map's middle shows; [0, 1] when there are none (lo > hi or not finite).
+std::array<double, 2> display_range(double lo, double hi);
 
 }  // namespace voxspan

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "insitu/parallel/communicator.h"
+#include "insitu/views/legend.h"
 #include "insitu/views/view.h"
 #include "voxspan/error.h"
 #include "voxspan/log.h"
@@ -26,39 +27,6 @@ const schema::Section<SlicePlaneConfig>& plane_section() {
           r.checker().error(r.find("normal"), r.path("normal"), "must not be zero");
       }};
   return s;
-}
-
-// `range`: `auto` or [min, max] with min < max.
-schema::Key<SliceSettings> range_key() {
-  schema::Key<SliceSettings> k;
-  k.name = "range";
-  k.type = "[min, max] or `auto`";
-  k.help = "the values at the colour map's ends; `auto` = the step's smallest and largest";
-  k.read = [](yaml::MapReader& r, SliceSettings& s) {
-    if (!r.has("range")) return;
-    const YAML::Node n = r.find("range");
-    if (n.IsScalar() && n.Scalar() == "auto") {
-      s.range.reset();
-      return;
-    }
-    double lo = 0, hi = 0;
-    bool ok = n.IsSequence() && n.size() == 2;
-    try {
-      if (ok) lo = n[0].as<double>(), hi = n[1].as<double>();
-    } catch (const YAML::Exception&) {
-      ok = false;
-    }
-    if (!ok || !std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
-      r.checker().error(n, r.path("range"), "expected `auto` or [min, max] with min < max");
-      return;
-    }
-    s.range = std::array<double, 2>{lo, hi};
-  };
-  k.emit = [](YAML::Emitter& e, const SliceSettings& s) {
-    if (!s.range) e << "auto";
-    else e << YAML::Flow << YAML::BeginSeq << (*s.range)[0] << (*s.range)[1] << YAML::EndSeq;
-  };
-  return k;
 }
 
 const schema::Section<SliceSettings>& slice_section() {
@@ -87,7 +55,9 @@ const schema::Section<SliceSettings>& slice_section() {
                                   "follows the picture's aspect); `auto` = the fluid's box "
                                   "as the plane sees it"),
            schema::choice("color_map", &S::color_map, kColorMapNames, "the colour map"),
-           range_key(),
+           schema::interval_or_auto("range", &S::range,
+                                    "the values at the colour map's ends; `auto` = the "
+                                    "step's smallest and largest"),
            schema::integer("isolines", &S::isolines, 0, 64,
                            "isolines, evenly spaced inside the range; 0: none")}),
       [](yaml::MapReader& r, S& v) {
@@ -164,6 +134,11 @@ class SliceView final : public View {
     draw(out.picture);
     if (step.needs.first_hit_depth) no_surface(out.first_hit_depth, w, h);
     out.shaded_spans = nullptr;
+    out.shaded_field = nullptr;
+    if (step.needs.field) {
+      fill_field(plane, out.field);
+      out.shaded_field = &out.field;
+    }
     return true;
   }
 
@@ -196,18 +171,26 @@ class SliceView final : public View {
     finish_slice(values_, q.shepard);
   }
 
+  void fill_field(const SlicePlane& plane, FieldImage& f) const {
+    const int w = settings_.width, h = settings_.height;
+    if (f.values.width != w || f.values.height != h) f.values = FloatImage(w, h);
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) {
+        const std::size_t k = std::size_t(i) + std::size_t(w) * std::size_t(j);
+        f.values.set(i, j, glm::vec4(values_.values[k], float(values_.weight[k]), 0, 0));
+      }
+    f.quantity = settings_.quantity;
+    f.origin = plane.origin, f.u = plane.u, f.v = plane.v;
+    f.width = plane.width, f.height = plane.height;
+  }
+
   std::array<double, 2> range() const {
     if (settings_.range) return *settings_.range;
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (std::size_t k = 0; k < values_.values.size(); ++k)
       if (values_.weight[k] > 0)
         lo = std::min(lo, double(values_.values[k])), hi = std::max(hi, double(values_.values[k]));
-    if (!(lo <= hi)) return {0, 1};
-    if (hi - lo <= 1e-12 * std::max(std::abs(lo), std::abs(hi))) {
-      const double pad = lo == 0 ? 0.5 : 0.01 * std::abs(lo);
-      return {lo - pad, hi + pad};
-    }
-    return {lo, hi};
+    return display_range(lo, hi);
   }
 
   // The colour-mapped values, isolines darkened, no-fluid pixels dark, the colour bar.
@@ -237,15 +220,7 @@ class SliceView final : public View {
         }
         picture.set(i, j, glm::vec4(c, 1.0f));
       }
-    // The colour bar: the map from the range's top (hi) to its bottom (lo), right edge.
-    const int bar = std::max(4, w / 40), x0 = w - 2 * bar, top = h / 10, bottom = h - h / 10;
-    if (x0 <= 0 || bottom - top < 2) return;
-    for (int j = top; j < bottom; ++j)
-      for (int i = x0; i < x0 + bar; ++i)
-        picture.set(i, j,
-                    glm::vec4(map_color(settings_.color_map,
-                                        double(bottom - 1 - j) / double(bottom - 1 - top)),
-                              1.0f));
+    draw_color_bar(picture, settings_.color_map, lo, hi);
   }
 
   const SliceSettings settings_;

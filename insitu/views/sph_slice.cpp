@@ -64,16 +64,6 @@ glm::dvec3 SlicePlane::pixel_centre(int i, int j, int image_width, int image_hei
   return origin + s * u + t * v;
 }
 
-namespace {
-
-double magnitude(const AttributeView& a, std::size_t i) {
-  if (a.components == 1) return a.component[0][i];
-  const double x = a.component[0][i], y = a.component[1][i], z = a.component[2][i];
-  return std::sqrt(x * x + y * y + z * z);
-}
-
-}  // namespace
-
 void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
                        const SlicePlane& plane, int width, int height, SliceImage& out) {
   if (!(q.smoothing_length > 0))
@@ -98,8 +88,8 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
     const glm::dvec3 p(a[0], a[1], a[2]);
     if (std::abs(glm::dot(p - plane.origin, plane.normal)) >= support) continue;
     const double volume =
-        per_particle_volume ? magnitude(*mass, i) / magnitude(*density, i) : q.rest_volume;
-    const double value = magnitude(*quantity, i);
+        per_particle_volume ? mass->magnitude(i) / density->magnitude(i) : q.rest_volume;
+    const double value = quantity->magnitude(i);
     if (!std::isfinite(volume) || !std::isfinite(value)) continue;
     near.push_back({p, volume * value, volume});
   }

@@ -3,9 +3,13 @@
 // step asks for it.
 #pragma once
 
+#include <string>
 #include <string_view>
 
+#include <glm/glm.hpp>
+
 #include "render/float_image.h"
+#include "render/frame_stats.h"
 #include "render/span_image.h"
 
 namespace voxspan {
@@ -15,13 +19,26 @@ struct ViewNeeds {
   bool picture = false;          // the shaded picture (linear RGBA)
   bool first_hit_depth = false;  // distance from the eye to the first span entry per pixel
   bool spans = false;            // the span image the picture was shaded from, in host memory
-  bool any() const { return picture || first_hit_depth || spans; }
+  bool field = false;            // a 2D view's raw values (a slice's), with their world mapping
+  bool any() const { return picture || first_hit_depth || spans || field; }
   ViewNeeds& operator|=(const ViewNeeds& o) {
     picture |= o.picture;
     first_hit_depth |= o.first_hit_depth;
     spans |= o.spans;
+    field |= o.field;
     return *this;
   }
+};
+
+// The values a slice view drew, before the colour map, and where each pixel lies in the world:
+// pixel (i, j) of a W x H image (row 0 at the top) is at
+//   origin + ((i + 0.5) / W - 0.5) * width * u + (0.5 - (j + 0.5) / H) * height * v.
+struct FieldImage {
+  FloatImage values;  // r: the quantity (0 where no particle reaches), g: the kernel weight
+                      // sum_j (m_j / rho_j) W (0 there); b, a: 0
+  std::string quantity;
+  glm::dvec3 origin{0}, u{1, 0, 0}, v{0, 1, 0};
+  double width = 0, height = 0;  // world units
 };
 
 // One view's products of the step; the images are null when not asked for or when the view
@@ -31,6 +48,8 @@ struct ViewResult {
   const FloatImage* picture = nullptr;
   const FloatImage* first_hit_depth = nullptr;  // one channel (r) per pixel, 0: no fluid
   const SpanImage* spans = nullptr;
+  const FieldImage* field = nullptr;
+  const FrameStats* stats = nullptr;  // the view's passes and counts on this process
 };
 
 // A view's products of one step, kept from step to step (their storage is reused).
@@ -41,6 +60,9 @@ struct ViewProducts {
   // valid for this step: the CPU renderer's own, or the GL renderer's read back into `spans`.
   const SpanImage* shaded_spans = nullptr;
   SpanImage spans;
+  // When asked, from a view that has one: its raw values; null otherwise.
+  const FieldImage* shaded_field = nullptr;
+  FieldImage field;
 };
 
 }  // namespace voxspan

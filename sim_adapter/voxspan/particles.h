@@ -47,6 +47,13 @@ struct AttributeView {
   std::string_view name;
   int components = 0;
   std::array<StridedScalars, 3> component{};
+
+  // Particle i's value: the scalar, or the vector's length.
+  double magnitude(std::size_t i) const {
+    if (components == 1) return component[0][i];
+    const double x = component[0][i], y = component[1][i], z = component[2][i];
+    return std::sqrt(x * x + y * y + z * z);
+  }
 };
 
 class ParticleView {

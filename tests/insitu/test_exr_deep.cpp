@@ -1,7 +1,8 @@
 // outputs.exr's deep image (insitu/outputs/exr_image.h), read back with OpenEXR's own deep
 // reader: per pixel as many samples as the span image stores, Z and ZBack the spans' entry
 // and exit depths times the pixel ray's length (distances along the unit ray), to float
-// precision; pixels without spans have no samples. And its RGBA companion.
+// precision; pixels without spans have no samples. And its RGBA companion, and a slice view's
+// raw values with their world mapping.
 #include <gtest/gtest.h>
 
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -13,9 +14,15 @@
 #include <fstream>
 #include <vector>
 
+#include <OpenEXR/ImfDoubleAttribute.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfVecAttribute.h>
+
 #include "deep_exr_reader.h"
+#include "insitu/runtime/pipeline.h"
 #include "insitu/outputs/exr_image.h"
 #include "temp_folder.h"
+#include "voxspan/insitu.h"
 
 namespace voxspan {
 namespace {
@@ -87,6 +94,75 @@ TEST(DeepExr, TheColourCompanionHoldsThePictureAsRgbaFloats) {
   file.setFrameBuffer(frame);
   file.readPixels(0, 1);
   EXPECT_EQ(rgba, picture.rgba);
+}
+
+// A slice view with outputs.exr on: its raw values as float channels and the plane's
+// pixel-to-world mapping in the header, as the runtime wrote them.
+TEST(SliceExr, HoldsTheRawValuesAndThePixelToWorldMapping) {
+  test::TempFolder dir;
+  std::vector<double> xyz, density;
+  for (int k = 0; k < 10; ++k)
+    for (int j = 0; j < 10; ++j)
+      for (int i = 0; i < 20; ++i) {
+        for (int a : {i, j, k}) xyz.push_back((a + 0.5) * 0.05);
+        density.push_back(1000 + 10 * xyz[xyz.size() - 3]);
+      }
+  AdapterOptions o;
+  o.classify.particle_spacing = 0.05;
+  Adapter a = adapter_from_config_text(
+      "output_folder: " + dir.path().string() +
+          "\noutputs: {png: {enabled: false}, stats: {enabled: false},"
+          " exr: {enabled: true, trigger: {every_steps: 1}}}\n"
+          "writer: {fsync: false}\n"
+          "views:\n  - {name: s, kind: slice, width: 40, height: 20, quantity: density,"
+          " shepard: true, plane: {normal: [0, -1, 0]}}\n",
+      o);
+  ASSERT_TRUE(
+      a.execute(
+           3, 0,
+           ParticleView::aos(xyz.data(), density.size()).with_scalar("density", density.data()))
+          .ok());
+  const auto& pipeline = dynamic_cast<const InsituPipeline&>(*a.pipeline());
+  ASSERT_NE(pipeline.latest_views()[0].field, nullptr);
+  const FieldImage field = *pipeline.latest_views()[0].field;
+  a.finish();
+  std::filesystem::path file;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "exr"))
+    if (e.path().filename().string().find("_color") == std::string::npos) file = e.path();
+  ASSERT_FALSE(file.empty());
+  Imf::InputFile in(file.c_str());
+  const Imf::Header& h = in.header();
+  const Imath::V3d origin = h.typedAttribute<Imf::V3dAttribute>("voxspan:origin").value();
+  const Imath::V3d u = h.typedAttribute<Imf::V3dAttribute>("voxspan:u").value();
+  const Imath::V3d v = h.typedAttribute<Imf::V3dAttribute>("voxspan:v").value();
+  const double width = h.typedAttribute<Imf::DoubleAttribute>("voxspan:width").value();
+  EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("voxspan:quantity").value(), "density");
+  EXPECT_NE(h.findTypedAttribute<Imf::StringAttribute>("voxspan:pixel_to_world"), nullptr);
+  // The block's centre, seen from -y: +x to the right, z up.
+  EXPECT_NEAR(origin.x, 0.5, 1e-6);  // the box of the float spheres
+  EXPECT_NEAR(origin.y, 0.25, 1e-6);
+  EXPECT_NEAR(u.x, 1, 1e-12);
+  EXPECT_NEAR(v.z, 1, 1e-12);
+  EXPECT_EQ(width, field.width);
+  std::vector<float> value(40 * 20), weight(40 * 20);
+  Imf::FrameBuffer frame;
+  frame.insert("value", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(value.data()), sizeof(float),
+                                   sizeof(float) * 40));
+  frame.insert("weight", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(weight.data()),
+                                    sizeof(float), sizeof(float) * 40));
+  in.setFrameBuffer(frame);
+  in.readPixels(0, 19);
+  for (int j = 0; j < 20; ++j)
+    for (int i = 0; i < 40; ++i) {
+      const glm::vec4 f = field.values.at(i, j);
+      ASSERT_EQ(value[std::size_t(i + 40 * j)], f.r) << i << " " << j;
+      ASSERT_EQ(weight[std::size_t(i + 40 * j)], f.g) << i << " " << j;
+    }
+  // Inside the block the value is the density at the pixel's world x (Shepard: exact for a
+  // linear field away from the edges, to the lattice's symmetry).
+  const int i = 20, j = 10;
+  const double x = origin.x + ((i + 0.5) / 40 - 0.5) * width * u.x;
+  EXPECT_NEAR(value[std::size_t(i + 40 * j)], 1000 + 10 * x, 1e-3);
 }
 
 }  // namespace

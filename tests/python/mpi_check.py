@@ -1,7 +1,8 @@
 """mpiexec -n N python3 mpi_check.py OUTDIR: the adapter on every rank of mpi4py's
 COMM_WORLD, each with its slab of a water block (owned particles, then the neighbours' within
 three spacings as ghosts) and its density; rank 0's pictures (two surface views and an SPH
-slice of the density, whose sum runs over every rank's owned particles) must equal, to 1/255,
+slice of the density, whose sum runs over every rank's owned particles, and the particles as
+glyphs coloured by density, composited by depth) must equal, to 1/255,
 those of one process that renders the whole block. Exit status 0 when they do."""
 import sys
 
@@ -19,7 +20,8 @@ block[:, 2] += 0.02 * numpy.sin(7 * block[:, 0])  # a wavy surface, not a lattic
 density = 1000 + 50 * numpy.sin(5 * block[:, 0]) * block[:, 2]
 SLICE = ("  - {name: density, kind: slice, width: 96, height: 48, quantity: density,"
          " shepard: true, plane: {normal: [0, -1, 0]}}\n")
-views = VIEWS.replace("views:\n", "views:\n" + SLICE)
+GLYPHS = "  - {name: glyphs, kind: particles, width: 96, height: 54, color_by: density}\n"
+views = VIEWS.replace("views:\n", "views:\n" + SLICE + GLYPHS)
 
 edges = numpy.linspace(block[:, 0].min(), block[:, 0].max() + 1e-9, size + 1)
 lo, hi = edges[rank], edges[rank + 1]
@@ -48,4 +50,4 @@ for view, picture in alone.items():
     d = numpy.abs(picture.astype(int) - ranks[view].astype(int)).max()
     print(f"view {view}: {size} ranks against one process, largest difference {d}/255")
     worst = max(worst, d)
-sys.exit(0 if worst <= 1 and len(alone) == 3 else 1)
+sys.exit(0 if worst <= 1 and len(alone) == 4 else 1)

@@ -1,0 +1,103 @@
+#include "insitu/views/legend.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstdio>
+
+namespace voxspan {
+namespace {
+
+struct FontChar {
+  char c;
+  std::array<std::uint8_t, 7> rows;  // bit 4 is the leftmost pixel
+};
+
+// The classic 5x7 dot-matrix shapes.
+constexpr FontChar kFont[] = {
+    {'0', {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E}},
+    {'1', {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E}},
+    {'2', {0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F}},
+    {'3', {0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E}},
+    {'4', {0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02}},
+    {'5', {0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E}},
+    {'6', {0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E}},
+    {'7', {0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08}},
+    {'8', {0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E}},
+    {'9', {0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C}},
+    {'.', {0x00, 0x00, 0x00, 0x00, 0x00, 0x0C, 0x0C}},
+    {'-', {0x00, 0x00, 0x00, 0x1F, 0x00, 0x00, 0x00}},
+    {'+', {0x00, 0x04, 0x04, 0x1F, 0x04, 0x04, 0x00}},
+    {'e', {0x00, 0x00, 0x0E, 0x11, 0x1F, 0x10, 0x0E}},
+    {'m', {0x00, 0x00, 0x1A, 0x15, 0x15, 0x11, 0x11}},
+    {'x', {0x00, 0x00, 0x11, 0x0A, 0x04, 0x0A, 0x11}},
+    {'y', {0x00, 0x00, 0x11, 0x11, 0x0F, 0x01, 0x0E}},
+    {'z', {0x00, 0x00, 0x1F, 0x02, 0x04, 0x08, 0x1F}},
+    {'u', {0x00, 0x00, 0x11, 0x11, 0x11, 0x13, 0x0D}},
+    {'v', {0x00, 0x00, 0x11, 0x11, 0x11, 0x0A, 0x04}},
+};
+
+const FontChar* glyph(char c) {
+  for (const FontChar& f : kFont)
+    if (f.c == c) return &f;
+  return nullptr;
+}
+
+void fill(FloatImage& p, int x0, int y0, int size, glm::vec3 colour) {
+  for (int y = std::max(0, y0); y < std::min(p.height, y0 + size); ++y)
+    for (int x = std::max(0, x0); x < std::min(p.width, x0 + size); ++x)
+      p.set(x, y, glm::vec4(colour, 1.0f));
+}
+
+// One pass of the text in one colour, each font pixel grown by `grow` screen pixels per side.
+void stamp(FloatImage& p, int x, int y, std::string_view text, int scale, glm::vec3 colour,
+           int grow) {
+  for (std::size_t n = 0; n < text.size(); ++n) {
+    const FontChar* g = glyph(text[n]);
+    if (g == nullptr) continue;
+    const int left = x + int(n) * 6 * scale;
+    for (int row = 0; row < 7; ++row)
+      for (int col = 0; col < 5; ++col)
+        if ((g->rows[std::size_t(row)] >> (4 - col)) & 1)
+          fill(p, left + col * scale - grow, y + row * scale - grow, scale + 2 * grow, colour);
+  }
+}
+
+}  // namespace
+
+int text_scale(int image_height) { return std::max(1, image_height / 360); }
+
+int text_width(std::string_view text, int scale) { return int(text.size()) * 6 * scale; }
+
+void draw_text(FloatImage& picture, int x, int y, std::string_view text, int scale,
+               glm::vec3 colour) {
+  // A dark outline first, so that the text reads on any colour.
+  stamp(picture, x, y, text, scale, glm::vec3(0.0f), std::max(1, scale / 2));
+  stamp(picture, x, y, text, scale, colour, 0);
+}
+
+std::string legend_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
+void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi) {
+  const int w = picture.width, h = picture.height;
+  const int bar = std::max(4, w / 40), x0 = w - 2 * bar, top = h / 10, bottom = h - h / 10;
+  if (x0 <= 0 || bottom - top < 2) return;
+  for (int j = top; j < bottom; ++j)
+    for (int i = x0; i < x0 + bar; ++i)
+      picture.set(
+          i, j, glm::vec4(map_color(map, double(bottom - 1 - j) / double(bottom - 1 - top)), 1.0f));
+  const int s = text_scale(h), gap = bar / 2 + s;
+  const auto label = [&](double v, int centre_y) {
+    const std::string t = legend_number(v);
+    draw_text(picture, x0 - gap - text_width(t, s), centre_y - 7 * s / 2, t, s);
+  };
+  label(hi, top);
+  label(0.5 * (lo + hi), (top + bottom - 1) / 2);
+  label(lo, bottom - 1);
+}
+
+}  // namespace voxspan

@@ -1,0 +1,247 @@
+#include "insitu/views/particles_view.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "insitu/parallel/communicator.h"
+#include "insitu/views/legend.h"
+#include "insitu/views/trails.h"
+#include "insitu/views/view.h"
+#include "voxspan/error.h"
+
+namespace voxspan {
+namespace {
+
+const schema::Section<TrailSettings>& trails_section() {
+  using T = TrailSettings;
+  static const schema::Section<T> s{
+      "views[i].trails",
+      {schema::text("id", &T::id, "the attribute that tells the particles apart"),
+       schema::integer("every", &T::every, std::int64_t(0), std::int64_t(1) << 53,
+                       "trail the particles whose id is a multiple of it; 0: none"),
+       schema::integers("ids", &T::ids, 0, std::int64_t(1) << 53,
+                        "and the particles with these ids"),
+       schema::integer("length", &T::length, std::int64_t(2), std::int64_t(4096),
+                       "render steps a trail spans"),
+       schema::vec3("colour", &T::colour, "linear RGB of the newest part")}};
+  return s;
+}
+
+const schema::Section<ParticlesSettings>& particles_section() {
+  using S = ParticlesSettings;
+  static const schema::Section<S> s{
+      "views[i]",
+      view_keys<S>(
+          "particles",
+          {schema::text("color_by", &S::color_by,
+                        "the attribute that colours the glyphs (a vector: its magnitude); "
+                        "empty: one colour"),
+           schema::choice("color_map", &S::color_map, kColorMapNames, "the colour map"),
+           schema::interval_or_auto("range", &S::range,
+                                    "the values at the colour map's ends; `auto` = the drawn "
+                                    "particles' smallest and largest"),
+           schema::text("cull_by", &S::cull_by, "the attribute cull_range tests; empty: color_by"),
+           schema::interval_or_auto("cull_range", &S::cull_range,
+                                    "draw only the particles with cull_by in [min, max]; "
+                                    "`auto`: all"),
+           schema::choice("draw", &S::draw, kGlyphSubsetNames,
+                          "every owned particle, or only those of the cells that are not inner "
+                          "(the fluid's shell)"),
+           schema::choice("culling", &S::culling, kGlyphCullingNames,
+                          "skip particles outside the view (`frustum`) and also cells hidden "
+                          "behind drawn glyphs (`occlusion`); never changes a pixel"),
+           schema::number_or_auto("radius", &S::radius, schema::above(0),
+                                  "the glyphs' radius, world units; `auto` = half the particle "
+                                  "spacing (glyphs at rest touch)"),
+           schema::number("ambient_occlusion", &S::ambient_occlusion, schema::between(0, 1),
+                          "how much neighbouring glyphs darken a glyph (0: not at all)"),
+           schema::flag("legend", &S::legend, "draw the colour bar with its values"),
+           schema::map<S, TrailSettings>("trails", &S::trails, trails_section(),
+                                         "paths of chosen particles over the last render steps")}),
+      [](yaml::MapReader& r, S& v) {
+        if (v.cull_range && v.cull_by.empty() && v.color_by.empty())
+          r.checker().error(r.find("cull_range"), r.path("cull_range"),
+                            "needs `cull_by` or `color_by` (the attribute it tests)");
+      }};
+  return s;
+}
+
+// One pixel's nearest glyph as a rank sends it to the root.
+struct GlyphHit {
+  std::uint32_t pixel;
+  float depth, value;
+  float normal[3];
+};
+static_assert(sizeof(GlyphHit) == 24);
+
+class ParticlesView final : public View {
+ public:
+  ParticlesView(const ParticlesSettings& s, const ViewContext& c)
+      : settings_(s), spacing_(c.particle_spacing), comm_(c.comm) {}
+
+  bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
+              ViewProducts& out) override {
+    if (step.data.particles == nullptr) throw make_error("particles: the step has no particles");
+    const GlyphSelection selection = selection_for(*step.data.particles);
+    std::string failure;
+    try {
+      auto t = timer.cpu("glyph_raster");
+      rasterize_glyphs(*step.data.particles, step.data.cells, step.camera, selection, glyphs_);
+      collect_trail_points(*step.data.particles, trail_choice(), trail_points_);
+    } catch (const std::exception& e) {
+      failure = e.what();
+    }
+    if (comm_ != nullptr) {
+      // Every rank takes part even when its own part failed; then all throw together.
+      const Agreement a = comm_->agree(failure.empty(), failure);
+      if (!a.ok) throw make_error("rank ", a.rank, ": ", a.message);
+      auto t = timer.cpu("glyph_composite");
+      combine_ranks();
+      gather_trail_points();
+      if (!comm_->root()) return false;
+    } else if (!failure.empty()) {
+      throw Error(failure);
+    }
+    if (trail_choice().any()) trails_.add_step(trail_points_);
+    report(stats);
+    auto t = timer.cpu("glyph_shade");
+    GlyphShading shading;
+    shading.by_value = !settings_.color_by.empty();
+    shading.map = settings_.color_map;
+    const auto [lo, hi] =
+        settings_.range.value_or(display_range(glyphs_.value_min, glyphs_.value_max));
+    shading.lo = lo, shading.hi = hi;
+    shading.ao_radius = 4 * selection.radius;
+    shading.ao_strength = settings_.ambient_occlusion;
+    shade_glyphs(glyphs_, step.camera, shading, out.picture);
+    if (trail_choice().any()) {
+      const Vec3d& c = settings_.trails.colour;
+      trails_.draw(step.camera, glyphs_.depth, glm::vec3(c[0], c[1], c[2]), out.picture);
+      stats.set_count("trails", std::int64_t(trails_.count()));
+    }
+    if (settings_.legend && shading.by_value)
+      draw_color_bar(out.picture, settings_.color_map, lo, hi);
+    if (step.needs.first_hit_depth) first_hit(step.camera, out.first_hit_depth);
+    out.shaded_spans = nullptr;
+    return true;
+  }
+
+  std::string description() const override {
+    return "particles" +
+           (settings_.color_by.empty() ? std::string() : " by " + settings_.color_by) + " " +
+           std::to_string(settings_.width) + "x" + std::to_string(settings_.height);
+  }
+
+ private:
+  GlyphSelection selection_for(const ParticleView& particles) const {
+    GlyphSelection s;
+    s.radius =
+        settings_.radius.value_or(spacing_ > 0 ? 0.5 * spacing_ : particles.uniform_radius());
+    if (!(s.radius > 0))
+      throw make_error("view ", settings_.name,
+                       ": radius is `auto` but neither the particle spacing nor a radius is "
+                       "known; set it");
+    s.color_by = settings_.color_by;
+    s.cull_by = settings_.cull_by;
+    s.cull_range = settings_.cull_range;
+    s.boundary_only = settings_.draw == GlyphSubset::boundary;
+    s.culling = settings_.culling;
+    return s;
+  }
+
+  // The nearest glyph of all ranks per pixel on the root (ties: the lower rank), the value range
+  // and the counts of all. Collective.
+  void combine_ranks() {
+    double ends[2] = {glyphs_.value_min, -glyphs_.value_max};
+    comm_->min(ends);
+    glyphs_.value_min = ends[0], glyphs_.value_max = -ends[1];
+    GlyphCounts& c = glyphs_.counts;
+    std::int64_t counts[] = {c.owned,          c.range_culled,     c.inner_skipped, c.holding_eye,
+                             c.frustum_culled, c.occlusion_culled, c.drawn,         c.cells_hidden};
+    comm_->sum(counts);
+    c = {counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6], counts[7]};
+    hits_.clear();
+    for (std::size_t k = 0; k < glyphs_.nearest.size(); ++k)
+      if (glyphs_.nearest[k] != kNoGlyph) {
+        const glm::vec3 n = glyphs_.normal[k];
+        hits_.push_back({std::uint32_t(k), glyphs_.depth[k], glyphs_.value[k], {n.x, n.y, n.z}});
+      }
+    const auto parts = comm_->gather(std::as_bytes(std::span(hits_)));
+    if (!comm_->root()) return;
+    std::fill(glyphs_.nearest.begin(), glyphs_.nearest.end(), kNoGlyph);
+    for (std::size_t rank = 0; rank < parts.size(); ++rank)
+      for (std::size_t b = 0; b + sizeof(GlyphHit) <= parts[rank].size(); b += sizeof(GlyphHit)) {
+        GlyphHit h;
+        std::memcpy(&h, parts[rank].data() + b, sizeof h);
+        const std::uint64_t key = glyph_key(h.depth, rank);
+        if (!(key < glyphs_.nearest[h.pixel])) continue;
+        glyphs_.nearest[h.pixel] = key;
+        glyphs_.depth[h.pixel] = h.depth;
+        glyphs_.value[h.pixel] = h.value;
+        glyphs_.normal[h.pixel] = glm::vec3(h.normal[0], h.normal[1], h.normal[2]);
+      }
+  }
+
+  TrailChoice trail_choice() const {
+    return {settings_.trails.id, settings_.trails.every, settings_.trails.ids};
+  }
+
+  // Every rank's trail points on the root, in rank order. Collective.
+  void gather_trail_points() {
+    if (!trail_choice().any()) return;
+    const auto parts = comm_->gather(std::as_bytes(std::span(trail_points_)));
+    if (!comm_->root()) return;
+    trail_points_.clear();
+    for (const auto& part : parts)
+      for (std::size_t b = 0; b + sizeof(TrailPoint) <= part.size(); b += sizeof(TrailPoint)) {
+        TrailPoint p;
+        std::memcpy(&p, part.data() + b, sizeof p);
+        trail_points_.push_back(p);
+      }
+  }
+
+  void report(FrameStats& stats) const {
+    const GlyphCounts& c = glyphs_.counts;
+    stats.set_count("glyphs_drawn", c.drawn);
+    stats.set_count("glyphs_frustum_culled", c.frustum_culled);
+    stats.set_count("glyphs_occlusion_culled", c.occlusion_culled);
+    stats.set_count("glyphs_range_culled", c.range_culled);
+    stats.set_count("glyph_cells_hidden", c.cells_hidden);
+  }
+
+  // Distance from the eye to each pixel's glyph (0: none), as the depth output writes it.
+  void first_hit(const Camera& camera, FloatImage& depth) const {
+    if (depth.width != glyphs_.width || depth.height != glyphs_.height)
+      depth = FloatImage(glyphs_.width, glyphs_.height);
+    const ViewFrame f(camera);
+    for (int y = 0; y < glyphs_.height; ++y)
+      for (int x = 0; x < glyphs_.width; ++x) {
+        const std::size_t k = std::size_t(x) + std::size_t(glyphs_.width) * std::size_t(y);
+        const float d = glyphs_.nearest[k] == kNoGlyph
+                            ? 0.0f
+                            : float(double(glyphs_.depth[k]) * f.ray_scale(x, y));
+        depth.set(x, y, glm::vec4(d, 0, 0, 0));
+      }
+  }
+
+  const ParticlesSettings settings_;
+  const double spacing_;
+  Communicator* const comm_;  // null in one process
+  GlyphImage glyphs_;
+  std::vector<GlyphHit> hits_;
+  std::vector<TrailPoint> trail_points_;
+  Trails trails_{int(settings_.trails.length)};
+};
+
+}  // namespace
+
+ViewKind particles_view_kind() {
+  ViewKind kind = view_kind<ParticlesSettings, ParticlesView>("particles", particles_section());
+  kind.config.reference = [] {
+    return particles_section().reference() + "\n#### `views[i].trails` (kind `particles`)\n\n" +
+           trails_section().reference();
+  };
+  return kind;
+}
+
+}  // namespace voxspan

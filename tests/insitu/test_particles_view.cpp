@@ -1,0 +1,204 @@
+// views[i] of kind `particles` through the runtime: its keys read and refused as documented,
+// the glyphs coloured through the map with the legend beside them, the counts in the step's
+// stats, a colour attribute the solver does not pass failing the step by name, and the depth
+// the depth output writes. The glyphs themselves: test_glyphs.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "insitu/runtime/config_file.h"
+#include "insitu/runtime/pipeline.h"
+#include "insitu/views/particles_view.h"
+#include "voxspan/error.h"
+#include "voxspan/insitu.h"
+
+namespace voxspan {
+namespace {
+
+constexpr double kSpacing = 0.05;
+
+// A block 1.0 x 0.5 x 0.5 with a speed rising along x.
+struct Block {
+  std::vector<double> xyz, speed;
+  Block() {
+    for (int k = 0; k < 10; ++k)
+      for (int j = 0; j < 10; ++j)
+        for (int i = 0; i < 20; ++i) {
+          for (int a : {i, j, k}) xyz.push_back((a + 0.5) * kSpacing);
+          speed.push_back(xyz[xyz.size() - 3]);
+        }
+  }
+  ParticleView view() const {
+    return ParticleView::aos(xyz.data(), speed.size()).with_scalar("speed", speed.data());
+  }
+};
+
+std::string config(const std::string& keys) {
+  return "output_folder: " + testing::TempDir() +
+         "particles_view\n"
+         "outputs: {png: {enabled: false}, stats: {enabled: false}}\n"
+         "trigger: {every_steps: 1}\n"
+         "views:\n  - {name: p, kind: particles, width: 96, height: 54, "
+         "camera: {direction: [0, 0, -1], up: [0, 1, 0]}, " +
+         keys + "}\n";
+}
+
+const InsituPipeline& pipeline_of(const Adapter& a) {
+  return dynamic_cast<const InsituPipeline&>(*a.pipeline());
+}
+
+AdapterOptions options() {
+  AdapterOptions o;
+  o.classify.particle_spacing = kSpacing;
+  return o;
+}
+
+TEST(ParticlesView, KeysAreReadAsWritten) {
+  const Config c = load_config_string(
+      "views:\n  - {kind: particles, color_by: velocity, color_map: coolwarm, range: [0, 2],"
+      " cull_by: p, cull_range: [1, 5], draw: boundary, culling: frustum, radius: 0.01,"
+      " ambient_occlusion: 0.5, legend: false}\n");
+  const auto& s = dynamic_cast<const ParticlesSettings&>(*c.views[0].settings);
+  EXPECT_EQ(s.color_by, "velocity");
+  EXPECT_EQ(s.color_map, ColorMap::coolwarm);
+  ASSERT_TRUE(s.range && s.cull_range);
+  EXPECT_EQ((*s.cull_range)[1], 5.0);
+  EXPECT_EQ(s.draw, GlyphSubset::boundary);
+  EXPECT_EQ(s.culling, GlyphCulling::frustum);
+  EXPECT_EQ(s.radius, 0.01);
+  EXPECT_FALSE(s.legend);
+  EXPECT_EQ(load_config_string(to_yaml(c)).views[0], c.views[0]);
+}
+
+TEST(ParticlesView, BadKeysAreRefusedWithTheirLine) {
+  for (const auto& [yaml, words] : std::vector<std::pair<std::string, std::string>>{
+           {"color_map: rainbow", "color_map"},
+           {"culling: some", "culling"},
+           {"range: [2, 1]", "range"},
+           {"radius: -1", "radius"},
+           {"cull_range: [0, 1]", "needs `cull_by` or `color_by`"},
+           {"colour_by: speed", "colour_by"}}) {
+    try {
+      load_config_string("views:\n  - {kind: particles, " + yaml + "}\n", "p.yaml");
+      ADD_FAILURE() << yaml << " was accepted";
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("p.yaml:2:"), std::string::npos) << what;
+      EXPECT_NE(what.find(words), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(ParticlesView, ColoursTheGlyphsAndDrawsTheLegend) {
+  const Block b;
+  Adapter a = adapter_from_config_text(config("color_by: speed"), options());
+  ASSERT_TRUE(a.execute(0, 0, b.view()).ok());
+  const InsituPipeline& pipeline = pipeline_of(a);
+  const FloatImage& p = *pipeline.latest_views()[0].picture;
+  // Seen from +z with +x to the right: slow (viridis: blue-violet) on the left, fast
+  // (yellow-green) on the right; the colour bar at the right edge runs from yellow at its top
+  // to violet at its bottom.
+  const glm::vec4 left = p.at(20, 18), right = p.at(66, 18);  // between the legend's labels
+  EXPECT_GT(left.b, left.g);
+  EXPECT_GT(right.g, right.b);
+  const int bar_x = 96 - 2 * 4 + 1;
+  EXPECT_GT(p.at(bar_x, 6).g, p.at(bar_x, 6).b);
+  EXPECT_GT(p.at(bar_x, 47).b, p.at(bar_x, 47).g);
+  // The corners show the background.
+  EXPECT_LT(p.at(0, 0).r + p.at(0, 0).g, 0.1f);
+}
+
+TEST(ParticlesView, ReportsWhatItDrewAndCulled) {
+  const Block b;
+  Adapter a = adapter_from_config_text(config("radius: 0.04"), options());
+  ASSERT_TRUE(a.execute(0, 0, b.view()).ok());
+  const FrameStats& stats = *pipeline_of(a).latest_views()[0].stats;
+  EXPECT_GT(stats.count("glyphs_drawn"), 0);
+  EXPECT_GT(stats.count("glyphs_occlusion_culled"), 0);
+  EXPECT_EQ(stats.count("glyphs_drawn") + stats.count("glyphs_occlusion_culled") +
+                stats.count("glyphs_frustum_culled"),
+            2000);
+}
+
+TEST(ParticlesView, AMissingColourAttributeFailsTheStepByName) {
+  const Block b;
+  Adapter a = adapter_from_config_text(config("color_by: pressure"), options());
+  const Status s = a.execute(0, 0, b.view());
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message.find("\"pressure\""), std::string::npos) << s.message;
+}
+
+}  // namespace
+}  // namespace voxspan
+
+namespace voxspan {
+namespace {
+
+// Particles moving along +x, one per row, with ids; trails of the even ids.
+struct Movers {
+  std::vector<double> xyz, id;
+  void at_step(int step) {
+    xyz.clear();
+    id.clear();
+    for (int k = 0; k < 6; ++k) {
+      for (double c : {0.1 * step, 0.3 * k, 0.0}) xyz.push_back(c);
+      id.push_back(100 + k);
+    }
+  }
+  ParticleView view() const {
+    return ParticleView::aos(xyz.data(), id.size()).with_scalar("id", id.data());
+  }
+};
+
+std::string trail_config(const std::string& trails) {
+  return "output_folder: " + testing::TempDir() +
+         "particles_trails\n"
+         "outputs: {png: {enabled: false}, stats: {enabled: false}}\n"
+         "trigger: {every_steps: 1}\n"
+         "views:\n  - {name: p, kind: particles, width: 160, height: 120, radius: 0.05,"
+         " ambient_occlusion: 0, camera: {eye: [0.4, 0.75, 3], target: [0.4, 0.75, 0], up: [0, 1, "
+         "0]}, trails: " +
+         trails + "}\n";
+}
+
+// Pixels with the trail's colour (more red than blue: the glyphs and background are bluish).
+int trail_pixels(const FloatImage& p) {
+  int n = 0;
+  for (int y = 0; y < p.height; ++y)
+    for (int x = 0; x < p.width; ++x) n += p.at(x, y).r > p.at(x, y).b + 0.2f;
+  return n;
+}
+
+TEST(ParticlesView, TrailsFollowTheChosenIds) {
+  Movers m;
+  AdapterOptions o;
+  o.classify.particle_spacing = 0.1;
+  Adapter a = adapter_from_config_text(trail_config("{every: 2, length: 8}"), o);
+  std::vector<int> pixels;
+  for (int step = 0; step < 8; ++step) {
+    m.at_step(step);
+    ASSERT_TRUE(a.execute(step, step, m.view()).ok());
+    const ViewResult& r = pipeline_of(a).latest_views()[0];
+    EXPECT_EQ(r.stats->count("trails"), 3);  // ids 100, 102, 104
+    pixels.push_back(trail_pixels(*r.picture));
+  }
+  EXPECT_EQ(pixels[0], 0);               // one point: no line yet
+  EXPECT_GT(pixels[4], pixels[1] + 10);  // the trails grow as the particles move
+  // Three trails of 0.7 world units each, about 34 pixels long at this distance, their older
+  // half faded below the count's threshold.
+  EXPECT_GT(pixels[7], 3 * 8);
+  EXPECT_LT(pixels[7], 3 * 40);
+}
+
+TEST(ParticlesView, TrailsNeedTheIdAttribute) {
+  const Block b;
+  Adapter a = adapter_from_config_text(config("trails: {every: 10, id: tag}"), options());
+  const Status s = a.execute(0, 0, b.view());
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message.find("\"tag\""), std::string::npos) << s.message;
+}
+
+}  // namespace
+}  // namespace voxspan
