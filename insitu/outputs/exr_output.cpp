@@ -36,24 +36,16 @@ class ExrOutput final : public Output {
   void write(const OutputStep& step) override {
     for (std::size_t v = 0; v < step.views.size(); ++v) {
       const ViewResult& r = step.views[v];
-      if (r.picture == nullptr) continue;  // failed, or not this rank's
-      if (r.field != nullptr) {
-        jobs_.submit("slice EXR image", [&](Slot& s) {
-          s.view = v;
-          s.step = step.data.step;
-          s.field = *r.field;  // the slot's vectors keep their capacity
-          s.is_field = true;
-          s.picture = *r.picture;
-        });
-      } else if (r.spans != nullptr) {
-        jobs_.submit("deep EXR image", [&](Slot& s) {
-          s.view = v;
-          s.step = step.data.step;
-          s.spans = *r.spans;
-          s.is_field = false;
-          s.picture = *r.picture;
-        });
-      }
+      // failed, not this rank's, or a view with neither spans nor raw values (particles)
+      if (r.picture == nullptr || (r.field == nullptr && r.spans == nullptr)) continue;
+      jobs_.submit(r.field != nullptr ? "slice EXR image" : "deep EXR image", [&](Slot& s) {
+        s.view = v;
+        s.step = step.data.step;
+        s.is_field = r.field != nullptr;  // the slot's vectors keep their capacity
+        if (s.is_field) s.field = *r.field;
+        else s.spans = *r.spans;
+        s.picture = *r.picture;
+      });
     }
   }
   OutputTally tally() const override { return jobs_.tally(); }

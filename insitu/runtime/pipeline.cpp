@@ -179,7 +179,7 @@ struct InsituPipeline::Impl {
       ViewState& v = views[i];
       FrameStats& stats = record.views[i].second;
       stats.zero();
-      results[i] = {v.name, nullptr, nullptr, nullptr, nullptr, &stats};
+      results[i] = {.name = v.name, .stats = &stats};
       try {
         const Camera camera = v.framing.update(step_box);
         const bool shown =

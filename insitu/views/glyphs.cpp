@@ -22,13 +22,13 @@ struct Tally {
   double lo = kInf, hi = -kInf;  // the selected particles' values
 
   void join(const Tally& o) {
-    GlyphCounts& c = counts;
-    const GlyphCounts& d = o.counts;
-    c.owned += d.owned, c.range_culled += d.range_culled, c.inner_skipped += d.inner_skipped;
-    c.holding_eye += d.holding_eye, c.frustum_culled += d.frustum_culled;
-    c.occlusion_culled += d.occlusion_culled, c.drawn += d.drawn;
-    c.cells_hidden += d.cells_hidden;
+    counts += o.counts;
     lo = std::min(lo, o.lo), hi = std::max(hi, o.hi);
+  }
+  // parallel_reduce's join.
+  static Tally joined(Tally a, const Tally& b) {
+    a.join(b);
+    return a;
   }
 };
 
@@ -150,10 +150,7 @@ class Passes {
           }
           return t;
         },
-        [](Tally a, const Tally& b) {
-          a.join(b);
-          return a;
-        });
+        Tally::joined);
   }
 
   const ParticleView& particles() const { return particles_; }
@@ -335,10 +332,7 @@ Tally draw_inner_cells(const ViewFrame& f, const CellStatesView& cells, const Gl
           }
           return t;
         },
-        [](Tally a, const Tally& b) {
-          a.join(b);
-          return a;
-        }));
+        Tally::joined));
   }
   return total;
 }
@@ -382,21 +376,19 @@ void reference_glyphs(const ParticleView& particles, const CellStatesView& cells
         ++tally.counts.drawn;
         chosen[i] = 1;
       });
-  std::vector<std::size_t> drawn;
+  std::vector<std::pair<std::size_t, glm::dvec3>> drawn;  // index, view-space centre
   for (std::size_t i = 0; i < chosen.size(); ++i)
-    if (chosen[i] != 0) drawn.push_back(i);
+    if (chosen[i] != 0) drawn.emplace_back(i, view_centre(f, particles, i));
   tbb::parallel_for(0, out.height, [&](int y) {
     for (int x = 0; x < out.width; ++x) {
       std::uint64_t& slot = out.nearest[std::size_t(x) + std::size_t(out.width) * std::size_t(y)];
-      for (std::size_t i : drawn) {
+      for (const auto& [i, c] : drawn) {
         float z = 0;
-        if (glyph_hit(f, x, y, view_centre(f, particles, i), r2, z))
-          slot = std::min(slot, glyph_key(z, i));
+        if (glyph_hit(f, x, y, c, r2, z)) slot = std::min(slot, glyph_key(z, i));
       }
     }
   });
   resolve(f, passes, t, out);
-  out.counts.cells_hidden = 0;
 }
 
 namespace {

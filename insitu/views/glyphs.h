@@ -63,6 +63,17 @@ struct GlyphCounts {
   std::int64_t drawn = 0;         // projected and tested at their pixels
   std::int64_t cells_hidden = 0;  // inner-full cells the occlusion test skipped
   std::int64_t selected() const { return drawn + frustum_culled + occlusion_culled; }
+  // Every count, for the code that adds them up (threads, ranks) without naming each.
+  template <class C> static auto fields(C& c) {
+    return std::array{&c.owned,          &c.range_culled,     &c.inner_skipped, &c.holding_eye,
+                      &c.frustum_culled, &c.occlusion_culled, &c.drawn,         &c.cells_hidden};
+  }
+  GlyphCounts& operator+=(const GlyphCounts& o) {
+    const auto mine = fields(*this);
+    const auto theirs = fields(o);
+    for (std::size_t k = 0; k < mine.size(); ++k) *mine[k] += *theirs[k];
+    return *this;
+  }
 };
 
 inline constexpr std::uint64_t kNoGlyph = ~std::uint64_t(0);

@@ -14,7 +14,7 @@
 
 namespace voxspan {
 
-// The font's pixels per font pixel for a picture of this height (1 up to 359 rows, 2 at 360...).
+// Screen pixels per font pixel for a picture of this height (1 up to 719 rows, 2 from 720...).
 int text_scale(int image_height);
 // Width in pixels of `text` at `scale` (6 font pixels per character, the last one's gap kept).
 int text_width(std::string_view text, int scale);

@@ -1,6 +1,7 @@
 #include "insitu/views/particles_view.h"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 
 #include "insitu/parallel/communicator.h"
@@ -155,11 +156,11 @@ class ParticlesView final : public View {
     double ends[2] = {glyphs_.value_min, -glyphs_.value_max};
     comm_->min(ends);
     glyphs_.value_min = ends[0], glyphs_.value_max = -ends[1];
-    GlyphCounts& c = glyphs_.counts;
-    std::int64_t counts[] = {c.owned,          c.range_culled,     c.inner_skipped, c.holding_eye,
-                             c.frustum_culled, c.occlusion_culled, c.drawn,         c.cells_hidden};
+    const auto fields = GlyphCounts::fields(glyphs_.counts);
+    std::array<std::int64_t, fields.size()> counts;
+    for (std::size_t k = 0; k < fields.size(); ++k) counts[k] = *fields[k];
     comm_->sum(counts);
-    c = {counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6], counts[7]};
+    for (std::size_t k = 0; k < fields.size(); ++k) *fields[k] = counts[k];
     hits_.clear();
     for (std::size_t k = 0; k < glyphs_.nearest.size(); ++k)
       if (glyphs_.nearest[k] != kNoGlyph) {
