@@ -2,8 +2,9 @@
 # tools/view_pictures.sh - the pictures of the particles and slice views in docs/images/ and the
 # README: the WCSPH dam break (examples/dambreak) with about 50 000 particles run to T = 1.8,
 # when the surge runs along the floor, with examples/dambreak/views.yaml (the particles coloured
-# by speed, the pressure on the tank's vertical mid-plane); the last step's frames are kept as
-#   docs/images/dambreak_particles_speed.png  docs/images/dambreak_slice_pressure.png
+# by speed, the pressure on the tank's vertical mid-plane, that slice placed among the particles);
+# the last step's frames are kept as docs/images/dambreak_particles_speed.png,
+# dambreak_slice_pressure.png and dambreak_particles_slice.png.
 # Needs the Release build (tools/build.sh). Extra arguments go to the solver.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,4 +15,5 @@ build/examples/dambreak/dambreak --config examples/dambreak/views.yaml \
 last() { ls views-output/frames/"$1"_*.png | sort | tail -1; }
 cp "$(last speed)" docs/images/dambreak_particles_speed.png
 cp "$(last pressure)" docs/images/dambreak_slice_pressure.png
-echo "view_pictures: wrote docs/images/dambreak_particles_speed.png and dambreak_slice_pressure.png"
+cp "$(last inside)" docs/images/dambreak_particles_slice.png
+echo "view_pictures: wrote docs/images/dambreak_{particles_speed,slice_pressure,particles_slice}.png"

@@ -288,21 +288,37 @@ Key<T> map(std::string name, M T::*member, const Section<M>& section, std::strin
   return k;
 }
 
-// A key of a member struct (a writer's own settings inside an output's) as a key of T.
-template <class T, class Inner> Key<T> lifted(Inner T::*member, Key<Inner> k) {
+// A key of an Inner as a key of T, where `part(t)` is t's Inner (const or not).
+template <class T, class Inner, class Part> Key<T> rebased(Key<Inner> k, Part part) {
   Key<T> out;
   out.name = std::move(k.name);
   out.type = std::move(k.type);
   out.help = std::move(k.help);
   out.shown_default = std::move(k.shown_default);
-  out.read = [member, read = std::move(k.read)](yaml::MapReader& r, T& t) { read(r, t.*member); };
-  out.emit = [member, emit = std::move(k.emit)](YAML::Emitter& e, const T& t) {
-    emit(e, t.*member);
-  };
+  out.read = [part, read = std::move(k.read)](yaml::MapReader& r, T& t) { read(r, part(t)); };
+  out.emit = [part, emit = std::move(k.emit)](YAML::Emitter& e, const T& t) { emit(e, part(t)); };
   if (k.applies)
-    out.applies = [member, applies = std::move(k.applies)](const T& t) {
-      return applies(t.*member);
-    };
+    out.applies = [part, applies = std::move(k.applies)](const T& t) { return applies(part(t)); };
+  return out;
+}
+
+// A key of a member struct (a writer's own settings inside an output's) as a key of T.
+template <class T, class Inner> Key<T> lifted(Inner T::*member, Key<Inner> k) {
+  return rebased<T>(
+      std::move(k), [member](auto& t) -> auto& { return t.*member; });
+}
+
+// The keys of a base struct as keys of T, which derives from it (a view kind's settings that
+// share their keys with another kind's nested map).
+template <class T, class Base> std::vector<Key<T>> from_base(std::vector<Key<Base>> keys) {
+  std::vector<Key<T>> out;
+  for (Key<Base>& k : keys)
+    out.push_back(rebased<T>(
+        std::move(k), [](auto& t) -> auto& {
+          using B = std::conditional_t<std::is_const_v<std::remove_reference_t<decltype(t)>>,
+                                       const Base, Base>;
+          return static_cast<B&>(t);
+        }));
   return out;
 }
 

@@ -140,6 +140,14 @@ class Passes {
                 continue;
               }
             }
+            if (selection_.cut) {
+              const std::array<double, 3> p = particles_.position(i);
+              if (glm::dot(selection_.cut->normal, glm::dvec3(p[0], p[1], p[2])) >
+                  selection_.cut->offset) {
+                ++t.counts.cut;
+                continue;
+              }
+            }
             const std::int64_t cell = cell_of(cells_, particles_.position(i));
             const std::uint8_t state = state_at(cells_, cell);
             if (selection_.boundary_only && cell::is_inner(state)) {

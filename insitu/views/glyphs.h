@@ -42,6 +42,13 @@ inline constexpr EnumName<GlyphCulling> kGlyphCullingNames[] = {
     {"frustum", GlyphCulling::frustum},
     {"occlusion", GlyphCulling::occlusion}};
 
+// A half space whose particles are left out: those with dot(normal, centre) > offset (the side
+// of a slice plane that faces the camera, so that the plane shows).
+struct GlyphCut {
+  glm::dvec3 normal{0, 0, 1};
+  double offset = 0;
+};
+
 // Which particles are drawn, with what radius and value.
 struct GlyphSelection {
   double radius = 0;          // every glyph's radius, world units (> 0)
@@ -49,6 +56,7 @@ struct GlyphSelection {
   std::string_view cull_by;   // the attribute cull_range tests (empty: color_by)
   std::optional<std::array<double, 2>> cull_range;  // drawn only with cull_by in [a, b]
   bool boundary_only = false;  // only particles of cells that are not inner (the shell)
+  std::optional<GlyphCut> cut;
   GlyphCulling culling = GlyphCulling::occlusion;
 };
 
@@ -56,6 +64,7 @@ struct GlyphSelection {
 struct GlyphCounts {
   std::int64_t owned = 0;          // owned particles with finite positions
   std::int64_t range_culled = 0;   // outside cull_range (or a non-finite value)
+  std::int64_t cut = 0;            // in the cut's half space
   std::int64_t inner_skipped = 0;  // in inner cells when only the shell is drawn
   std::int64_t holding_eye = 0;    // spheres around the eye
   std::int64_t frustum_culled = 0;
@@ -65,8 +74,9 @@ struct GlyphCounts {
   std::int64_t selected() const { return drawn + frustum_culled + occlusion_culled; }
   // Every count, for the code that adds them up (threads, ranks) without naming each.
   template <class C> static auto fields(C& c) {
-    return std::array{&c.owned,          &c.range_culled,     &c.inner_skipped, &c.holding_eye,
-                      &c.frustum_culled, &c.occlusion_culled, &c.drawn,         &c.cells_hidden};
+    return std::array{
+        &c.owned,          &c.range_culled,     &c.cut,   &c.inner_skipped, &c.holding_eye,
+        &c.frustum_culled, &c.occlusion_culled, &c.drawn, &c.cells_hidden};
   }
   GlyphCounts& operator+=(const GlyphCounts& o) {
     const auto mine = fields(*this);

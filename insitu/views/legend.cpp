@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cmath>
 #include <cstdio>
+#include <vector>
 
 namespace voxspan {
 namespace {
@@ -28,6 +30,7 @@ constexpr FontChar kFont[] = {
     {'.', {0x00, 0x00, 0x00, 0x00, 0x00, 0x0C, 0x0C}},
     {'-', {0x00, 0x00, 0x00, 0x1F, 0x00, 0x00, 0x00}},
     {'+', {0x00, 0x04, 0x04, 0x1F, 0x04, 0x04, 0x00}},
+    {'=', {0x00, 0x00, 0x1F, 0x00, 0x1F, 0x00, 0x00}},
     {'e', {0x00, 0x00, 0x0E, 0x11, 0x1F, 0x10, 0x0E}},
     {'m', {0x00, 0x00, 0x1A, 0x15, 0x15, 0x11, 0x11}},
     {'x', {0x00, 0x00, 0x11, 0x0A, 0x04, 0x0A, 0x11}},
@@ -82,9 +85,10 @@ std::string legend_number(double value) {
   return text;
 }
 
-void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi) {
+void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi, BarSide side) {
   const int w = picture.width, h = picture.height;
-  const int bar = std::max(4, w / 40), x0 = w - 2 * bar, top = h / 10, bottom = h - h / 10;
+  const int bar = std::max(4, w / 40), top = h / 10, bottom = h - h / 10;
+  const int x0 = side == BarSide::right ? w - 2 * bar : bar;
   if (x0 <= 0 || bottom - top < 2) return;
   for (int j = top; j < bottom; ++j)
     for (int i = x0; i < x0 + bar; ++i)
@@ -93,11 +97,64 @@ void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi) {
   const int s = text_scale(h), gap = bar / 2 + s;
   const auto label = [&](double v, int centre_y) {
     const std::string t = legend_number(v);
-    draw_text(picture, x0 - gap - text_width(t, s), centre_y - 7 * s / 2, t, s);
+    const int x = side == BarSide::right ? x0 - gap - text_width(t, s) : x0 + bar + gap;
+    draw_text(picture, x, centre_y - 7 * s / 2, t, s);
   };
   label(hi, top);
   label(0.5 * (lo + hi), (top + bottom - 1) / 2);
   label(lo, bottom - 1);
+}
+
+namespace {
+
+// About five round values inside [min(from, to), max(from, to)]: multiples of 1, 2 or 5 times
+// a power of ten.
+std::vector<double> ticks(double from, double to) {
+  const double lo = std::min(from, to), hi = std::max(from, to), span = hi - lo;
+  if (!(span > 0) || !std::isfinite(span)) return {};
+  const double raw = span / 5, power = std::pow(10.0, std::floor(std::log10(raw)));
+  const double step = raw / power < 1.5 ? power : raw / power < 3.5 ? 2 * power : 5 * power;
+  std::vector<double> out;
+  for (double n = std::ceil(lo / step); n * step <= hi; n += 1)
+    out.push_back(std::abs(n) < 0.5 ? 0.0 : n * step);  // an exact 0, never -1e-17
+  return out;
+}
+
+std::string tick_label(double value, const Axis& axis, bool named) {
+  return named ? std::string(axis.name) + "=" + legend_number(value) : legend_number(value);
+}
+
+void fill_rect(FloatImage& p, int x0, int y0, int x1, int y1, glm::vec3 colour) {
+  for (int y = std::max(0, y0); y < std::min(p.height, y1); ++y)
+    for (int x = std::max(0, x0); x < std::min(p.width, x1); ++x) p.set(x, y, glm::vec4(colour, 1));
+}
+
+}  // namespace
+
+void draw_axes(FloatImage& picture, const Axis& horizontal, const Axis& vertical) {
+  const int w = picture.width, h = picture.height, s = text_scale(h), mark = 4 * s;
+  if (w < kAxesMinWidth || h < kAxesMinHeight) return;
+  const glm::vec3 light(0.9f);
+  const std::vector<double> xs = ticks(horizontal.from, horizontal.to);
+  for (std::size_t n = 0; n < xs.size(); ++n) {
+    const int x = int(
+                  std::lround((xs[n] - horizontal.from) / (horizontal.to - horizontal.from) * w)),
+              thick = std::max(1, s / 2 + 1);
+    fill_rect(picture, x - thick / 2, h - mark, x - thick / 2 + thick, h, light);
+    const std::string t = tick_label(xs[n], horizontal, n == xs.size() / 2);
+    const int left = std::clamp(x - text_width(t, s) / 2, s, std::max(s, w - text_width(t, s)));
+    draw_text(picture, left, h - mark - s - 7 * s, t, s);
+  }
+  const std::vector<double> ys = ticks(vertical.from, vertical.to);
+  for (std::size_t n = 0; n < ys.size(); ++n) {
+    const int y = h - int(std::lround((ys[n] - vertical.from) / (vertical.to - vertical.from) * h)),
+              thick = std::max(1, s / 2 + 1);
+    if (y > h - 3 * mark - 7 * s) continue;  // leave the corner to the bottom axis's labels
+    // The value sits on its tick, which underlines it (beside it, a tick reads as a minus).
+    const std::string t = tick_label(ys[n], vertical, n == ys.size() / 2);
+    fill_rect(picture, 0, y - thick / 2, s + text_width(t, s), y - thick / 2 + thick, light);
+    draw_text(picture, s, std::max(s, y - 9 * s), t, s);
+  }
 }
 
 }  // namespace voxspan

@@ -1,9 +1,10 @@
-// insitu/views/legend.h - what a colour-mapped view writes into its picture so that the colours
-// can be read: the colour bar with its values, in a 5x7 pixel font (digits, the signs and a
-// few letters, enough for numbers and axis names) drawn light on a dark outline. Standard
-// library and glm only; no font files.
+// insitu/views/legend.h - what a colour-mapped view writes into its picture so that colours and
+// places can be read: the colour bar with its values and a 2D view's axes, in a 5x7 pixel font
+// (digits, the signs and a few letters, enough for numbers and axis names) drawn light on a
+// dark outline. Standard library and glm only; no font files.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -24,8 +25,22 @@ void draw_text(FloatImage& picture, int x, int y, std::string_view text, int sca
                glm::vec3 colour = glm::vec3(0.9f));
 // A value as the legend prints it: three significant digits ("0.125", "-3.5e+04").
 std::string legend_number(double value);
-// The colour bar at the right edge (the map from `hi` at its top to `lo` at its bottom) with the
-// two values and the middle one beside it.
-void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi);
+enum class BarSide : std::uint8_t { right, left };
+// The colour bar at the right (or left) edge, the map from `hi` at its top to `lo` at its
+// bottom, with the two values and the middle one beside it.
+void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi,
+                    BarSide side = BarSide::right);
+
+// An axis along an edge of a 2D picture: the world coordinate at its two ends (left to right,
+// bottom to top; `from` > `to` when the coordinate falls that way) and its name ("x").
+struct Axis {
+  double from = 0, to = 1;
+  std::string_view name;
+};
+// Ticks at round values (1, 2 or 5 times a power of ten, about five per axis) along the bottom
+// and the left edge, each with its value; the middle one also names its axis ("x=0.4"). Not in
+// pictures smaller than these (no room for the labels):
+inline constexpr int kAxesMinWidth = 160, kAxesMinHeight = 120;
+void draw_axes(FloatImage& picture, const Axis& horizontal, const Axis& vertical);
 
 }  // namespace voxspan

@@ -28,6 +28,21 @@ const schema::Section<TrailSettings>& trails_section() {
   return s;
 }
 
+const schema::Section<ParticleSlice>& slice_section() {
+  using P = ParticleSlice;
+  static const schema::Section<P> s{
+      "views[i].slice",
+      [] {
+        auto keys = schema::from_base<P>(slice_field_keys());
+        keys.push_back(schema::flag("cut", &P::cut,
+                                    "leave out the particles on the camera's side of the plane, "
+                                    "so that it shows inside the fluid"));
+        return keys;
+      }(),
+      [](yaml::MapReader& r, P& v) { check_slice_field(r, v); }};
+  return s;
+}
+
 const schema::Section<ParticlesSettings>& particles_section() {
   using S = ParticlesSettings;
   static const schema::Section<S> s{
@@ -58,7 +73,10 @@ const schema::Section<ParticlesSettings>& particles_section() {
                           "how much neighbouring glyphs darken a glyph (0: not at all)"),
            schema::flag("legend", &S::legend, "draw the colour bar with its values"),
            schema::map<S, TrailSettings>("trails", &S::trails, trails_section(),
-                                         "paths of chosen particles over the last render steps")}),
+                                         "paths of chosen particles over the last render steps"),
+           schema::map<S, ParticleSlice>("slice", &S::slice, slice_section(),
+                                         "an SPH slice plane placed among the glyphs", true)
+               .only_when([](const S& v) { return !v.slice.quantity.empty(); })}),
       [](yaml::MapReader& r, S& v) {
         if (v.cull_range && v.cull_by.empty() && v.color_by.empty())
           r.checker().error(r.find("cull_range"), r.path("cull_range"),
@@ -78,12 +96,19 @@ static_assert(sizeof(GlyphHit) == 24);
 class ParticlesView final : public View {
  public:
   ParticlesView(const ParticlesSettings& s, const ViewContext& c)
-      : settings_(s), spacing_(c.particle_spacing), comm_(c.comm) {}
+      : settings_(s), spacing_(c.particle_spacing), comm_(c.comm) {
+    if (!s.slice.quantity.empty()) slice_.emplace(s.slice, s.name, spacing_, comm_);
+  }
 
   bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
               ViewProducts& out) override {
     if (step.data.particles == nullptr) throw make_error("particles: the step has no particles");
-    const GlyphSelection selection = selection_for(*step.data.particles);
+    if (slice_) {
+      auto t = timer.cpu("slice_sum");  // collective: before anything that may fail on one rank
+      slice_->interpolate(*step.data.particles, step.fluid_box, step.camera.up, step.data.step,
+                          settings_.width, settings_.height);
+    }
+    const GlyphSelection selection = selection_for(*step.data.particles, step.camera);
     std::string failure;
     try {
       auto t = timer.cpu("glyph_raster");
@@ -115,9 +140,15 @@ class ParticlesView final : public View {
     shading.ao_radius = 4 * selection.radius;
     shading.ao_strength = settings_.ambient_occlusion;
     shade_glyphs(glyphs_, step.camera, shading, out.picture);
+    depth_ = glyphs_.depth;
+    if (slice_) {
+      auto ts = timer.cpu("slice_draw");
+      slice_->draw_in_view(step.camera, depth_, out.picture,
+                           settings_.legend && shading.by_value ? BarSide::left : BarSide::right);
+    }
     if (trail_choice().any()) {
       const Vec3d& c = settings_.trails.colour;
-      trails_.draw(step.camera, glyphs_.depth, glm::vec3(c[0], c[1], c[2]), out.picture);
+      trails_.draw(step.camera, depth_, glm::vec3(c[0], c[1], c[2]), out.picture);
       stats.set_count("trails", std::int64_t(trails_.count()));
     }
     if (settings_.legend && shading.by_value)
@@ -134,7 +165,7 @@ class ParticlesView final : public View {
   }
 
  private:
-  GlyphSelection selection_for(const ParticleView& particles) const {
+  GlyphSelection selection_for(const ParticleView& particles, const Camera& camera) const {
     GlyphSelection s;
     s.radius =
         settings_.radius.value_or(spacing_ > 0 ? 0.5 * spacing_ : particles.uniform_radius());
@@ -147,6 +178,12 @@ class ParticlesView final : public View {
     s.cull_range = settings_.cull_range;
     s.boundary_only = settings_.draw == GlyphSubset::boundary;
     s.culling = settings_.culling;
+    if (slice_ && settings_.slice.cut) {
+      // The half space on the eye's side of the plane.
+      const SlicePlane& p = slice_->plane();
+      const double side = glm::dot(p.normal, camera.eye - p.origin) >= 0 ? 1 : -1;
+      s.cut = GlyphCut{side * p.normal, side * glm::dot(p.normal, p.origin)};
+    }
     return s;
   }
 
@@ -207,6 +244,7 @@ class ParticlesView final : public View {
     stats.set_count("glyphs_frustum_culled", c.frustum_culled);
     stats.set_count("glyphs_occlusion_culled", c.occlusion_culled);
     stats.set_count("glyphs_range_culled", c.range_culled);
+    if (settings_.slice.cut && slice_) stats.set_count("glyphs_cut", c.cut);
     stats.set_count("glyph_cells_hidden", c.cells_hidden);
   }
 
@@ -232,6 +270,8 @@ class ParticlesView final : public View {
   std::vector<GlyphHit> hits_;
   std::vector<TrailPoint> trail_points_;
   Trails trails_{int(settings_.trails.length)};
+  std::optional<SliceLayer> slice_;
+  std::vector<float> depth_;  // the glyphs', then the slice's where nearer
 };
 
 }  // namespace
@@ -240,7 +280,8 @@ ViewKind particles_view_kind() {
   ViewKind kind = view_kind<ParticlesSettings, ParticlesView>("particles", particles_section());
   kind.config.reference = [] {
     return particles_section().reference() + "\n#### `views[i].trails` (kind `particles`)\n\n" +
-           trails_section().reference();
+           trails_section().reference() + "\n#### `views[i].slice` (kind `particles`)\n\n" +
+           slice_section().reference() + "\nIts `plane` is a `views[i].plane` (kind `slice`).\n";
   };
   return kind;
 }

@@ -3,7 +3,8 @@
 // (insitu/views/glyphs.h), coloured by a named scalar or vector magnitude through a colour map
 // with its legend, lit with a key light and ambient occlusion. Its settings, for the code that
 // reads them by type. With `trails`, the paths of chosen particles over the last render steps
-// as lines, hidden behind nearer glyphs.
+// as lines, hidden behind nearer glyphs; with `slice`, an SPH slice plane placed among the
+// glyphs (insitu/views/slice_layer.h), those in front of it cut away.
 //
 // Reads: the owned particles (positions, color_by, cull_by), the cell states (the shell and
 // the occlusion culling), the framed camera. Writes: the picture; the first-hit depth when an
@@ -20,6 +21,7 @@
 #include "insitu/config/settings.h"
 #include "insitu/views/color_map.h"
 #include "insitu/views/glyphs.h"
+#include "insitu/views/slice_layer.h"
 
 namespace voxspan {
 
@@ -50,6 +52,7 @@ struct ParticlesSettings : CloneAs<ParticlesSettings, ViewSettings> {
   double ambient_occlusion = 0.8;
   bool legend = true;
   TrailSettings trails;
+  ParticleSlice slice;  // quantity empty: none
   bool operator==(const ParticlesSettings&) const = default;
 };
 

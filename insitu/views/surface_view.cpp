@@ -99,6 +99,13 @@ void check_surface(yaml::MapReader& r, SurfaceSettings& v) {
       r.checker().error(r.find(key), r.path(key), "a colour must not be negative");
 }
 
+const schema::Section<SliceField>& slice_section() {
+  static const schema::Section<SliceField> s{
+      "views[i].slice", slice_field_keys(),
+      [](yaml::MapReader& r, SliceField& v) { check_slice_field(r, v); }};
+  return s;
+}
+
 const schema::Section<SurfaceSettings>& surface_section() {
   using S = SurfaceSettings;
   static const schema::Section<S> s{
@@ -143,7 +150,12 @@ const schema::Section<SurfaceSettings>& surface_section() {
            schema::vec3("sky_zenith", &S::sky_zenith, "the sky overhead, linear RGB"),
            schema::vec3("sky_horizon", &S::sky_horizon,
                         "the sky at the horizon (and the ground's fade into the distance), "
-                        "linear RGB")}),
+                        "linear RGB"),
+           schema::map<S, SliceField>("slice", &S::slice, slice_section(),
+                                      "an SPH slice plane drawn where it lies in front of the "
+                                      "first surface",
+                                      true)
+               .only_when([](const S& v) { return !v.slice.quantity.empty(); })}),
       check_surface};
   return s;
 }
@@ -232,6 +244,17 @@ class CpuSurface {
   CpuRenderer renderer_;
 };
 
+// View depth (along the camera axis, 0: nothing) per pixel from first-hit distances along the
+// pixels' rays.
+void view_depth(const Camera& camera, const FloatImage& first_hit, std::vector<float>& out) {
+  const ViewFrame f(camera);
+  out.resize(std::size_t(first_hit.width) * std::size_t(first_hit.height));
+  for (int y = 0; y < first_hit.height; ++y)
+    for (int x = 0; x < first_hit.width; ++x)
+      out[std::size_t(x) + std::size_t(first_hit.width) * std::size_t(y)] =
+          float(double(first_hit.at(x, y).r) / f.ray_scale(x, y));
+}
+
 class SurfaceView final : public View {
  public:
   SurfaceView(const SurfaceSettings& s, const ViewContext& c)
@@ -245,6 +268,7 @@ class SurfaceView final : public View {
         spacing_(c.particle_spacing) {
     if (c.backend == RenderBackend::gl) gl_ = std::make_unique<GlSurface>(c.shaders);
     else cpu_ = std::make_unique<CpuSurface>();
+    if (!s.slice.quantity.empty()) slice_.emplace(s.slice, s.name, spacing_, c.comm);
   }
 
   bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
@@ -264,8 +288,24 @@ class SurfaceView final : public View {
     // With stages, every span goes on (a merge needs them all); the stages apply the cap.
     if (!stages_.empty()) o.voxelize.max_spans = 0;
     o.voxelize.combine_ranks = combine_ranks_;
-    return gl_ ? gl_->render(step, o, stages_, timer, stats, out)
-               : cpu_->render(step, o, stages_, timer, stats, out);
+    if (!slice_)
+      return gl_ ? gl_->render(step, o, stages_, timer, stats, out)
+                 : cpu_->render(step, o, stages_, timer, stats, out);
+    if (step.data.particles == nullptr) throw make_error("slice: the step has no particles");
+    {
+      auto t = timer.cpu("slice_sum");  // collective: before anything that may fail on one rank
+      slice_->interpolate(*step.data.particles, step.fluid_box, step.camera.up, step.data.step,
+                          settings_.width, settings_.height);
+    }
+    ViewStep with_depth = step;
+    with_depth.needs.first_hit_depth = true;
+    const bool drawn = gl_ ? gl_->render(with_depth, o, stages_, timer, stats, out)
+                           : cpu_->render(with_depth, o, stages_, timer, stats, out);
+    if (!drawn) return false;
+    auto t = timer.cpu("slice_draw");
+    view_depth(step.camera, out.first_hit_depth, depth_);
+    slice_->draw_in_view(step.camera, depth_, out.picture, BarSide::right);
+    return true;
   }
 
   std::string description() const override {
@@ -283,12 +323,19 @@ class SurfaceView final : public View {
   std::optional<glm::dvec3> auto_absorption_;  // absorption: auto, fixed at the first box
   std::unique_ptr<GlSurface> gl_;              // one of the two
   std::unique_ptr<CpuSurface> cpu_;
+  std::optional<SliceLayer> slice_;
+  std::vector<float> depth_;  // the surface's view depth per pixel, then the slice's
 };
 
 }  // namespace
 
 ViewKind surface_view_kind() {
-  return view_kind<SurfaceSettings, SurfaceView>("surface", surface_section());
+  ViewKind kind = view_kind<SurfaceSettings, SurfaceView>("surface", surface_section());
+  kind.config.reference = [] {
+    return surface_section().reference() + "\n#### `views[i].slice` (kind `surface`)\n\n" +
+           slice_section().reference() + "\nIts `plane` is a `views[i].plane` (kind `slice`).\n";
+  };
+  return kind;
 }
 
 }  // namespace voxspan

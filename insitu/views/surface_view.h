@@ -3,6 +3,9 @@
 //   voxelize (sec. 3.1-4.4) -> the span stages of the context (none in one process; MPI
 //   compositing) -> connect, filter, normals, deep AO (3.3-3.6) -> shade (3.5) -> read back,
 // and, when an output asks, the first-hit distance of every pixel (render/passes/first_hit.h).
+// With `slice`, an SPH slice plane (insitu/views/slice_layer.h) drawn where it lies nearer than
+// the first surface (opaque over the water: it shows where the plane leaves the fluid or where
+// the water in front of it was cut away; a particles view can cut).
 // Its settings, for the code that reads them by type (tests, tools).
 //
 // Reads: the step's boundary spheres and cell states, the camera, the fluid's box (the ground
@@ -15,6 +18,7 @@
 #include <optional>
 
 #include "insitu/config/settings.h"
+#include "insitu/views/slice_layer.h"
 #include "render/shade_options.h"
 
 namespace voxspan {
@@ -40,6 +44,7 @@ struct SurfaceSettings : CloneAs<SurfaceSettings, ViewSettings> {
   Vec3d ground_dark = array_of(Environment{}.ground_dark);
   Vec3d sky_zenith = array_of(Environment{}.sky_zenith);
   Vec3d sky_horizon = array_of(Environment{}.sky_horizon);
+  SliceField slice;  // an SPH slice plane in the view; quantity empty: none
   bool operator==(const SurfaceSettings&) const = default;
 };
 

@@ -59,7 +59,8 @@ TEST(ParticlesView, KeysAreReadAsWritten) {
   const Config c = load_config_string(
       "views:\n  - {kind: particles, color_by: velocity, color_map: coolwarm, range: [0, 2],"
       " cull_by: p, cull_range: [1, 5], draw: boundary, culling: frustum, radius: 0.01,"
-      " ambient_occlusion: 0.5, legend: false}\n");
+      " ambient_occlusion: 0.5, legend: false,"
+      " slice: {quantity: p, cut: false, plane: {normal: [1, 0, 0]}}}\n");
   const auto& s = dynamic_cast<const ParticlesSettings&>(*c.views[0].settings);
   EXPECT_EQ(s.color_by, "velocity");
   EXPECT_EQ(s.color_map, ColorMap::coolwarm);
@@ -69,6 +70,9 @@ TEST(ParticlesView, KeysAreReadAsWritten) {
   EXPECT_EQ(s.culling, GlyphCulling::frustum);
   EXPECT_EQ(s.radius, 0.01);
   EXPECT_FALSE(s.legend);
+  EXPECT_EQ(s.slice.quantity, "p");
+  EXPECT_FALSE(s.slice.cut);
+  EXPECT_EQ(s.slice.plane.normal[0], 1.0);
   EXPECT_EQ(load_config_string(to_yaml(c)).views[0], c.views[0]);
 }
 
@@ -79,7 +83,9 @@ TEST(ParticlesView, BadKeysAreRefusedWithTheirLine) {
            {"range: [2, 1]", "range"},
            {"radius: -1", "radius"},
            {"cull_range: [0, 1]", "needs `cull_by` or `color_by`"},
-           {"colour_by: speed", "colour_by"}}) {
+           {"colour_by: speed", "colour_by"},
+           {"slice: {plane: {normal: [1, 0, 0]}}", "views[0].slice.quantity"},
+           {"slice: {quantity: p, kernel: gauss}", "views[0].slice.kernel"}}) {
     try {
       load_config_string("views:\n  - {kind: particles, " + yaml + "}\n", "p.yaml");
       ADD_FAILURE() << yaml << " was accepted";
@@ -120,6 +126,32 @@ TEST(ParticlesView, ReportsWhatItDrewAndCulled) {
   EXPECT_EQ(stats.count("glyphs_drawn") + stats.count("glyphs_occlusion_culled") +
                 stats.count("glyphs_frustum_culled"),
             2000);
+}
+
+glm::vec4 centre_of(const std::string& keys, std::int64_t* cut = nullptr) {
+  const Block b;
+  Adapter a = adapter_from_config_text(config(keys), options());
+  EXPECT_TRUE(a.execute(0, 0, b.view()).ok());
+  const auto& view = pipeline_of(a).latest_views()[0];
+  if (cut != nullptr) *cut = view.stats->count("glyphs_cut");
+  return view.picture->at(48, 27);
+}
+
+TEST(ParticlesView, ASlicePlaneCompositesByDepthAndCutsTheGlyphsInFront) {
+  // Seen from +z; the plane z = 0.25 halves the block. Uncut, the glyphs above hide it; cut,
+  // the 1000 particles above it are left out and the plane shows.
+  const std::string slice =
+      "slice: {quantity: speed, plane: {origin: [0.5, 0.25, 0.25], "
+      "normal: [0, 0, 1]}, isolines: 0";
+  const glm::vec4 none = centre_of("");
+  const glm::vec4 hidden = centre_of(slice + ", cut: false}");
+  EXPECT_EQ(hidden, none);
+  std::int64_t cut = 0;
+  const glm::vec4 shown = centre_of(slice + ", range: [0, 1], color_map: coolwarm}", &cut);
+  EXPECT_EQ(cut, 1000);
+  // coolwarm at the middle of its range: light grey, no glyph shading's blue.
+  EXPECT_NEAR(shown.r, shown.b, 0.15f);
+  EXPECT_GT(shown.r, 0.5f);
 }
 
 TEST(ParticlesView, AMissingColourAttributeFailsTheStepByName) {

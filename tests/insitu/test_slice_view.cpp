@@ -10,6 +10,7 @@
 
 #include "insitu/runtime/config_file.h"
 #include "insitu/runtime/pipeline.h"
+#include "insitu/views/legend.h"
 #include "insitu/views/slice_view.h"
 #include "voxspan/error.h"
 #include "voxspan/insitu.h"
@@ -35,13 +36,13 @@ struct Block {
   }
 };
 
-std::string config(const std::string& slice) {
+std::string config(const std::string& slice, const std::string& size = "width: 64, height: 32") {
   return "output_folder: " + testing::TempDir() +
          "slice_view\n"
          "outputs: {png: {enabled: false}, stats: {enabled: false}}\n"
          "trigger: {every_steps: 1}\n"
-         "views:\n  - {name: s, kind: slice, width: 64, height: 32, " +
-         slice + "}\n";
+         "views:\n  - {name: s, kind: slice, " +
+         size + ", " + slice + "}\n";
 }
 
 const FloatImage& picture_of(const Adapter& a) {
@@ -119,6 +120,72 @@ TEST(SliceView, APlaneThatMissesTheFluidDrawsAnEmptyPicture) {
   ASSERT_TRUE(a.execute(0, 0, b.view()).ok());
   const FloatImage& p = picture_of(a);
   for (int x : {0, 10, 30}) EXPECT_LT(p.at(x, 16).g, 0.05f) << x;
+}
+
+bool light(glm::vec4 c) { return c.r > 0.8f && c.g > 0.8f && c.b > 0.8f; }
+
+TEST(SliceView, AxesTickRoundValuesInWorldUnits) {
+  const Block b;
+  // Seen from -y with +z up: +x to the right, x from -0.3 to 1.3 over 320 pixels and z from
+  // -0.2 to 0.7 over 180 rows. Ticks every 0.2 (-0.2 to 1.2), the middle one (0.6) named.
+  Adapter a =
+      adapter_from_config_text(config("quantity: density, extent: 1.6,"
+                                      " plane: {origin: [0.5, 0.25, 0.25], normal: [0, -1, 0]}",
+                                      "width: 320, height: 180"),
+                               options());
+  ASSERT_TRUE(a.execute(0, 0, b.view()).ok());
+  const FloatImage& p = picture_of(a);
+  for (const double x : {0.0, 0.4, 1.0}) {
+    const int column = int(std::lround((x + 0.3) / 1.6 * 320));
+    EXPECT_TRUE(light(p.at(column, 179))) << x;
+    EXPECT_FALSE(light(p.at(column + 10, 179))) << x;
+  }
+  int label = 0;  // "x=0.6" above the middle tick, at column 180
+  for (int y = 160; y < 176; ++y)
+    for (int x = 164; x < 197; ++x) label += light(p.at(x, y));
+  EXPECT_GT(label, 20);
+  // z ticks every 0.2 on the left edge (z = 0.4 at row 180 - 0.6 / 0.9 * 180 = 60).
+  EXPECT_TRUE(light(p.at(0, 60)));
+  EXPECT_FALSE(light(p.at(0, 70)));
+}
+
+// The centre pixel of an opaque surface view of the block seen from +z, with `slice` keys.
+glm::vec4 surface_centre(const std::string& slice) {
+  const Block b;
+  Adapter a =
+      adapter_from_config_text("output_folder: " + testing::TempDir() +
+                                   "slice_in_surface\n"
+                                   "outputs: {png: {enabled: false}, stats: {enabled: false}}\n"
+                                   "views:\n  - {name: w, shading: opaque, width: 96, height: 54,"
+                                   " camera: {direction: [0, 0, -1], up: [0, 1, 0]}" +
+                                   slice + "}\n",
+                               options());
+  EXPECT_TRUE(a.execute(0, 0, b.view()).ok());
+  return picture_of(a).at(48, 27);
+}
+
+TEST(SliceView, InASurfaceViewItShowsWhereItLiesInFrontOfTheWater) {
+  const std::string keys =
+      "quantity: density, shepard: true, range: [1000, 1010], color_map: coolwarm,"
+      " isolines: 0, smoothing_length: 0.1, plane: {normal: [0, 0, 1], ";
+  const glm::vec4 water = surface_centre("");
+  // Inside the block, under its top: hidden.
+  EXPECT_EQ(surface_centre(", slice: {" + keys + "origin: [0.5, 0.25, 0.25]}}"), water);
+  // Above the top (z = 0.5), still within the kernel's reach of the top layer: in front.
+  const glm::vec4 above = surface_centre(", slice: {" + keys + "origin: [0.5, 0.25, 0.55]}}");
+  EXPECT_NE(above, water);
+  EXPECT_NEAR(above.r, above.b, 0.15f);  // coolwarm's middle, light grey
+}
+
+TEST(Legend, AFallingAxisTicksFromTheRight) {
+  FloatImage p(400, 200);
+  draw_axes(p, {1.0, 0.0, "u"}, {0.0, 1.0, "v"});
+  // u = 0.8 lies at 0.2 of the width from the left.
+  EXPECT_TRUE(light(p.at(80, 199)));
+  EXPECT_FALSE(light(p.at(90, 199)));
+  FloatImage small(100, 60);
+  draw_axes(small, {0.0, 1.0, "u"}, {0.0, 1.0, "v"});
+  for (int x = 0; x < 100; ++x) EXPECT_FALSE(light(small.at(x, 59))) << x;
 }
 
 }  // namespace

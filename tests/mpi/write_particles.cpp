@@ -1,6 +1,7 @@
 // write_particles OUT.csv [PARTICLES] [T] [--solver]: a dam break's particles as CSV
-// x,y,z,radius, for the MPI tests of the offline renderer (every rank reads the same file and
-// renders its part): the Ritter profile of tools/scenes at time T seconds, with spray, or with
+// x,y,z,radius,height (height = z: a field for the slices to interpolate), for the MPI tests of the
+// offline renderer (every rank reads the same file and renders its part): the Ritter profile of
+// tools/scenes at time T seconds, with spray, or with
 // --solver the WCSPH solver's (examples/dambreak) at Martin & Moyce's T.
 #include <cstdio>
 #include <cstdlib>
@@ -48,9 +49,9 @@ int main(int argc, char** argv) {
     std::perror(argv[1]);
     return 1;
   }
-  std::fprintf(f, "x,y,z,radius\n");
+  std::fprintf(f, "x,y,z,radius,height\n");
   for (const voxspan::ParticleSphere& s : p)
-    std::fprintf(f, "%.9g,%.9g,%.9g,%.9g\n", s.x, s.y, s.z, s.radius);
+    std::fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g\n", s.x, s.y, s.z, s.radius, s.z);
   std::fclose(f);
   std::printf("%zu particles in %s\n", p.size(), argv[1]);
   return 0;
