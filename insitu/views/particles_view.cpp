@@ -35,8 +35,8 @@ const schema::Section<ParticleSlice>& slice_section() {
       [] {
         auto keys = schema::from_base<P>(slice_field_keys());
         keys.push_back(schema::flag("cut", &P::cut,
-                                    "leave out the particles on the camera's side of the plane, "
-                                    "so that it shows inside the fluid"));
+                                    "leave out the particles whose spheres reach the camera's side "
+                                    "of the plane, so that it shows inside the fluid"));
         return keys;
       }(),
       [](yaml::MapReader& r, P& v) { check_slice_field(r, v); }};
@@ -179,10 +179,10 @@ class ParticlesView final : public View {
     s.boundary_only = settings_.draw == GlyphSubset::boundary;
     s.culling = settings_.culling;
     if (slice_ && settings_.slice.cut) {
-      // The half space on the eye's side of the plane.
+      // The spheres reaching the eye's side of the plane: none pokes through it.
       const SlicePlane& p = slice_->plane();
       const double side = glm::dot(p.normal, camera.eye - p.origin) >= 0 ? 1 : -1;
-      s.cut = GlyphCut{side * p.normal, side * glm::dot(p.normal, p.origin)};
+      s.cut = GlyphCut{side * p.normal, side * glm::dot(p.normal, p.origin) - s.radius};
     }
     return s;
   }

@@ -52,8 +52,8 @@ struct SliceField {
 // h = 1.3 spacings when the view does not say: PySPH's usual hdx.
 inline constexpr double kAutoSmoothingFactor = 1.3;
 
-// A particles view's `slice`: a SliceField placed in the view; with `cut`, the particles on the
-// camera's side of the plane are not drawn, so that the plane shows inside the fluid.
+// A particles view's `slice`: a SliceField placed in the view; with `cut`, the particles whose
+// spheres reach the camera's side of the plane are not drawn, so that it shows inside the fluid.
 struct ParticleSlice : SliceField {
   bool cut = true;
   bool operator==(const ParticleSlice&) const = default;

@@ -138,10 +138,11 @@ glm::vec4 centre_of(const std::string& keys, std::int64_t* cut = nullptr) {
 }
 
 TEST(ParticlesView, ASlicePlaneCompositesByDepthAndCutsTheGlyphsInFront) {
-  // Seen from +z; the plane z = 0.25 halves the block. Uncut, the glyphs above hide it; cut,
-  // the 1000 particles above it are left out and the plane shows.
+  // Seen from +z; the plane z = 0.26 nearly halves the block. Uncut, the glyphs above hide it;
+  // cut, the 1000 particles whose spheres reach above it (centres at z >= 0.275) are left out
+  // and the plane shows.
   const std::string slice =
-      "slice: {quantity: speed, plane: {origin: [0.5, 0.25, 0.25], "
+      "slice: {quantity: speed, plane: {origin: [0.5, 0.25, 0.26], "
       "normal: [0, 0, 1]}, isolines: 0";
   const glm::vec4 none = centre_of("");
   const glm::vec4 hidden = centre_of(slice + ", cut: false}");
