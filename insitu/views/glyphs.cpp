@@ -9,6 +9,7 @@
 #include <atomic>
 #include <limits>
 
+#include "insitu/views/view_attributes.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
@@ -39,11 +40,7 @@ struct Sources {
 };
 
 const AttributeView* find(const ParticleView& particles, std::string_view name, const char* key) {
-  const AttributeView* a = particles.find_attribute(name);
-  if (a == nullptr)
-    throw make_error("particles: ", key, " \"", name,
-                     "\": the solver passes no attribute of that name");
-  return a;
+  return &require_attribute(particles, name, "particles", key);
 }
 
 Sources sources(const ParticleView& particles, const GlyphSelection& s) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "insitu/views/view_attributes.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
@@ -11,9 +12,7 @@ void collect_trail_points(const ParticleView& particles, const TrailChoice& choi
                           std::vector<TrailPoint>& out) {
   out.clear();
   if (!choice.any()) return;
-  const AttributeView* id = particles.find_attribute(choice.id);
-  if (id == nullptr)
-    throw make_error("trails: id \"", choice.id, "\": the solver passes no attribute of that name");
+  const AttributeView* id = &require_attribute(particles, choice.id, "trails", "id");
   for (std::size_t i = 0; i < particles.owned_count(); ++i) {
     const double v = id->magnitude(i);
     if (!std::isfinite(v) || !particles.position_finite(i)) continue;

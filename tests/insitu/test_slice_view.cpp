@@ -110,7 +110,8 @@ TEST(SliceView, AMissingQuantityFailsTheStepByName) {
   Adapter a = adapter_from_config_text(config("quantity: pressure"), options());
   const Status s = a.execute(0, 0, b.view());
   EXPECT_FALSE(s.ok());
-  EXPECT_NE(s.message.find("\"pressure\""), std::string::npos) << s.message;
+  EXPECT_NE(s.message.find("quantity \"pressure\""), std::string::npos) << s.message;
+  EXPECT_NE(s.message.find("(it passes: density)"), std::string::npos) << s.message;
 }
 
 TEST(SliceView, APlaneThatMissesTheFluidDrawsAnEmptyPicture) {

@@ -1,0 +1,17 @@
+// insitu/views/view_attributes.h - the particle attributes a view's keys name, found in the
+// step's particles, or an error that names the key, the attribute and what the solver passes
+// instead (a config typo reads as such: `color_by "velocty": ... (it passes: velocity, p)`).
+#pragma once
+
+#include <string_view>
+
+#include "voxspan/particles.h"
+
+namespace voxspan {
+
+// Throws voxspan::Error "<view>: <key> \"<name>\": the solver passes no attribute of that name
+// (it passes: a, b)" when `name` is not among the step's attributes.
+const AttributeView& require_attribute(const ParticleView& particles, std::string_view name,
+                                       std::string_view view, std::string_view key);
+
+}  // namespace voxspan
