@@ -128,12 +128,23 @@ struct ViewSettings {
   int width = 960;
   int height = 540;
   CameraConfig camera;
+  // Where the config gave the view ("run.yaml:12:5: views[2]"), so that a key found wrong only
+  // when the solver's data arrives (an attribute it does not pass) is named with its line;
+  // empty for a default view. Not a setting: two configs that differ only here are equal.
+  std::string source;
 
   ViewSettings() = default;
   virtual ~ViewSettings() = default;
   virtual std::unique_ptr<ViewSettings> clone() const = 0;
   virtual bool equals(const ViewSettings& other) const = 0;
-  bool operator==(const ViewSettings&) const = default;
+  bool operator==(const ViewSettings& o) const {
+    return name == o.name && width == o.width && height == o.height && camera == o.camera;
+  }
+  // The key path of one of the view's keys for messages: "run.yaml:12:5: views[2].quantity",
+  // or the key alone for a default view.
+  std::string key_path(std::string_view key) const {
+    return source.empty() ? std::string(key) : source + "." + std::string(key);
+  }
 
  protected:
   ViewSettings(const ViewSettings&) = default;

@@ -38,12 +38,16 @@ std::string closest(std::string_view key, std::span<const std::string_view> allo
 
 }  // namespace
 
-void Checker::error(const YAML::Mark& mark, const std::string& path, const std::string& message) {
+std::string Checker::where(const YAML::Mark& mark, const std::string& path) const {
   std::ostringstream s;
   s << source_;
   if (!mark.is_null()) s << ":" << mark.line + 1 << ":" << mark.column + 1;
-  s << ": " << (path.empty() ? "(top level)" : path) << ": " << message;
-  errors_.push_back(s.str());
+  s << ": " << (path.empty() ? "(top level)" : path);
+  return s.str();
+}
+
+void Checker::error(const YAML::Mark& mark, const std::string& path, const std::string& message) {
+  errors_.push_back(where(mark, path) + ": " + message);
 }
 
 void Checker::throw_if_errors() const {

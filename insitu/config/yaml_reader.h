@@ -24,6 +24,8 @@ class Checker {
  public:
   explicit Checker(std::string source) : source_(std::move(source)) {}
   void error(const YAML::Mark& mark, const std::string& path, const std::string& message);
+  // "<source>:<line>:<column>: <key path>", as error() starts its messages.
+  std::string where(const YAML::Mark& mark, const std::string& path) const;
   void error(const YAML::Node& node, const std::string& path, const std::string& message) {
     error(node.Mark(), path, message);
   }

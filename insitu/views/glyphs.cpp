@@ -39,21 +39,18 @@ struct Sources {
   const AttributeView* cull = nullptr;
 };
 
-const AttributeView* find(const ParticleView& particles, std::string_view name, const char* key) {
-  return &require_attribute(particles, name, "particles", key);
-}
-
 Sources sources(const ParticleView& particles, const GlyphSelection& s) {
   if (!(s.radius > 0) || !std::isfinite(s.radius))
     throw make_error("particles: the glyph radius must be positive; got ", s.radius);
   if (particles.owned_count() > std::size_t(std::numeric_limits<std::uint32_t>::max()))
     throw make_error("particles: more than 2^32 - 1 owned particles on one rank");
   Sources src;
-  if (!s.color_by.empty()) src.color = find(particles, s.color_by, "color_by");
+  if (!s.color_by.empty()) src.color = &require_attribute(particles, s.color_by, s.color_by_key);
   const std::string_view cull = s.cull_by.empty() ? s.color_by : s.cull_by;
   if (s.cull_range) {
     if (cull.empty()) throw make_error("particles: cull_range needs cull_by or color_by");
-    src.cull = find(particles, cull, "cull_by");
+    src.cull =
+        &require_attribute(particles, cull, s.cull_by.empty() ? s.color_by_key : s.cull_by_key);
   }
   return src;
 }

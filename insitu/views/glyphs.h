@@ -54,6 +54,8 @@ struct GlyphSelection {
   double radius = 0;          // every glyph's radius, world units (> 0)
   std::string_view color_by;  // the value's attribute (vector: magnitude); empty: none
   std::string_view cull_by;   // the attribute cull_range tests (empty: color_by)
+  // The keys that name them, for messages (ViewSettings::key_path).
+  std::string_view color_by_key = "color_by", cull_by_key = "cull_by";
   std::optional<std::array<double, 2>> cull_range;  // drawn only with cull_by in [a, b]
   bool boundary_only = false;  // only particles of cells that are not inner (the shell)
   std::optional<GlyphCut> cut;

@@ -97,7 +97,8 @@ class ParticlesView final : public View {
  public:
   ParticlesView(const ParticlesSettings& s, const ViewContext& c)
       : settings_(s), spacing_(c.particle_spacing), comm_(c.comm) {
-    if (!s.slice.quantity.empty()) slice_.emplace(s.slice, s.name, spacing_, comm_);
+    if (!s.slice.quantity.empty())
+      slice_.emplace(s.slice, s.name, s.key_path("slice"), spacing_, comm_);
   }
 
   bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
@@ -175,6 +176,8 @@ class ParticlesView final : public View {
                        "known; set it");
     s.color_by = settings_.color_by;
     s.cull_by = settings_.cull_by;
+    s.color_by_key = color_by_key_;
+    s.cull_by_key = cull_by_key_;
     s.cull_range = settings_.cull_range;
     s.boundary_only = settings_.draw == GlyphSubset::boundary;
     s.culling = settings_.culling;
@@ -221,7 +224,7 @@ class ParticlesView final : public View {
   }
 
   TrailChoice trail_choice() const {
-    return {settings_.trails.id, settings_.trails.every, settings_.trails.ids};
+    return {settings_.trails.id, trail_id_key_, settings_.trails.every, settings_.trails.ids};
   }
 
   // Every rank's trail points on the root, in rank order. Collective.
@@ -264,6 +267,9 @@ class ParticlesView final : public View {
   }
 
   const ParticlesSettings settings_;
+  const std::string color_by_key_ = settings_.key_path("color_by");
+  const std::string cull_by_key_ = settings_.key_path("cull_by");
+  const std::string trail_id_key_ = settings_.key_path("trails.id");
   const double spacing_;
   Communicator* const comm_;  // null in one process
   GlyphImage glyphs_;

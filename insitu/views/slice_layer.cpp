@@ -98,9 +98,13 @@ void check_slice_field(yaml::MapReader& r, const SliceField& f) {
                       "a slice needs `quantity` (the attribute it shows)");
 }
 
-SliceLayer::SliceLayer(const SliceField& field, std::string view_name, double spacing,
-                       Communicator* comm)
-    : field_(field), view_name_(std::move(view_name)), spacing_(spacing), comm_(comm) {
+SliceLayer::SliceLayer(const SliceField& field, std::string view_name, std::string key,
+                       double spacing, Communicator* comm)
+    : field_(field),
+      view_name_(std::move(view_name)),
+      quantity_key_(key.empty() ? "quantity" : key + ".quantity"),
+      spacing_(spacing),
+      comm_(comm) {
   if (!field.smoothing_length && !(spacing > 0))
     throw make_error("view ", view_name_,
                      ": smoothing_length is `auto` but the particle spacing is unknown; set it");
@@ -111,6 +115,7 @@ void SliceLayer::interpolate(const ParticleView& particles, const Bounds& fluid_
   plane_ = plane_for(field_, fluid_box, up, width, height);
   SliceQuantity q;
   q.name = field_.quantity;
+  q.key = quantity_key_;
   q.mass = field_.mass;
   q.density = field_.density;
   q.rest_volume = spacing_ * spacing_ * spacing_;

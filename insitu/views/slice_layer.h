@@ -66,8 +66,10 @@ const schema::Section<SlicePlaneConfig>& slice_plane_section();
 
 class SliceLayer {
  public:
+  // `key`: the key path of the field's keys in messages ("run.yaml:4:5: views[1].slice").
   // Throws voxspan::Error when smoothing_length is `auto` and the spacing is unknown.
-  SliceLayer(const SliceField& field, std::string view_name, double spacing, Communicator* comm);
+  SliceLayer(const SliceField& field, std::string view_name, std::string key, double spacing,
+             Communicator* comm);
 
   // The step's slice on a width x height grid of the plane (fitted to the fluid's box when the
   // settings leave the origin or the extent `auto`; `up` orients it). Collective in an MPI job:
@@ -98,6 +100,7 @@ class SliceLayer {
 
   const SliceField field_;
   const std::string view_name_;
+  const std::string quantity_key_;
   const double spacing_;
   Communicator* const comm_;  // null in one process
   SlicePlane plane_;

@@ -69,7 +69,7 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
                        const SlicePlane& plane, int width, int height, SliceImage& out) {
   if (!(q.smoothing_length > 0))
     throw make_error("slice: the smoothing length must be positive; got ", q.smoothing_length);
-  const AttributeView* quantity = &require_attribute(particles, q.name, "slice", "quantity");
+  const AttributeView* quantity = &require_attribute(particles, q.name, q.key);
   const AttributeView* mass = particles.find_attribute(q.mass);
   const AttributeView* density = particles.find_attribute(q.density);
   const bool per_particle_volume = mass != nullptr && density != nullptr;

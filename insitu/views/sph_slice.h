@@ -51,8 +51,9 @@ struct SlicePlane {
 };
 
 struct SliceQuantity {
-  std::string_view name;           // the interpolated attribute (scalar, or vector: magnitude)
-  std::string_view mass = "mass";  // attribute names; when either is missing, m / rho is
+  std::string_view name;              // the interpolated attribute (scalar, or vector: magnitude)
+  std::string_view key = "quantity";  // the key that names it, for messages
+  std::string_view mass = "mass";     // attribute names; when either is missing, m / rho is
   std::string_view density = "density";  // rest_volume for every particle
   double rest_volume = 0;
   SphKernel kernel = SphKernel::cubic_spline;

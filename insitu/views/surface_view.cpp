@@ -268,7 +268,8 @@ class SurfaceView final : public View {
         spacing_(c.particle_spacing) {
     if (c.backend == RenderBackend::gl) gl_ = std::make_unique<GlSurface>(c.shaders);
     else cpu_ = std::make_unique<CpuSurface>();
-    if (!s.slice.quantity.empty()) slice_.emplace(s.slice, s.name, spacing_, c.comm);
+    if (!s.slice.quantity.empty())
+      slice_.emplace(s.slice, s.name, s.key_path("slice"), spacing_, c.comm);
   }
 
   bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,

@@ -12,7 +12,7 @@ void collect_trail_points(const ParticleView& particles, const TrailChoice& choi
                           std::vector<TrailPoint>& out) {
   out.clear();
   if (!choice.any()) return;
-  const AttributeView* id = &require_attribute(particles, choice.id, "trails", "id");
+  const AttributeView* id = &require_attribute(particles, choice.id, choice.key);
   for (std::size_t i = 0; i < particles.owned_count(); ++i) {
     const double v = id->magnitude(i);
     if (!std::isfinite(v) || !particles.position_finite(i)) continue;

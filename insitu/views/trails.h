@@ -21,9 +21,10 @@ namespace voxspan {
 
 // Which particles have trails and how long they are.
 struct TrailChoice {
-  std::string_view id;                // the id attribute
-  std::int64_t every = 0;             // ids that are multiples of it (0: none)
-  std::span<const std::int64_t> ids;  // and these, sorted
+  std::string_view id;                 // the id attribute
+  std::string_view key = "trails.id";  // the key that names it, for messages
+  std::int64_t every = 0;              // ids that are multiples of it (0: none)
+  std::span<const std::int64_t> ids;   // and these, sorted
   bool any() const { return every > 0 || !ids.empty(); }
 };
 

@@ -160,7 +160,8 @@ TEST(ParticlesView, AMissingColourAttributeFailsTheStepByName) {
   Adapter a = adapter_from_config_text(config("color_by: pressure"), options());
   const Status s = a.execute(0, 0, b.view());
   EXPECT_FALSE(s.ok());
-  EXPECT_NE(s.message.find("color_by \"pressure\""), std::string::npos) << s.message;
+  EXPECT_NE(s.message.find("<config>:5:5: views[0].color_by \"pressure\""), std::string::npos)
+      << s.message;
   EXPECT_NE(s.message.find("(it passes: speed)"), std::string::npos) << s.message;
 }
 

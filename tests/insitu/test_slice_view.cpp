@@ -110,7 +110,9 @@ TEST(SliceView, AMissingQuantityFailsTheStepByName) {
   Adapter a = adapter_from_config_text(config("quantity: pressure"), options());
   const Status s = a.execute(0, 0, b.view());
   EXPECT_FALSE(s.ok());
-  EXPECT_NE(s.message.find("quantity \"pressure\""), std::string::npos) << s.message;
+  // The key with the line the config gave the view on.
+  EXPECT_NE(s.message.find("<config>:5:5: views[0].quantity \"pressure\""), std::string::npos)
+      << s.message;
   EXPECT_NE(s.message.find("(it passes: density)"), std::string::npos) << s.message;
 }
 
