@@ -19,6 +19,8 @@
 #                      OpenVDB's and VTK's paths and the exact caster (docs/results.md);
 #   insitu.txt         bench_insitu: the in-situ cost against the WCSPH solver at the main job's
 #                      settings, one render every 10 steps (when the bundle carries it);
+#   views_*.txt        bench_views: the particles and slice views (CPU code with either
+#                      renderer) on the machine's cores, Table 1 and 10^5-10^6 particles;
 #   composite.txt      bench_composite on 2 ranks sharing the GPU at 1920x1080, when the machine
 #                      has Open MPI's mpiexec (the bundle carries libmpi, not the launcher).
 # Each step writes OUT/<step>.txt; a failing step is reported and the others still run.
@@ -78,6 +80,7 @@ if ((quick)); then
   [[ -x $bin/bench_insitu ]] &&
     step insitu "$bin/bench_insitu" --particles 5000 --start 0.1 --steps 20 --render-every 10 \
       --vdb-every 20
+  step views_small "$bin/bench_views" --table-particles 2e4 --counts 2e4 --frames 1
 else
   step pictures "$bin/render_pictures" --ritter --out "$out/pictures"
   step voxelize_llvmpipe_rows "$bin/bench_voxelize" --frames 5 --budget-mib 1024 --budget-mib 16 \
@@ -96,6 +99,7 @@ else
     --modes translucent
   [[ -x $bin/bench_insitu ]] &&
     step insitu "$bin/bench_insitu" --steps 300 --render-every 10 --vdb-every 100
+  step views_1e6 "$bin/bench_views" --table-particles 1e6 --counts 1e5,1e6 --frames 3
 fi
 
 # composite_step ARGS...: bench_composite on 2 ranks, where this machine can start them (Open
