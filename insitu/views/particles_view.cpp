@@ -154,7 +154,9 @@ class ParticlesView final : public View {
     }
     if (settings_.legend && shading.by_value)
       draw_color_bar(out.picture, settings_.color_map, lo, hi);
-    if (step.needs.first_hit_depth) first_hit(step.camera, out.first_hit_depth);
+    // The glyphs' or the slice's distance per pixel, as the depth output writes it.
+    if (step.needs.first_hit_depth)
+      distances_from_view_depth(step.camera, depth_, out.first_hit_depth);
     out.shaded_spans = nullptr;
     return true;
   }
@@ -249,21 +251,6 @@ class ParticlesView final : public View {
     stats.set_count("glyphs_range_culled", c.range_culled);
     if (settings_.slice.cut && slice_) stats.set_count("glyphs_cut", c.cut);
     stats.set_count("glyph_cells_hidden", c.cells_hidden);
-  }
-
-  // Distance from the eye to each pixel's glyph (0: none), as the depth output writes it.
-  void first_hit(const Camera& camera, FloatImage& depth) const {
-    if (depth.width != glyphs_.width || depth.height != glyphs_.height)
-      depth = FloatImage(glyphs_.width, glyphs_.height);
-    const ViewFrame f(camera);
-    for (int y = 0; y < glyphs_.height; ++y)
-      for (int x = 0; x < glyphs_.width; ++x) {
-        const std::size_t k = std::size_t(x) + std::size_t(glyphs_.width) * std::size_t(y);
-        const float d = glyphs_.nearest[k] == kNoGlyph
-                            ? 0.0f
-                            : float(double(glyphs_.depth[k]) * f.ray_scale(x, y));
-        depth.set(x, y, glm::vec4(d, 0, 0, 0));
-      }
   }
 
   const ParticlesSettings settings_;

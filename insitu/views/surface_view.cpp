@@ -244,17 +244,6 @@ class CpuSurface {
   CpuRenderer renderer_;
 };
 
-// View depth (along the camera axis, 0: nothing) per pixel from first-hit distances along the
-// pixels' rays.
-void view_depth(const Camera& camera, const FloatImage& first_hit, std::vector<float>& out) {
-  const ViewFrame f(camera);
-  out.resize(std::size_t(first_hit.width) * std::size_t(first_hit.height));
-  for (int y = 0; y < first_hit.height; ++y)
-    for (int x = 0; x < first_hit.width; ++x)
-      out[std::size_t(x) + std::size_t(first_hit.width) * std::size_t(y)] =
-          float(double(first_hit.at(x, y).r) / f.ray_scale(x, y));
-}
-
 class SurfaceView final : public View {
  public:
   SurfaceView(const SurfaceSettings& s, const ViewContext& c)
@@ -304,8 +293,11 @@ class SurfaceView final : public View {
                            : cpu_->render(with_depth, o, stages_, timer, stats, out);
     if (!drawn) return false;
     auto t = timer.cpu("slice_draw");
-    view_depth(step.camera, out.first_hit_depth, depth_);
+    view_depth_from_distances(step.camera, out.first_hit_depth, depth_);
     slice_->draw_in_view(step.camera, depth_, out.picture, BarSide::right);
+    // The depth output sees the plane where it shows.
+    if (step.needs.first_hit_depth)
+      distances_from_view_depth(step.camera, depth_, out.first_hit_depth);
     return true;
   }
 

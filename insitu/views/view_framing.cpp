@@ -106,4 +106,26 @@ Camera ViewFraming::update(const Bounds& now) {
   return frame_camera(camera_, width_, height_, box_);
 }
 
+void distances_from_view_depth(const Camera& camera, std::span<const float> view_depth,
+                               FloatImage& distances) {
+  if (distances.width != camera.width || distances.height != camera.height)
+    distances = FloatImage(camera.width, camera.height);
+  const ViewFrame f(camera);
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const std::size_t k = std::size_t(x) + std::size_t(camera.width) * std::size_t(y);
+      distances.set(x, y, glm::vec4(float(double(view_depth[k]) * f.ray_scale(x, y)), 0, 0, 0));
+    }
+}
+
+void view_depth_from_distances(const Camera& camera, const FloatImage& distances,
+                               std::vector<float>& view_depth) {
+  const ViewFrame f(camera);
+  view_depth.resize(std::size_t(distances.width) * std::size_t(distances.height));
+  for (int y = 0; y < distances.height; ++y)
+    for (int x = 0; x < distances.width; ++x)
+      view_depth[std::size_t(x) + std::size_t(distances.width) * std::size_t(y)] =
+          float(double(distances.at(x, y).r) / f.ray_scale(x, y));
+}
+
 }  // namespace voxspan

@@ -12,9 +12,11 @@
 
 #include <array>
 #include <span>
+#include <vector>
 
 #include "insitu/config/settings.h"
 #include "render/camera.h"
+#include "render/float_image.h"
 #include "voxspan/cell_states.h"
 
 namespace voxspan {
@@ -34,6 +36,14 @@ struct Bounds {
 // An empty box (no particle yet) gives a camera that looks at the origin from 1 unit away.
 Camera frame_camera(const CameraConfig& camera, int width, int height, const Bounds& box);
 Camera frame_camera(const ViewSettings& view, const Bounds& box);
+
+// Depths per pixel (row 0 at the top, 0: nothing there) two ways: along the camera's axis (view
+// z, what the views composite with) and along each pixel's ray from the eye (what the depth
+// output writes, in the image's r channel). Storage reused.
+void distances_from_view_depth(const Camera& camera, std::span<const float> view_depth,
+                               FloatImage& distances);
+void view_depth_from_distances(const Camera& camera, const FloatImage& distances,
+                               std::vector<float>& view_depth);
 
 // Keeps the box a view's framing follows from step to step.
 class ViewFraming {
