@@ -143,7 +143,7 @@ std::optional<ConfiguredView> read_view(Checker& checker, const YAML::Node& node
   ConfiguredView view{std::string(kind->name), kind->defaults()};
   ViewSettings& v = *view.settings;
   v.name = "view" + std::to_string(index);
-  v.source = checker.where(node.Mark(), path);
+  v.source.where = checker.where(node.Mark(), path);
   kind->read(checker, node, path, v);
   if (!schema::is_plain_name(v.name))
     checker.error(

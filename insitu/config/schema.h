@@ -26,7 +26,6 @@
 #include <span>
 #include <string>
 #include <string_view>
-#include <type_traits>
 #include <vector>
 
 #include "insitu/config/yaml_reader.h"
@@ -311,14 +310,12 @@ template <class T, class Inner> Key<T> lifted(Inner T::*member, Key<Inner> k) {
 // The keys of a base struct as keys of T, which derives from it (a view kind's settings that
 // share their keys with another kind's nested map).
 template <class T, class Base> std::vector<Key<T>> from_base(std::vector<Key<Base>> keys) {
+  struct AsBase {
+    Base& operator()(T& t) const { return t; }
+    const Base& operator()(const T& t) const { return t; }
+  };
   std::vector<Key<T>> out;
-  for (Key<Base>& k : keys)
-    out.push_back(rebased<T>(
-        std::move(k), [](auto& t) -> auto& {
-          using B = std::conditional_t<std::is_const_v<std::remove_reference_t<decltype(t)>>,
-                                       const Base, Base>;
-          return static_cast<B&>(t);
-        }));
+  for (Key<Base>& k : keys) out.push_back(rebased<T>(std::move(k), AsBase{}));
   return out;
 }
 

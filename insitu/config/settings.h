@@ -123,27 +123,31 @@ struct CameraConfig {
 };
 const schema::Section<CameraConfig>& camera_section();
 
+// Where the config gave a section ("run.yaml:12:5: views[2]"; empty for a default one), kept
+// for messages. Not a setting: settings that differ only here are equal.
+struct ConfigSource {
+  std::string where;
+  bool operator==(const ConfigSource&) const { return true; }
+};
+
 struct ViewSettings {
   std::string name;  // default "view<i>"; names the PNG files and the stats section
   int width = 960;
   int height = 540;
   CameraConfig camera;
-  // Where the config gave the view ("run.yaml:12:5: views[2]"), so that a key found wrong only
-  // when the solver's data arrives (an attribute it does not pass) is named with its line;
-  // empty for a default view. Not a setting: two configs that differ only here are equal.
-  std::string source;
+  // Where the config gave the view, so that a key found wrong only when the solver's data
+  // arrives (an attribute it does not pass) is named with its line.
+  ConfigSource source;
 
   ViewSettings() = default;
   virtual ~ViewSettings() = default;
   virtual std::unique_ptr<ViewSettings> clone() const = 0;
   virtual bool equals(const ViewSettings& other) const = 0;
-  bool operator==(const ViewSettings& o) const {
-    return name == o.name && width == o.width && height == o.height && camera == o.camera;
-  }
+  bool operator==(const ViewSettings&) const = default;
   // The key path of one of the view's keys for messages: "run.yaml:12:5: views[2].quantity",
   // or the key alone for a default view.
   std::string key_path(std::string_view key) const {
-    return source.empty() ? std::string(key) : source + "." + std::string(key);
+    return source.where.empty() ? std::string(key) : source.where + "." + std::string(key);
   }
 
  protected:

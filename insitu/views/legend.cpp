@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <cmath>
 #include <cstdio>
-#include <vector>
+#include <span>
 
 namespace voxspan {
 namespace {
@@ -108,15 +108,19 @@ void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi, Bar
 namespace {
 
 // About five round values inside [min(from, to), max(from, to)]: multiples of 1, 2 or 5 times
-// a power of ten.
-std::vector<double> ticks(double from, double to) {
+// a power of ten. The step is at least span / 7.5, so there are at most 8 (+1 for rounding).
+struct Ticks {
+  std::array<double, 10> values;
+  std::size_t count = 0;
+};
+Ticks ticks(double from, double to) {
+  Ticks out;
   const double lo = std::min(from, to), hi = std::max(from, to), span = hi - lo;
-  if (!(span > 0) || !std::isfinite(span)) return {};
+  if (!(span > 0) || !std::isfinite(span)) return out;
   const double raw = span / 5, power = std::pow(10.0, std::floor(std::log10(raw)));
   const double step = raw / power < 1.5 ? power : raw / power < 3.5 ? 2 * power : 5 * power;
-  std::vector<double> out;
-  for (double n = std::ceil(lo / step); n * step <= hi; n += 1)
-    out.push_back(std::abs(n) < 0.5 ? 0.0 : n * step);  // an exact 0, never -1e-17
+  for (double n = std::ceil(lo / step); n * step <= hi && out.count < out.values.size(); n += 1)
+    out.values[out.count++] = std::abs(n) < 0.5 ? 0.0 : n * step;  // an exact 0, never -1e-17
   return out;
 }
 
@@ -135,7 +139,8 @@ void draw_axes(FloatImage& picture, const Axis& horizontal, const Axis& vertical
   const int w = picture.width, h = picture.height, s = text_scale(h), mark = 4 * s;
   if (w < kAxesMinWidth || h < kAxesMinHeight) return;
   const glm::vec3 light(0.9f);
-  const std::vector<double> xs = ticks(horizontal.from, horizontal.to);
+  const Ticks xt = ticks(horizontal.from, horizontal.to);
+  const std::span<const double> xs(xt.values.data(), xt.count);
   for (std::size_t n = 0; n < xs.size(); ++n) {
     const int x = int(
                   std::lround((xs[n] - horizontal.from) / (horizontal.to - horizontal.from) * w)),
@@ -145,7 +150,8 @@ void draw_axes(FloatImage& picture, const Axis& horizontal, const Axis& vertical
     const int left = std::clamp(x - text_width(t, s) / 2, s, std::max(s, w - text_width(t, s)));
     draw_text(picture, left, h - mark - s - 7 * s, t, s);
   }
-  const std::vector<double> ys = ticks(vertical.from, vertical.to);
+  const Ticks yt = ticks(vertical.from, vertical.to);
+  const std::span<const double> ys(yt.values.data(), yt.count);
   for (std::size_t n = 0; n < ys.size(); ++n) {
     const int y = h - int(std::lround((ys[n] - vertical.from) / (vertical.to - vertical.from) * h)),
               thick = std::max(1, s / 2 + 1);

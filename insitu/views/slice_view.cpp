@@ -26,7 +26,9 @@ void no_surface(FloatImage& depth, int width, int height) {
 class SliceView final : public View {
  public:
   SliceView(const SliceSettings& s, const ViewContext& c)
-      : settings_(s), layer_(s, s.name, s.source, c.particle_spacing, c.comm), comm_(c.comm) {}
+      : settings_(s),
+        layer_(s, s.name, s.source.where, c.particle_spacing, c.comm),
+        comm_(c.comm) {}
 
   bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& /*stats*/,
               ViewProducts& out) override {
