@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
+#include <tbb/parallel_reduce.h>
 
 namespace voxspan {
 namespace {
@@ -28,25 +30,25 @@ struct Interval {
   double entry, exit;
 };
 
-// Items sorted into screen tiles by their pixel rectangles (counting sort: serial, linear).
+// Items sorted into screen tiles by their pixel rectangles (counting sort: serial, linear):
+// count() the items' tiles, then place() each item, in the order the tiles should see them.
 struct TileBins {
   int nx = 0, ny = 0;
   std::vector<std::uint32_t> start;  // nx * ny + 1
-  std::vector<std::uint32_t> items;
 
-  void fill(int width, int height, const std::vector<PixelRect>& rects) {
+  template <class RectOf> void count(int width, int height, std::size_t n, RectOf&& rect_of) {
     nx = (width + kTile - 1) / kTile;
     ny = (height + kTile - 1) / kTile;
     start.assign(std::size_t(nx) * std::size_t(ny) + 1, 0);
-    for (const PixelRect& r : rects) each_tile(r, [&](std::size_t t) { ++start[t + 1]; });
+    for (std::size_t i = 0; i < n; ++i)
+      each_tile(rect_of(i), [&](std::size_t t) { ++start[t + 1]; });
     for (std::size_t t = 1; t < start.size(); ++t) start[t] += start[t - 1];
-    items.resize(start.back());
     cursor.assign(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < rects.size(); ++i)
-      each_tile(rects[i], [&](std::size_t t) { items[cursor[t]++] = std::uint32_t(i); });
   }
-  std::span<const std::uint32_t> of(std::size_t tile) const {
-    return {items.data() + start[tile], start[tile + 1] - start[tile]};
+  std::size_t size() const { return start.empty() ? 0 : start.back(); }
+  // Calls put(slot) for each tile the rectangle touches: slot is the item's place in the bins.
+  template <class Put> void place(const PixelRect& r, Put&& put) {
+    each_tile(r, [&](std::size_t t) { put(cursor[t]++); });
   }
 
  private:
@@ -199,33 +201,65 @@ std::uint32_t sortable_bits(float f) {
   return (u & 0x80000000u) != 0 ? ~u : u | 0x80000000u;
 }
 
+// Sorts (key << 32 | index) words by their key, stably (least significant digit first, a byte
+// a pass): words made in index order end as a sort of the whole words would leave them, in at
+// most four linear passes (none for a byte every key shares) instead of n log n comparisons.
+void sort_by_key(std::vector<std::uint64_t>& words, std::vector<std::uint64_t>& scratch) {
+  scratch.resize(words.size());
+  for (int shift = 32; shift < 64; shift += 8) {
+    std::size_t at[257] = {};
+    for (const std::uint64_t k : words) ++at[((k >> shift) & 0xff) + 1];
+    if (std::find(at + 1, at + 257, words.size()) != at + 257) continue;  // one digit: in order
+    for (int d = 1; d < 257; ++d) at[d] += at[d - 1];
+    for (const std::uint64_t k : words) scratch[at[(k >> shift) & 0xff]++] = k;
+    std::swap(words, scratch);
+  }
+}
+
 PixelRect clip(const PixelRect& r, int x0, int y0, int x1, int y1) {
   return {std::max(r.x0, x0), std::max(r.y0, y0), std::min(r.x1, x1), std::min(r.y1, y1)};
 }
 
-// One tile's interval lists, per pixel of the tile; a thread's, reused from tile to tile.
+// One tile's unions, per pixel of the tile; a thread's, reused from tile to tile. A pixel's
+// union is its intervals `before` (in depth order) then `last`: the interval nearly every chord
+// of a thick fluid lands in (spheres come nearest first), kept in a flat array so that the
+// common case (moving its exit) touches no list. last[p].exit == kNone: the union is empty.
 // A pixel's ray is (a[x], b[y], 1) in view space (ViewFrame::view_ray).
+constexpr double kNone = -std::numeric_limits<double>::infinity();
+
 struct TileLists {
-  std::vector<std::vector<Interval>> at = std::vector<std::vector<Interval>>(kTile * kTile);
+  std::vector<std::vector<Interval>> before = std::vector<std::vector<Interval>>(kTile * kTile);
+  Interval last[kTile * kTile];
   double a[kTile], b[kTile];
-  double d2[kTile * kTile];     // |ray|^2
-  double scale[kTile * kTile];  // |ray|: a depth difference's length along the ray
-  // One row of one sphere: the chord's centre depth and squared half length per pixel.
+  double inv_d2[kTile * kTile];  // 1 / |ray|^2
+  double scale[kTile * kTile];   // |ray|: a depth difference's length along the ray
+  // One row of one sphere (row_chords).
   double zc[kTile], h2[kTile];
+  bool changes[kTile];
   std::int64_t chord_tests = 0;
 };
 
 // The chords of sphere s along row y of the tile, pixels [x0, x1] (tile-local): zc and h2 per
-// pixel, as chord() computes them (the same operations in the same order), vectorizable.
+// pixel, as the reference's chord() computes them but for a multiplication by 1 / |ray|^2 where
+// it divides (a rounding apart), and whether the chord can change the pixel's union: not when
+// the ray misses the sphere (h2 <= 0) nor when the chord lies inside the union's last interval,
+// tested without the square root (half <= m, m the chord centre's distance to that interval's
+// nearer end). A quarter of the chords of thick fluid lie inside it. Branch-free, so that the
+// compiler vectorizes it.
 void row_chords(TileLists& l, const Sphere& s, int y, int x0, int x1) {
   const double b = l.b[y], r2 = s.radius * s.radius;
   const double cx = s.center.x, cy = s.center.y, cz = s.center.z;
+  const double* inv_d2 = l.inv_d2 + y * kTile;
+  const Interval* last = l.last + y * kTile;
   for (int x = x0; x <= x1; ++x) {
-    const double a = l.a[x], d2 = l.d2[x + y * kTile];
-    const double zc = (a * cx + b * cy + cz) / d2;
+    const double a = l.a[x];
+    const double zc = (a * cx + b * cy + cz) * inv_d2[x];
     const double px = cx - zc * a, py = cy - zc * b, pz = cz - zc;
+    const double h2 = r2 - (px * px + py * py + pz * pz);
+    const double m = std::min(last[x].exit - zc, zc - last[x].entry);
     l.zc[x] = zc;
-    l.h2[x] = r2 - (px * px + py * py + pz * pz);
+    l.h2[x] = h2;
+    l.changes[x] = (h2 > 0) & !((m >= 0) & (h2 * inv_d2[x] <= m * m));
   }
 }
 
@@ -267,6 +301,30 @@ void add_interval(std::vector<Interval>& list, Interval iv, double scale, double
   list.erase(list.begin() + std::ptrdiff_t(at + 1), list.begin() + std::ptrdiff_t(next));
 }
 
+// Adds an interval to pixel p's union: add_interval on `before` then `last`, with its common
+// case (the interval starts in or after `last`) on the flat array alone.
+inline void join(TileLists& l, std::size_t p, Interval iv, double gap) {
+  Interval& last = l.last[p];
+  if (last.exit == kNone) {
+    last = iv;
+    return;
+  }
+  if (last.entry <= iv.entry) {
+    if (iv.entry <= last.exit || (iv.entry - last.exit) * l.scale[p] < gap) {
+      last.exit = std::max(last.exit, iv.exit);
+    } else {
+      l.before[p].push_back(last);
+      last = iv;
+    }
+    return;
+  }
+  std::vector<Interval>& list = l.before[p];
+  list.push_back(last);
+  add_interval(list, iv, l.scale[p], gap);
+  last = list.back();
+  list.pop_back();
+}
+
 }  // namespace
 
 struct BinnedSphere {
@@ -275,10 +333,12 @@ struct BinnedSphere {
 };
 
 struct SpanCaster::Work {
+  std::vector<BinnedSphere> sorted;  // the spheres in view, nearest first
   std::vector<BinnedSphere> binned;  // sphere_bins' items, the spheres themselves
-  std::vector<Sphere> spheres, sorted_spheres;
-  std::vector<PixelRect> sphere_rects, box_rects, sorted_rects;
-  std::vector<std::uint64_t> order;
+  std::vector<Sphere> spheres;
+  std::vector<PixelRect> sphere_rects, box_rects;
+  std::vector<std::uint64_t> order, order_scratch;  // (nearest depth, index), in view only
+  std::vector<std::uint32_t> box_items;             // box_bins' items
   std::vector<Box> boxes;
   std::vector<CellBox> cell_boxes;
   BoxScratch box_scratch;
@@ -306,62 +366,60 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
   const ViewFrame& view = grid.view();
   const double near = grid.near(), far = grid.grid_far();
 
-  // Every sphere to view space with the pixels it may cover, in parallel; then those in view.
-  w.spheres.resize(particles.size());
-  w.sphere_rects.resize(particles.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, particles.size(), 4096),
+  // Every sphere to view space with the pixels it may cover, and its sort key, in parallel.
+  // Keys: (nearest depth, index), or kOutOfView; sorted, those in view come first.
+  constexpr std::uint64_t kOutOfView = ~std::uint64_t(0);
+  const std::size_t n = particles.size();
+  w.spheres.resize(n);
+  w.sphere_rects.resize(n);
+  w.order.resize(n);
+  const std::size_t kept = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, 4096), std::size_t(0),
+      [&](const tbb::blocked_range<std::size_t>& range, std::size_t in_view) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          const ParticleSphere& p = particles[i];
+          w.order[i] = kOutOfView;
+          if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) &&
+                std::isfinite(p.radius) && p.radius > 0))
+            continue;
+          const Sphere s{view.to_view(glm::dvec3(p.x, p.y, p.z)), p.radius};
+          if (s.center.z + s.radius <= near) continue;
+          const PixelRect r = grid.sphere_pixels(s.center, s.radius);
+          if (r.empty()) continue;
+          w.spheres[i] = s;
+          w.sphere_rects[i] = r;
+          w.order[i] = std::uint64_t(sortable_bits(float(s.center.z - s.radius))) << 32 | i;
+          ++in_view;
+        }
+        return in_view;
+      },
+      std::plus<>());
+  // Nearest first: the bins keep this order, so each pixel's chords arrive almost in depth
+  // order and most of them only move the last exit of its union (join).
+  sort_by_key(w.order, w.order_scratch);
+  w.order.resize(kept);
+  w.sorted.resize(kept);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept, 8192),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        const ParticleSphere& p = particles[i];
-                        w.sphere_rects[i] = {};
-                        if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) &&
-                              std::isfinite(p.radius) && p.radius > 0))
-                          continue;
-                        w.spheres[i] = {view.to_view(glm::dvec3(p.x, p.y, p.z)), p.radius};
-                        if (w.spheres[i].center.z + p.radius <= near) continue;
-                        w.sphere_rects[i] = grid.sphere_pixels(w.spheres[i].center, p.radius);
+                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                        const std::size_t i = std::size_t(w.order[k] & 0xffffffffu);
+                        w.sorted[k] = {w.spheres[i], w.sphere_rects[i]};
                       }
                     });
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    if (w.sphere_rects[i].empty()) continue;
-    w.spheres[kept] = w.spheres[i];
-    w.sphere_rects[kept++] = w.sphere_rects[i];
-  }
-  w.spheres.resize(kept);
-  w.sphere_rects.resize(kept);
-  // Nearest first: the bins keep this order, so each pixel's chords arrive almost in depth
-  // order and most of them only move the last exit of its union (add_interval).
-  // Sorted as (nearest depth, index) keys packed in 64 bits: no indirection in the sort.
-  w.order.resize(kept);
-  for (std::size_t i = 0; i < kept; ++i)
-    w.order[i] = std::uint64_t(sortable_bits(float(w.spheres[i].center.z - w.spheres[i].radius)))
-                     << 32 |
-                 std::uint64_t(i);
-  tbb::parallel_sort(w.order.begin(), w.order.end());
-  w.sorted_spheres.resize(kept);
-  w.sorted_rects.resize(kept);
-  for (std::size_t i = 0; i < kept; ++i) {
-    const std::size_t from = std::size_t(w.order[i] & 0xffffffffu);
-    w.sorted_spheres[i] = w.spheres[from];
-    w.sorted_rects[i] = w.sphere_rects[from];
-  }
-  std::swap(w.spheres, w.sorted_spheres);
-  std::swap(w.sphere_rects, w.sorted_rects);
   if (settings.use_cell_states)
     cell_boxes(grid, cells, w.cell_boxes, w.box_scratch, w.boxes, w.box_rects);
   else w.boxes.clear(), w.box_rects.clear();
-  w.sphere_bins.fill(width, height, w.sphere_rects);
-  w.box_bins.fill(width, height, w.box_rects);
-  // Each tile's spheres side by side, in the bins' order: the tiles read them as a stream.
-  w.binned.resize(w.sphere_bins.items.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, w.binned.size(), 8192),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
-                        const std::uint32_t i = w.sphere_bins.items[k];
-                        w.binned[k] = {w.spheres[i], w.sphere_rects[i]};
-                      }
-                    });
+  w.box_bins.count(width, height, w.box_rects.size(),
+                   [&](std::size_t i) { return w.box_rects[i]; });
+  w.box_items.resize(w.box_bins.size());
+  for (std::size_t i = 0; i < w.box_rects.size(); ++i)
+    w.box_bins.place(w.box_rects[i],
+                     [&](std::size_t slot) { w.box_items[slot] = std::uint32_t(i); });
+  // Each tile's spheres side by side, nearest first: the tiles read them as a stream.
+  w.sphere_bins.count(width, height, kept, [&](std::size_t k) { return w.sorted[k].rect; });
+  w.binned.resize(w.sphere_bins.size());
+  for (const BinnedSphere& b : w.sorted)
+    w.sphere_bins.place(b.rect, [&](std::size_t slot) { w.binned[slot] = b; });
   const int tiles_x = w.sphere_bins.nx, tiles = tiles_x * w.sphere_bins.ny;
   w.tile_spans.resize(std::size_t(tiles));
   for (TileLists& l : w.lists) l.chord_tests = 0;
@@ -376,16 +434,19 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
       for (int y = y0; y <= y1; ++y) l.b[y - y0] = view.view_ray(x0, y).y;
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
-          l.at[local(x, y)].clear();
+          const std::size_t p = local(x, y);
+          l.before[p].clear();
+          l.last[p] = {kNone, kNone};
           const double a = l.a[x - x0], b = l.b[y - y0];
-          l.d2[local(x, y)] = a * a + b * b + 1.0;
-          l.scale[local(x, y)] = std::sqrt(l.d2[local(x, y)]);
+          const double d2 = a * a + b * b + 1.0;
+          l.inv_d2[p] = 1 / d2;
+          l.scale[p] = std::sqrt(d2);
         }
+      const double gap = settings.gap_bridging;
       const auto keep = [&](std::size_t pixel, Interval iv) {
         iv.entry = std::max(iv.entry, near);
         iv.exit = std::min(iv.exit, far);
-        if (iv.entry < iv.exit)
-          add_interval(l.at[pixel], iv, l.scale[pixel], settings.gap_bridging);
+        if (iv.entry < iv.exit) join(l, pixel, iv, gap);
       };
       const std::size_t first = w.sphere_bins.start[std::size_t(t)];
       const std::size_t last = w.sphere_bins.start[std::size_t(t) + 1];
@@ -396,14 +457,16 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
         for (int y = r.y0 - y0; y <= r.y1 - y0; ++y) {
           row_chords(l, s, y, r.x0 - x0, r.x1 - x0);
           for (int x = r.x0 - x0; x <= r.x1 - x0; ++x) {
-            if (!(l.h2[x] > 0)) continue;
-            const double half = std::sqrt(l.h2[x] / l.d2[x + y * kTile]);
+            if (!l.changes[x]) continue;
+            const double half = std::sqrt(l.h2[x] * l.inv_d2[x + y * kTile]);
             keep(std::size_t(x + y * kTile), {l.zc[x] - half, l.zc[x] + half});
           }
         }
       }
       // Sec. 4.3: inner-full cells are fluid whose particles were left out.
-      for (std::uint32_t i : w.box_bins.of(std::size_t(t))) {
+      for (std::size_t k = w.box_bins.start[std::size_t(t)];
+           k < w.box_bins.start[std::size_t(t) + 1]; ++k) {
+        const std::uint32_t i = w.box_items[k];
         const PixelRect r = clip(w.box_rects[i], x0, y0, x1, y1);
         for (int y = r.y0; y <= r.y1; ++y)
           for (int x = r.x0; x <= r.x1; ++x) {
@@ -417,8 +480,10 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
           const double scale = l.scale[local(x, y)];
+          const std::size_t p = local(x, y);
           builder.begin();
-          for (const Interval& iv : l.at[local(x, y)]) builder.add(iv.entry, iv.exit, scale);
+          for (const Interval& iv : l.before[p]) builder.add(iv.entry, iv.exit, scale);
+          if (l.last[p].exit != kNone) builder.add(l.last[p].entry, l.last[p].exit, scale);
           out.pixels[std::size_t(x) + std::size_t(y) * std::size_t(width)] = builder.end();
         }
     }
@@ -442,7 +507,7 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
               base[std::size_t(t)];
     }
   });
-  counts.spheres = std::int64_t(w.spheres.size());
+  counts.spheres = std::int64_t(kept);
   counts.cell_boxes = std::int64_t(w.boxes.size());
   counts.tiles = tiles;
   for (const TileLists& l : w.lists) counts.chord_tests += l.chord_tests;
