@@ -4,13 +4,14 @@
 // 4.4): the union of the intervals, clipped to the grid's [near, grid_far]; gaps shorter than
 // the gap-bridging distance along the ray closed; inner-full cells counted as fluid; the span
 // cap applied by SpanListBuilder. The answer is the exact reference's
-// (render/reference/exact_spans.h) up to rounding at cell faces: the two share no code but
-// the list rule, and the tests hold them to each other.
+// (render/reference/exact_spans.h) up to rounding at cell faces and in the chords' centres:
+// the two share no code but the list rule, and the tests hold them to each other.
 //
 // Work: screen tiles of kTile^2 pixels in parallel (oneTBB); each tile walks the spheres
 // (nearest first, packed per tile) and cell boxes whose pixel rectangles touch it, sphere by
 // sphere over the pixels it covers, so the cost follows the spheres' footprints, not pixels x
-// candidates; each chord joins its pixel's union at once (most only move its last exit).
+// candidates; each chord joins its pixel's union at once (most only move its last exit, and
+// those inside it are found without a square root).
 // Inner-full cells go in merged into few boxes. Memory: the spans and one union per pixel of
 // the tiles in flight; tiles join in their order, so the image does not depend on the threads.
 #pragma once
