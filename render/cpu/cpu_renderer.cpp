@@ -3,11 +3,39 @@
 #include <algorithm>
 #include <atomic>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include "render/model/cpu_host.h"
 #include "render/passes/filter.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
+namespace {
+
+struct Tallies {
+  std::int64_t unlinkable = 0;   // spans past the links' reach (VX_LINK_MAX_INDEX)
+  std::uint32_t most_spans = 0;  // in one pixel
+};
+
+// Both in one parallel pass over the pixels (they were two serial ones).
+Tallies tally(const SpanImage& spans) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, spans.pixels.size(), 16384), Tallies{},
+      [&](const tbb::blocked_range<std::size_t>& range, Tallies t) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          const std::uint32_t n = spans.pixels[i].count;
+          t.unlinkable += n > VX_LINK_MAX_INDEX + 1u ? n - VX_LINK_MAX_INDEX - 1u : 0;
+          t.most_spans = std::max(t.most_spans, n);
+        }
+        return t;
+      },
+      [](Tallies a, const Tallies& b) {
+        return Tallies{a.unlinkable + b.unlinkable, std::max(a.most_spans, b.most_spans)};
+      });
+}
+
+}  // namespace
 
 const SpanImage& CpuRenderer::cast(const Camera& camera, std::span<const ParticleSphere> particles,
                                    const CellStatesView& cells, const VoxelizeOptions& options,
@@ -22,8 +50,8 @@ const SpanImage& CpuRenderer::cast(const Camera& camera, std::span<const Particl
   stats.set_count("cast.cell_boxes", counts.cell_boxes);
   stats.set_count("cast.chord_tests", counts.chord_tests);
   stats.set_count("spans.stored", std::int64_t(spans_.spans.size()));
-  stats.set_count("spans.found", spans_.total_spans());
-  stats.set_count("pixels.capped", spans_.capped_pixels());
+  stats.set_count("spans.found", counts.spans_found);
+  stats.set_count("pixels.capped", counts.capped_pixels);
   return spans_;
 }
 
@@ -48,15 +76,13 @@ void CpuRenderer::shade(const SpanImage& spans, const SurfaceOptions& surfaces,
     ~Lend() { host.swap_buffers(buffers); }
   } lend(host, buffers_);
   host.depths_.clear();  // the span depths until the filter runs
+  const Tallies tallies = tally(spans);
   {
     auto t = timer.cpu("connect");
     host.fill_per_span(host.links_, [&](model::ivec2 p, model::uint s) {
       return host.connect_span(p, s - host.sd_offset(p));
     });
-    std::int64_t unlinkable = 0;
-    for (const PixelSpans& p : spans.pixels)
-      unlinkable += p.count > VX_LINK_MAX_INDEX + 1u ? p.count - VX_LINK_MAX_INDEX - 1u : 0;
-    stats.set_count("links.unlinkable_spans", unlinkable);
+    stats.set_count("links.unlinkable_spans", tallies.unlinkable);
   }
   {
     auto t = timer.cpu("filter");
@@ -83,9 +109,8 @@ void CpuRenderer::shade(const SpanImage& spans, const SurfaceOptions& surfaces,
     host.each_pixel([&](model::ivec2 p) { host.ao_[host.pixel_index(p)] = host.deep_ao(p); });
   }
   auto t = timer.cpu("shade");
-  std::uint32_t most_spans = 0;
-  for (const PixelSpans& p : spans.pixels) most_spans = std::max(most_spans, p.count);
-  const int dispatches = refract_dispatch_limit(spans.width(), spans.height(), most_spans, shade);
+  const int dispatches =
+      refract_dispatch_limit(spans.width(), spans.height(), tallies.most_spans, shade);
   if (shade.mode == ShadeMode::refractive) host.gather_block_bounds();
   if (image.width != spans.width() || image.height != spans.height())
     image = FloatImage(spans.width(), spans.height());

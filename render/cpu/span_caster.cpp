@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -30,34 +31,57 @@ struct Interval {
   double entry, exit;
 };
 
-// Items sorted into screen tiles by their pixel rectangles (counting sort: serial, linear):
-// count() the items' tiles, then place() each item, in the order the tiles should see them.
+// Items sorted into screen tiles by their pixel rectangles (a counting sort): count() the
+// items' tiles, then place() each item. Both run in parallel over fixed chunks of the items,
+// each chunk's items placed after those of the chunks before it, so that every tile sees its
+// items in their order, whatever the threads.
 struct TileBins {
   int nx = 0, ny = 0;
   std::vector<std::uint32_t> start;  // nx * ny + 1
 
+  // rect_of(i): item i's PixelRect.
   template <class RectOf> void count(int width, int height, std::size_t n, RectOf&& rect_of) {
     nx = (width + kTile - 1) / kTile;
     ny = (height + kTile - 1) / kTile;
-    start.assign(std::size_t(nx) * std::size_t(ny) + 1, 0);
-    for (std::size_t i = 0; i < n; ++i)
-      each_tile(rect_of(i), [&](std::size_t t) { ++start[t + 1]; });
-    for (std::size_t t = 1; t < start.size(); ++t) start[t] += start[t - 1];
-    cursor.assign(start.begin(), start.end() - 1);
+    tiles = std::size_t(nx) * std::size_t(ny);
+    cursor.assign(kChunks * tiles, 0);
+    each_chunk(n, [&](std::size_t i, std::uint32_t* count) {
+      each_tile(rect_of(i), [&](std::size_t t) { ++count[t]; });
+    });
+    // Each chunk's counts become its first slot in each tile.
+    start.assign(tiles + 1, 0);
+    std::uint32_t slot = 0;
+    for (std::size_t t = 0; t < tiles; ++t) {
+      start[t] = slot;
+      for (std::size_t c = 0; c < kChunks; ++c) slot += std::exchange(cursor[c * tiles + t], slot);
+    }
+    start[tiles] = slot;
+    items = n;
   }
   std::size_t size() const { return start.empty() ? 0 : start.back(); }
-  // Calls put(slot) for each tile the rectangle touches: slot is the item's place in the bins.
-  template <class Put> void place(const PixelRect& r, Put&& put) {
-    each_tile(r, [&](std::size_t t) { put(cursor[t]++); });
+  // put(i, slot) for each tile item i's rectangle touches: slot is its place in the bins.
+  template <class RectOf, class Put> void place(RectOf&& rect_of, Put&& put) {
+    each_chunk(items, [&](std::size_t i, std::uint32_t* next) {
+      each_tile(rect_of(i), [&](std::size_t t) { put(i, next[t]++); });
+    });
   }
 
  private:
+  static constexpr std::size_t kChunks = 16;
+  // body(i, the chunk's row of cursor) for every item, chunks in parallel.
+  template <class F> void each_chunk(std::size_t n, F&& body) {
+    tbb::parallel_for(std::size_t(0), kChunks, [&](std::size_t c) {
+      std::uint32_t* row = cursor.data() + c * tiles;
+      for (std::size_t i = n * c / kChunks; i < n * (c + 1) / kChunks; ++i) body(i, row);
+    });
+  }
   template <class F> void each_tile(const PixelRect& r, F&& f) const {
     for (int ty = r.y0 / kTile; ty <= r.y1 / kTile; ++ty)
       for (int tx = r.x0 / kTile; tx <= r.x1 / kTile; ++tx)
         f(std::size_t(tx) + std::size_t(ty) * std::size_t(nx));
   }
-  std::vector<std::uint32_t> cursor;
+  std::vector<std::uint32_t> cursor;  // per chunk, per tile: its count, then its next slot
+  std::size_t tiles = 0, items = 0;
 };
 
 // Depth interval of the ray eye + z * w inside a box (slabs); false when it misses.
@@ -235,8 +259,9 @@ struct TileLists {
   double scale[kTile * kTile];   // |ray|: a depth difference's length along the ray
   // One row of one sphere (row_chords).
   double zc[kTile], h2[kTile];
-  bool changes[kTile];
-  std::int64_t chord_tests = 0;
+  double changes[kTile];  // > 0: the chord can change the union (a double: a bool mask
+                          // keeps the compiler from vectorizing row_chords)
+  std::int64_t chord_tests = 0, spans_found = 0, capped_pixels = 0;
 };
 
 // The chords of sphere s along row y of the tile, pixels [x0, x1] (tile-local): zc and h2 per
@@ -257,9 +282,11 @@ void row_chords(TileLists& l, const Sphere& s, int y, int x0, int x1) {
     const double px = cx - zc * a, py = cy - zc * b, pz = cz - zc;
     const double h2 = r2 - (px * px + py * py + pz * pz);
     const double m = std::min(last[x].exit - zc, zc - last[x].entry);
+    // > 0 where half^2 > m^2 or m < 0: the chord reaches outside the last interval.
+    const double outside = std::max(h2 * inv_d2[x] - m * m, -m);
     l.zc[x] = zc;
     l.h2[x] = h2;
-    l.changes[x] = (h2 > 0) & !((m >= 0) & (h2 * inv_d2[x] <= m * m));
+    l.changes[x] = std::min(h2, outside);
   }
 }
 
@@ -409,20 +436,20 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
   if (settings.use_cell_states)
     cell_boxes(grid, cells, w.cell_boxes, w.box_scratch, w.boxes, w.box_rects);
   else w.boxes.clear(), w.box_rects.clear();
-  w.box_bins.count(width, height, w.box_rects.size(),
-                   [&](std::size_t i) { return w.box_rects[i]; });
+  const auto box_rect = [&](std::size_t i) { return w.box_rects[i]; };
+  w.box_bins.count(width, height, w.box_rects.size(), box_rect);
   w.box_items.resize(w.box_bins.size());
-  for (std::size_t i = 0; i < w.box_rects.size(); ++i)
-    w.box_bins.place(w.box_rects[i],
-                     [&](std::size_t slot) { w.box_items[slot] = std::uint32_t(i); });
+  w.box_bins.place(box_rect,
+                   [&](std::size_t i, std::size_t slot) { w.box_items[slot] = std::uint32_t(i); });
   // Each tile's spheres side by side, nearest first: the tiles read them as a stream.
-  w.sphere_bins.count(width, height, kept, [&](std::size_t k) { return w.sorted[k].rect; });
+  const auto sphere_rect = [&](std::size_t k) { return w.sorted[k].rect; };
+  w.sphere_bins.count(width, height, kept, sphere_rect);
   w.binned.resize(w.sphere_bins.size());
-  for (const BinnedSphere& b : w.sorted)
-    w.sphere_bins.place(b.rect, [&](std::size_t slot) { w.binned[slot] = b; });
+  w.sphere_bins.place(sphere_rect,
+                      [&](std::size_t k, std::size_t slot) { w.binned[slot] = w.sorted[k]; });
   const int tiles_x = w.sphere_bins.nx, tiles = tiles_x * w.sphere_bins.ny;
   w.tile_spans.resize(std::size_t(tiles));
-  for (TileLists& l : w.lists) l.chord_tests = 0;
+  for (TileLists& l : w.lists) l.chord_tests = l.spans_found = l.capped_pixels = 0;
 
   tbb::parallel_for(tbb::blocked_range<int>(0, tiles), [&](const tbb::blocked_range<int>& range) {
     TileLists& l = w.lists.local();
@@ -457,7 +484,7 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
         for (int y = r.y0 - y0; y <= r.y1 - y0; ++y) {
           row_chords(l, s, y, r.x0 - x0, r.x1 - x0);
           for (int x = r.x0 - x0; x <= r.x1 - x0; ++x) {
-            if (!l.changes[x]) continue;
+            if (!(l.changes[x] > 0)) continue;
             const double half = std::sqrt(l.h2[x] * l.inv_d2[x + y * kTile]);
             keep(std::size_t(x + y * kTile), {l.zc[x] - half, l.zc[x] + half});
           }
@@ -484,7 +511,10 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
           builder.begin();
           for (const Interval& iv : l.before[p]) builder.add(iv.entry, iv.exit, scale);
           if (l.last[p].exit != kNone) builder.add(l.last[p].entry, l.last[p].exit, scale);
-          out.pixels[std::size_t(x) + std::size_t(y) * std::size_t(width)] = builder.end();
+          const PixelSpans found = builder.end();
+          l.spans_found += found.total;
+          l.capped_pixels += found.total > found.count;
+          out.pixels[std::size_t(x) + std::size_t(y) * std::size_t(width)] = found;
         }
     }
   });
@@ -510,7 +540,11 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
   counts.spheres = std::int64_t(kept);
   counts.cell_boxes = std::int64_t(w.boxes.size());
   counts.tiles = tiles;
-  for (const TileLists& l : w.lists) counts.chord_tests += l.chord_tests;
+  for (const TileLists& l : w.lists) {
+    counts.chord_tests += l.chord_tests;
+    counts.spans_found += l.spans_found;
+    counts.capped_pixels += l.capped_pixels;
+  }
   return counts;
 }
 

@@ -37,6 +37,8 @@ struct CastCounts {
   std::int64_t cell_boxes = 0;   // runs of inner-full cells in view
   std::int64_t chord_tests = 0;  // sphere-pixel pairs tried
   std::int64_t tiles = 0;
+  std::int64_t spans_found = 0;    // SpanImage::total_spans(), counted on the way
+  std::int64_t capped_pixels = 0;  // SpanImage::capped_pixels()
 };
 
 class SpanCaster {
