@@ -14,7 +14,7 @@ double SpanImage::capped_gap_length(int x, int y) const {
 
 std::int64_t SpanImage::capped_pixels() const {
   std::int64_t n = 0;
-  for (const PixelSpans& p : pixels) n += p.total > p.count;
+  for (const PixelSpans& p : pixels) n += p.capped();
   return n;
 }
 

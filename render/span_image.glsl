@@ -33,6 +33,7 @@ float span_capped_gap_length(ivec2 pixel) {
   PixelSpans p = span_pixels[span_pixel_index(pixel)];
   if (p.total <= p.count) return 0.0;
   float stored = 0.0;
-  for (uint k = 0u; k < p.count; ++k) stored += span_depths[p.offset + k].y - span_depths[p.offset + k].x;
+  for (uint k = 0u; k < p.count; ++k)
+    stored += span_depths[p.offset + k].y - span_depths[p.offset + k].x;
   return max(0.0, stored * ray_scale(pixel) - p.inside);
 }

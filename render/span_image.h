@@ -33,6 +33,7 @@ struct PixelSpans {
   std::uint32_t count = 0;   // spans stored (<= the cap when one is set)
   std::uint32_t total = 0;   // spans found before the cap; total > count means capped
   float inside = 0;          // length of fluid along the ray (world units), all spans counted
+  bool capped() const { return total > count; }
 };
 static_assert(sizeof(PixelSpans) == 16);
 

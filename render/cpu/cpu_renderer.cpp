@@ -18,7 +18,8 @@ struct Tallies {
   std::uint32_t most_spans = 0;  // in one pixel
 };
 
-// Both in one parallel pass over the pixels (they were two serial ones).
+// What the connect and shade passes report or size themselves by, in one parallel pass over
+// the pixels (serial, such a loop was about 0.5 % of the renderer's perf samples, each).
 Tallies tally(const SpanImage& spans) {
   return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, spans.pixels.size(), 16384), Tallies{},

@@ -43,7 +43,7 @@ struct TileBins {
   template <class RectOf> void count(int width, int height, std::size_t n, RectOf&& rect_of) {
     nx = (width + kTile - 1) / kTile;
     ny = (height + kTile - 1) / kTile;
-    tiles = std::size_t(nx) * std::size_t(ny);
+    const std::size_t tiles = tile_count();
     cursor.assign(kChunks * tiles, 0);
     each_chunk(n, [&](std::size_t i, std::uint32_t* count) {
       each_tile(rect_of(i), [&](std::size_t t) { ++count[t]; });
@@ -59,6 +59,7 @@ struct TileBins {
     items = n;
   }
   std::size_t size() const { return start.empty() ? 0 : start.back(); }
+  std::size_t tile_count() const { return std::size_t(nx) * std::size_t(ny); }
   // put(i, slot) for each tile item i's rectangle touches: slot is its place in the bins.
   template <class RectOf, class Put> void place(RectOf&& rect_of, Put&& put) {
     each_chunk(items, [&](std::size_t i, std::uint32_t* next) {
@@ -71,7 +72,7 @@ struct TileBins {
   // body(i, the chunk's row of cursor) for every item, chunks in parallel.
   template <class F> void each_chunk(std::size_t n, F&& body) {
     tbb::parallel_for(std::size_t(0), kChunks, [&](std::size_t c) {
-      std::uint32_t* row = cursor.data() + c * tiles;
+      std::uint32_t* row = cursor.data() + c * tile_count();
       for (std::size_t i = n * c / kChunks; i < n * (c + 1) / kChunks; ++i) body(i, row);
     });
   }
@@ -81,7 +82,7 @@ struct TileBins {
         f(std::size_t(tx) + std::size_t(ty) * std::size_t(nx));
   }
   std::vector<std::uint32_t> cursor;  // per chunk, per tile: its count, then its next slot
-  std::size_t tiles = 0, items = 0;
+  std::size_t items = 0;              // count()'s, for place()
 };
 
 // Depth interval of the ray eye + z * w inside a box (slabs); false when it misses.
@@ -513,7 +514,7 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
           if (l.last[p].exit != kNone) builder.add(l.last[p].entry, l.last[p].exit, scale);
           const PixelSpans found = builder.end();
           l.spans_found += found.total;
-          l.capped_pixels += found.total > found.count;
+          l.capped_pixels += found.capped();
           out.pixels[std::size_t(x) + std::size_t(y) * std::size_t(width)] = found;
         }
     }

@@ -26,9 +26,7 @@ vec3 opaque_surface(vec3 normal, vec3 view_dir, float occlusion) {
   float up = 0.5f + 0.5f * dot(normal, u_env_up);
   vec3 ambient = mix(0.5f * (u_ground_light + u_ground_dark), u_sky_zenith, up);
   vec3 half_vector = normalize(u_sun_direction - view_dir);
-  float h = max(dot(normal, half_vector), 0.0f);
-  float h4 = (h * h) * (h * h), h16 = h4 * h4 * (h4 * h4);  // h^64 by squaring: pow is dear on CPUs
-  float highlight = (h16 * h16) * (h16 * h16);
+  float highlight = pow(max(dot(normal, half_vector), 0.0f), 64.0f);
   return u_albedo * (u_sun_color * sun + ambient * occlusion) + u_sun_color * (0.15f * highlight);
 }
 
