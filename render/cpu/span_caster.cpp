@@ -31,39 +31,34 @@ struct Interval {
   double entry, exit;
 };
 
-// Items sorted into screen tiles by their pixel rectangles (a counting sort): count() the
-// items' tiles, then place() each item. Both run in parallel over fixed chunks of the items,
-// each chunk's items placed after those of the chunks before it, so that every tile sees its
-// items in their order, whatever the threads.
-struct TileBins {
-  int nx = 0, ny = 0;
-  std::vector<std::uint32_t> start;  // nx * ny + 1
+// Items sorted into bins (a counting sort): count() the items' bins, then place() each item in
+// each of its bins. Both run in parallel over fixed chunks of the items, each chunk's items
+// placed after those of the chunks before it, so that every bin holds its items in their
+// order, whatever the threads. bins_of(i, f): f(bin) for each bin item i goes in.
+struct Bins {
+  std::vector<std::uint32_t> start;  // per bin its first slot, then the total
 
-  // rect_of(i): item i's PixelRect.
-  template <class RectOf> void count(int width, int height, std::size_t n, RectOf&& rect_of) {
-    nx = (width + kTile - 1) / kTile;
-    ny = (height + kTile - 1) / kTile;
-    const std::size_t tiles = tile_count();
-    cursor.assign(kChunks * tiles, 0);
+  template <class BinsOf> void count(std::size_t bins, std::size_t n, BinsOf&& bins_of) {
+    width = bins;
+    cursor.assign(kChunks * bins, 0);
     each_chunk(n, [&](std::size_t i, std::uint32_t* count) {
-      each_tile(rect_of(i), [&](std::size_t t) { ++count[t]; });
+      bins_of(i, [&](std::size_t b) { ++count[b]; });
     });
-    // Each chunk's counts become its first slot in each tile.
-    start.assign(tiles + 1, 0);
+    // Each chunk's counts become its first slot in each bin.
+    start.assign(bins + 1, 0);
     std::uint32_t slot = 0;
-    for (std::size_t t = 0; t < tiles; ++t) {
-      start[t] = slot;
-      for (std::size_t c = 0; c < kChunks; ++c) slot += std::exchange(cursor[c * tiles + t], slot);
+    for (std::size_t b = 0; b < bins; ++b) {
+      start[b] = slot;
+      for (std::size_t c = 0; c < kChunks; ++c) slot += std::exchange(cursor[c * bins + b], slot);
     }
-    start[tiles] = slot;
+    start[bins] = slot;
     items = n;
   }
   std::size_t size() const { return start.empty() ? 0 : start.back(); }
-  std::size_t tile_count() const { return std::size_t(nx) * std::size_t(ny); }
-  // put(i, slot) for each tile item i's rectangle touches: slot is its place in the bins.
-  template <class RectOf, class Put> void place(RectOf&& rect_of, Put&& put) {
+  // put(i, slot) for each bin of item i: slot is its place in the bins.
+  template <class BinsOf, class Put> void place(BinsOf&& bins_of, Put&& put) {
     each_chunk(items, [&](std::size_t i, std::uint32_t* next) {
-      each_tile(rect_of(i), [&](std::size_t t) { put(i, next[t]++); });
+      bins_of(i, [&](std::size_t b) { put(i, next[b]++); });
     });
   }
 
@@ -72,17 +67,26 @@ struct TileBins {
   // body(i, the chunk's row of cursor) for every item, chunks in parallel.
   template <class F> void each_chunk(std::size_t n, F&& body) {
     tbb::parallel_for(std::size_t(0), kChunks, [&](std::size_t c) {
-      std::uint32_t* row = cursor.data() + c * tile_count();
+      std::uint32_t* row = cursor.data() + c * width;
       for (std::size_t i = n * c / kChunks; i < n * (c + 1) / kChunks; ++i) body(i, row);
     });
   }
-  template <class F> void each_tile(const PixelRect& r, F&& f) const {
+  std::vector<std::uint32_t> cursor;  // per chunk, per bin: its count, then its next slot
+  std::size_t width = 0;              // bins
+  std::size_t items = 0;              // count()'s, for place()
+};
+
+// The screen's kTile^2 tiles, row by row: an item's bins are the tiles its pixels touch.
+struct Tiles {
+  int nx = 0, ny = 0;
+  Tiles(int width, int height)
+      : nx((width + kTile - 1) / kTile), ny((height + kTile - 1) / kTile) {}
+  std::size_t count() const { return std::size_t(nx) * std::size_t(ny); }
+  template <class F> void each(const PixelRect& r, F&& f) const {
     for (int ty = r.y0 / kTile; ty <= r.y1 / kTile; ++ty)
       for (int tx = r.x0 / kTile; tx <= r.x1 / kTile; ++tx)
         f(std::size_t(tx) + std::size_t(ty) * std::size_t(nx));
   }
-  std::vector<std::uint32_t> cursor;  // per chunk, per tile: its count, then its next slot
-  std::size_t items = 0;              // count()'s, for place()
 };
 
 // Depth interval of the ray eye + z * w inside a box (slabs); false when it misses.
@@ -220,27 +224,6 @@ void cell_boxes(const PerspectiveGrid& grid, const CellStatesView& cells,
   }
 }
 
-// A float's bits as an unsigned integer of the same order (negatives below positives).
-std::uint32_t sortable_bits(float f) {
-  const auto u = std::bit_cast<std::uint32_t>(f);
-  return (u & 0x80000000u) != 0 ? ~u : u | 0x80000000u;
-}
-
-// Sorts (key << 32 | index) words by their key, stably (least significant digit first, a byte
-// a pass): words made in index order end as a sort of the whole words would leave them, in at
-// most four linear passes (none for a byte every key shares) instead of n log n comparisons.
-void sort_by_key(std::vector<std::uint64_t>& words, std::vector<std::uint64_t>& scratch) {
-  scratch.resize(words.size());
-  for (int shift = 32; shift < 64; shift += 8) {
-    std::size_t at[257] = {};
-    for (const std::uint64_t k : words) ++at[((k >> shift) & 0xff) + 1];
-    if (std::find(at + 1, at + 257, words.size()) != at + 257) continue;  // one digit: in order
-    for (int d = 1; d < 257; ++d) at[d] += at[d - 1];
-    for (const std::uint64_t k : words) scratch[at[(k >> shift) & 0xff]++] = k;
-    std::swap(words, scratch);
-  }
-}
-
 PixelRect clip(const PixelRect& r, int x0, int y0, int x1, int y1) {
   return {std::max(r.x0, x0), std::max(r.y0, y0), std::min(r.x1, x1), std::min(r.y1, y1)};
 }
@@ -365,12 +348,11 @@ struct SpanCaster::Work {
   std::vector<BinnedSphere> binned;  // sphere_bins' items, the spheres themselves
   std::vector<Sphere> spheres;
   std::vector<PixelRect> sphere_rects, box_rects;
-  std::vector<std::uint64_t> order, order_scratch;  // (nearest depth, index), in view only
-  std::vector<std::uint32_t> box_items;             // box_bins' items
+  std::vector<std::uint32_t> box_items;  // box_bins' items
   std::vector<Box> boxes;
   std::vector<CellBox> cell_boxes;
   BoxScratch box_scratch;
-  TileBins sphere_bins, box_bins;
+  Bins depth_bins, sphere_bins, box_bins;
   std::vector<std::vector<Span>> tile_spans;
   std::vector<std::uint32_t> tile_base;  // the first span of each tile in the image
   tbb::enumerable_thread_specific<TileLists> lists;
@@ -394,19 +376,21 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
   const ViewFrame& view = grid.view();
   const double near = grid.near(), far = grid.grid_far();
 
-  // Every sphere to view space with the pixels it may cover, and its sort key, in parallel.
-  // Keys: (nearest depth, index), or kOutOfView; sorted, those in view come first.
-  constexpr std::uint64_t kOutOfView = ~std::uint64_t(0);
+  // Every sphere to view space with the pixels it may cover (none: out of view), in parallel,
+  // and the depth range of the nearest points of those in view.
+  struct InView {
+    std::size_t count = 0;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  };
   const std::size_t n = particles.size();
   w.spheres.resize(n);
   w.sphere_rects.resize(n);
-  w.order.resize(n);
-  const std::size_t kept = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, n, 4096), std::size_t(0),
-      [&](const tbb::blocked_range<std::size_t>& range, std::size_t in_view) {
+  const InView in_view = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, 4096), InView{},
+      [&](const tbb::blocked_range<std::size_t>& range, InView found) {
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
           const ParticleSphere& p = particles[i];
-          w.order[i] = kOutOfView;
+          w.sphere_rects[i] = {};
           if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) &&
                 std::isfinite(p.radius) && p.radius > 0))
             continue;
@@ -416,39 +400,50 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
           if (r.empty()) continue;
           w.spheres[i] = s;
           w.sphere_rects[i] = r;
-          w.order[i] = std::uint64_t(sortable_bits(float(s.center.z - s.radius))) << 32 | i;
-          ++in_view;
+          ++found.count;
+          found.lo = std::min(found.lo, s.center.z - s.radius);
+          found.hi = std::max(found.hi, s.center.z - s.radius);
         }
-        return in_view;
+        return found;
       },
-      std::plus<>());
-  // Nearest first: the bins keep this order, so each pixel's chords arrive almost in depth
-  // order and most of them only move the last exit of its union (join).
-  sort_by_key(w.order, w.order_scratch);
-  w.order.resize(kept);
+      [](InView a, const InView& b) {
+        return InView{a.count + b.count, std::min(a.lo, b.lo), std::max(a.hi, b.hi)};
+      });
+  const std::size_t kept = in_view.count;
+  // Nearest first, to a kDepthBins-th of the depth range (a counting sort: two passes instead
+  // of n log n comparisons): the bins keep this order, so each pixel's chords arrive almost
+  // in depth order and most of them only move the last exit of its union (join). The union
+  // does not depend on the order. At 100 k particles 8 439 of 1.17 M joins take the slow
+  // path with 256 bins, 7 798 with 4 096, 165 742 with 16.
+  constexpr std::size_t kDepthBins = 256;
+  const double per_depth =
+      in_view.hi > in_view.lo ? double(kDepthBins - 1) / (in_view.hi - in_view.lo) : 0.0;
+  const auto depth_bin = [&](std::size_t i, auto&& f) {
+    if (w.sphere_rects[i].empty()) return;
+    const Sphere& s = w.spheres[i];
+    f(std::size_t((s.center.z - s.radius - in_view.lo) * per_depth));
+  };
+  w.depth_bins.count(kDepthBins, n, depth_bin);
   w.sorted.resize(kept);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept, 8192),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
-                        const std::size_t i = std::size_t(w.order[k] & 0xffffffffu);
-                        w.sorted[k] = {w.spheres[i], w.sphere_rects[i]};
-                      }
-                    });
+  w.depth_bins.place(depth_bin, [&](std::size_t i, std::size_t slot) {
+    w.sorted[slot] = {w.spheres[i], w.sphere_rects[i]};
+  });
   if (settings.use_cell_states)
     cell_boxes(grid, cells, w.cell_boxes, w.box_scratch, w.boxes, w.box_rects);
   else w.boxes.clear(), w.box_rects.clear();
-  const auto box_rect = [&](std::size_t i) { return w.box_rects[i]; };
-  w.box_bins.count(width, height, w.box_rects.size(), box_rect);
+  const Tiles screen(width, height);
+  const auto box_tiles = [&](std::size_t i, auto&& f) { screen.each(w.box_rects[i], f); };
+  w.box_bins.count(screen.count(), w.box_rects.size(), box_tiles);
   w.box_items.resize(w.box_bins.size());
-  w.box_bins.place(box_rect,
+  w.box_bins.place(box_tiles,
                    [&](std::size_t i, std::size_t slot) { w.box_items[slot] = std::uint32_t(i); });
   // Each tile's spheres side by side, nearest first: the tiles read them as a stream.
-  const auto sphere_rect = [&](std::size_t k) { return w.sorted[k].rect; };
-  w.sphere_bins.count(width, height, kept, sphere_rect);
+  const auto sphere_tiles = [&](std::size_t k, auto&& f) { screen.each(w.sorted[k].rect, f); };
+  w.sphere_bins.count(screen.count(), kept, sphere_tiles);
   w.binned.resize(w.sphere_bins.size());
-  w.sphere_bins.place(sphere_rect,
+  w.sphere_bins.place(sphere_tiles,
                       [&](std::size_t k, std::size_t slot) { w.binned[slot] = w.sorted[k]; });
-  const int tiles_x = w.sphere_bins.nx, tiles = tiles_x * w.sphere_bins.ny;
+  const int tiles_x = screen.nx, tiles = int(screen.count());
   w.tile_spans.resize(std::size_t(tiles));
   for (TileLists& l : w.lists) l.chord_tests = l.spans_found = l.capped_pixels = 0;
 
