@@ -113,6 +113,7 @@ void CpuRenderer::shade(const SpanImage& spans, const SurfaceOptions& surfaces,
   const int dispatches =
       refract_dispatch_limit(spans.width(), spans.height(), tallies.most_spans, shade);
   if (shade.mode == ShadeMode::refractive) host.gather_block_bounds();
+  else host.use_background(background_);
   if (image.width != spans.width() || image.height != spans.height())
     image = FloatImage(spans.width(), spans.height());
   std::atomic<std::int64_t> unfinished{0};

@@ -62,6 +62,7 @@ class CpuRenderer {
   FloatImage image_;
   model::HostBuffers buffers_;            // the surface data, kept from frame to frame
   std::vector<model::vec2> next_depths_;  // the filter's other buffer
+  model::BackgroundCache background_;     // behind the pixels, while the camera stays
 };
 
 }  // namespace voxspan

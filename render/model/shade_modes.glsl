@@ -10,7 +10,9 @@
 //
 // Host needs: links.glsl, surface_geometry.glsl, octahedral.glsl, lighting.glsl and their
 // needs; float sd_inside(ivec2), uvec2 sd_normals(uint) (entry, exit words), float sd_ao(ivec2)
-// (used when u_use_ao != 0), u_eye.
+// (used when u_use_ao != 0), vec3 sd_background(ivec2 p, vec3 dir) (environment(u_eye, dir) for
+// dir = pixel_direction(p): what lies behind the pixel, which a host may keep while the camera
+// stays), u_eye.
 #ifndef VX_MODEL_SHADE_MODES
 #define VX_MODEL_SHADE_MODES
 
@@ -20,14 +22,14 @@ float pixel_occlusion(ivec2 p) { return u_use_ao != 0 ? sd_ao(p) : 1.0f; }
 
 vec3 shade_opaque(ivec2 p) {
   vec3 dir = pixel_direction(p);
-  if (sd_count(p) == 0u) return environment(u_eye, dir);
+  if (sd_count(p) == 0u) return sd_background(p, dir);
   vec3 normal = decode_normal(sd_normals(sd_offset(p)).x);
   return opaque_surface(normal, dir, pixel_occlusion(p));
 }
 
 vec3 shade_translucent(ivec2 p) {
   vec3 dir = pixel_direction(p);
-  vec3 behind = environment(u_eye, dir);
+  vec3 behind = sd_background(p, dir);
   uint n = sd_count(p);
   if (n == 0u) return behind;
   uint base = sd_offset(p);

@@ -22,6 +22,7 @@ struct ShadeUniforms {
   float u_ao_radius = 1.0f, u_ao_strength = 0.0f;
   int u_ao_samples = 1;
   int u_bounces = 0;
+  bool operator==(const ShadeUniforms&) const = default;
 };
 
 // Validates `options` (voxspan::Error naming the option).

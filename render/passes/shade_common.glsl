@@ -11,6 +11,8 @@
 #include "render/model/surface_geometry.glsl"
 #include "render/model/environment.glsl"
 #include "render/model/lighting.glsl"
+// What lies behind a pixel: computed for every pixel of every frame (each thread reads its own).
+vec3 sd_background(ivec2 p, vec3 dir) { return environment(u_eye, dir); }
 #include "render/model/shade_modes.glsl"
 
 layout(std430, binding = SHADED_IMAGE_BINDING) writeonly buffer ShadedImage { vec4 shaded[]; };

@@ -6,7 +6,8 @@
 //     the same normals (tests/shading/test_shade_accuracy.cpp), mode by mode;
 //   - on one span image, its filter, normals and shading are the GPU passes' (the same model
 //     files), filter on;
-//   - the same pictures whatever the number of threads.
+//   - the same pictures whatever the number of threads, and whether the background behind the
+//     pixels was kept from the frames before (a steady camera) or computed.
 #include <tbb/global_control.h>
 
 #include <cmath>
@@ -160,32 +161,71 @@ TEST(CpuRenderer, FilterNormalsAndShadingAreTheGpuPassesOnOneSpanImage) {
   }
 }
 
-TEST(CpuRenderer, ThePicturesDoNotDependOnTheThreads) {
-  test::DamBreak shape;
-  shape.spacing = 0.01;
-  shape.radius = 0.01;
-  const test::Particles all = test::dam_break(shape, 0.3);
-  const test::TestCells cells = test::classify_for_test(all, 2 * shape.spacing, 8);
-  VoxelizeOptions options;
-  options.gap_bridging = shape.spacing;
-  SurfaceOptions filter;
-  filter.filter_radius = shape.spacing;
-  const Camera camera = test::frame_scene(all, {0.4, -0.5, -1}, 160, 90);
-  const auto render = [&](int threads, ShadeMode mode) {
-    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    CpuRenderer cpu;
+// A small dam break (cells of two spacings) and the renderer's picture of it.
+struct SmallDamBreak {
+  test::DamBreak shape = [] {
+    test::DamBreak d;
+    d.spacing = 0.01;
+    d.radius = 0.01;
+    return d;
+  }();
+  test::Particles all = test::dam_break(shape, 0.3);
+  test::TestCells cells = test::classify_for_test(all, 2 * shape.spacing, 8);
+
+  Camera camera(glm::dvec3 direction) const { return test::frame_scene(all, direction, 160, 90); }
+  std::vector<float> render(CpuRenderer& cpu, const Camera& camera, const SurfaceOptions& filter,
+                            const ShadeOptions& shade) const {
+    VoxelizeOptions options;
+    options.gap_bridging = shape.spacing;
     FrameStats stats;
     const SpanImage& spans =
         cpu.cast(camera, cells.boundary, cells.view, options, cpu_timer(), stats);
+    return cpu.shade(spans, filter, shade, cpu_timer(), stats).rgba;
+  }
+};
+
+TEST(CpuRenderer, ThePicturesDoNotDependOnTheThreads) {
+  const SmallDamBreak scene;
+  SurfaceOptions filter;
+  filter.filter_radius = scene.shape.spacing;
+  const Camera camera = scene.camera({0.4, -0.5, -1});
+  const auto render = [&](int threads, ShadeMode mode) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    CpuRenderer cpu;
     ShadeOptions shade = test::test_shading(mode);
     shade.deep_ao = true;
-    return cpu.shade(spans, filter, shade, cpu_timer(), stats);
+    return scene.render(cpu, camera, filter, shade);
   };
   for (ShadeMode mode : {ShadeMode::opaque, ShadeMode::translucent, ShadeMode::refractive}) {
     SCOPED_TRACE(shade_mode_name(mode));
-    const FloatImage one = render(1, mode);
-    EXPECT_EQ(one.rgba, render(3, mode).rgba);
-    EXPECT_EQ(one.rgba, render(8, mode).rgba);
+    const std::vector<float> one = render(1, mode);
+    EXPECT_EQ(one, render(3, mode));
+    EXPECT_EQ(one, render(8, mode));
+  }
+}
+
+TEST(CpuRenderer, TheBackgroundKeptWhileTheCameraStaysIsTheOneComputed) {
+  const SmallDamBreak scene;
+  const Camera front = scene.camera({0.4, -0.5, -1}), side = scene.camera({-1, -0.4, -0.3});
+  for (ShadeMode mode : {ShadeMode::opaque, ShadeMode::translucent}) {
+    SCOPED_TRACE(shade_mode_name(mode));
+    const ShadeOptions shade = test::test_shading(mode);
+    ShadeOptions evening = shade;
+    evening.environment.sun_direction = {-0.8, 0.3, 0.2};
+    // Each frame of one renderer against a new renderer's first frame (nothing kept).
+    CpuRenderer kept;
+    const struct {
+      const Camera& camera;
+      const ShadeOptions& shade;
+    } frames[] = {{front, shade}, {front, shade},  {front, shade},  {side, shade},
+                  {side, shade},  {side, evening}, {side, evening}, {front, shade}};
+    int frame = 0;
+    for (const auto& f : frames) {
+      SCOPED_TRACE(frame++);
+      CpuRenderer fresh;
+      EXPECT_EQ(scene.render(kept, f.camera, {}, f.shade),
+                scene.render(fresh, f.camera, {}, f.shade));
+    }
   }
 }
 
