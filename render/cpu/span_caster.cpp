@@ -1,9 +1,7 @@
 #include "render/cpu/span_caster.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -39,13 +37,12 @@ struct Bins {
   std::vector<std::uint32_t> start;  // per bin its first slot, then the total
 
   template <class BinsOf> void count(std::size_t bins, std::size_t n, BinsOf&& bins_of) {
-    width = bins;
+    start.assign(bins + 1, 0);
     cursor.assign(kChunks * bins, 0);
     each_chunk(n, [&](std::size_t i, std::uint32_t* count) {
       bins_of(i, [&](std::size_t b) { ++count[b]; });
     });
     // Each chunk's counts become its first slot in each bin.
-    start.assign(bins + 1, 0);
     std::uint32_t slot = 0;
     for (std::size_t b = 0; b < bins; ++b) {
       start[b] = slot;
@@ -67,12 +64,11 @@ struct Bins {
   // body(i, the chunk's row of cursor) for every item, chunks in parallel.
   template <class F> void each_chunk(std::size_t n, F&& body) {
     tbb::parallel_for(std::size_t(0), kChunks, [&](std::size_t c) {
-      std::uint32_t* row = cursor.data() + c * width;
+      std::uint32_t* row = cursor.data() + c * (start.size() - 1);
       for (std::size_t i = n * c / kChunks; i < n * (c + 1) / kChunks; ++i) body(i, row);
     });
   }
   std::vector<std::uint32_t> cursor;  // per chunk, per bin: its count, then its next slot
-  std::size_t width = 0;              // bins
   std::size_t items = 0;              // count()'s, for place()
 };
 

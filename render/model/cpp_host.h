@@ -32,6 +32,11 @@ struct GridUniforms {
     return vec3(ndc * u_tan_half, 1.0f);
   }
   float ray_scale(ivec2 pixel) const { return length(view_ray(pixel)); }
+  // Whether every pixel's world ray (eye and direction) is the same as under `o`.
+  bool same_rays(const GridUniforms& o) const {
+    return u_eye == o.u_eye && u_right == o.u_right && u_up == o.u_up && u_forward == o.u_forward &&
+           u_tan_half == o.u_tan_half && u_image == o.u_image;
+  }
 };
 
 }  // namespace voxspan::model

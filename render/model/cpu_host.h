@@ -29,10 +29,10 @@ struct HostBuffers {
 // What lies behind every pixel (shade_modes.glsl's sd_background), which a caller keeps from
 // frame to frame: in situ a view's camera seldom moves, and the environment behind the pixels
 // was about 3/4 of the opaque shade. Filled on the second frame in a row with the same rays
-// and environment, so that a camera that moves every frame costs no more than before.
+// and environment, so that a camera that moves every frame pays a comparison and no fill.
 struct BackgroundCache {
-  GridUniforms rays;  // the last frame's: its eye, axes, tan_half and image size count
-  ShadeUniforms shade;
+  GridUniforms rays;         // the last frame's (GridUniforms::same_rays)
+  ShadeUniforms shade;       // the last frame's: any change drops the colours
   std::vector<vec3> colors;  // per pixel; empty: not filled for `rays` and `shade`
 };
 
@@ -76,12 +76,8 @@ class CpuHost : public GridUniforms, public ShadeUniforms {
   // Looks sd_background up in `cache` when this frame's rays and environment are the last
   // frame's (filling it the first time), else computes it per pixel.
   void use_background(BackgroundCache& cache) {
-    const GridUniforms& r = cache.rays;
-    const bool same = r.u_eye == u_eye && r.u_right == u_right && r.u_up == u_up &&
-                      r.u_forward == u_forward && r.u_tan_half == u_tan_half &&
-                      r.u_image == u_image && cache.shade == static_cast<ShadeUniforms&>(*this);
     background_ = nullptr;
-    if (!same) {
+    if (!same_rays(cache.rays) || !(cache.shade == static_cast<const ShadeUniforms&>(*this))) {
       cache.rays = *this;
       cache.shade = *this;
       cache.colors.clear();
