@@ -22,11 +22,6 @@ bool finite_sphere(const ParticleSphere& p) {
 // evaluation of the same rule stays conservative.
 constexpr double kPixelMargin = 0.01;
 
-// Continuous pixel coordinate (centre of pixel k is at k) of an image-plane slope s = x / z.
-double pixel_coord(double slope, double tan_half, int size) {
-  return (slope / tan_half + 1.0) * 0.5 * size - 0.5;
-}
-
 int clamp_floor(double v, int lo, int hi) {
   return static_cast<int>(std::clamp(std::floor(v), double(lo), double(hi)));
 }
@@ -160,25 +155,22 @@ PixelRect PerspectiveGrid::sphere_pixels(glm::dvec3 c, double r) const {
   const ViewFrame& v = view_;
   if (!v.meets_pyramid(c, r)) return {};
   if (c.z - r <= 0) return {0, 0, v.width - 1, v.height - 1};
-  // Exact slopes x / z (and y / z) of the sphere's silhouette: the tangents from the eye to the
-  // disk the sphere projects to in the xz (yz) plane, tan(atan t -+ atan u), both over one
-  // division (every sphere of a frame comes through here: divisions are most of its cost).
-  const double inv_z = 1 / c.z;
-  const auto tangents = [&](double a, double& lo, double& hi) {
-    const double t = a * inv_z;
-    const double u = r / std::sqrt(a * a + c.z * c.z - r * r);
-    const double inv = 1 / ((1 + t * u) * (1 - t * u));
-    lo = (t - u) * (1 - t * u) * inv;
-    hi = (t + u) * (1 + t * u) * inv;
+  // Exact silhouette slopes x / z (and y / z): the tangents from the eye to the disk the sphere
+  // projects to in the xz (yz) plane, tan(atan t -+ atan u) with t = a / z and u = r / s, s the
+  // tangent's length; multiplied through by z s, (a s -+ r z) / (z s +- a r): both over one
+  // division, the pixels' scale folded in (every sphere of a frame comes through here, and
+  // divisions are most of its cost).
+  const auto pixel_range = [&](double a, double tan_half, int size, double& lo, double& hi) {
+    const double s = std::sqrt(a * a + c.z * c.z - r * r);
+    const double near_side = c.z * s + a * r, far_side = c.z * s - a * r;  // > 0: c.z > r
+    const double scale = 0.5 * size / (tan_half * near_side * far_side);
+    lo = (a * s - r * c.z) * far_side * scale + 0.5 * size - 0.5;
+    hi = (a * s + r * c.z) * near_side * scale + 0.5 * size - 0.5;
   };
-  double sx0, sx1, sy0, sy1;
-  tangents(c.x, sx0, sx1);
-  tangents(c.y, sy0, sy1);
-  const double fx0 = pixel_coord(sx0, v.tan_half_x, v.width);
-  const double fx1 = pixel_coord(sx1, v.tan_half_x, v.width);
+  double fx0, fx1, fy0, fy1;
+  pixel_range(c.x, v.tan_half_x, v.width, fx0, fx1);
   // Rows grow downwards: the top of the sphere (largest y) has the smallest row.
-  const double fy0 = pixel_coord(-sy1, v.tan_half_y, v.height);
-  const double fy1 = pixel_coord(-sy0, v.tan_half_y, v.height);
+  pixel_range(-c.y, v.tan_half_y, v.height, fy0, fy1);
   if (fx1 < -kPixelMargin || fx0 > v.width - 1 + kPixelMargin || fy1 < -kPixelMargin ||
       fy0 > v.height - 1 + kPixelMargin)
     return {};

@@ -43,7 +43,7 @@ struct CastCounts {
 
 class SpanCaster {
  public:
-  static constexpr int kTile = 16;  // screen tile side, pixels
+  static constexpr int kTile = 32;  // screen tile side, pixels
 
   SpanCaster();
   ~SpanCaster();
