@@ -43,7 +43,10 @@ struct CastCounts {
 
 class SpanCaster {
  public:
-  static constexpr int kTile = 32;  // screen tile side, pixels
+  // Screen tile side, pixels: each tile a sphere touches walks it again, so larger tiles walk
+  // fewer (32 is 2 ms faster than 16 at 100 k particles, 640x360); 64 would leave 60 tiles at
+  // 640x360, too few for many cores.
+  static constexpr int kTile = 32;
 
   SpanCaster();
   ~SpanCaster();
