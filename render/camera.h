@@ -45,6 +45,10 @@ struct ViewFrame {
     const double ndc_y = 1.0 - 2.0 * (y + 0.5) / height;
     return {ndc_x * tan_half_x, ndc_y * tan_half_y, 1.0};
   }
+  // view_ray's inverse: the continuous pixel coordinates (pixel k's centre at k, rows growing
+  // downwards) of image-plane slopes x / z and y / z.
+  double pixel_x(double slope_x) const { return (slope_x / tan_half_x + 1) * 0.5 * width - 0.5; }
+  double pixel_y(double slope_y) const { return (1 - slope_y / tan_half_y) * 0.5 * height - 0.5; }
   // The same ray in world space (eye + z * world_ray is the point at depth z).
   glm::dvec3 world_ray(int x, int y) const {
     const glm::dvec3 v = view_ray(x, y);

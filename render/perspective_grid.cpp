@@ -157,15 +157,16 @@ PixelRect PerspectiveGrid::sphere_pixels(glm::dvec3 c, double r) const {
   if (c.z - r <= 0) return {0, 0, v.width - 1, v.height - 1};
   // Exact silhouette slopes x / z (and y / z): the tangents from the eye to the disk the sphere
   // projects to in the xz (yz) plane, tan(atan t -+ atan u) with t = a / z and u = r / s, s the
-  // tangent's length; multiplied through by z s, (a s -+ r z) / (z s +- a r): both over one
-  // division, the pixels' scale folded in (every sphere of a frame comes through here, and
-  // divisions are most of its cost).
+  // tangent's length; multiplied through by z s, (a s -+ r z) / (z s +- a r). Then
+  // ViewFrame::pixel_x (pixel_y) of them, its division by tan_half folded into the slopes' one
+  // division per axis: every sphere of a frame comes through here, and divisions were most of
+  // its cost (9 before, 2 now: docs/benchmarks.md, "Tiles of 32 pixels").
   const auto pixel_range = [&](double a, double tan_half, int size, double& lo, double& hi) {
     const double s = std::sqrt(a * a + c.z * c.z - r * r);
-    const double near_side = c.z * s + a * r, far_side = c.z * s - a * r;  // > 0: c.z > r
-    const double scale = 0.5 * size / (tan_half * near_side * far_side);
-    lo = (a * s - r * c.z) * far_side * scale + 0.5 * size - 0.5;
-    hi = (a * s + r * c.z) * near_side * scale + 0.5 * size - 0.5;
+    const double den_lo = c.z * s + a * r, den_hi = c.z * s - a * r;  // > 0: c.z > r
+    const double scale = 0.5 * size / (tan_half * den_lo * den_hi);
+    lo = (a * s - r * c.z) * den_hi * scale + 0.5 * size - 0.5;
+    hi = (a * s + r * c.z) * den_lo * scale + 0.5 * size - 0.5;
   };
   double fx0, fx1, fy0, fy1;
   pixel_range(c.x, v.tan_half_x, v.width, fx0, fx1);

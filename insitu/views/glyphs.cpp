@@ -81,15 +81,12 @@ struct PixelRect {
 };
 
 PixelRect rect_of(const ViewFrame& f, double sx_min, double sx_max, double sy_min, double sy_max) {
-  // s = X / Z; pixel x's centre is at s = ((x + 0.5) * 2 / W - 1) * tan_half_x.
-  const auto to_x = [&](double s) { return (s / f.tan_half_x + 1) * 0.5 * f.width - 0.5; };
-  const auto to_y = [&](double s) { return (1 - s / f.tan_half_y) * 0.5 * f.height - 0.5; };
   const auto clamp_int = [](double v, int hi) { return int(std::clamp(v, -1.0, double(hi))); };
   PixelRect r;
-  r.x0 = std::max(0, clamp_int(std::ceil(to_x(sx_min)) - 1, f.width));
-  r.x1 = std::min(f.width - 1, clamp_int(std::floor(to_x(sx_max)) + 1, f.width));
-  r.y0 = std::max(0, clamp_int(std::ceil(to_y(sy_max)) - 1, f.height));
-  r.y1 = std::min(f.height - 1, clamp_int(std::floor(to_y(sy_min)) + 1, f.height));
+  r.x0 = std::max(0, clamp_int(std::ceil(f.pixel_x(sx_min)) - 1, f.width));
+  r.x1 = std::min(f.width - 1, clamp_int(std::floor(f.pixel_x(sx_max)) + 1, f.width));
+  r.y0 = std::max(0, clamp_int(std::ceil(f.pixel_y(sy_max)) - 1, f.height));
+  r.y1 = std::min(f.height - 1, clamp_int(std::floor(f.pixel_y(sy_min)) + 1, f.height));
   return r;
 }
 

@@ -47,8 +47,7 @@ void draw_segment(const ViewFrame& f, glm::dvec3 a, glm::dvec3 b, float alpha_a,
   if (a.z < near) a += (b - a) * ((near - a.z) / (b.z - a.z));
   if (b.z < near) b += (a - b) * ((near - b.z) / (a.z - b.z));
   const auto screen = [&](glm::dvec3 p) {
-    return glm::dvec2((p.x / p.z / f.tan_half_x + 1) * 0.5 * f.width - 0.5,
-                      (1 - p.y / p.z / f.tan_half_y) * 0.5 * f.height - 0.5);
+    return glm::dvec2(f.pixel_x(p.x / p.z), f.pixel_y(p.y / p.z));
   };
   const glm::dvec2 sa = screen(a), sb = screen(b);
   const double length = std::max(std::abs(sb.x - sa.x), std::abs(sb.y - sa.y));

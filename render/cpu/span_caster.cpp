@@ -183,9 +183,7 @@ PixelRect box_pixels(const PerspectiveGrid& grid, const Box& b) {
         v.to_view({c & 1 ? b.hi.x : b.lo.x, c & 2 ? b.hi.y : b.lo.y, c & 4 ? b.hi.z : b.lo.z});
     if (!(p.z > 0))
       return grid.sphere_pixels(v.to_view(0.5 * (b.lo + b.hi)), 0.5 * glm::length(b.hi - b.lo));
-    // Pixel coordinates of the centre ray through p: ndc = 2 (px + 0.5) / size - 1.
-    const double px = (p.x / p.z / v.tan_half_x + 1) * 0.5 * v.width - 0.5;
-    const double py = (1 - p.y / p.z / v.tan_half_y) * 0.5 * v.height - 0.5;
+    const double px = v.pixel_x(p.x / p.z), py = v.pixel_y(p.y / p.z);
     x0 = std::min(x0, px), x1 = std::max(x1, px), y0 = std::min(y0, py), y1 = std::max(y1, py);
   }
   // A margin of a pixel for rounding; clipped to the image.

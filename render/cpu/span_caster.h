@@ -44,8 +44,9 @@ struct CastCounts {
 class SpanCaster {
  public:
   // Screen tile side, pixels: each tile a sphere touches walks it again, so larger tiles walk
-  // fewer (32 is 2 ms faster than 16 at 100 k particles, 640x360); 64 would leave 60 tiles at
-  // 640x360, too few for many cores.
+  // it fewer times (32 against 16: the step 1.7 ms faster at 100 k particles, 640x360,
+  // docs/benchmarks.md). 64 was 0.5 ms faster still on two cores, but leaves 60 tiles at
+  // 640x360, which would leave many cores idle (reasoned, not measured).
   static constexpr int kTile = 32;
 
   SpanCaster();

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <utility>
 
 #include "render/perspective_grid.h"
 #include "tools/scenes/scenes.h"
@@ -169,6 +170,15 @@ TEST(Camera, RaysHaveDepthOneAndRowZeroAtTheTop) {
   const glm::dvec3 w = v.world_ray(10, 20);
   EXPECT_NEAR(glm::dot(w, v.forward), 1.0, 1e-12);
   EXPECT_NEAR(v.ray_scale(10, 20), glm::length(w), 1e-12);
+}
+
+TEST(Camera, PixelCoordinatesInvertTheRays) {
+  const ViewFrame v(camera(200, 100));
+  for (const auto& [x, y] : {std::pair{0, 0}, {199, 99}, {37, 64}}) {
+    const glm::dvec3 ray = v.view_ray(x, y);
+    EXPECT_NEAR(v.pixel_x(ray.x), x, 1e-9);
+    EXPECT_NEAR(v.pixel_y(ray.y), y, 1e-9);
+  }
 }
 
 }  // namespace
