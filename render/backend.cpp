@@ -2,7 +2,10 @@
 
 #include <tbb/info.h>
 
+#include "render/cpu/surface_renderer.h"
+#include "render/gl/gpu_recorder.h"
 #include "render/gl/info.h"
+#include "render/gl/surface_renderer.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
@@ -47,6 +50,20 @@ std::string describe(const BackendChoice& choice) {
     return "GL renderer on " + choice.context->description() + " (" + choice.why + ")";
   return "CPU renderer, " + std::to_string(tbb::info::default_concurrency()) + " threads (" +
          choice.why + ")";
+}
+
+std::unique_ptr<Recorder> make_recorder(const BackendChoice& choice) {
+  if (!choice.context) return std::make_unique<Recorder>();
+  return std::make_unique<gl::GpuRecorder>(choice.context->has_gpu_timers());
+}
+
+std::unique_ptr<SurfaceRenderer> make_surface_renderer(RenderBackend backend,
+                                                       const gl::ShaderLibrary& shaders,
+                                                       std::size_t gpu_memory_budget) {
+  if (backend == RenderBackend::cpu) return make_cpu_surface_renderer();
+  VoxelizeOptions voxelize;
+  voxelize.tiles.memory_budget = gpu_memory_budget;
+  return make_gl_surface_renderer(shaders, voxelize);
 }
 
 }  // namespace voxspan

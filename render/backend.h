@@ -1,4 +1,4 @@
-// render/backend.h - which renderer a process uses: the GL one (render/renderer.h) or the CPU
+// render/backend.h - which renderer a process uses: the GL one (render/gl/renderer.h) or the CPU
 // one (render/cpu/cpu_renderer.h), and why.
 //   auto  the GL renderer on a GPU; where the GL context is a software one (Mesa's llvmpipe,
 //         which emulates a GPU on the CPU) or none can be made, the CPU renderer, which casts
@@ -12,14 +12,14 @@
 #include <memory>
 #include <string>
 
-#include "render/enum_names.h"
 #include "render/gl/context.h"
+#include "render/surface_renderer.h"
 
 namespace voxspan {
 
-enum class RenderBackend { automatic, gl, cpu };
-inline constexpr EnumName<RenderBackend> kRenderBackendNames[] = {
-    {"auto", RenderBackend::automatic}, {"gl", RenderBackend::gl}, {"cpu", RenderBackend::cpu}};
+namespace gl {
+class ShaderLibrary;
+}
 
 struct BackendChoice {
   RenderBackend backend = RenderBackend::cpu;  // gl or cpu
@@ -33,5 +33,15 @@ BackendChoice choose_backend(RenderBackend wanted, const gl::ContextOptions& opt
 
 // "GL renderer on EGL device 0 (...)" or "CPU renderer, 2 threads", and the reason.
 std::string describe(const BackendChoice& choice);
+
+// The recorder of the renderer chosen: the GL renderer's times its device scopes on the GPU.
+std::unique_ptr<Recorder> make_recorder(const BackendChoice& choice);
+
+// The surface renderer of `backend` (gl or cpu, as chosen). The GL one needs the context
+// current and compiles its passes from `shaders`; `gpu_memory_budget` bounds its bit grid's
+// tiles (bytes). The CPU one uses neither.
+std::unique_ptr<SurfaceRenderer> make_surface_renderer(RenderBackend backend,
+                                                       const gl::ShaderLibrary& shaders,
+                                                       std::size_t gpu_memory_budget);
 
 }  // namespace voxspan

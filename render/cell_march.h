@@ -1,6 +1,6 @@
 // render/cell_march.h - walks a pixel's ray through the simulation grid's cells in depth order
 // (3D DDA, Amanatides & Woo), the march of [ZD15] sec. 4.3. CPU version, in double, for the
-// exact reference; render/passes/cell_march.glsl is the GPU's, with the same cell rule.
+// exact reference; render/gl/passes/cell_march.glsl is the GPU's, with the same cell rule.
 #pragma once
 
 #include <algorithm>

@@ -10,8 +10,8 @@
 // last stored span was extended to the exit of the last one found, and the empty space inside
 // it is excluded from `inside`, so that absorption stays exact (sec. 3.1).
 //
-// The same layout lives on the GPU (render/gpu_span_image.h, render/span_image.glsl): a buffer
-// of PixelSpans (std430, 16 bytes each) and a buffer of Span (vec2, 8 bytes each).
+// The same layout lives on the GPU (render/gl/gpu_span_image.h, render/gl/span_image.glsl): a
+// buffer of PixelSpans (std430, 16 bytes each) and a buffer of Span (vec2, 8 bytes each).
 #pragma once
 
 #include <cstdint>

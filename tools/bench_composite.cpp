@@ -55,7 +55,9 @@
 #include "insitu/views/surface_view.h"
 #include "insitu/views/view_framing.h"
 #include "render/gl/context.h"
+#include "render/gl/gpu_recorder.h"
 #include "render/gl/shader_library.h"
+#include "render/stat_names.h"
 #include "tool_args.h"
 #include "tools/rank_split.h"
 #include "voxspan/classify.h"
@@ -85,10 +87,14 @@ constexpr char kUsage[] =
     "         [--frames F] [--alpha DEG] [--max-layers L] [--budget-mib M] [--all-particles]\n"
     "         [--json] [--csv FILE] [--platform auto|nvidia|device|surfaceless]\n";
 
-// The passes of a surface view's step, in order; `wait` is the benchmark's barrier.
-const char* const kVoxelize[] = {"frame", "upload", "bin", "clear", "splat", "compress"};
-const char* const kComposite[] = {"composite_download", "composite", "composite_upload"};
-const char* const kSurfaces[] = {"connect", "filter", "normals", "deep_ao", "shade", "readback"};
+// The passes of a surface view's step, in order; `wait` is the benchmark's barrier (with the GL
+// renderer the view reads its span image back before the barrier even on one rank).
+constexpr StatName kWait{"wait"};
+const StatName kVoxelize[] = {pass::frame, pass::upload, pass::bin,
+                              pass::clear, pass::splat,  pass::compress};
+const StatName kComposite[] = {pass::composite_download, pass::composite, pass::composite_upload};
+const StatName kSurfaces[] = {pass::connect, pass::filter, pass::normals,
+                              pass::deep_ao, pass::shade,  pass::readback};
 
 template <class E, std::size_t N>
 bool read_names(const char* list, const EnumName<E> (&table)[N], std::vector<E>& out) {
@@ -213,16 +219,9 @@ class RankProbe final : public SpanStage {
  public:
   RankProbe(Communicator& comm, const MergeSettings& settings) : merge(settings), comm_(comm) {}
 
-  const GpuSpanImage* run(const GpuSpanImage* spans, const std::string&, gl::PassTimer& timer,
-                          FrameStats&) override {
-    if (capture && spans != nullptr) keep(spans->download());
-    wait(timer);
-    return spans;
-  }
-  const SpanImage* run(const SpanImage* spans, const std::string&, gl::PassTimer& timer,
-                       FrameStats&) override {
+  const SpanImage* run(const SpanImage* spans, const std::string&, Recorder& recorder) override {
     if (capture && spans != nullptr) keep(*spans);
-    wait(timer);
+    wait(recorder);
     return spans;
   }
 
@@ -233,8 +232,8 @@ class RankProbe final : public SpanStage {
   std::vector<std::int64_t> to_band;  // its part of every rank's band of rows
 
  private:
-  void wait(gl::PassTimer& timer) {
-    auto t = timer.cpu("wait");
+  void wait(Recorder& recorder) {
+    auto t = recorder.host(kWait);
     comm_.agree(true, {});
   }
   void keep(const SpanImage& local) {
@@ -460,11 +459,11 @@ class Bench {
   }
 
   StatsRecord render_frame(View& view, const ViewStep& step) {
-    gl::PassTimer timer(context_.has_gpu_timers());
     FrameStats stats;
+    gl::GpuRecorder recorder(stats, context_.has_gpu_timers());
     const Stopwatch wall;
-    view.render(step, timer, stats, products_);
-    timer.collect(stats);
+    view.render(step, recorder, products_);
+    recorder.collect();
     return combine(comm_, stats, wall.ms());
   }
 
@@ -477,15 +476,15 @@ class Bench {
 
 // ---- output (rank 0)
 
-double sum_of(const std::map<std::string, double>& ms, std::span<const char* const> passes) {
+double sum_of(const std::map<std::string, double>& ms, std::span<const StatName> passes) {
   double total = 0;
-  for (const char* p : passes)
-    if (auto it = ms.find(p); it != ms.end()) total += it->second;
+  for (StatName p : passes)
+    if (auto it = ms.find(std::string(p.text)); it != ms.end()) total += it->second;
   return total;
 }
 
-double at(const std::map<std::string, double>& ms, const char* pass) {
-  const auto it = ms.find(pass);
+double at(const std::map<std::string, double>& ms, std::string_view pass) {
+  const auto it = ms.find(std::string(pass));
   return it == ms.end() ? 0 : it->second;
 }
 
@@ -533,7 +532,7 @@ void print_row(const Row& r) {
       "%-11s %5d %9s %-11s | %8.1f %8.1f %7.1f %7.1f %7.1f %7.1f %8.1f | %5.1f | %8.1f %8.1f "
       "%8.1f %5.2f | %5lld %5lld %6lld | %8.1f\n",
       r.split.c_str(), r.ranks, size, r.scheme.c_str(), step, sum_of(f.slowest, kVoxelize),
-      at(f.slowest, "wait"), at(f.slowest, kComposite[0]), at(f.slowest, kComposite[1]),
+      at(f.slowest, kWait), at(f.slowest, kComposite[0]), at(f.slowest, kComposite[1]),
       at(f.slowest, kComposite[2]), sum_of(f.slowest, kSurfaces),
       step > 0 ? 100 * r.composite_ms() / step : 0, double(r.most_sent()) / kKiB,
       r.mean_sent() / kKiB, r.share_bytes() / kKiB, r.ratio(),
@@ -551,9 +550,9 @@ void print_merge(const Composite& c, int ranks) {
       c.encode_ms);
 }
 
-std::vector<const char*> all_passes() {
-  std::vector<const char*> p(std::begin(kVoxelize), std::end(kVoxelize));
-  p.push_back("wait");
+std::vector<StatName> all_passes() {
+  std::vector<StatName> p(std::begin(kVoxelize), std::end(kVoxelize));
+  p.push_back(kWait);
   p.insert(p.end(), std::begin(kComposite), std::end(kComposite));
   p.insert(p.end(), std::begin(kSurfaces), std::end(kSurfaces));
   return p;
@@ -561,7 +560,7 @@ std::vector<const char*> all_passes() {
 
 void csv_header(std::ostream& out) {
   out << "split,ranks,width,height,scheme,step_ms,step_ms_mean";
-  for (const char* p : all_passes()) out << ',' << p << "_ms," << p << "_ms_mean";
+  for (StatName p : all_passes()) out << ',' << p.text << "_ms," << p.text << "_ms_mean";
   out << ",bytes_sent_max,bytes_sent_mean,bytes_expected_max,final_bytes,share_bytes,ratio,"
          "data_messages,data_messages_max_rank,count_messages,root_received_bytes,"
          "input_bytes,merge_ms,decode_ms,encode_ms,part_scan_ns,spans_stored\n";
@@ -572,14 +571,14 @@ void csv_row(std::ostream& out, const Row& r) {
   const Traffic& t = f.traffic;
   out << r.split << ',' << r.ranks << ',' << r.size.width << ',' << r.size.height << ',' << r.scheme
       << ',' << at(f.slowest, "step") << ',' << at(f.mean, "step");
-  for (const char* p : all_passes()) out << ',' << at(f.slowest, p) << ',' << at(f.mean, p);
+  for (StatName p : all_passes()) out << ',' << at(f.slowest, p) << ',' << at(f.mean, p);
   const std::int64_t expected =
       t.bytes.empty() ? 0 : *std::max_element(t.bytes.begin(), t.bytes.end());
   out << ',' << r.most_sent() << ',' << r.mean_sent() << ',' << (r.ranks > 1 ? expected : 0) << ','
       << r.c.final_bytes << ',' << r.share_bytes() << ',' << r.ratio() << ',' << t.data_messages
       << ',' << t.most_data_messages << ',' << t.count_messages << ',' << t.root_receives << ','
       << r.c.input_bytes << ',' << r.c.merge_ms << ',' << r.c.decode_ms << ',' << r.c.encode_ms
-      << ',' << r.c.part_scan_ns << ',' << f.last.count("spans.stored") << '\n';
+      << ',' << r.c.part_scan_ns << ',' << f.last.count(counter::spans_stored) << '\n';
 }
 
 // The measured bytes against the ones the images imply: a difference means the model of the

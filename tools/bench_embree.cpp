@@ -26,7 +26,6 @@
 #include "dambreak_state.h"
 #include "render/cpu/cpu_renderer.h"
 #include "render/cpu/span_caster.h"
-#include "render/gl/pass_timer.h"
 #include "tool_args.h"
 #include "tools/scenes/span_compare.h"
 #include "voxspan/error.h"
@@ -181,13 +180,12 @@ int run(const Args& a) {
   const double gap = s.spacing;
   std::printf("scene: %s; %dx%d, %zu boundary spheres (no inner-full cells, for both)\n",
               s.description.c_str(), a.width, a.height, spheres.size());
-  VoxelizeOptions voxelize;
-  voxelize.gap_bridging = gap;
+  SpanOptions options;
+  options.gap_bridging = gap;
   const PerspectiveGrid grid = [&] {
     CpuRenderer fit;
-    FrameStats stats;
-    gl::PassTimer timer(false);
-    return fit.cast(s.camera, spheres, CellStatesView{}, voxelize, timer, stats).grid;
+    Recorder recorder;
+    return fit.cast(s.camera, spheres, CellStatesView{}, options, recorder).grid;
   }();
   std::vector<glm::dvec4> view_spheres;
   view_spheres.reserve(spheres.size());

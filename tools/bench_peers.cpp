@@ -51,10 +51,11 @@
 #include "peers/vdb_level_set.h"
 #include "render/cpu/cpu_renderer.h"
 #include "render/gl/context.h"
-#include "render/gl/pass_timer.h"
+#include "render/gl/gpu_recorder.h"
+#include "render/gl/renderer.h"
 #include "render/gl/shader_library.h"
 #include "render/reference/exact_spans.h"
-#include "render/renderer.h"
+#include "render/stat_names.h"
 #include "tool_args.h"
 #include "tools/scenes/image_compare.h"
 #include "voxspan/error.h"
@@ -193,7 +194,7 @@ class OurFrame {
  protected:
   virtual void render(const Camera& camera, std::span<const ParticleSphere> spheres,
                       const CellStatesView& cells, const RenderOptions& o, FrameStats& stats) = 0;
-  // The last frame's spans and their own first hit (after the timer stopped).
+  // The last frame's spans and their own first hit (after the recorder stopped).
   virtual PeerSurface surface() = 0;
 
  private:
@@ -203,10 +204,10 @@ class OurFrame {
 class CpuFrame final : public OurFrame {
   void render(const Camera& camera, std::span<const ParticleSphere> spheres,
               const CellStatesView& cells, const RenderOptions& o, FrameStats& stats) override {
-    gl::PassTimer timer(false);
-    spans_ = &renderer_.cast(camera, spheres, cells, o.voxelize, timer, stats);
-    renderer_.shade(*spans_, o.surfaces, o.shade, timer, stats);
-    timer.collect(stats);
+    Recorder recorder(stats);
+    spans_ = &renderer_.cast(camera, spheres, cells, o.voxelize, recorder);
+    renderer_.shade(*spans_, o.surfaces, o.shade, recorder);
+    recorder.collect();
   }
   PeerSurface surface() override {
     CpuRenderer::first_hit(*spans_, first_);
@@ -220,19 +221,20 @@ class CpuFrame final : public OurFrame {
 class GlFrame final : public OurFrame {
  public:
   explicit GlFrame(const gl::ContextOptions& options)
-      : context_(options), renderer_(shaders_), timer_(context_.has_gpu_timers()) {
+      : context_(options), renderer_(shaders_), recorder_(context_.has_gpu_timers()) {
     tools::print_renderer(context_);
   }
 
  private:
   void render(const Camera& camera, std::span<const ParticleSphere> spheres,
               const CellStatesView& cells, const RenderOptions& o, FrameStats& stats) override {
-    const GpuFloatImage& image = renderer_.render(camera, spheres, cells, o, timer_, stats);
+    recorder_.record_into(stats);
+    const GpuFloatImage& image = renderer_.render(camera, spheres, cells, o, recorder_);
     {
-      auto t = timer_.gpu("readback");
+      auto t = recorder_.device(pass::readback);
       image.download(picture_);
     }
-    timer_.collect(stats);
+    recorder_.collect();
   }
   PeerSurface surface() override {
     renderer_.voxelizer().image().download(spans_);
@@ -242,7 +244,7 @@ class GlFrame final : public OurFrame {
   gl::Context context_;
   gl::ShaderLibrary shaders_;
   Renderer renderer_;
-  gl::PassTimer timer_;
+  gl::GpuRecorder recorder_;
   FloatImage picture_, first_;
   SpanImage spans_;
 };
@@ -259,14 +261,14 @@ struct Seen {
 Seen seen(const PeerSurface& surface, const PerspectiveGrid& grid, const RenderOptions& o) {
   static CpuRenderer renderer;
   const SpanImage spans = span_image_of(surface, grid);
-  gl::PassTimer timer(false);
   FrameStats stats;
+  Recorder recorder(stats);
   Seen out;
   ShadeOptions shade = o.shade;
   shade.mode = ShadeMode::translucent;
-  renderer.shade(spans, o.surfaces, shade, timer, stats, out.translucent);
+  renderer.shade(spans, o.surfaces, shade, recorder, out.translucent);
   shade.mode = ShadeMode::opaque;
-  renderer.shade(spans, o.surfaces, shade, timer, stats, out.opaque);
+  renderer.shade(spans, o.surfaces, shade, recorder, out.opaque);
   FloatImage first;
   CpuRenderer::first_hit(spans, first, renderer.surface_depths());
   out.first_hit.resize(spans.pixels.size());
@@ -472,10 +474,10 @@ int run(const Args& a) {
   // The reference, in the frame the CPU renderer fits (the GPU's: same near, same far).
   CpuRenderer fit;
   FrameStats fit_stats;
-  gl::PassTimer fit_timer(false);
+  Recorder fit_recorder(fit_stats);
   const PerspectiveGrid grid =
       fit.cast(s.camera, s.classification.boundary, s.classification.cell_states(),
-               default_options(s).voxelize, fit_timer, fit_stats)
+               default_options(s).voxelize, fit_recorder)
           .grid;
   Classifier classifier;
   // With the runtime's gap bridging (the particle spacing): closing the gaps shorter than it is

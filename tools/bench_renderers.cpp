@@ -26,10 +26,11 @@
 #include "dambreak_state.h"
 #include "render/cpu/cpu_renderer.h"
 #include "render/gl/context.h"
-#include "render/gl/pass_timer.h"
+#include "render/gl/gpu_recorder.h"
+#include "render/gl/renderer.h"
 #include "render/gl/shader_library.h"
 #include "render/reference/exact_spans.h"
-#include "render/renderer.h"
+#include "render/stat_names.h"
 #include "tool_args.h"
 #include "tools/scenes/image_compare.h"
 #include "voxspan/error.h"
@@ -105,19 +106,20 @@ class Frame {
 class GlFrame final : public Frame {
  public:
   explicit GlFrame(const gl::ContextOptions& options)
-      : context_(options), renderer_(shaders_), timer_(context_.has_gpu_timers()) {
+      : context_(options), renderer_(shaders_), recorder_(context_.has_gpu_timers()) {
     tools::print_renderer(context_);
   }
   const char* name() const override { return "gl"; }
   void render(const Camera& camera, const Classification& c, const RenderOptions& o,
               FrameStats& stats) override {
+    recorder_.record_into(stats);
     const GpuFloatImage& image =
-        renderer_.render(camera, c.boundary, c.cell_states(), o, timer_, stats);
+        renderer_.render(camera, c.boundary, c.cell_states(), o, recorder_);
     {
-      auto t = timer_.gpu("readback");
+      auto t = recorder_.device(pass::readback);
       image.download(picture_);
     }
-    timer_.collect(stats);
+    recorder_.collect();
   }
   const FloatImage& picture() const override { return picture_; }
 
@@ -125,7 +127,7 @@ class GlFrame final : public Frame {
   gl::Context context_;
   gl::ShaderLibrary shaders_;
   Renderer renderer_;
-  gl::PassTimer timer_;
+  gl::GpuRecorder recorder_;
   FloatImage picture_;
 };
 
@@ -134,16 +136,17 @@ class CpuFrame final : public Frame {
   const char* name() const override { return "cpu"; }
   void render(const Camera& camera, const Classification& c, const RenderOptions& o,
               FrameStats& stats) override {
+    recorder_.record_into(stats);
     const SpanImage& spans =
-        renderer_.cast(camera, c.boundary, c.cell_states(), o.voxelize, timer_, stats);
-    picture_ = &renderer_.shade(spans, o.surfaces, o.shade, timer_, stats);
-    timer_.collect(stats);
+        renderer_.cast(camera, c.boundary, c.cell_states(), o.voxelize, recorder_);
+    picture_ = &renderer_.shade(spans, o.surfaces, o.shade, recorder_);
+    recorder_.collect();
   }
   const FloatImage& picture() const override { return *picture_; }
 
  private:
   CpuRenderer renderer_;
-  gl::PassTimer timer_{false};
+  Recorder recorder_;
   const FloatImage* picture_ = nullptr;
 };
 
@@ -188,9 +191,9 @@ int run(const Args& a) {
     std::vector<double> ms;
     CpuRenderer fit;
     FrameStats stats;
-    gl::PassTimer timer(false);
+    Recorder recorder(stats);
     const PerspectiveGrid grid = fit.cast(s.camera, s.classification.boundary,
-                                          s.classification.cell_states(), o.voxelize, timer, stats)
+                                          s.classification.cell_states(), o.voxelize, recorder)
                                      .grid;
     for (int f = 0; f < std::max(1, a.frames); ++f) {
       const Stopwatch watch;
@@ -198,7 +201,7 @@ int run(const Args& a) {
                   {o.voxelize.gap_bridging, o.voxelize.max_spans});
       ms.push_back(watch.ms());
     }
-    timer.collect(stats);
+    recorder.collect();
     std::printf(
         "spans alone: exact reference caster %.1f ms, CPU renderer's cast %.1f ms "
         "(one frame; medians below)\n\n",

@@ -6,7 +6,7 @@
 // about --particles fluid particles, state cached in --state; or --ritter: the Ritter-profile
 // test scene (with --all-particles every particle is voxelized, no cell states: the way to
 // reach millions of voxelized particles). Milliseconds per pass are medians over --frames
-// frames after one warm-up (glFinish + wall clock on llvmpipe, GPU timer queries on NVIDIA);
+// frames after one warm-up (glFinish + wall clock on llvmpipe, GPU recorder queries on NVIDIA);
 // "frame" is the whole frame from particles to the float image, no read-back, no disk.
 //
 // Accuracy (--accuracy FILE.csv): the voxelization's accuracy scenes (tools/scenes/
@@ -30,11 +30,11 @@
 
 #include "dambreak_state.h"
 #include "render/gl/context.h"
-#include "render/gl/pass_timer.h"
+#include "render/gl/gpu_recorder.h"
+#include "render/gl/renderer.h"
 #include "render/gl/shader_library.h"
 #include "render/reference/exact_spans.h"
 #include "render/reference/reference_shading.h"
-#include "render/renderer.h"
 #include "tool_args.h"
 #include "tools/scenes/accuracy_scenes.h"
 #include "tools/scenes/image_compare.h"
@@ -130,10 +130,10 @@ void time_modes(const Args& a, const gl::Context& context, Renderer& renderer) {
     FrameStats last;
     for (int f = -1; f < a.frames; ++f) {
       gl::reset_memory_peak();
-      gl::PassTimer timer(context.has_gpu_timers());
       FrameStats stats;
-      renderer.render(s.camera, particles, cells, o, timer, stats);
-      timer.collect(stats);
+      gl::GpuRecorder recorder(stats, context.has_gpu_timers());
+      renderer.render(s.camera, particles, cells, o, recorder);
+      recorder.collect();
       if (f < 0) continue;
       for (const char* p : kPasses) samples[p].push_back(stats.ms(p));
       samples["total"].push_back(stats.total_ms());
@@ -181,10 +181,10 @@ void accuracy(const Args& a, const gl::Context& context, Renderer& renderer) {
     for (double alpha : a.alphas) {
       VoxelizeOptions vo = scene.options;
       vo.grid.alpha_degrees = alpha;
-      gl::PassTimer timer(context.has_gpu_timers());
       FrameStats stats;
+      gl::GpuRecorder recorder(stats, context.has_gpu_timers());
       const GpuSpanImage& gpu =
-          renderer.voxelizer().run(scene.camera, scene.particles, {}, vo, timer, stats);
+          renderer.voxelizer().run(scene.camera, scene.particles, {}, vo, recorder);
       const SpanImage spans = gpu.download();
       std::vector<SpanNormals> exact_normals;
       const SpanImage exact = exact_spans(spans.grid, scene.particles, {},
@@ -195,7 +195,7 @@ void accuracy(const Args& a, const gl::Context& context, Renderer& renderer) {
       for (ShadeMode mode : {ShadeMode::opaque, ShadeMode::translucent, ShadeMode::refractive}) {
         ShadeOptions shade = test::test_shading(mode, scene.ground_tile);
         if (a.bounces >= 0) shade.bounces = a.bounces;
-        const FloatImage image = renderer.shade(gpu, {}, shade, timer, stats).download();
+        const FloatImage image = renderer.shade(gpu, {}, shade, recorder).download();
         const double same =
             test::compare_images(image, reference_shading(exact, shade, &sobel)).psnr;
         const double exact_n =
@@ -205,7 +205,7 @@ void accuracy(const Args& a, const gl::Context& context, Renderer& renderer) {
             << shade_mode_name(mode) << ',' << same << ',' << exact_n << '\n';
       }
       std::printf("\n");
-      timer.collect(stats);
+      recorder.collect();
     }
   }
   std::printf("wrote %s\n", a.accuracy.c_str());

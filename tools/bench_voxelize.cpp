@@ -29,10 +29,10 @@
 #include <vector>
 
 #include "render/gl/context.h"
-#include "render/gl/pass_timer.h"
+#include "render/gl/gpu_recorder.h"
 #include "render/gl/shader_library.h"
+#include "render/gl/voxelizer.h"
 #include "render/reference/exact_spans.h"
-#include "render/voxelizer.h"
 #include "tool_args.h"
 #include "tools/scenes/scene_cell_states.h"
 #include "tools/scenes/scenes.h"
@@ -102,10 +102,10 @@ Result time_frames(Voxelizer& voxelizer, const gl::Context& context, const Camer
   Result r;
   for (int f = -1; f < frames; ++f) {  // frame -1 warms up (allocations, shader caches)
     gl::reset_memory_peak();
-    gl::PassTimer timer(context.has_gpu_timers());
     FrameStats stats;
-    voxelizer.run(camera, particles, cells, options, timer, stats);
-    timer.collect(stats);
+    gl::GpuRecorder recorder(stats, context.has_gpu_timers());
+    voxelizer.run(camera, particles, cells, options, recorder);
+    recorder.collect();
     if (f < 0) continue;
     for (const char* p : kPasses) samples[p].push_back(stats.ms(p));
     totals.push_back(stats.total_ms());
@@ -214,9 +214,9 @@ int run(const Args& a) {
   if (a.accuracy || !a.pgm.empty() || !a.save_spans.empty() || !a.compare_spans.empty()) {
     VoxelizeOptions o = base;
     o.tiles.memory_budget = static_cast<std::size_t>(a.budgets_mib.front() * (1 << 20));
-    gl::PassTimer timer(context.has_gpu_timers());
     FrameStats stats;
-    const SpanImage gpu = voxelizer.run(camera, input, view, o, timer, stats).download();
+    gl::GpuRecorder recorder(stats, context.has_gpu_timers());
+    const SpanImage gpu = voxelizer.run(camera, input, view, o, recorder).download();
     if (!a.pgm.empty()) write_inside_pgm(gpu, a.pgm);
     if (!a.save_spans.empty()) test::save_spans(gpu, a.save_spans);
     if (!a.compare_spans.empty()) {

@@ -23,11 +23,11 @@
 #include "dambreak_state.h"
 #include "insitu/outputs/png_image.h"
 #include "render/gl/context.h"
-#include "render/gl/pass_timer.h"
+#include "render/gl/gpu_recorder.h"
+#include "render/gl/renderer.h"
 #include "render/gl/shader_library.h"
 #include "render/reference/exact_spans.h"
 #include "render/reference/reference_shading.h"
-#include "render/renderer.h"
 #include "tool_args.h"
 #include "tools/scenes/image_compare.h"
 #include "voxspan/error.h"
@@ -134,11 +134,11 @@ int run(const Args& a) {
   for (const Picture& p : pictures) {
     options.shade.mode = p.mode;
     options.shade.deep_ao = p.deep_ao;
-    gl::PassTimer timer(context.has_gpu_timers());
     FrameStats stats;
+    gl::GpuRecorder recorder(stats, context.has_gpu_timers());
     const FloatImage image =
-        renderer.render(s.camera, c.boundary, c.cell_states(), options, timer, stats).download();
-    timer.collect(stats);
+        renderer.render(s.camera, c.boundary, c.cell_states(), options, recorder).download();
+    recorder.collect();
     std::printf("%s: %.0f ms (%s)\n", p.name, stats.total_ms(), stats.json().c_str());
     const ImageRGBA8 picture = linear_to_srgb8(image.rgba, image.width, image.height);
     write(out / (std::string(p.name) + ".png"), picture);

@@ -20,8 +20,8 @@
 
 #include "insitu/config/settings.h"
 #include "insitu/config/trigger.h"
-#include "render/backend.h"
 #include "render/gl/context.h"
+#include "render/surface_renderer.h"
 
 namespace voxspan {
 

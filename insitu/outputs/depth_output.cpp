@@ -1,7 +1,7 @@
 // outputs.depth: each rendered view's first-entry distance as a 32-bit float OpenEXR image,
 // <folder>/<view>_<step>.exr, channel `Z`: per pixel the distance from the eye along the unit
 // ray through the pixel centre to where it first enters the fluid (the span image's first
-// entry, render/passes/first_hit.h), row 0 at the top; 0 where the ray misses. The camera
+// entry, render/gl/passes/first_hit.h), row 0 at the top; 0 where the ray misses. The camera
 // model is in docs/runtime.md ("Depth images").
 #include "insitu/outputs/exr_image.h"
 #include "insitu/outputs/output.h"

@@ -48,7 +48,7 @@ void append_pixel(std::vector<std::byte>& out, const PixelHeader& header,
   append(out, spans.data(), spans.size_bytes());
 }
 
-// The compress pass's gap test (render/passes/column_scan.glsl) in its own float arithmetic.
+// The compress pass's gap test (render/gl/passes/column_scan.glsl) in its own float arithmetic.
 class GapRule {
  public:
   GapRule(const PerspectiveGrid& grid, int x, int y, double gap)
@@ -67,7 +67,7 @@ class GapRule {
   }
 
  private:
-  // length(view_ray(pixel)) of render/perspective_grid.glsl, in float.
+  // length(view_ray(pixel)) of render/gl/perspective_grid.glsl, in float.
   static float ray_scale(const PerspectiveGrid& grid, int x, int y) {
     const float nx = 2.0f * (float(x) + 0.5f) / float(grid.width()) - 1.0f;
     const float ny = 1.0f - 2.0f * (float(y) + 0.5f) / float(grid.height());
@@ -95,7 +95,7 @@ void merge_pixel(const PerspectiveGrid& grid, std::span<const Entry> entries,
   for (const Entry& e : entries) scratch.insert(scratch.end(), e.spans.begin(), e.spans.end());
   std::sort(scratch.begin(), scratch.end(),
             [](const Span& a, const Span& b) { return a.entry < b.entry; });
-  // The gap rule of render/passes/column_scan.glsl, between the centres of the last set voxel
+  // The gap rule of render/gl/passes/column_scan.glsl, between the centres of the last set voxel
   // (layer end - 1) and the next one, in float with the uniforms the compress pass gets, so
   // that a gap within rounding of g closes here as it would there.
   const GapRule rule(grid, x, y, settings.gap_bridging);

@@ -8,18 +8,17 @@
 
 #include "insitu/outputs/stats_record.h"
 #include "insitu/parallel/communicator.h"
-#include "insitu/runtime/rank_stats.h"
+#include "insitu/runtime/config_file.h"
 #include "insitu/runtime/host_memory.h"
 #include "insitu/runtime/output_folder.h"
-#include "insitu/runtime/config_file.h"
+#include "insitu/runtime/rank_stats.h"
 #include "insitu/runtime/registry.h"
 #include "insitu/runtime/schedule.h"
 #include "insitu/runtime/step_record.h"
 #include "insitu/views/span_compositor.h"
 #include "insitu/views/view.h"
 #include "insitu/views/view_framing.h"
-#include "render/gl/context.h"
-#include "render/gl/pass_timer.h"
+#include "render/backend.h"
 #include "render/gl/shader_library.h"
 #include "voxspan/error.h"
 #include "voxspan/log.h"
@@ -85,7 +84,7 @@ struct InsituPipeline::Impl {
   BackendChoice backend;  // its GL context, when the GL renderer draws
   std::thread::id gl_thread = std::this_thread::get_id();
   gl::ShaderLibrary shaders;
-  gl::PassTimer timer;
+  std::unique_ptr<Recorder> recorder;  // the renderer's: every view's passes and counts
   BackgroundWriter writer;  // before the outputs, whose jobs it runs; drained before they go
   std::vector<std::string> view_names;
   std::vector<ViewState> views;
@@ -101,7 +100,7 @@ struct InsituPipeline::Impl {
         schedule(config),
         plan(schedule.blank()),
         backend(choose_backend(config.renderer.backend, prepared(config, communicator))),
-        timer(backend.context && backend.context->has_gpu_timers()),
+        recorder(make_recorder(backend)),
         writer(config.writer) {
     for (const ConfiguredView& v : config.views) view_names.push_back(v.settings->name);
     const ViewContext view_context = make_view_context();
@@ -180,11 +179,12 @@ struct InsituPipeline::Impl {
       FrameStats& stats = record.views[i].second;
       stats.zero();
       results[i] = {.name = v.name, .stats = &stats};
+      recorder->record_into(stats);
       try {
         const Camera camera = v.framing.update(step_box);
         const bool shown =
-            v.view->render({data, camera, v.framing.box(), needs}, timer, stats, v.products);
-        timer.collect(stats);
+            v.view->render({data, camera, v.framing.box(), needs}, *recorder, v.products);
+        recorder->collect();
         for (const FrameStats::Pass& pass : stats.passes)
           totals.passes.add_time(pass.name, pass.ms);
         if (!shown) continue;  // an MPI rank that only voxelized: the root shows the view
@@ -194,7 +194,7 @@ struct InsituPipeline::Impl {
         if (needs.spans) results[i].spans = v.products.shaded_spans;
         if (needs.field) results[i].field = v.products.shaded_field;
       } catch (const std::exception& e) {
-        timer.collect(stats);  // closes the scopes of the failed frame
+        recorder->collect();  // closes the scopes of the failed frame
         ++totals.failed_views;
         if (failure.empty()) failure = "view " + v.name + ": " + e.what();
       }

@@ -101,18 +101,18 @@ class ParticlesView final : public View {
       slice_.emplace(s.slice, s.name, s.key_path("slice"), spacing_, comm_);
   }
 
-  bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
-              ViewProducts& out) override {
+  bool render(const ViewStep& step, Recorder& recorder, ViewProducts& out) override {
     if (step.data.particles == nullptr) throw make_error("particles: the step has no particles");
     if (slice_) {
-      auto t = timer.cpu("slice_sum");  // collective: before anything that may fail on one rank
+      auto t =
+          recorder.host(pass::slice_sum);  // collective: before anything that may fail on one rank
       slice_->interpolate(*step.data.particles, step.fluid_box, step.camera.up, step.data.step,
                           settings_.width, settings_.height);
     }
     const GlyphSelection selection = selection_for(*step.data.particles, step.camera);
     std::string failure;
     try {
-      auto t = timer.cpu("glyph_raster");
+      auto t = recorder.host(pass::glyph_raster);
       rasterize_glyphs(*step.data.particles, step.data.cells, step.camera, selection, glyphs_);
       collect_trail_points(*step.data.particles, trail_choice(), trail_points_);
     } catch (const std::exception& e) {
@@ -122,7 +122,7 @@ class ParticlesView final : public View {
       // Every rank takes part even when its own part failed; then all throw together.
       const Agreement a = comm_->agree(failure.empty(), failure);
       if (!a.ok) throw make_error("rank ", a.rank, ": ", a.message);
-      auto t = timer.cpu("glyph_composite");
+      auto t = recorder.host(pass::glyph_composite);
       combine_ranks();
       gather_trail_points();
       if (!comm_->root()) return false;
@@ -130,8 +130,8 @@ class ParticlesView final : public View {
       throw Error(failure);
     }
     if (trail_choice().any()) trails_.add_step(trail_points_);
-    report(stats);
-    auto t = timer.cpu("glyph_shade");
+    report(recorder);
+    auto t = recorder.host(pass::glyph_shade);
     GlyphShading shading;
     shading.by_value = !settings_.color_by.empty();
     shading.map = settings_.color_map;
@@ -143,14 +143,14 @@ class ParticlesView final : public View {
     shade_glyphs(glyphs_, step.camera, shading, out.picture);
     depth_ = glyphs_.depth;
     if (slice_) {
-      auto ts = timer.cpu("slice_draw");
+      auto ts = recorder.host(pass::slice_draw);
       slice_->draw_in_view(step.camera, depth_, out.picture,
                            settings_.legend && shading.by_value ? BarSide::left : BarSide::right);
     }
     if (trail_choice().any()) {
       const Vec3d& c = settings_.trails.colour;
       trails_.draw(step.camera, depth_, glm::vec3(c[0], c[1], c[2]), out.picture);
-      stats.set_count("trails", std::int64_t(trails_.count()));
+      recorder.count(counter::trails, std::int64_t(trails_.count()));
     }
     if (settings_.legend && shading.by_value)
       draw_color_bar(out.picture, settings_.color_map, lo, hi);
@@ -243,14 +243,14 @@ class ParticlesView final : public View {
       }
   }
 
-  void report(FrameStats& stats) const {
+  void report(Recorder& recorder) const {
     const GlyphCounts& c = glyphs_.counts;
-    stats.set_count("glyphs_drawn", c.drawn);
-    stats.set_count("glyphs_frustum_culled", c.frustum_culled);
-    stats.set_count("glyphs_occlusion_culled", c.occlusion_culled);
-    stats.set_count("glyphs_range_culled", c.range_culled);
-    if (settings_.slice.cut && slice_) stats.set_count("glyphs_cut", c.cut);
-    stats.set_count("glyph_cells_hidden", c.cells_hidden);
+    recorder.count(counter::glyphs_drawn, c.drawn);
+    recorder.count(counter::glyphs_frustum_culled, c.frustum_culled);
+    recorder.count(counter::glyphs_occlusion_culled, c.occlusion_culled);
+    recorder.count(counter::glyphs_range_culled, c.range_culled);
+    if (settings_.slice.cut && slice_) recorder.count(counter::glyphs_cut, c.cut);
+    recorder.count(counter::glyph_cells_hidden, c.cells_hidden);
   }
 
   const ParticlesSettings settings_;

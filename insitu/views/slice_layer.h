@@ -18,15 +18,23 @@
 #include "insitu/views/color_map.h"
 #include "insitu/views/legend.h"
 #include "insitu/views/sph_slice.h"
+#include "insitu/views/view_framing.h"
 #include "insitu/views/view_products.h"
 #include "render/camera.h"
 #include "render/float_image.h"
-#include "insitu/views/view_framing.h"
+#include "render/recorder.h"
 #include "voxspan/adapter.h"
 
 namespace voxspan {
 
 class Communicator;
+
+// A slice's two passes in every view that shows one: the sums (collective under MPI) and the
+// drawing.
+namespace pass {
+inline constexpr StatName slice_sum{"slice_sum"};
+inline constexpr StatName slice_draw{"slice_draw"};
+}  // namespace pass
 
 struct SlicePlaneConfig {
   std::optional<Vec3d> origin;  // nullopt = the centre of the fluid's box

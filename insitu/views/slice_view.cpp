@@ -30,18 +30,17 @@ class SliceView final : public View {
         layer_(s, s.name, s.source.where, c.particle_spacing, c.comm),
         comm_(c.comm) {}
 
-  bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& /*stats*/,
-              ViewProducts& out) override {
+  bool render(const ViewStep& step, Recorder& recorder, ViewProducts& out) override {
     if (step.data.particles == nullptr) throw make_error("slice: the step has no particles");
     const int w = settings_.width, h = settings_.height;
     {
-      auto t = timer.cpu("slice_sum");
+      auto t = recorder.host(pass::slice_sum);
       const Vec3d& up = settings_.camera.up;
       layer_.interpolate(*step.data.particles, step.fluid_box, {up[0], up[1], up[2]},
                          step.data.step, w, h);
     }
     if (comm_ != nullptr && !comm_->root()) return false;  // the root draws the picture
-    auto t = timer.cpu("slice_draw");
+    auto t = recorder.host(pass::slice_draw);
     layer_.draw_image(out.picture);
     if (step.needs.first_hit_depth) no_surface(out.first_hit_depth, w, h);
     out.shaded_spans = nullptr;

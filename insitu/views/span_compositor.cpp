@@ -4,7 +4,7 @@
 
 namespace voxspan {
 
-std::vector<std::byte> SpanCompositor::merge(const SpanImage& local, FrameStats& stats) {
+std::vector<std::byte> SpanCompositor::merge(const SpanImage& local, Recorder& recorder) {
   const int ranks = comm_.size(), height = local.height();
   std::vector<std::vector<std::byte>> received;
   if (scheme_ == CompositeScheme::direct_send) {
@@ -20,7 +20,7 @@ std::vector<std::byte> SpanCompositor::merge(const SpanImage& local, FrameStats&
   }
   std::int64_t senders = 0;
   for (const auto& part : received) senders += !part.empty();
-  stats.set_count("composite.ranks_with_spans", senders);
+  recorder.count(counter::composite_ranks_with_spans, senders);
   return merge_rows(local.grid, received, settings_);
 }
 
@@ -30,39 +30,25 @@ void SpanCompositor::agree(bool ok, const std::string& failure) {
 }
 
 bool SpanCompositor::composite(const SpanImage& local, std::int64_t bytes_before,
-                               gl::PassTimer& timer, FrameStats& stats) {
+                               Recorder& recorder) {
   std::vector<std::vector<std::byte>> bands;
   {
-    auto t = timer.cpu("composite");
-    std::vector<std::byte> mine = merge(local, stats);
+    auto t = recorder.host(pass::composite);
+    std::vector<std::byte> mine = merge(local, recorder);
     if (scheme_ == CompositeScheme::direct_send) bands = comm_.gather(mine);
     else bands.push_back(std::move(mine));
   }
-  stats.set_count("composite.bytes_sent", comm_.bytes_sent() - bytes_before);
+  recorder.count(counter::composite_bytes_sent, comm_.bytes_sent() - bytes_before);
   if (!comm_.root()) return false;
   decode_image(local.grid, bands, composite_);
   return true;
 }
 
 const SpanImage* SpanCompositor::run(const SpanImage* spans, const std::string& failure,
-                                     gl::PassTimer& timer, FrameStats& stats) {
+                                     Recorder& recorder) {
   const std::int64_t bytes_before = comm_.bytes_sent();
   agree(spans != nullptr, failure);
-  return composite(*spans, bytes_before, timer, stats) ? &composite_ : nullptr;
-}
-
-const GpuSpanImage* SpanCompositor::run(const GpuSpanImage* spans, const std::string& failure,
-                                        gl::PassTimer& timer, FrameStats& stats) {
-  const std::int64_t bytes_before = comm_.bytes_sent();
-  agree(spans != nullptr, failure);
-  {
-    auto t = timer.gpu("composite_download");
-    spans->download(local_);
-  }
-  if (!composite(local_, bytes_before, timer, stats)) return nullptr;
-  auto t = timer.gpu("composite_upload");
-  merged_.upload(composite_);
-  return &merged_;
+  return composite(*spans, bytes_before, recorder) ? &composite_ : nullptr;
 }
 
 }  // namespace voxspan

@@ -8,9 +8,9 @@
 //   root: every rank sends all its pixels to the root, which merges the whole image (the
 //     simplest, for comparison: its root receives everything).
 // Counts per step: composite.bytes_sent (this rank), composite.ranks_with_spans (the ranks that
-// sent this rank pixels of the bands it merges; on the root under `root`). Times:
-// composite (the exchange and the merge), and with the GL renderer composite_download and
-// composite_upload (root): the CPU renderer's span images are in host memory already.
+// sent this rank pixels of the bands it merges; on the root under `root`). Times: composite (the
+// exchange and the merge); the surface view adds, with the GL renderer, the span image's
+// transfers around it (pass::composite_download, pass::composite_upload: insitu/views/view.h).
 #pragma once
 
 #include <string>
@@ -21,32 +21,35 @@
 
 namespace voxspan {
 
+namespace pass {
+inline constexpr StatName composite{"composite"};
+}  // namespace pass
+namespace counter {
+inline constexpr StatName composite_bytes_sent{"composite.bytes_sent"};
+inline constexpr StatName composite_ranks_with_spans{"composite.ranks_with_spans"};
+}  // namespace counter
+
 class SpanCompositor final : public SpanStage {
  public:
   SpanCompositor(Communicator& comm, const MergeSettings& settings, CompositeScheme scheme)
       : comm_(comm), settings_(settings), scheme_(scheme) {}
 
-  const GpuSpanImage* run(const GpuSpanImage* spans, const std::string& failure,
-                          gl::PassTimer& timer, FrameStats& stats) override;
-  const SpanImage* run(const SpanImage* spans, const std::string& failure, gl::PassTimer& timer,
-                       FrameStats& stats) override;
+  const SpanImage* run(const SpanImage* spans, const std::string& failure,
+                       Recorder& recorder) override;
 
  private:
   // The merged bands this rank holds after the exchange.
-  std::vector<std::byte> merge(const SpanImage& local, FrameStats& stats);
+  std::vector<std::byte> merge(const SpanImage& local, Recorder& recorder);
   // Every rank's failure or none: throws naming the first rank that failed.
   void agree(bool ok, const std::string& failure);
   // The exchange and merge of `local`; true on the root, whose composite_ then holds the
   // composite. composite.bytes_sent counts from `bytes_before`.
-  bool composite(const SpanImage& local, std::int64_t bytes_before, gl::PassTimer& timer,
-                 FrameStats& stats);
+  bool composite(const SpanImage& local, std::int64_t bytes_before, Recorder& recorder);
 
   Communicator& comm_;
   const MergeSettings settings_;
   const CompositeScheme scheme_;
-  SpanImage local_;      // this rank's spans, read back (GL renderer)
-  SpanImage composite_;  // the root's composite on the CPU
-  GpuSpanImage merged_;  // ... on the GPU, for the passes after this stage
+  SpanImage composite_;  // the root's composite
 };
 
 }  // namespace voxspan

@@ -5,9 +5,8 @@
 #include <optional>
 
 #include "insitu/views/view.h"
-#include "render/cpu/cpu_renderer.h"
-#include "render/passes/first_hit.h"
-#include "render/renderer.h"
+#include "render/backend.h"
+#include "render/stat_names.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
@@ -48,19 +47,25 @@ double smallest_side(const Bounds& box) {
   return std::min({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]});
 }
 
-RenderOptions render_options(const SurfaceSettings& view, const RendererConfig& renderer,
-                             double spacing) {
+// What a frame of the view follows, made once; the renderer's own settings (its memory budget)
+// are given when it is made.
+struct FrameOptions {
+  SpanOptions spans;
+  SurfaceOptions surfaces;
+  ShadeOptions shade;
+};
+
+FrameOptions frame_options(const SurfaceSettings& view, double spacing) {
   if (!(spacing > 0) || !std::isfinite(spacing))
     throw make_error("view ", view.name, ": the particle spacing (", spacing,
                      ") is needed for the view's automatic settings; set "
                      "classification.particle_spacing or pass it to the adapter");
-  RenderOptions o;
-  VoxelizeOptions& v = o.voxelize;
+  FrameOptions o;
+  SpanOptions& v = o.spans;
   v.grid.alpha_degrees = view.alpha_degrees;
   v.grid.max_layers = view.max_layers;
   v.gap_bridging = view.gap.value_or(spacing);
   v.max_spans = static_cast<std::uint32_t>(view.max_spans);
-  v.tiles.memory_budget = static_cast<std::size_t>(renderer.gpu_memory_mib * kMiB);
   o.surfaces.filter_radius = view.filter_radius.value_or(spacing);
   ShadeOptions& shade = o.shade;
   shade.mode = view.shading;
@@ -160,110 +165,25 @@ const schema::Section<SurfaceSettings>& surface_section() {
   return s;
 }
 
-// The span image `make` makes (the renderer's voxelization or cast) through the view's stages,
-// which take part even where `make` threw on this process, and then throw for every one.
-template <class Image, class Make>
-const Image* through_stages(Make&& make, const std::vector<std::unique_ptr<SpanStage>>& stages,
-                            gl::PassTimer& timer, FrameStats& stats) {
-  const Image* spans = nullptr;
-  std::string failure;
-  try {
-    spans = &make();
-  } catch (const std::exception& e) {
-    if (stages.empty()) throw;
-    failure = e.what();
-  }
-  for (const std::unique_ptr<SpanStage>& stage : stages)
-    spans = stage->run(spans, failure, timer, stats);
-  return spans;
-}
-
-// The GL renderer's frame: voxelize, the stages, shade, read back.
-class GlSurface {
- public:
-  explicit GlSurface(const gl::ShaderLibrary& shaders) : renderer_(shaders), first_hit_(shaders) {}
-
-  bool render(const ViewStep& step, const RenderOptions& o,
-              const std::vector<std::unique_ptr<SpanStage>>& stages, gl::PassTimer& timer,
-              FrameStats& stats, ViewProducts& out) {
-    const GpuSpanImage* spans = through_stages<GpuSpanImage>(
-        [&]() -> const GpuSpanImage& {
-          return renderer_.voxelizer().run(step.camera, step.data.boundary, step.data.cells,
-                                           o.voxelize, timer, stats);
-        },
-        stages, timer, stats);
-    if (spans == nullptr) return false;  // nothing to shade in this process
-    const GpuFloatImage& image = renderer_.shade(*spans, o.surfaces, o.shade, timer, stats);
-    {
-      auto t = timer.gpu("readback");
-      image.download(out.picture);
-    }
-    if (step.needs.first_hit_depth) {
-      auto t = timer.gpu("first_hit");
-      first_hit_.run(*spans, depth_);
-      depth_.download(out.first_hit_depth);
-    }
-    out.shaded_spans = nullptr;
-    if (step.needs.spans) {
-      auto t = timer.gpu("span_readback");
-      spans->download(out.spans);
-      out.shaded_spans = &out.spans;
-    }
-    return true;
-  }
-
- private:
-  Renderer renderer_;
-  FirstHitPass first_hit_;
-  GpuFloatImage depth_;
-};
-
-// The CPU renderer's: cast, the stages, shade; everything in host memory already.
-class CpuSurface {
- public:
-  bool render(const ViewStep& step, const RenderOptions& o,
-              const std::vector<std::unique_ptr<SpanStage>>& stages, gl::PassTimer& timer,
-              FrameStats& stats, ViewProducts& out) {
-    const SpanImage* spans = through_stages<SpanImage>(
-        [&]() -> const SpanImage& {
-          return renderer_.cast(step.camera, step.data.boundary, step.data.cells, o.voxelize, timer,
-                                stats);
-        },
-        stages, timer, stats);
-    if (spans == nullptr) return false;
-    renderer_.shade(*spans, o.surfaces, o.shade, timer, stats, out.picture);
-    if (step.needs.first_hit_depth) {
-      auto t = timer.cpu("first_hit");
-      CpuRenderer::first_hit(*spans, out.first_hit_depth);
-    }
-    out.shaded_spans = step.needs.spans ? spans : nullptr;  // no copy: the outputs copy it
-    return true;
-  }
-
- private:
-  CpuRenderer renderer_;
-};
-
 class SurfaceView final : public View {
  public:
   SurfaceView(const SurfaceSettings& s, const ViewContext& c)
       : settings_(s),
-        options_(render_options(s, c.renderer, c.particle_spacing)),
+        options_(frame_options(s, c.particle_spacing)),
+        renderer_(make_surface_renderer(
+            c.backend, c.shaders, static_cast<std::size_t>(c.renderer.gpu_memory_mib * kMiB))),
         stages_(c.span_stages
-                    ? c.span_stages({options_.voxelize.gap_bridging, options_.voxelize.max_spans,
+                    ? c.span_stages({options_.spans.gap_bridging, options_.spans.max_spans,
                                      c.backend == RenderBackend::cpu})
                     : std::vector<std::unique_ptr<SpanStage>>{}),
         combine_ranks_(c.combine_ranks),
         spacing_(c.particle_spacing) {
-    if (c.backend == RenderBackend::gl) gl_ = std::make_unique<GlSurface>(c.shaders);
-    else cpu_ = std::make_unique<CpuSurface>();
     if (!s.slice.quantity.empty())
       slice_.emplace(s.slice, s.name, s.key_path("slice"), spacing_, c.comm);
   }
 
-  bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
-              ViewProducts& out) override {
-    RenderOptions& o = step_options_;
+  bool render(const ViewStep& step, Recorder& recorder, ViewProducts& out) override {
+    FrameOptions& o = step_options_;
     o = options_;
     if (!settings_.absorption && !auto_absorption_ && !step.fluid_box.empty())
       auto_absorption_ =
@@ -276,23 +196,19 @@ class SurfaceView final : public View {
     validate(o.surfaces);
     validate(o.shade);
     // With stages, every span goes on (a merge needs them all); the stages apply the cap.
-    if (!stages_.empty()) o.voxelize.max_spans = 0;
-    o.voxelize.combine_ranks = combine_ranks_;
-    if (!slice_)
-      return gl_ ? gl_->render(step, o, stages_, timer, stats, out)
-                 : cpu_->render(step, o, stages_, timer, stats, out);
+    if (!stages_.empty()) o.spans.max_spans = 0;
+    o.spans.combine_ranks = combine_ranks_;
+    if (!slice_) return render_surfaces(step, step.needs, recorder, out);
     if (step.data.particles == nullptr) throw make_error("slice: the step has no particles");
     {
-      auto t = timer.cpu("slice_sum");  // collective: before anything that may fail on one rank
+      auto t = recorder.host(pass::slice_sum);  // collective: before anything that may fail
       slice_->interpolate(*step.data.particles, step.fluid_box, step.camera.up, step.data.step,
                           settings_.width, settings_.height);
     }
-    ViewStep with_depth = step;
-    with_depth.needs.first_hit_depth = true;
-    const bool drawn = gl_ ? gl_->render(with_depth, o, stages_, timer, stats, out)
-                           : cpu_->render(with_depth, o, stages_, timer, stats, out);
-    if (!drawn) return false;
-    auto t = timer.cpu("slice_draw");
+    ViewNeeds with_depth = step.needs;
+    with_depth.first_hit_depth = true;
+    if (!render_surfaces(step, with_depth, recorder, out)) return false;
+    auto t = recorder.host(pass::slice_draw);
     view_depth_from_distances(step.camera, out.first_hit_depth, depth_);
     slice_->draw_in_view(step.camera, depth_, out.picture, BarSide::right);
     // The depth output sees the plane where it shows.
@@ -307,15 +223,50 @@ class SurfaceView final : public View {
   }
 
  private:
+  // The span image, through the stages, shaded; the products `needs` asks for. False where this
+  // process has nothing to shade (an MPI rank other than the root).
+  bool render_surfaces(const ViewStep& step, const ViewNeeds& needs, Recorder& recorder,
+                       ViewProducts& out) {
+    const FrameOptions& o = step_options_;
+    if (!through_stages(step, o.spans, recorder)) return false;
+    renderer_->shade(o.surfaces, o.shade, recorder, out.picture);
+    if (needs.first_hit_depth) renderer_->first_hit(recorder, out.first_hit_depth);
+    // No copy here: the outputs copy what they keep.
+    out.shaded_spans =
+        needs.spans ? &renderer_->host_spans(pass::span_readback, recorder) : nullptr;
+    return true;
+  }
+
+  // The renderer's span image through the view's stages, which take part even where this process
+  // failed to make it, and then throw for every one. False where a stage leaves nothing here.
+  bool through_stages(const ViewStep& step, const SpanOptions& spans, Recorder& recorder) {
+    std::string failure;
+    bool made = false;
+    try {
+      renderer_->make_spans(step.camera, step.data.boundary, step.data.cells, spans, recorder);
+      made = true;
+    } catch (const std::exception& e) {
+      if (stages_.empty()) throw;
+      failure = e.what();
+    }
+    if (stages_.empty()) return true;
+    const SpanImage* image =
+        made ? &renderer_->host_spans(pass::composite_download, recorder) : nullptr;
+    for (const std::unique_ptr<SpanStage>& stage : stages_)
+      image = stage->run(image, failure, recorder);
+    if (image == nullptr) return false;
+    renderer_->use_spans(*image, pass::composite_upload, recorder);
+    return true;
+  }
+
   const SurfaceSettings settings_;
-  const RenderOptions options_;  // made once; only the ground follows the fluid
-  RenderOptions step_options_;
+  const FrameOptions options_;  // made once; only the ground follows the fluid
+  FrameOptions step_options_;
+  std::unique_ptr<SurfaceRenderer> renderer_;
   std::vector<std::unique_ptr<SpanStage>> stages_;
   DepthRangeCombine combine_ranks_;
   const double spacing_;
   std::optional<glm::dvec3> auto_absorption_;  // absorption: auto, fixed at the first box
-  std::unique_ptr<GlSurface> gl_;              // one of the two
-  std::unique_ptr<CpuSurface> cpu_;
   std::optional<SliceLayer> slice_;
   std::vector<float> depth_;  // the surface's view depth per pixel, then the slice's
 };

@@ -2,7 +2,7 @@
 // from the span image, shaded opaque, translucent or refractive ([ZD15]). Its stages:
 //   voxelize (sec. 3.1-4.4) -> the span stages of the context (none in one process; MPI
 //   compositing) -> connect, filter, normals, deep AO (3.3-3.6) -> shade (3.5) -> read back,
-// and, when an output asks, the first-hit distance of every pixel (render/passes/first_hit.h).
+// and, when an output asks, the first-hit distance of every pixel (render/gl/passes/first_hit.h).
 // With `slice`, an SPH slice plane (insitu/views/slice_layer.h) drawn where it lies nearer than
 // the first surface (opaque over the water: it shows where the plane leaves the fluid or where
 // the water in front of it was cut away; a particles view can cut).

@@ -14,36 +14,38 @@
 #include "insitu/config/config.h"
 #include "insitu/parallel/communicator.h"
 #include "insitu/parallel/span_merge.h"
-#include "insitu/views/view_products.h"
 #include "insitu/views/view_framing.h"
+#include "insitu/views/view_products.h"
 #include "render/camera.h"
 #include "render/float_image.h"
-#include "render/frame_stats.h"
-#include "render/gl/pass_timer.h"
 #include "render/gl/shader_library.h"
-#include "render/gpu_span_image.h"
+#include "render/recorder.h"
+#include "render/surface_renderer.h"
 #include "voxspan/adapter.h"
 
 namespace voxspan {
 
-// A stage between the voxelization and the surfaces of a span-image view: it takes the step's
-// span image and gives back the one the surfaces are built from (the same one, or another:
-// the composite of every rank's), or null when this process has nothing to shade (a rank
-// other than the root). Stages run in order. A stage sees every span found (the view
-// voxelizes without a cap when it has stages) and applies the view's cap itself
-// (MergeSettings). `spans` is null when this process failed to voxelize (`failure` says why):
-// a stage that spans processes must still take part, and throws voxspan::Error, naming the
-// first rank that failed, when any did.
+// A stage between the span image and the surfaces of a span-image view: it takes the step's
+// span image (in host memory) and gives back the one the surfaces are built from (the same one,
+// or another: the composite of every rank's), or null when this process has nothing to shade (a
+// rank other than the root). Stages run in order. A stage sees every span found (the view makes
+// its spans without a cap when it has stages) and applies the view's cap itself
+// (MergeSettings). `spans` is null when this process failed to make its spans (`failure` says
+// why): a stage that spans processes must still take part, and throws voxspan::Error, naming
+// the first rank that failed, when any did.
 class SpanStage {
  public:
   virtual ~SpanStage() = default;
-  // The GL renderer's span image, on the GPU.
-  virtual const GpuSpanImage* run(const GpuSpanImage* spans, const std::string& failure,
-                                  gl::PassTimer& timer, FrameStats& stats) = 0;
-  // The CPU renderer's, in host memory.
   virtual const SpanImage* run(const SpanImage* spans, const std::string& failure,
-                               gl::PassTimer& timer, FrameStats& stats) = 0;
+                               Recorder& recorder) = 0;
 };
+
+// The GL renderer's transfers around a view's stages: its span image read back before them,
+// their result uploaded after (the CPU renderer's images are in host memory).
+namespace pass {
+inline constexpr StatName composite_download{"composite_download"};
+inline constexpr StatName composite_upload{"composite_upload"};
+}  // namespace pass
 
 // What a view is made with.
 struct ViewContext {
@@ -73,8 +75,7 @@ class View {
   // Renders the step into `out`; false when this process has no picture to show (an MPI rank
   // other than the root: the picture is made where the ranks' parts meet). Throws
   // voxspan::Error on bad input or a memory budget too small (the step fails, the run goes on).
-  virtual bool render(const ViewStep& step, gl::PassTimer& timer, FrameStats& stats,
-                      ViewProducts& out) = 0;
+  virtual bool render(const ViewStep& step, Recorder& recorder, ViewProducts& out) = 0;
   // A few words for the start-up line: "translucent 640x360".
   virtual std::string description() const = 0;
 };

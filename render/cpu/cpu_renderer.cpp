@@ -6,8 +6,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
-#include "render/model/cpu_host.h"
-#include "render/passes/filter.h"
+#include "render/model/host.h"
+#include "render/stat_names.h"
+#include "render/surface_passes.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
@@ -39,94 +40,112 @@ Tallies tally(const SpanImage& spans) {
 }  // namespace
 
 const SpanImage& CpuRenderer::cast(const Camera& camera, std::span<const ParticleSphere> particles,
-                                   const CellStatesView& cells, const VoxelizeOptions& options,
-                                   gl::PassTimer& timer, FrameStats& stats) {
+                                   const CellStatesView& cells, const SpanOptions& options,
+                                   Recorder& recorder) {
   validate(options);
-  const PerspectiveGrid grid = fit_frame(camera, particles, options, timer, stats);
-  auto t = timer.cpu("cast");
+  const PerspectiveGrid grid = fit_frame(camera, particles, options, recorder);
+  auto t = recorder.host(pass::cast);
   const CastCounts counts =
       caster_.run(grid, particles, cells,
                   {options.gap_bridging, options.max_spans, options.use_cell_states}, spans_);
-  stats.set_count("tiles", counts.tiles);
-  stats.set_count("cast.cell_boxes", counts.cell_boxes);
-  stats.set_count("cast.chord_tests", counts.chord_tests);
-  stats.set_count("spans.stored", std::int64_t(spans_.spans.size()));
-  stats.set_count("spans.found", counts.spans_found);
-  stats.set_count("pixels.capped", counts.capped_pixels);
+  recorder.count(counter::tiles, counts.tiles);
+  recorder.count(counter::cast_cell_boxes, counts.cell_boxes);
+  recorder.count(counter::cast_chord_tests, counts.chord_tests);
+  recorder.count(counter::spans_stored, std::int64_t(spans_.spans.size()));
+  recorder.count(counter::spans_found, counts.spans_found);
+  recorder.count(counter::pixels_capped, counts.capped_pixels);
   return spans_;
 }
 
 const FloatImage& CpuRenderer::shade(const SpanImage& spans, const SurfaceOptions& surfaces,
-                                     const ShadeOptions& shade, gl::PassTimer& timer,
-                                     FrameStats& stats) {
-  this->shade(spans, surfaces, shade, timer, stats, image_);
+                                     const ShadeOptions& shade, Recorder& recorder) {
+  this->shade(spans, surfaces, shade, recorder, image_);
   return image_;
 }
 
+// The steps of render/surface_passes.h as loops over the model files on the host.
+class CpuRenderer::Passes final : public SurfacePasses {
+ public:
+  Passes(CpuRenderer& r, const SpanImage& spans, model::Host& host, const Tallies& tallies,
+         FloatImage& image)
+      : r_(r), spans_(spans), host_(host), tallies_(tallies), image_(image) {}
+
+ private:
+  Recorder::Scope time(Recorder& recorder, StatName pass) override { return recorder.host(pass); }
+
+  std::int64_t connect() override {
+    host_.fill_per_span(host_.links_, [&](model::ivec2 p, model::uint s) {
+      return host_.connect_span(p, s - host_.sd_offset(p));
+    });
+    return tallies_.unlinkable;
+  }
+
+  void filter(int iterations, const SurfaceOptions& options) override {
+    if (iterations <= 0) return;
+    host_.u_max_iterations = model::uint(options.max_iterations);
+    host_.u_radius = float(options.filter_radius);
+    host_.u_iteration_scale = float(filter_iteration_scale(spans_.grid, options.filter_radius));
+    for (int pass = 0; pass < kFilterPasses; ++pass) {
+      host_.u_filter_pass = model::uint(pass);
+      host_.fill_per_span(r_.next_depths_,
+                          [&](model::ivec2 p, model::uint s) { return host_.filter_span(p, s); });
+      host_.depths_.swap(r_.next_depths_);  // pass 0 read the span depths (depths_ empty)
+    }
+  }
+
+  void normals() override {
+    host_.fill_per_span(host_.normals_, [&](model::ivec2 p, model::uint s) {
+      return host_.span_normal_words(p, s);
+    });
+  }
+
+  void deep_ao() override {
+    host_.ao_.assign(spans_.pixels.size(), 1.0f);
+    host_.each_pixel([&](model::ivec2 p) { host_.ao_[host_.pixel_index(p)] = host_.deep_ao(p); });
+  }
+
+  RefractTally shade(const ShadeOptions& options) override {
+    RefractTally tally;
+    tally.dispatches =
+        refract_dispatch_limit(spans_.width(), spans_.height(), tallies_.most_spans, options);
+    if (options.mode == ShadeMode::refractive) host_.gather_block_bounds();
+    else host_.use_background(r_.background_);
+    if (image_.width != spans_.width() || image_.height != spans_.height())
+      image_ = FloatImage(spans_.width(), spans_.height());
+    std::atomic<std::int64_t> unfinished{0};
+    host_.each_pixel([&](model::ivec2 p) {
+      bool left = false;
+      const model::vec3 c =
+          host_.shade_pixel(p, options.mode, tally.dispatches, options.march_budget, left);
+      if (left) ++unfinished;
+      image_.set(p.x, p.y, glm::vec4(c, 1.0f));
+    });
+    tally.unfinished = unfinished.load();
+    return tally;
+  }
+
+  CpuRenderer& r_;
+  const SpanImage& spans_;
+  model::Host& host_;
+  const Tallies& tallies_;
+  FloatImage& image_;
+};
+
 void CpuRenderer::shade(const SpanImage& spans, const SurfaceOptions& surfaces,
-                        const ShadeOptions& shade, gl::PassTimer& timer, FrameStats& stats,
-                        FloatImage& image) {
+                        const ShadeOptions& shade, Recorder& recorder, FloatImage& image) {
   validate(surfaces);
-  validate(shade);
-  model::CpuHost host(spans, model::shade_uniforms(shade));
+  model::Host host(spans, model::shade_uniforms(shade));
   // The buffers of the last frame, back to buffers_ however this one ends.
   struct Lend {
-    model::CpuHost& host;
+    model::Host& host;
     model::HostBuffers& buffers;
-    Lend(model::CpuHost& h, model::HostBuffers& b) : host(h), buffers(b) { host.swap_buffers(b); }
+    Lend(model::Host& h, model::HostBuffers& b) : host(h), buffers(b) { host.swap_buffers(b); }
     ~Lend() { host.swap_buffers(buffers); }
   } lend(host, buffers_);
   host.depths_.clear();  // the span depths until the filter runs
   const Tallies tallies = tally(spans);
-  {
-    auto t = timer.cpu("connect");
-    host.fill_per_span(host.links_, [&](model::ivec2 p, model::uint s) {
-      return host.connect_span(p, s - host.sd_offset(p));
-    });
-    stats.set_count("links.unlinkable_spans", tallies.unlinkable);
-  }
-  {
-    auto t = timer.cpu("filter");
-    const int iterations = spans.spans.empty() ? 0 : FilterPass::iterations(spans.grid, surfaces);
-    host.u_max_iterations = model::uint(surfaces.max_iterations);
-    host.u_radius = float(surfaces.filter_radius);
-    host.u_iteration_scale = float(FilterPass::iteration_scale(spans.grid, surfaces.filter_radius));
-    for (int pass = 0; iterations > 0 && pass < FilterPass::kPasses; ++pass) {
-      host.u_filter_pass = model::uint(pass);
-      host.fill_per_span(next_depths_,
-                         [&](model::ivec2 p, model::uint s) { return host.filter_span(p, s); });
-      host.depths_.swap(next_depths_);  // pass 0 read the span depths (depths_ empty)
-    }
-    stats.set_count("filter.iterations", iterations);
-  }
-  {
-    auto t = timer.cpu("normals");
-    host.fill_per_span(host.normals_,
-                       [&](model::ivec2 p, model::uint s) { return host.span_normal_words(p, s); });
-  }
-  if (shade.deep_ao) {
-    auto t = timer.cpu("deep_ao");
-    host.ao_.assign(spans.pixels.size(), 1.0f);
-    host.each_pixel([&](model::ivec2 p) { host.ao_[host.pixel_index(p)] = host.deep_ao(p); });
-  }
-  auto t = timer.cpu("shade");
-  const int dispatches =
-      refract_dispatch_limit(spans.width(), spans.height(), tallies.most_spans, shade);
-  if (shade.mode == ShadeMode::refractive) host.gather_block_bounds();
-  else host.use_background(background_);
-  if (image.width != spans.width() || image.height != spans.height())
-    image = FloatImage(spans.width(), spans.height());
-  std::atomic<std::int64_t> unfinished{0};
-  host.each_pixel([&](model::ivec2 p) {
-    bool left = false;
-    const model::vec3 c = host.shade_pixel(p, shade.mode, dispatches, shade.march_budget, left);
-    if (left) ++unfinished;
-    image.set(p.x, p.y, glm::vec4(c, 1.0f));
-  });
-  if (shade.mode == ShadeMode::refractive) {
-    stats.set_count("refract.dispatches", dispatches);
-    stats.set_count("refract.unfinished", unfinished.load());
-  }
+  Passes passes(*this, spans, host, tallies, image);
+  passes.run(spans.grid, !spans.spans.empty(), surfaces, shade, recorder);
 }
 
 void CpuRenderer::first_hit(const SpanImage& spans, FloatImage& out,

@@ -1,54 +1,55 @@
 // render/cpu/cpu_renderer.h - one full frame for one view on the CPU, for nodes without a GPU:
-// the span image cast exactly (render/cpu/span_caster.h) instead of voxelized, then the very
-// rules of the GPU passes, from the same model files (render/model/*.glsl compiled as C++
-// through render/model/cpu_host.h): connect, filter, normals, deep AO, shade. The two
-// renderers differ by the voxelization alone, and cannot drift apart in the rest.
+// the span image cast exactly (render/cpu/span_caster.h) instead of voxelized, then the passes
+// on the span image (render/surface_passes.h) with the very rules of the GL passes, from the
+// same model files (render/model/*.glsl compiled as C++ through render/model/host.h): connect,
+// filter, normals, deep AO, shade. The two renderers differ by the span image alone, and cannot
+// drift apart in the rest.
 //
 //   voxspan::CpuRenderer renderer;
+//   voxspan::Recorder recorder(stats);
 //   const voxspan::SpanImage& spans =
-//       renderer.cast(camera, boundary_particles, cell_states, options.voxelize, timer, stats);
+//       renderer.cast(camera, boundary_particles, cell_states, options.spans, recorder);
 //   const voxspan::FloatImage& image =
-//       renderer.shade(spans, options.surfaces, options.shade, timer, stats);
+//       renderer.shade(spans, options.surfaces, options.shade, recorder);
 //
-// Passes are timed as CPU scopes of the caller's gl::PassTimer (no GL context is needed):
-// "frame", "cast", then "connect", "filter", "normals", "deep_ao", "shade" as the GPU renderer
-// names them, with the same counts in FrameStats. Threads: oneTBB; the pictures do not
-// depend on their number. Memory follows the spans: no bit grid, no layers.
+// Passes are host scopes of the caller's Recorder (no GL context is needed): "frame", "cast",
+// then those of render/surface_passes.h, with the counts render/stat_names.h names. Threads:
+// oneTBB; the pictures do not depend on their number. Memory follows the spans: no bit grid,
+// no layers.
 #pragma once
 
 #include <span>
 #include <vector>
 
 #include "render/cpu/span_caster.h"
-#include "render/model/cpu_host.h"
 #include "render/float_image.h"
-#include "render/frame_stats.h"
-#include "render/gl/pass_timer.h"
+#include "render/frame.h"
+#include "render/model/host.h"
+#include "render/recorder.h"
 #include "render/shade_options.h"
 #include "render/span_image.h"
-#include "render/voxelizer.h"
 
 namespace voxspan {
 
 class CpuRenderer {
  public:
-  // The span image of a frame: the grid fitted as the GPU's voxelizer fits it (options.grid,
-  // options.combine_ranks), the spans exact. Valid until the next cast().
+  // The span image of a frame: the grid fitted as the GL renderer fits it (fit_frame), the
+  // spans exact. Valid until the next cast().
   const SpanImage& cast(const Camera& camera, std::span<const ParticleSphere> particles,
-                        const CellStatesView& cells, const VoxelizeOptions& options,
-                        gl::PassTimer& timer, FrameStats& stats);
+                        const CellStatesView& cells, const SpanOptions& options,
+                        Recorder& recorder);
 
   // Connect, filter, normals, deep AO and shade a span image (this renderer's or one made
   // elsewhere: a composite of several ranks). Valid until the next shade().
   const FloatImage& shade(const SpanImage& spans, const SurfaceOptions& surfaces,
-                          const ShadeOptions& shade, gl::PassTimer& timer, FrameStats& stats);
+                          const ShadeOptions& shade, Recorder& recorder);
   // The same into `image` (resized when its size differs): a caller that keeps the picture
   // (the runtime's view products) saves copying it.
   void shade(const SpanImage& spans, const SurfaceOptions& surfaces, const ShadeOptions& shade,
-             gl::PassTimer& timer, FrameStats& stats, FloatImage& image);
+             Recorder& recorder, FloatImage& image);
 
   // Per pixel the distance along the ray to the first span's entry (0: none), in the first
-  // channel, as the GPU's FirstHitPass writes it. With `depths` (per span the (entry, exit)
+  // channel, as the GL FirstHitPass writes it. With `depths` (per span the (entry, exit)
   // view depths after the filter: surface_depths(), or GpuSurfaces::download_depths) the
   // filtered entry instead: the surface the picture shows.
   static void first_hit(const SpanImage& spans, FloatImage& out,
@@ -57,6 +58,8 @@ class CpuRenderer {
   std::span<const glm::vec2> surface_depths() const { return buffers_.depths; }
 
  private:
+  class Passes;  // this renderer's SurfacePasses
+
   SpanCaster caster_;
   SpanImage spans_;
   FloatImage image_;

@@ -1,6 +1,7 @@
 // render/model/column_march.glsl - refraction by screen-space ray marching through the voxel
 // columns ([ZD15] sec. 3.5 and Listing 2), shared by the GPU pass
-// (render/passes/shade_refractive.comp) and the CPU reference (render/model/cpp_host.h).
+// (render/gl/passes/shade_refractive.comp) and the C++ host (render/model/host.h: the CPU renderer
+// and the reference).
 //
 // A ray starts at the eye through the pixel's centre and walks column by column (pixel by
 // pixel) along its projection: in each column it finds the depths where it enters and leaves

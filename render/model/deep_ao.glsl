@@ -1,8 +1,8 @@
-// render/model/deep_ao.glsl - deep ambient occlusion ([ZD15] sec. 3.6): the occlusion of a
-// pixel's front surface, sampled from the surface points of neighbouring columns within a world
-// radius, over ALL their stored spans, not only the front ones (after Mittring 2007's
-// screen-space AO). Shared by the GPU pass (render/passes/deep_ao.comp) and the CPU reference
-// (render/model/cpp_host.h).
+// render/model/deep_ao.glsl - deep ambient occlusion ([ZD15] sec. 3.6): the occlusion of a pixel's
+// front surface, sampled from the surface points of neighbouring columns within a world radius,
+// over ALL their stored spans, not only the front ones (after Mittring 2007's screen-space AO).
+// Shared by the GPU pass (render/gl/passes/deep_ao.comp) and the C++ host (render/model/host.h: the
+// CPU renderer and the reference).
 //
 // u_ao_samples columns on a golden-angle spiral over the disk that the radius covers on screen
 // (rotated per pixel); in each, the spans reaching within the radius in depth (at most

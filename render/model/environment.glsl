@@ -1,8 +1,7 @@
-// render/model/environment.glsl - what surrounds the fluid: a sky gradient with a soft sun glow
-// and an infinite ground plane with a checker pattern fading into the horizon, so that
-// reflections and refractions show where the light comes from ([ZD15] sec. 3.5).
-// Shared by the GPU shading passes and the CPU reference (render/model/cpp_host.h).
-// All world space.
+// render/model/environment.glsl - what surrounds the fluid: a sky gradient with a soft sun glow and
+// an infinite ground plane with a checker pattern fading into the horizon, so that reflections and
+// refractions show where the light comes from ([ZD15] sec. 3.5). Shared by the GPU shading passes
+// and the C++ host (render/model/host.h: the CPU renderer and the reference). All world space.
 //
 // Host needs uniforms: u_env_up (unit, the sky's direction), u_env_axis_a, u_env_axis_b (unit,
 // the ground's tangent axes), u_ground_height (the plane dot(x, up) = height), u_ground_tile

@@ -1,6 +1,6 @@
-// render/model/lighting.glsl - the fluid's optics, shared by the shading modes ([ZD15],
-// sec. 3.5, 3.6) on the GPU and on the CPU reference (render/model/cpp_host.h): Fresnel
-// reflectance (Schlick), Beer-Lambert transmittance with an RGB absorption coefficient, the
+// render/model/lighting.glsl - the fluid's optics, shared by the shading modes ([ZD15], sec. 3.5,
+// 3.6) on the GPU and on the C++ host (render/model/host.h: the CPU renderer and the reference):
+// Fresnel reflectance (Schlick), Beer-Lambert transmittance with an RGB absorption coefficient, the
 // light scattered out of the fluid towards the eye, and the opaque surface's lighting.
 //
 // Host needs: environment.glsl and its uniforms; u_absorption (per world unit, RGB), u_ior,

@@ -1,6 +1,6 @@
-// render/model/links.glsl - surface links between the spans of neighbouring pixels ([ZD15],
-// sec. 3.3 and Listing 1), shared by the GPU passes and the CPU reference
-// (render/model/cpp_host.h).
+// render/model/links.glsl - surface links between the spans of neighbouring pixels ([ZD15], sec.
+// 3.3 and Listing 1), shared by the GPU passes and the C++ host (render/model/host.h: the CPU
+// renderer and the reference).
 //
 // Each span has two surface points, its entry (end 0) and its exit (end 1), and each point one
 // 32-bit link word (sec. 4.5): one byte per direction, byte d for direction d = 0 left (-x),

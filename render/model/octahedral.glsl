@@ -1,7 +1,7 @@
-// render/model/octahedral.glsl - unit normals in one 32-bit word: octahedral mapping to the
-// square [-1, 1]^2, two 16-bit signed normalized integers ([ZD15] sec. 4.5, after Meyer et
-// al. 2010). Worst round-trip error about 0.003 degrees. Shared by the GPU passes and the CPU
-// reference (render/model/cpp_host.h).
+// render/model/octahedral.glsl - unit normals in one 32-bit word: octahedral mapping to the square
+// [-1, 1]^2, two 16-bit signed normalized integers ([ZD15] sec. 4.5, after Meyer et al. 2010).
+// Worst round-trip error about 0.003 degrees. Shared by the GPU passes and the C++ host
+// (render/model/host.h: the CPU renderer and the reference).
 #ifndef VX_MODEL_OCTAHEDRAL
 #define VX_MODEL_OCTAHEDRAL
 

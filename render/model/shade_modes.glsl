@@ -1,6 +1,6 @@
-// render/model/shade_modes.glsl - the opaque and translucent shading of one pixel ([ZD15],
-// sec. 3.5), shared by the GPU passes (render/passes/shade_opaque.comp,
-// shade_translucent.comp) and the CPU reference (render/model/cpp_host.h).
+// render/model/shade_modes.glsl - the opaque and translucent shading of one pixel ([ZD15], sec.
+// 3.5), shared by the GPU passes (render/gl/passes/shade_opaque.comp, shade_translucent.comp) and
+// the C++ host (render/model/host.h: the CPU renderer and the reference).
 //
 // Translucent: Fresnel reflection of the environment at the first entry; the rest passes
 // straight through every span, absorbed (Beer-Lambert) over each span's length and lit by the

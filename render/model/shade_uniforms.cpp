@@ -38,31 +38,6 @@ ShadeUniforms shade_uniforms(const ShadeOptions& o) {
   return u;
 }
 
-void set_shade_uniforms(const gl::Program& p, const ShadeUniforms& u) {
-  p.set("u_env_up", u.u_env_up);
-  p.set("u_env_axis_a", u.u_env_axis_a);
-  p.set("u_env_axis_b", u.u_env_axis_b);
-  p.set("u_ground_height", u.u_ground_height);
-  p.set("u_ground_tile", u.u_ground_tile);
-  p.set("u_ground_contact", u.u_ground_contact);
-  p.set("u_ground_fade", u.u_ground_fade);
-  p.set("u_sky_zenith", u.u_sky_zenith);
-  p.set("u_sky_horizon", u.u_sky_horizon);
-  p.set("u_ground_light", u.u_ground_light);
-  p.set("u_ground_dark", u.u_ground_dark);
-  p.set("u_sun_direction", u.u_sun_direction);
-  p.set("u_sun_color", u.u_sun_color);
-  p.set("u_absorption", u.u_absorption);
-  p.set("u_ior", u.u_ior);
-  p.set("u_scatter_color", u.u_scatter_color);
-  p.set("u_albedo", u.u_albedo);
-  p.set("u_use_ao", u.u_use_ao);
-  p.set("u_ao_radius", u.u_ao_radius);
-  p.set("u_ao_strength", u.u_ao_strength);
-  p.set("u_ao_samples", u.u_ao_samples);
-  p.set("u_bounces", u.u_bounces);
-}
-
 GridUniforms grid_uniforms(const PerspectiveGrid& grid) {
   const ViewFrame& v = grid.view();
   GridUniforms g;

@@ -1,10 +1,10 @@
 // render/model/shade_uniforms.h - the shading parameters as the shared model files read them
-// (u_* names; render/passes/shade_uniforms.glsl declares the same uniforms for the GPU), made
-// from ShadeOptions once, set on GPU programs or held by the CPU reference host.
+// (u_* names; render/gl/passes/shade_uniforms.glsl declares the same uniforms for the GPU), made
+// from ShadeOptions once, set on GPU programs (render/gl/uniforms.h) or held by the host
+// (render/model/host.h).
 #pragma once
 
-#include "render/gl/objects.h"
-#include "render/model/cpp_host.h"
+#include "render/model/glsl_cpp.h"
 #include "render/perspective_grid.h"
 #include "render/shade_options.h"
 
@@ -27,9 +27,8 @@ struct ShadeUniforms {
 
 // Validates `options` (voxspan::Error naming the option).
 ShadeUniforms shade_uniforms(const ShadeOptions& options);
-void set_shade_uniforms(const gl::Program& program, const ShadeUniforms& u);
 
-// render/perspective_grid.glsl's uniforms for the CPU host, as set_grid_uniforms() sets them.
+// render/gl/perspective_grid.glsl's uniforms for the CPU host, as set_grid_uniforms() sets them.
 GridUniforms grid_uniforms(const PerspectiveGrid& grid);
 
 }  // namespace voxspan::model

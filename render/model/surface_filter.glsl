@@ -1,5 +1,5 @@
 // render/model/surface_filter.glsl - the surface filter ([ZD15] sec. 3.4, 4.6) for one span,
-// shared by the GPU filter pass (render/passes/filter.comp) and the CPU renderer
+// shared by the GPU filter pass (render/gl/passes/filter.comp) and the CPU renderer
 // (render/cpu/cpu_renderer.h): the reciprocal depth of its entry and its exit smoothed over
 // the points its links reach across (render/model/links.glsl) as n(z) iterations of the 3x3
 // binomial kernel would smooth it (constant world radius), in four passes instead of n:

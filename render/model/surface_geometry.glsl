@@ -1,6 +1,6 @@
-// render/model/surface_geometry.glsl - positions of surface points and the Sobel normal along
-// the surface links ([ZD15] sec. 3.4: "Sobel operator on connected surface depths"),
-// shared by the GPU normals pass and the CPU reference (render/model/cpp_host.h).
+// render/model/surface_geometry.glsl - positions of surface points and the Sobel normal along the
+// surface links ([ZD15] sec. 3.4: "Sobel operator on connected surface depths"), shared by the GPU
+// normals pass and the C++ host (render/model/host.h: the CPU renderer and the reference).
 //
 // The 3x3 neighbourhood of a surface point is reached through its links: the four direct
 // neighbours by one link, the corners by a horizontal link then a vertical one. Where a link

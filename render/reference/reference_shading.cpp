@@ -2,19 +2,19 @@
 
 #include <algorithm>
 
-#include "render/model/cpu_host.h"
+#include "render/model/host.h"
 
 namespace voxspan {
 
 std::vector<glm::uvec2> reference_links(const SpanImage& spans) {
-  model::CpuHost host(spans, model::ShadeUniforms{});
+  model::Host host(spans, model::ShadeUniforms{});
   return host.per_span(
       [&](model::ivec2 p, model::uint s) { return host.connect_span(p, s - host.sd_offset(p)); });
 }
 
 std::vector<glm::uvec2> reference_normals(const SpanImage& spans,
                                           const std::vector<glm::uvec2>& links) {
-  model::CpuHost host(spans, model::ShadeUniforms{});
+  model::Host host(spans, model::ShadeUniforms{});
   host.links_ = links;
   return host.per_span([&](model::ivec2 p, model::uint s) { return host.span_normal_words(p, s); });
 }
@@ -23,7 +23,7 @@ std::vector<glm::uvec2> encode_exact_normals(const std::vector<SpanNormals>& nor
                                              const std::vector<glm::uvec2>& sobel) {
   std::vector<glm::uvec2> out(sobel);
   const SpanImage empty;
-  model::CpuHost host(empty, model::ShadeUniforms{});
+  model::Host host(empty, model::ShadeUniforms{});
   for (std::size_t s = 0; s < normals.size() && s < out.size(); ++s) {
     if (glm::length(normals[s].entry) > 0) out[s].x = host.encode_normal(normals[s].entry);
     if (glm::length(normals[s].exit) > 0) out[s].y = host.encode_normal(normals[s].exit);
@@ -34,7 +34,7 @@ std::vector<glm::uvec2> encode_exact_normals(const std::vector<SpanNormals>& nor
 std::vector<float> reference_ao(const SpanImage& spans, const std::vector<glm::uvec2>& links,
                                 const std::vector<glm::uvec2>& normals,
                                 const ShadeOptions& options) {
-  model::CpuHost host(spans, model::shade_uniforms(options));
+  model::Host host(spans, model::shade_uniforms(options));
   host.links_ = links;
   host.normals_ = normals;
   std::vector<float> ao(std::size_t(spans.width()) * std::size_t(spans.height()), 1.0f);
@@ -44,7 +44,7 @@ std::vector<float> reference_ao(const SpanImage& spans, const std::vector<glm::u
 
 FloatImage reference_shading(const SpanImage& spans, const ShadeOptions& options,
                              const std::vector<glm::uvec2>* normals) {
-  model::CpuHost host(spans, model::shade_uniforms(options));
+  model::Host host(spans, model::shade_uniforms(options));
   host.links_ = reference_links(spans);
   host.normals_ = normals != nullptr ? *normals : reference_normals(spans, host.links_);
   if (options.deep_ao) host.ao_ = reference_ao(spans, host.links_, host.normals_, options);

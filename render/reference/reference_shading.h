@@ -1,7 +1,7 @@
 // render/reference/reference_shading.h - the passes after the voxelization on the CPU, for the
 // exact reference (render/reference/exact_spans.h): surface links (Listing 1), Sobel normals
 // along them, deep AO and the three shading modes, computed by the very model files the GPU
-// passes run (render/model/*.glsl, compiled as C++: render/model/cpp_host.h). Applied to the
+// passes run (render/model/*.glsl, compiled as C++: render/model/glsl_cpp.h). Applied to the
 // exact spans, the difference from the GPU's picture measures the voxelization alone; with the
 // exact sphere normals instead of Sobel ones (exact_spans(..., &normals)), it also shows what
 // screen-space normals cost. No filter: the reference's depths are exact already.

@@ -6,7 +6,7 @@
 
 #include "gl_fixture.h"
 #include "render/gl/objects.h"
-#include "render/passes/clear.h"
+#include "render/gl/passes/clear.h"
 #include "voxspan/error.h"
 
 namespace voxspan {

@@ -21,7 +21,7 @@ TEST(ShaderLibrary, ExpandsIncludesWithLineMarkers) {
 }
 
 TEST(ShaderLibrary, UnknownShaderIsAnError) {
-  EXPECT_THROW(test::shaders().source("render/passes/nope.comp"), Error);
+  EXPECT_THROW(test::shaders().source("render/gl/passes/nope.comp"), Error);
 }
 
 TEST(ShaderLibrary, CompileErrorNamesTheFile) {

@@ -1,6 +1,6 @@
 #include "render_fixture.h"
 
-#include "render/gl/pass_timer.h"
+#include "render/gl/gpu_recorder.h"
 
 namespace voxspan::test {
 
@@ -11,11 +11,10 @@ Voxelizer& voxelizer() {
 
 SpanImage voxelize(const Camera& camera, std::span<const ParticleSphere> particles,
                    const VoxelizeOptions& options, const CellStatesView& cells, FrameStats* stats) {
-  gl::PassTimer timer(context().has_gpu_timers());
   FrameStats local;
-  FrameStats& s = stats != nullptr ? *stats : local;
-  const SpanImage image = voxelizer().run(camera, particles, cells, options, timer, s).download();
-  timer.collect(s);
+  gl::GpuRecorder recorder(stats != nullptr ? *stats : local, context().has_gpu_timers());
+  const SpanImage image = voxelizer().run(camera, particles, cells, options, recorder).download();
+  recorder.collect();
   return image;
 }
 

@@ -7,8 +7,8 @@
 
 #include "../gl/gl_fixture.h"
 #include "render/frame_stats.h"
+#include "render/gl/voxelizer.h"
 #include "render/span_image.h"
-#include "render/voxelizer.h"
 
 namespace voxspan::test {
 

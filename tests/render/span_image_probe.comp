@@ -1,9 +1,9 @@
-// Reads the span image the way later passes will (render/span_image.glsl): per pixel, the
+// Reads the span image the way later passes will (render/gl/span_image.glsl): per pixel, the
 // capped gap length and the sum of the stored span lengths along the ray.
 layout(local_size_x = 64) in;
 
 #define SPAN_IMAGE_ACCESS readonly
-#include "render/span_image.glsl"
+#include "render/gl/span_image.glsl"
 
 layout(std430, binding = 2) writeonly buffer Out { vec2 probe[]; };
 

@@ -1,15 +1,15 @@
 // The building blocks of the voxelization on the GPU: the prefix sum, the binning of spheres
 // into tiles (every tile gets exactly the spheres that touch it, large spheres their own list),
-// the pass timer and the GPU memory tally.
+// the GL recorder and the GPU memory tally.
 #include <algorithm>
 #include <numeric>
 #include <random>
 #include <set>
 #include <thread>
 
-#include "render/gl/pass_timer.h"
-#include "render/passes/bin.h"
-#include "render/passes/prefix_sum.h"
+#include "render/gl/gpu_recorder.h"
+#include "render/gl/passes/bin.h"
+#include "render/gl/passes/prefix_sum.h"
 #include "render_fixture.h"
 #include "tools/scenes/scenes.h"
 #include "voxspan/error.h"
@@ -80,30 +80,31 @@ TEST(BinPass, EveryTileListsTheSmallSpheresTouchingIt) {
   }
 }
 
-TEST(PassTimer, TimesGpuAndCpuScopesIntoFrameStats) {
+TEST(GpuRecorder, TimesDeviceAndHostScopesIntoFrameStats) {
   test::context();
-  gl::PassTimer timer(test::context().has_gpu_timers());
+  constexpr StatName clear{"clear"}, sleep{"sleep"}, outer{"outer"}, inner{"inner"};
+  FrameStats stats;
+  gl::GpuRecorder recorder(stats, test::context().has_gpu_timers());
   gl::Buffer buffer(std::size_t(16) << 20);
   {
-    auto t = timer.gpu("clear");
+    auto t = recorder.device(clear);
     buffer.clear();
   }
   {
-    auto t = timer.cpu("sleep");
+    auto t = recorder.host(sleep);
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   {
-    auto t = timer.gpu("clear");
+    auto t = recorder.device(clear);
     buffer.clear();
   }
   EXPECT_THROW(
       {
-        auto outer = timer.gpu("outer");
-        auto inner = timer.gpu("inner");
+        auto o = recorder.device(outer);
+        auto i = recorder.device(inner);
       },
       Error);
-  FrameStats stats;
-  timer.collect(stats);
+  recorder.collect();
   EXPECT_EQ(stats.runs("clear"), 2);
   EXPECT_GT(stats.ms("clear"), 0.0);
   EXPECT_GE(stats.ms("sleep"), 4.0);

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "render/tiling.h"
+#include "render/gl/tiling.h"
 #include "voxspan/error.h"
 
 namespace voxspan {

@@ -3,8 +3,8 @@
 // checkerboard, random clouds with mixed radii. Bounds (in local layer thicknesses): span
 // counts equal on >= 99.5 % of hit pixels, boundaries within one layer for >= 99.5 %, inside
 // length per pixel within one layer per boundary, and summed over the image within 1 %.
-#include "render/bindings.h"
-#include "render/grid_uniforms.h"
+#include "render/gl/bindings.h"
+#include "render/gl/uniforms.h"
 #include "render/reference/exact_spans.h"
 #include "render_fixture.h"
 #include "tools/scenes/scenes.h"
@@ -114,7 +114,7 @@ TEST(VoxelizeAccuracy, TwentyFourLayersCappedAtSeven) {
   EXPECT_EQ(centre.total, 24u);
   EXPECT_GT(gpu.capped_pixels(), gpu.width() * gpu.height() / 5);
 
-  // Later passes read the same image on the GPU (render/span_image.glsl): the capped gap
+  // Later passes read the same image on the GPU (render/gl/span_image.glsl): the capped gap
   // length there agrees with the CPU's, and stored lengths minus the gap give `inside`.
   const GpuSpanImage& image = test::voxelizer().image();
   gl::Buffer probe(std::size_t(gpu.width()) * gpu.height() * 8);

@@ -6,8 +6,8 @@
 #include <limits>
 #include <string>
 
+#include "render/gl/tiling.h"
 #include "render/reference/exact_spans.h"
-#include "render/tiling.h"
 #include "render_fixture.h"
 #include "tools/scenes/scenes.h"
 #include "tools/scenes/span_compare.h"

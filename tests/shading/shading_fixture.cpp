@@ -1,6 +1,6 @@
 #include "shading_fixture.h"
 
-#include "render/gl/pass_timer.h"
+#include "render/gl/gpu_recorder.h"
 
 namespace voxspan::test {
 
@@ -40,10 +40,10 @@ GpuResult shade_on_gpu(const SpanImage& spans, const SurfaceOptions& surfaces,
   Renderer& passes = renderer();  // makes the context first
   static GpuSpanImage gpu;
   gpu.upload(spans);
-  gl::PassTimer timer(context().has_gpu_timers());
   GpuResult r;
-  r.image = passes.shade(gpu, surfaces, shade, timer, r.stats).download();
-  timer.collect(r.stats);
+  gl::GpuRecorder recorder(r.stats, context().has_gpu_timers());
+  r.image = passes.shade(gpu, surfaces, shade, recorder).download();
+  recorder.collect();
   const GpuSurfaces& s = passes.surfaces();
   r.links = s.download_links(gpu.span_count());
   r.normals = s.download_normals(gpu.span_count());

@@ -9,7 +9,7 @@
 
 #include "../gl/gl_fixture.h"
 #include "render/float_image.h"
-#include "render/renderer.h"
+#include "render/gl/renderer.h"
 #include "render/span_image.h"
 #include "tools/scenes/accuracy_scenes.h"  // test_shading
 

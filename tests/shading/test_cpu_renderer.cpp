@@ -57,18 +57,13 @@ SpanDifference difference(const SpanImage& a, const SpanImage& b) {
   return d;
 }
 
-gl::PassTimer& cpu_timer() {
-  static gl::PassTimer timer(false);
-  return timer;
-}
-
 TEST(CpuRenderer, SpansAreTheExactReferencesOnTheAccuracyScenes) {
   for (const test::AccuracyScene& scene : test::accuracy_scenes(160, 120)) {
     SCOPED_TRACE(scene.name);
     CpuRenderer cpu;
     FrameStats stats;
-    const SpanImage& spans =
-        cpu.cast(scene.camera, scene.particles, {}, scene.options, cpu_timer(), stats);
+    Recorder recorder(stats);
+    const SpanImage& spans = cpu.cast(scene.camera, scene.particles, {}, scene.options, recorder);
     const SpanImage exact = exact_spans(spans.grid, scene.particles, {},
                                         {scene.options.gap_bridging, scene.options.max_spans});
     const SpanDifference d = difference(spans, exact);
@@ -96,8 +91,8 @@ TEST(CpuRenderer, SpansWithInnerFullCellsAreTheExactReferences) {
     const Camera camera = test::frame_scene(all, {0.4, -0.5, -1}, 192, 108);
     CpuRenderer cpu;
     FrameStats stats;
-    const SpanImage& spans =
-        cpu.cast(camera, cells.boundary, cells.view, options, cpu_timer(), stats);
+    Recorder recorder(stats);
+    const SpanImage& spans = cpu.cast(camera, cells.boundary, cells.view, options, recorder);
     const SpanImage exact =
         exact_spans(spans.grid, cells.boundary, cells.view, {options.gap_bridging, 0});
     const SpanDifference d = difference(spans, exact);
@@ -117,8 +112,8 @@ TEST(CpuRenderer, PicturesAreWithinTheGpusBoundsAgainstTheReference) {
     SCOPED_TRACE(scene.name);
     CpuRenderer cpu;
     FrameStats stats;
-    const SpanImage spans =
-        cpu.cast(scene.camera, scene.particles, {}, scene.options, cpu_timer(), stats);
+    Recorder recorder(stats);
+    const SpanImage spans = cpu.cast(scene.camera, scene.particles, {}, scene.options, recorder);
     const SpanImage exact = exact_spans(spans.grid, scene.particles, {},
                                         {scene.options.gap_bridging, scene.options.max_spans});
     const std::vector<glm::uvec2> sobel = reference_normals(exact, reference_links(exact));
@@ -126,7 +121,7 @@ TEST(CpuRenderer, PicturesAreWithinTheGpusBoundsAgainstTheReference) {
     for (ShadeMode mode : {ShadeMode::opaque, ShadeMode::translucent, ShadeMode::refractive}) {
       SCOPED_TRACE(shade_mode_name(mode));
       const ShadeOptions shade = test::test_shading(mode, scene.ground_tile);
-      const FloatImage& image = cpu.shade(spans, {}, shade, cpu_timer(), stats);
+      const FloatImage& image = cpu.shade(spans, {}, shade, recorder);
       const double psnr = test::compare_images(image, reference_shading(exact, shade, &sobel)).psnr;
       const double gpu =
           test::compare_images(test::shade_on_gpu(voxelized, {}, shade).image, image).psnr;
@@ -149,7 +144,8 @@ TEST(CpuRenderer, FilterNormalsAndShadingAreTheGpuPassesOnOneSpanImage) {
     ShadeOptions shade = test::test_shading(mode, scene.ground_tile);
     shade.deep_ao = mode == ShadeMode::translucent;
     FrameStats stats;
-    const FloatImage& image = cpu.shade(spans, filter, shade, cpu_timer(), stats);
+    Recorder recorder(stats);
+    const FloatImage& image = cpu.shade(spans, filter, shade, recorder);
     const test::GpuResult gpu = test::shade_on_gpu(spans, filter, shade);
     ASSERT_GT(gpu.stats.count("filter.iterations"), 1);
     EXPECT_EQ(stats.count("filter.iterations"), gpu.stats.count("filter.iterations"));
@@ -178,9 +174,9 @@ struct SmallDamBreak {
     VoxelizeOptions options;
     options.gap_bridging = shape.spacing;
     FrameStats stats;
-    const SpanImage& spans =
-        cpu.cast(camera, cells.boundary, cells.view, options, cpu_timer(), stats);
-    return cpu.shade(spans, filter, shade, cpu_timer(), stats).rgba;
+    Recorder recorder(stats);
+    const SpanImage& spans = cpu.cast(camera, cells.boundary, cells.view, options, recorder);
+    return cpu.shade(spans, filter, shade, recorder).rgba;
   }
 };
 

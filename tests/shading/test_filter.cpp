@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "render/passes/filter.h"
-#include "render/model/cpu_host.h"
+#include "render/model/host.h"
+#include "render/surface_passes.h"
 #include "render_fixture.h"
 #include "shading_fixture.h"
 #include "tools/scenes/scenes.h"
@@ -19,7 +19,7 @@ namespace {
 // roughness (the median leaves out the true edges of the shape).
 double roughness(const SpanImage& spans, const std::vector<glm::uvec2>& links,
                  const std::vector<glm::uvec2>& normals) {
-  model::CpuHost host(spans, {});
+  model::Host host(spans, {});
   std::vector<double> angles;
   for (int y = 0; y + 1 < spans.height(); ++y)
     for (int x = 0; x + 1 < spans.width(); ++x)
@@ -64,8 +64,7 @@ TEST(Filter, HundredIterationsOnTheDamBreakStayStable) {
   SurfaceOptions filter;
   filter.filter_radius = 0.15;  // 2 (r / pixel)^2 > 100 at every depth of the frame
   filter.max_iterations = 100;
-  ASSERT_GT(FilterPass::iterations_at(spans.grid, filter.filter_radius, spans.grid.grid_far()),
-            100);
+  ASSERT_GT(filter_iterations_at(spans.grid, filter.filter_radius, spans.grid.grid_far()), 100);
   const ShadeOptions shade = test::test_shading(ShadeMode::translucent);
   const test::GpuResult before = test::shade_on_gpu(spans, {}, shade);
   const test::GpuResult after = test::shade_on_gpu(spans, filter, shade);
@@ -209,9 +208,9 @@ TEST(Filter, IterationsFollowTheDepth) {
   const SpanImage spans = test::hand_made(100, 100, std::vector<std::vector<Span>>(10000));
   const double pixel = 2 * spans.grid.view().tan_half_y / spans.height();  // at depth 1
   // 2 (r / pixel(z))^2: constant world radius, so a quarter of the iterations at twice the depth.
-  EXPECT_EQ(FilterPass::iterations_at(spans.grid, 3 * pixel, 1.0), 18);
-  EXPECT_EQ(FilterPass::iterations_at(spans.grid, 3 * pixel, 2.0), std::ceil(18 / 4.0));
-  EXPECT_EQ(FilterPass::iterations_at(spans.grid, 3 * pixel, 3.0), 2);
+  EXPECT_EQ(filter_iterations_at(spans.grid, 3 * pixel, 1.0), 18);
+  EXPECT_EQ(filter_iterations_at(spans.grid, 3 * pixel, 2.0), std::ceil(18 / 4.0));
+  EXPECT_EQ(filter_iterations_at(spans.grid, 3 * pixel, 3.0), 2);
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "render/gl/pass_timer.h"
+#include "render/gl/gpu_recorder.h"
 #include "render/reference/reference_shading.h"
 #include "render_fixture.h"
 #include "shading_fixture.h"
@@ -202,11 +202,10 @@ TEST(Renderer, FullFrameFromParticles) {
   for (ShadeMode mode : {ShadeMode::opaque, ShadeMode::translucent, ShadeMode::refractive}) {
     options.shade = test::test_shading(mode);
     options.shade.deep_ao = true;
-    gl::PassTimer timer(test::context().has_gpu_timers());
     FrameStats stats;
-    const FloatImage image =
-        test::renderer().render(camera, dam, {}, options, timer, stats).download();
-    timer.collect(stats);
+    gl::GpuRecorder recorder(stats, test::context().has_gpu_timers());
+    const FloatImage image = test::renderer().render(camera, dam, {}, options, recorder).download();
+    recorder.collect();
     for (const char* pass :
          {"splat", "compress", "connect", "filter", "normals", "deep_ao", "shade"})
       EXPECT_EQ(stats.runs(pass) > 0, true) << pass;
@@ -226,10 +225,8 @@ TEST(Renderer, NoParticlesGiveTheEnvironment) {
     options.shade = test::test_shading(mode);
     options.shade.deep_ao = true;
     options.surfaces.filter_radius = 0.1;
-    gl::PassTimer timer(false);
-    FrameStats stats;
-    const FloatImage image =
-        test::renderer().render(camera, {}, {}, options, timer, stats).download();
+    gl::GpuRecorder recorder(false);
+    const FloatImage image = test::renderer().render(camera, {}, {}, options, recorder).download();
     ASSERT_EQ(image.width, 32);
     // Sky at the top, ground at the bottom, nothing else.
     EXPECT_GT(image.at(16, 0).b, image.at(16, 0).r) << shade_mode_name(mode);
@@ -240,11 +237,10 @@ TEST(Renderer, NoParticlesGiveTheEnvironment) {
 TEST(Renderer, BadOptionsNameTheOption) {
   RenderOptions options;
   const auto message = [&] {
-    gl::PassTimer timer(false);
-    FrameStats stats;
+    gl::GpuRecorder recorder(false);
     try {
       test::renderer().render(test::look_at({0, 0, 3}, {0, 0, 0}, 8, 8),
-                              test::one_sphere({0, 0, 0}, 1), {}, options, timer, stats);
+                              test::one_sphere({0, 0, 0}, 1), {}, options, recorder);
     } catch (const Error& e) {
       return std::string(e.what());
     }

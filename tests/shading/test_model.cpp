@@ -5,14 +5,14 @@
 #include <cmath>
 #include <random>
 
-#include "render/model/cpu_host.h"
+#include "render/model/host.h"
 #include "render/reference/reference_shading.h"
 #include "shading_fixture.h"
 
 namespace voxspan {
 namespace {
 
-using model::CpuHost;
+using model::Host;
 
 // One environment colour everywhere and no sun: every lookup gives `c`.
 ShadeOptions uniform_environment(ShadeMode mode, glm::dvec3 c) {
@@ -32,7 +32,7 @@ double degrees_between(glm::vec3 a, glm::vec3 b) {
 
 TEST(Model, OctahedralNormalsRoundTrip) {
   const SpanImage none = test::hand_made(1, 1, {{}});
-  CpuHost host(none, {});
+  Host host(none, {});
   std::mt19937 rng(3);
   std::normal_distribution<float> g;
   std::vector<glm::vec4> inputs;
@@ -74,7 +74,7 @@ TEST(Model, OctahedralNormalsRoundTrip) {
 
 TEST(Model, FresnelAndSnell) {
   const SpanImage none = test::hand_made(1, 1, {{}});
-  CpuHost host(none, model::shade_uniforms(test::test_shading(ShadeMode::refractive)));
+  Host host(none, model::shade_uniforms(test::test_shading(ShadeMode::refractive)));
   const float ior = host.u_ior;
   const float f0 = std::pow((ior - 1) / (ior + 1), 2.0f);
   EXPECT_NEAR(host.fresnel(1.0f), f0, 1e-7);
@@ -84,11 +84,11 @@ TEST(Model, FresnelAndSnell) {
   const glm::vec3 n(0, 0, -1);  // outward normal of a surface facing the eye
   for (float degrees : {0.0f, 20.0f, 45.0f, 70.0f}) {
     const float a = glm::radians(degrees);
-    CpuHost::RayState s = host.ray_start({0, 0});
+    Host::RayState s = host.ray_start({0, 0});
     s.dir = glm::vec3(std::sin(a), 0.0f, std::cos(a));
     s.throughput = glm::vec3(1.0f);
     s.color = glm::vec3(0.0f);
-    const CpuHost::RayState in = host.ray_interface(s, n, true);
+    const Host::RayState in = host.ray_interface(s, n, true);
     EXPECT_TRUE(in.inside);
     const float sin_t = std::sqrt(in.dir.x * in.dir.x + in.dir.y * in.dir.y);
     EXPECT_NEAR(sin_t * ior, std::sin(a), 1e-5) << degrees << " degrees in";
@@ -101,10 +101,10 @@ TEST(Model, FresnelAndSnell) {
   const glm::vec3 back(0, 0, 1);
   const float critical = std::asin(1 / ior);
   for (float a : {critical - 0.05f, critical - 0.003f, critical + 0.05f}) {
-    CpuHost::RayState s = host.ray_start({0, 0});
+    Host::RayState s = host.ray_start({0, 0});
     s.inside = true;
     s.dir = glm::vec3(std::sin(a), 0.0f, std::cos(a));
-    const CpuHost::RayState out = host.ray_interface(s, back, false);
+    const Host::RayState out = host.ray_interface(s, back, false);
     if (a < critical - 0.01f) {
       EXPECT_FALSE(out.inside);
       EXPECT_NEAR(std::sqrt(out.dir.x * out.dir.x + out.dir.y * out.dir.y), ior * std::sin(a),
@@ -128,7 +128,7 @@ TEST(Model, EnvironmentSkyGroundAndHorizon) {
   const SpanImage none = test::hand_made(1, 1, {{}});
   ShadeOptions o = test::test_shading(ShadeMode::opaque);
   o.environment.sun_color = {0, 0, 0};
-  CpuHost host(none, model::shade_uniforms(o));
+  Host host(none, model::shade_uniforms(o));
   const glm::vec3 eye(0, 1, 0);
   EXPECT_NEAR(glm::distance(host.environment(eye, {0, 1, 0}), glm::vec3(o.environment.sky_zenith)),
               0, 1e-6);

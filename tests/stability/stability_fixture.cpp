@@ -6,8 +6,9 @@
 #include <cstdio>
 
 #include "../gl/gl_fixture.h"
+#include "render/gl/gpu_recorder.h"
+#include "render/gl/tiling.h"
 #include "render/reference/exact_spans.h"
-#include "render/tiling.h"
 #include "tools/scenes/accuracy_scenes.h"
 #include "voxspan/stopwatch.h"
 
@@ -22,11 +23,6 @@ namespace {
 Renderer& gl_renderer() {
   static Renderer r(shaders());
   return r;
-}
-
-gl::PassTimer& cpu_timer() {
-  static gl::PassTimer timer(false);
-  return timer;
 }
 
 RenderOptions render_options(const Scene& scene, ShadeMode mode) {
@@ -46,30 +42,29 @@ ShadeOptions shading(const Scene& scene, ShadeMode mode) {
 
 Frame render_gl(const Scene& scene) {
   Renderer& renderer = gl_renderer();
-  gl::PassTimer timer(context().has_gpu_timers());
   gl::reset_memory_peak();
   Frame f;
+  gl::GpuRecorder recorder(f.stats, context().has_gpu_timers());
   const RenderOptions first = render_options(scene, kModes[0]);
   f.images[0] =
-      renderer.render(scene.camera, scene.particles, scene.cells, first, timer, f.stats).download();
+      renderer.render(scene.camera, scene.particles, scene.cells, first, recorder).download();
   const GpuSpanImage& spans = renderer.voxelizer().image();
   for (std::size_t m = 1; m < kModes.size(); ++m)
     f.images[m] =
-        renderer.shade(spans, scene.surfaces, shading(scene, kModes[m]), timer, f.stats).download();
+        renderer.shade(spans, scene.surfaces, shading(scene, kModes[m]), recorder).download();
   f.spans = spans.download();
-  timer.collect(f.stats);
+  recorder.collect();
   return f;
 }
 
 Frame render_cpu(const Scene& scene) {
   CpuRenderer renderer;
   Frame f;
-  f.spans = renderer.cast(scene.camera, scene.particles, scene.cells, scene.voxelize, cpu_timer(),
-                          f.stats);
+  Recorder recorder(f.stats);
+  f.spans = renderer.cast(scene.camera, scene.particles, scene.cells, scene.voxelize, recorder);
   for (std::size_t m = 0; m < kModes.size(); ++m)
-    f.images[m] =
-        renderer.shade(f.spans, scene.surfaces, shading(scene, kModes[m]), cpu_timer(), f.stats);
-  cpu_timer().collect(f.stats);
+    f.images[m] = renderer.shade(f.spans, scene.surfaces, shading(scene, kModes[m]), recorder);
+  recorder.collect();
   return f;
 }
 

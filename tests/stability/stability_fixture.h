@@ -20,7 +20,7 @@
 #include "render/cpu/cpu_renderer.h"
 #include "render/float_image.h"
 #include "render/frame_stats.h"
-#include "render/renderer.h"
+#include "render/gl/renderer.h"
 #include "render/span_image.h"
 #include "tools/scenes/scenes.h"
 #include "tools/scenes/span_compare.h"

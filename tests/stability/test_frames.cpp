@@ -12,11 +12,11 @@
 #include <limits>
 #include <memory>
 
+#include "render/gl/voxelizer.h"
 #include "stability_fixture.h"
-#include "render/voxelizer.h"
 #include "tools/scenes/image_compare.h"
-#include "voxspan/error.h"
 #include "voxspan/adapter.h"
+#include "voxspan/error.h"
 
 namespace voxspan {
 namespace {
@@ -85,8 +85,8 @@ TEST(Stability, FramesBeyondTheFloatRangeAreRefused) {
     }
   }
   FrameStats stats;
-  gl::PassTimer timer(false);
-  EXPECT_THROW(fit_frame(deep.camera, deep.particles, deep.voxelize, timer, stats), Error);
+  Recorder recorder(stats);
+  EXPECT_THROW(fit_frame(deep.camera, deep.particles, deep.voxelize, recorder), Error);
   EXPECT_EQ(stats.count("particles.visible"), std::int64_t(deep.particles.size()));
   EXPECT_GT(stats.figure("grid.far"), 1e20);
 

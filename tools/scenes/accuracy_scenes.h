@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "render/gl/voxelizer.h"
 #include "render/shade_options.h"
-#include "render/voxelizer.h"
 #include "tools/scenes/scenes.h"
 
 namespace voxspan::test {

@@ -1,0 +1,49 @@
+#include "render/cpu/surface_renderer.h"
+
+#include "render/cpu/cpu_renderer.h"
+#include "render/stat_names.h"
+#include "voxspan/error.h"
+
+namespace voxspan {
+namespace {
+
+class CpuSurfaceRenderer final : public SurfaceRenderer {
+ public:
+  void make_spans(const Camera& camera, std::span<const ParticleSphere> particles,
+                  const CellStatesView& cells, const SpanOptions& options,
+                  Recorder& recorder) override {
+    spans_ = nullptr;
+    spans_ = &renderer_.cast(camera, particles, cells, options, recorder);
+  }
+
+  // No copy and no upload: the images are in host memory.
+  const SpanImage& host_spans(StatName, Recorder&) override { return spans(); }
+  void use_spans(const SpanImage& spans, StatName, Recorder&) override { spans_ = &spans; }
+
+  void shade(const SurfaceOptions& surfaces, const ShadeOptions& shade, Recorder& recorder,
+             FloatImage& picture) override {
+    renderer_.shade(spans(), surfaces, shade, recorder, picture);
+  }
+
+  void first_hit(Recorder& recorder, FloatImage& out) override {
+    auto t = recorder.host(pass::first_hit);
+    CpuRenderer::first_hit(spans(), out);
+  }
+
+ private:
+  const SpanImage& spans() const {
+    if (spans_ == nullptr) throw make_error("the CPU surface renderer has no span image yet");
+    return *spans_;
+  }
+
+  CpuRenderer renderer_;
+  const SpanImage* spans_ = nullptr;  // the frame's: the renderer's cast or the caller's
+};
+
+}  // namespace
+
+std::unique_ptr<SurfaceRenderer> make_cpu_surface_renderer() {
+  return std::make_unique<CpuSurfaceRenderer>();
+}
+
+}  // namespace voxspan

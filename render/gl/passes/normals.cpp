@@ -1,0 +1,20 @@
+#include "render/gl/passes/normals.h"
+
+#include "render/gl/bindings.h"
+#include "render/gl/passes/dispatch.h"
+#include "render/gl/uniforms.h"
+
+namespace voxspan {
+
+NormalsPass::NormalsPass(const gl::ShaderLibrary& shaders)
+    : program_(shaders.compute("render/gl/passes/normals.comp", binding::surface_defines())) {}
+
+void NormalsPass::run(const GpuSpanImage& image, const GpuSurfaces& surfaces) {
+  if (image.span_count() == 0) return;
+  surfaces.bind(image);
+  set_grid_uniforms(program_, image.grid());
+  dispatch_threads(program_, image.span_count());
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+}  // namespace voxspan

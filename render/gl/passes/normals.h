@@ -1,0 +1,25 @@
+// render/gl/passes/normals.h - surface normals ([ZD15] sec. 3.4, 4.5;
+// render/gl/passes/normals.comp, the rule in render/model/surface_geometry.glsl): the Sobel
+// operator along the links on the surface depths (filtered or not), outward world normals,
+// octahedral in 32 bits each. Reads: the span image, GpuSurfaces owners, links, depths. Writes:
+// GpuSurfaces normals. Cost: one thread per span, 9 linked depths per end; 8 bytes written per span
+// (the paper's GTX 970: 8 ms at 1080p).
+#pragma once
+
+#include "render/gl/gpu_span_image.h"
+#include "render/gl/gpu_surfaces.h"
+#include "render/gl/objects.h"
+#include "render/gl/shader_library.h"
+
+namespace voxspan {
+
+class NormalsPass {
+ public:
+  explicit NormalsPass(const gl::ShaderLibrary& shaders);
+  void run(const GpuSpanImage& image, const GpuSurfaces& surfaces);
+
+ private:
+  gl::Program program_;
+};
+
+}  // namespace voxspan

@@ -1,0 +1,79 @@
+#include "render/gl/surface_renderer.h"
+
+#include "render/gl/gpu_float_image.h"
+#include "render/gl/passes/first_hit.h"
+#include "render/gl/renderer.h"
+#include "render/stat_names.h"
+#include "voxspan/error.h"
+
+namespace voxspan {
+namespace {
+
+class GlSurfaceRenderer final : public SurfaceRenderer {
+ public:
+  GlSurfaceRenderer(const gl::ShaderLibrary& shaders, const VoxelizeOptions& voxelize)
+      : renderer_(shaders), first_hit_(shaders), voxelize_(voxelize) {}
+
+  void make_spans(const Camera& camera, std::span<const ParticleSphere> particles,
+                  const CellStatesView& cells, const SpanOptions& options,
+                  Recorder& recorder) override {
+    spans_ = nullptr;
+    host_ = nullptr;
+    static_cast<SpanOptions&>(voxelize_) = options;
+    spans_ = &renderer_.voxelizer().run(camera, particles, cells, voxelize_, recorder);
+  }
+
+  const SpanImage& host_spans(StatName pass, Recorder& recorder) override {
+    if (host_ == nullptr) {
+      auto t = recorder.device(pass);
+      spans().download(read_);
+      host_ = &read_;
+    }
+    return *host_;
+  }
+
+  void use_spans(const SpanImage& spans, StatName pass, Recorder& recorder) override {
+    auto t = recorder.device(pass);
+    uploaded_.upload(spans);
+    spans_ = &uploaded_;
+    host_ = &spans;
+  }
+
+  void shade(const SurfaceOptions& surfaces, const ShadeOptions& shade, Recorder& recorder,
+             FloatImage& picture) override {
+    const GpuFloatImage& image = renderer_.shade(spans(), surfaces, shade, recorder);
+    auto t = recorder.device(pass::readback);
+    image.download(picture);
+  }
+
+  void first_hit(Recorder& recorder, FloatImage& out) override {
+    auto t = recorder.device(pass::first_hit);
+    first_hit_.run(spans(), depth_);
+    depth_.download(out);
+  }
+
+ private:
+  const GpuSpanImage& spans() const {
+    if (spans_ == nullptr) throw make_error("the GL surface renderer has no span image yet");
+    return *spans_;
+  }
+
+  Renderer renderer_;
+  FirstHitPass first_hit_;
+  VoxelizeOptions voxelize_;
+  const GpuSpanImage* spans_ = nullptr;  // the frame's: the voxelizer's or uploaded_
+  GpuSpanImage uploaded_;
+  const SpanImage* host_ =
+      nullptr;  // the frame's in host memory where known: read_ or the caller's
+  SpanImage read_;
+  GpuFloatImage depth_;
+};
+
+}  // namespace
+
+std::unique_ptr<SurfaceRenderer> make_gl_surface_renderer(const gl::ShaderLibrary& shaders,
+                                                          const VoxelizeOptions& voxelize) {
+  return std::make_unique<GlSurfaceRenderer>(shaders, voxelize);
+}
+
+}  // namespace voxspan

@@ -1,0 +1,52 @@
+// render/surface_renderer.h - what a view asks of a renderer for a picture of the fluid's
+// surfaces, whichever renderer the process uses (chosen once by renderer.backend:
+// render/backend.h): the frame's span image from the boundary particles, that image in host
+// memory or replaced by one made elsewhere (an MPI composite), the passes on it
+// (render/surface_passes.h) into a picture in host memory, and the first-hit distances.
+// Implementations: render/gl/surface_renderer.h (GL passes on a GPU) and
+// render/cpu/surface_renderer.h (exact spans cast on the CPU). Both time and count into the
+// caller's Recorder under the names of render/stat_names.h.
+#pragma once
+
+#include <span>
+
+#include "render/enum_names.h"
+#include "render/float_image.h"
+#include "render/frame.h"
+#include "render/recorder.h"
+#include "render/shade_options.h"
+#include "render/span_image.h"
+#include "voxspan/cell_states.h"
+
+namespace voxspan {
+
+enum class RenderBackend { automatic, gl, cpu };
+inline constexpr EnumName<RenderBackend> kRenderBackendNames[] = {
+    {"auto", RenderBackend::automatic}, {"gl", RenderBackend::gl}, {"cpu", RenderBackend::cpu}};
+
+class SurfaceRenderer {
+ public:
+  virtual ~SurfaceRenderer() = default;
+
+  // The frame's span image: voxelized (GL) or cast (CPU). Throws voxspan::Error on bad options,
+  // a memory budget too small or a frame too deep (render/frame.h); bad particles (NaN,
+  // radius <= 0) are counted and skipped.
+  virtual void make_spans(const Camera& camera, std::span<const ParticleSphere> particles,
+                          const CellStatesView& cells, const SpanOptions& options,
+                          Recorder& recorder) = 0;
+  // The frame's span image in host memory, valid until the next make_spans() or use_spans():
+  // the GL renderer reads it back, timed as `pass`; the CPU renderer's is there.
+  virtual const SpanImage& host_spans(StatName pass, Recorder& recorder) = 0;
+  // The frame's span image from now on is `spans` (host memory, kept alive by the caller for the
+  // frame): the GL renderer uploads it, timed as `pass`.
+  virtual void use_spans(const SpanImage& spans, StatName pass, Recorder& recorder) = 0;
+  // The passes on the frame's span image, the picture into `picture` (linear RGBA, row 0 at the
+  // top; resized to the image): the GL renderer's read back as pass::readback.
+  virtual void shade(const SurfaceOptions& surfaces, const ShadeOptions& shade, Recorder& recorder,
+                     FloatImage& picture) = 0;
+  // Per pixel the distance along its ray to the frame's first span entry, 0 where there is
+  // none, in the first channel (what depth images are made of), timed as pass::first_hit.
+  virtual void first_hit(Recorder& recorder, FloatImage& out) = 0;
+};
+
+}  // namespace voxspan
