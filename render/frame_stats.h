@@ -1,7 +1,7 @@
 // render/frame_stats.h - what one render step did: milliseconds per pass, named counts (culled
 // particles, spans, capped pixels...), named figures (layer spacing...) and GPU memory. Every
-// pass reports into the same FrameStats through gl::PassTimer (render/gl/pass_timer.h), so the
-// runtime writes one record per step whatever the passes were. No GL here: plain data.
+// pass of either renderer reports into it through a Recorder (render/recorder.h), so the
+// runtime writes one record per step whatever the passes were. Plain data.
 #pragma once
 
 #include <cstdint>

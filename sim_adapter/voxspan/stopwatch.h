@@ -1,5 +1,5 @@
 // voxspan/stopwatch.h - the one wall clock every CPU timing of the library reads (classification,
-// the runtime's steps, the writer's jobs, the CPU scopes of render/gl/pass_timer.h). Standard
+// the runtime's steps, the writer's jobs, the host scopes of render/recorder.h). Standard
 // library only.
 #pragma once
 
