@@ -10,9 +10,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$SECONDS
 
-tools/setup.sh --media
+tools/scripts/setup.sh --media
 # What the job runs, and the Python module (build/python: the README's `import voxspan`); the
-# tests and benchmarks build with tools/build.sh.
+# tests and benchmarks build with tools/scripts/build.sh.
 echo "main job: building the solver, the library and its Python module (Release)"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DVOXSPAN_WERROR=ON >/dev/null
 if ! cmake --build build -j"$(nproc)" --target dambreak insitu-info voxspan_python >build/main-job-build.log 2>&1; then
@@ -54,7 +54,7 @@ fi
 # The chart of the per-step stats: in-situ time per pass, particles and spans (the system's
 # python3, which the apt package python3-matplotlib serves).
 chart="$out/stats.png"
-if ! /usr/bin/python3 tools/plot_stats.py "$out/stats.jsonl" "$chart" >/dev/null 2>"$out/chart.txt"; then
+if ! /usr/bin/python3 tools/plots/plot_stats.py "$out/stats.jsonl" "$chart" >/dev/null 2>"$out/chart.txt"; then
   echo "main job: no chart (see $out/chart.txt)"
   chart=""
 fi

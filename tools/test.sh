@@ -13,15 +13,15 @@ case ${1:-} in
   --sanitize-only) release=0 ;;
   *) echo "usage: tools/test.sh [--no-sanitize | --sanitize-only]" >&2; exit 2 ;;
 esac
-tools/setup.sh
+tools/scripts/setup.sh
 # Open MPI refuses to run as root without these (CI runs as root).
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 if ((release)); then
-  tools/build.sh
+  tools/scripts/build.sh
   ctest --test-dir build --output-on-failure -j"$(nproc)"
 fi
 if ((sanitize)); then
   echo "test: the sanitizer build (build-sanitize/)"
-  tools/build.sh --sanitize
+  tools/scripts/build.sh --sanitize
   (. tests/sanitizers/options.sh && ctest --test-dir build-sanitize --output-on-failure -j"$(nproc)")
 fi

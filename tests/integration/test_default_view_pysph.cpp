@@ -1,5 +1,5 @@
 // A user's first picture of a solver no one here wrote: PySPH's own 3D dam break (Debian's
-// python3-pysph, run live by tools/pysph_dambreak.sh), its last file rendered by
+// python3-pysph, run live by tools/scripts/pysph_dambreak.sh), its last file rendered by
 // render_particles with no config and no --arrays. The tool must pick the fluid array and leave
 // the tank and the obstacle out, take the spacing from the particles' mass and density, and
 // show the water clearly: tinted against the background and not black, measured as

@@ -1,8 +1,8 @@
-// tools/peers/peer_surface.h - what every method of the peers benchmark (tools/bench_peers.cpp)
-// hands back for one frame, in one form, so that the error against the exact reference is
-// measured the same way for all: per pixel of the camera (row 0 at the top, the ray through the
-// pixel's centre, render/camera.h) the distance along the unit ray from the eye to the first
-// surface and the length of the ray inside the fluid, and the time of each stage.
+// tools/peers/peer_surface.h - what every method of the peers benchmark
+// (tools/bench/bench_peers.cpp) hands back for one frame, in one form, so that the error against
+// the exact reference is measured the same way for all: per pixel of the camera (row 0 at the top,
+// the ray through the pixel's centre, render/camera.h) the distance along the unit ray from the eye
+// to the first surface and the length of the ray inside the fluid, and the time of each stage.
 #pragma once
 
 #include <cstddef>

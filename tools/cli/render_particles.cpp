@@ -1,0 +1,255 @@
+// render_particles: the offline renderer. Particle files written by a solver (VTK .vtp/.vtu,
+// CSV, XYZ, PySPH HDF5: insitu/io/particle_data.h) go through the same runtime as an in-situ run,
+// with the same YAML config: each file is one step, classified by the solver-side classifier
+// (voxspan/classify.h, the adapter sorting the particles into its own grid), every view
+// rendered and written as PNG, with the stats line and, where the config enables them, the
+// OpenVDB and VTK snapshots on their own triggers (counted in files).
+//
+//   render_particles [--config FILE] [--output DIR] [--spacing DX] [--radius R]
+//                    [--arrays NAME,...] [--split slabs|uneven|interleaved] FILE...
+//   mpiexec -n N render_particles ... FILE...
+//
+// Under mpiexec every rank reads each file and keeps its part (tools/common/rank_split.h: compact
+// slabs by default; --split interleaved gives every rank particles all over the fluid), with
+// the particles near its part as ghosts; the ranks' span images are composited exactly and
+// rank 0 writes the same pictures one process would.
+// --spacing: the particles' rest spacing (else the config's classification.particle_spacing,
+// else the first file's own: PySPH's mass and density, else estimated from its positions: the
+// median nearest-neighbour distance). --radius: the sphere radius where a file has none
+// (default: the spacing). --arrays: PySPH particle arrays to read, or `all` (default: the
+// fluid's, picked by name or motion and printed: insitu/io/read_pysph_hdf5.cpp). Exit status 0 when
+// every file was read and rendered, 1 otherwise, 2 on bad arguments; each failure is one line on
+// stderr naming the file.
+#include <mpi.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "insitu/io/particle_data.h"
+#include "insitu/io/spacing_estimate.h"
+#include "insitu/runtime/adapter_config.h"
+#include "insitu/runtime/config_file.h"
+#include "tools/common/rank_split.h"
+#include "tools/common/usage.h"
+#include "voxspan/adapter.h"
+#include "voxspan/error.h"
+
+namespace {
+
+struct Options {
+  std::string config;  // empty: the defaults (one translucent view, PNG and stats)
+  std::string output;
+  double spacing = 0;
+  double radius = 0;
+  voxspan::ParticleReadOptions read;
+  voxspan::tools::Split split = voxspan::tools::Split::slabs;
+  std::vector<std::filesystem::path> files;
+};
+
+constexpr char kUsage[] =
+    "usage: render_particles [--config FILE] [--output DIR] [--spacing DX] "
+    "[--radius R] [--arrays NAME,...] [--split slabs|uneven|interleaved] FILE...\n"
+    "  FILE: .vtp .vtu .csv .xyz .hdf5/.h5 (PySPH); each file is one step\n"
+    "  under mpiexec each rank renders its part (--split) and rank 0 writes the pictures\n";
+
+bool parse(int argc, char** argv, Options& o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw voxspan::make_error(a, " needs a value");
+      return argv[++i];
+    };
+    auto positive = [&](const std::string& text) {
+      char* end = nullptr;
+      const double v = std::strtod(text.c_str(), &end);
+      if (end == text.c_str() || *end != '\0' || !(v > 0))
+        throw voxspan::make_error(a, " expects a positive number; got \"", text, "\"");
+      return v;
+    };
+    if (a == "--help" || a == "-h") std::exit(voxspan::tools::print_usage(stdout, kUsage));
+    else if (a == "--config") o.config = value();
+    else if (a == "--output") o.output = value();
+    else if (a == "--spacing") o.spacing = positive(value());
+    else if (a == "--radius") o.radius = positive(value());
+    else if (a == "--split") {
+      const std::string v = value();
+      const auto split = voxspan::value_of(voxspan::tools::kSplitNames, v);
+      if (!split)
+        throw voxspan::make_error("--split expects one of ",
+                                  voxspan::names_of(voxspan::tools::kSplitNames), "; got \"", v,
+                                  "\"");
+      o.split = *split;
+    } else if (a == "--arrays") {
+      std::istringstream names(value());
+      for (std::string n; std::getline(names, n, ',');)
+        if (!n.empty()) o.read.arrays.push_back(n);
+    } else if (!a.empty() && a[0] == '-') {
+      throw voxspan::make_error("unknown option ", a);
+    } else {
+      o.files.emplace_back(a);
+    }
+  }
+  if (o.files.empty()) throw voxspan::make_error("no particle file given");
+  return true;
+}
+
+// Every file is a render step (offline_config).
+voxspan::Config offline_config(const Options& o) {
+  return voxspan::offline_config(
+      o.config.empty() ? voxspan::default_config() : voxspan::load_config_file(o.config), o.output);
+}
+
+// The solver's view of a file's particles: positions as doubles (AoS), radii when the file has
+// them, every attribute by name (scalars and 3-vectors of floats, interleaved).
+voxspan::ParticleView view_of(const voxspan::ParticleData& d) {
+  auto view =
+      voxspan::ParticleView::aos(d.positions.empty() ? nullptr : d.positions[0].data(), d.size());
+  if (!d.radii.empty()) view.with_radii(d.radii.data());
+  for (const voxspan::Attribute& a : d.attributes) {
+    if (a.components == 3) view.with_vector(a.name, a.values.data());
+    else view.with_scalar(a.name, a.values.data());
+  }
+  return view;
+}
+
+// Whether mpiexec started this process (Open MPI, MPICH/Hydra and PMIx say so in the
+// environment): only then is MPI initialized, so that a plain run needs no MPI runtime.
+bool under_mpiexec() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(v) != nullptr) return true;
+  return false;
+}
+
+struct Ranks {
+  int rank = 0, size = 1;
+  bool mpi = false;
+};
+
+// This rank's part of a file's particles: its own, then its ghosts (tools/common/rank_split.h).
+voxspan::ParticleData part_of(const voxspan::ParticleData& d, const Options& o, const Ranks& r,
+                              double spacing, std::size_t& owned) {
+  const voxspan::tools::RankPart part = voxspan::tools::split_particles(
+      d.positions, o.split, r.rank, r.size, voxspan::tools::ghost_margin(spacing));
+  voxspan::ParticleData p;
+  p.time = d.time;
+  p.step = d.step;
+  for (std::size_t i : part.indices) p.positions.push_back(d.positions[i]);
+  if (!d.radii.empty())
+    for (std::size_t i : part.indices) p.radii.push_back(d.radii[i]);
+  for (const voxspan::Attribute& a : d.attributes) {
+    voxspan::Attribute& b = p.attributes.emplace_back();
+    b.name = a.name;
+    b.components = a.components;
+    for (std::size_t i : part.indices)
+      for (int c = 0; c < a.components; ++c)
+        b.values.push_back(a.values[i * std::size_t(a.components) + std::size_t(c)]);
+  }
+  owned = part.owned;
+  return p;
+}
+
+int render(const Options& o, const Ranks& ranks) {
+  const bool talk = ranks.rank == 0;
+  try {
+    const voxspan::Config config = offline_config(o);
+    // The first file is read before the runtime starts: it may give the spacing.
+    voxspan::ParticleData first = voxspan::read_particles(o.files[0], o.read);
+    if (talk && !first.chosen.empty()) std::printf("reading %s\n", first.chosen.c_str());
+    double spacing = o.spacing > 0 ? o.spacing : config.classification.particle_spacing.value_or(0);
+    if (!(spacing > 0) && first.spacing) {
+      spacing = *first.spacing;
+      if (talk)
+        std::printf(
+            "particle spacing %.6g (from the particles' mass and density; --spacing "
+            "sets it)\n",
+            spacing);
+    }
+    if (!(spacing > 0)) {
+      spacing = voxspan::estimate_particle_spacing(first.positions);
+      if (!(spacing > 0))
+        throw voxspan::make_error(o.files[0].string(),
+                                  ": cannot estimate the particle spacing "
+                                  "(fewer than two particles); pass --spacing");
+      if (talk)
+        std::printf("particle spacing %.6g (estimated from %s; --spacing sets it)\n", spacing,
+                    o.files[0].string().c_str());
+    }
+    voxspan::AdapterOptions options;
+    options.classify.particle_spacing = spacing;
+    options.classify.radius = o.radius;
+    if (ranks.mpi) {
+      options.mpi_comm = int(MPI_Comm_c2f(MPI_COMM_WORLD));
+      options.classify.include_ghosts = false;  // a ghost is another rank's to voxelize
+    }
+    voxspan::Adapter adapter = voxspan::make_insitu_adapter(config, options);
+
+    int failures = 0;
+    for (std::size_t i = 0; i < o.files.size(); ++i) {
+      voxspan::ParticleData data;
+      try {
+        data = i == 0 ? std::move(first) : voxspan::read_particles(o.files[i], o.read);
+      } catch (const voxspan::Error& e) {
+        std::fprintf(stderr, "render_particles: %s\n", e.what());
+        ++failures;
+        continue;  // every rank reads the same files: they all skip it
+      }
+      std::size_t owned = data.size();
+      if (ranks.size > 1) data = part_of(data, o, ranks, spacing, owned);
+      // Steps count the files: triggers need them in order, and the frames sort by them.
+      const auto step = static_cast<std::int64_t>(i);
+      const double time = data.time.value_or(double(i));
+      const voxspan::ParticleView view = view_of(data).with_owned(owned);
+      const voxspan::Status s = i + 1 == o.files.size() ? adapter.execute_last(step, time, view)
+                                                        : adapter.execute(step, time, view);
+      const voxspan::StepStats& st = adapter.last_stats();
+      if (!s.ok()) {
+        if (talk)
+          std::fprintf(stderr, "render_particles: %s: %s\n", o.files[i].string().c_str(),
+                       s.message.c_str());
+        ++failures;
+        continue;
+      }
+      if (talk)
+        std::printf(
+            "%s: step %lld, %zu particles, %zu boundary, %zu left out (NaN/inf), %.2f s%s\n",
+            o.files[i].string().c_str(), static_cast<long long>(step), st.counts.particles,
+            st.counts.boundary, st.counts.dropped_nonfinite, st.seconds_total,
+            ranks.size > 1 ? " (rank 0's part)" : "");
+    }
+    adapter.finish();
+    if (talk)
+      std::printf("%s\noutputs in %s\n", adapter.summary().c_str(), config.output_folder.c_str());
+    return failures > 0 ? 1 : 0;
+  } catch (const voxspan::Error& e) {
+    if (talk) std::fprintf(stderr, "render_particles: error: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  try {
+    parse(argc, argv, o);
+  } catch (const voxspan::Error& e) {
+    std::fprintf(stderr, "render_particles: error: %s (--help lists the options)\n", e.what());
+    return 2;
+  }
+  Ranks ranks;
+  if (under_mpiexec()) {
+    MPI_Init(&argc, &argv);
+    ranks.mpi = true;
+    MPI_Comm_rank(MPI_COMM_WORLD, &ranks.rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks.size);
+  }
+  const int status = render(o, ranks);
+  if (ranks.mpi) MPI_Finalize();
+  return status;
+}
