@@ -22,7 +22,7 @@
 
 #include "insitu/io/particle_data.h"
 #include "insitu/io/spacing_estimate.h"
-#include "insitu/outputs/png_image.h"
+#include "insitu/outputs/formats/png_image.h"
 #include "insitu/runtime/adapter_config.h"
 #include "insitu/runtime/config_file.h"
 #include "insitu/runtime/pipeline.h"

@@ -1,6 +1,6 @@
 // render/float_image.h - the shaded picture in host memory: linear RGBA floats per pixel, row 0
 // at the top (the GL renderer's on the GPU: render/gl/gpu_float_image.h). 8-bit sRGB PNG output
-// is the runtime's (insitu/outputs/png_image.h: linear_to_srgb8 and write_png).
+// is the runtime's (insitu/outputs/formats/png_image.h: linear_to_srgb8 and write_png).
 #pragma once
 
 #include <cstddef>

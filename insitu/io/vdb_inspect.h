@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "insitu/outputs/png_image.h"
+#include "insitu/outputs/formats/png_image.h"
 
 namespace voxspan {
 

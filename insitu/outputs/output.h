@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "insitu/config/config.h"
-#include "insitu/outputs/background_writer.h"
-#include "insitu/outputs/stats_record.h"
+#include "insitu/outputs/formats/stats_record.h"
+#include "insitu/outputs/writer/background_writer.h"
 #include "insitu/parallel/communicator.h"
 #include "insitu/views/view_products.h"
 #include "voxspan/adapter.h"

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <thread>
 
-#include "insitu/outputs/stats_record.h"
+#include "insitu/outputs/formats/stats_record.h"
 #include "insitu/parallel/communicator.h"
 #include "insitu/runtime/config_file.h"
 #include "insitu/runtime/host_memory.h"

@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "insitu/config/config.h"
-#include "insitu/outputs/background_writer.h"
 #include "insitu/outputs/output.h"
+#include "insitu/outputs/writer/background_writer.h"
 #include "insitu/parallel/communicator.h"
 #include "render/frame_stats.h"
 #include "voxspan/adapter.h"

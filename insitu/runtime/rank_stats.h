@@ -1,13 +1,13 @@
 // insitu/runtime/rank_stats.h - one stats record for an MPI job: every rank's record (totals
 // and views) gathered on the root, where each pass's time becomes the slowest rank's (the
 // mean beside it), each counter the sum over the ranks, and the bytes every rank sent on the
-// step are listed (insitu/outputs/stats_record.h, StatsRecord::Ranks). Collective: every rank
-// calls it on the same steps.
+// step are listed (insitu/outputs/formats/stats_record.h, StatsRecord::Ranks). Collective: every
+// rank calls it on the same steps.
 #pragma once
 
 #include <cstdint>
 
-#include "insitu/outputs/stats_record.h"
+#include "insitu/outputs/formats/stats_record.h"
 #include "insitu/parallel/communicator.h"
 
 namespace voxspan {

@@ -9,12 +9,12 @@ ViewKind surface_view_kind();    // insitu/views/surface_view.cpp
 ViewKind slice_view_kind();      // insitu/views/slice_view.cpp
 ViewKind particles_view_kind();  // insitu/views/particles_view.cpp
 
-OutputKind png_output_kind();    // insitu/outputs/png_output.cpp
-OutputKind vdb_output_kind();    // insitu/outputs/vdb_output.cpp
-OutputKind vtk_output_kind();    // insitu/outputs/vtk_output.cpp
-OutputKind depth_output_kind();  // insitu/outputs/depth_output.cpp
-OutputKind exr_output_kind();    // insitu/outputs/exr_output.cpp
-OutputKind stats_output_kind();  // insitu/outputs/stats_output.cpp
+OutputKind png_output_kind();    // insitu/outputs/kinds/png_output.cpp
+OutputKind vdb_output_kind();    // insitu/outputs/kinds/vdb_output.cpp
+OutputKind vtk_output_kind();    // insitu/outputs/kinds/vtk_output.cpp
+OutputKind depth_output_kind();  // insitu/outputs/kinds/depth_output.cpp
+OutputKind exr_output_kind();    // insitu/outputs/kinds/exr_output.cpp
+OutputKind stats_output_kind();  // insitu/outputs/kinds/stats_output.cpp
 
 namespace {
 

@@ -1,5 +1,5 @@
-// insitu/runtime/step_record.h - one step's stats line (insitu/outputs/stats_record.h) from what
-// the step measured: the adapter's classification (voxspan/adapter.h StepStats), every view's
+// insitu/runtime/step_record.h - one step's stats line (insitu/outputs/formats/stats_record.h) from
+// what the step measured: the adapter's classification (voxspan/adapter.h StepStats), every view's
 // FrameStats (time per pass, counts), the writer's counters and the memory in use.
 //
 //   totals.timings_ms  classify, compact, render, outputs, in_situ (all of the step's in-situ
@@ -17,9 +17,9 @@
 #include <span>
 #include <string>
 
-#include "insitu/outputs/background_writer.h"
+#include "insitu/outputs/formats/stats_record.h"
+#include "insitu/outputs/writer/background_writer.h"
 #include "insitu/runtime/host_memory.h"
-#include "insitu/outputs/stats_record.h"
 #include "render/frame_stats.h"
 #include "voxspan/adapter.h"
 

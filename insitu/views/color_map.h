@@ -2,7 +2,7 @@
 // uniform (viridis, plasma, inferno, matplotlib's), diverging (coolwarm, Moreland's) and gray.
 // Each is its published colours at eleven (coolwarm: five) evenly spaced stops, in sRGB, and
 // map_color interpolates between them in linear RGB, which is what the shading and the PNG
-// encoding (insitu/outputs/png_image.h) expect. Standard library and glm only.
+// encoding (insitu/outputs/formats/png_image.h) expect. Standard library and glm only.
 #pragma once
 
 #include <array>

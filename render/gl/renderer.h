@@ -8,7 +8,7 @@
 //   voxspan::gl::GpuRecorder recorder(stats, context.has_gpu_timers());
 //   const voxspan::GpuFloatImage& image =
 //       renderer.render(camera, boundary_particles, cell_states, options, recorder);
-//   voxspan::FloatImage pixels = image.download();      // for insitu/outputs/png_image.h
+//   voxspan::FloatImage pixels = image.download();      // for insitu/outputs/formats/png_image.h
 //
 // Every pass is a device scope of the caller's Recorder, named and counted as
 // render/stat_names.h says. shade() runs the passes after the voxelization on a span image made

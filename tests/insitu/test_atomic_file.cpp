@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "insitu/outputs/atomic_file.h"
+#include "insitu/outputs/writer/atomic_file.h"
 #include "temp_folder.h"
 
 namespace voxspan {

@@ -7,8 +7,8 @@
 #include <mutex>
 #include <thread>
 
-#include "insitu/outputs/atomic_file.h"
-#include "insitu/outputs/background_writer.h"
+#include "insitu/outputs/writer/atomic_file.h"
+#include "insitu/outputs/writer/background_writer.h"
 #include "log_capture.h"
 
 namespace voxspan {

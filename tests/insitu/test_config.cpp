@@ -4,8 +4,8 @@
 #include <fstream>
 
 #include "error_message.h"
-#include "insitu/outputs/vdb_output.h"
-#include "insitu/outputs/vtk_output.h"
+#include "insitu/outputs/kinds/vdb_output.h"
+#include "insitu/outputs/kinds/vtk_output.h"
 #include "insitu/runtime/config_file.h"
 #include "insitu/views/surface_view.h"
 #include "temp_folder.h"

@@ -14,11 +14,11 @@
 #include <map>
 #include <sstream>
 
-#include "insitu/outputs/atomic_file.h"
-#include "insitu/outputs/background_writer.h"
-#include "insitu/outputs/stats_record.h"
-#include "insitu/outputs/stats_log.h"
 #include "child_process.h"
+#include "insitu/outputs/formats/stats_log.h"
+#include "insitu/outputs/formats/stats_record.h"
+#include "insitu/outputs/writer/atomic_file.h"
+#include "insitu/outputs/writer/background_writer.h"
 #include "log_capture.h"
 #include "temp_folder.h"
 

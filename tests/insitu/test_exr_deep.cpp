@@ -1,4 +1,4 @@
-// outputs.exr's deep image (insitu/outputs/exr_image.h), read back with OpenEXR's own deep
+// outputs.exr's deep image (insitu/outputs/formats/exr_image.h), read back with OpenEXR's own deep
 // reader: per pixel as many samples as the span image stores, Z and ZBack the spans' entry
 // and exit depths times the pixel ray's length (distances along the unit ray), to float
 // precision; pixels without spans have no samples. And its RGBA companion, and a slice view's
@@ -19,8 +19,8 @@
 #include <OpenEXR/ImfVecAttribute.h>
 
 #include "deep_exr_reader.h"
+#include "insitu/outputs/formats/exr_image.h"
 #include "insitu/runtime/pipeline.h"
-#include "insitu/outputs/exr_image.h"
 #include "temp_folder.h"
 #include "voxspan/insitu.h"
 

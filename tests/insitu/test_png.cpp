@@ -4,7 +4,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "insitu/outputs/png_image.h"
+#include "insitu/outputs/formats/png_image.h"
 #include "temp_folder.h"
 #include "voxspan/error.h"
 

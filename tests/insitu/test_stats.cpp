@@ -5,9 +5,9 @@
 #include <fstream>
 #include <thread>
 
+#include "insitu/outputs/formats/stats_log.h"
+#include "insitu/outputs/formats/stats_record.h"
 #include "insitu/runtime/host_memory.h"
-#include "insitu/outputs/stats_record.h"
-#include "insitu/outputs/stats_log.h"
 #include "temp_folder.h"
 #include "voxspan/stopwatch.h"
 

@@ -9,7 +9,7 @@
 #include <iostream>
 
 #include "insitu/io/vdb_inspect.h"
-#include "insitu/outputs/vdb_snapshot.h"
+#include "insitu/outputs/formats/vdb_snapshot.h"
 #include "temp_folder.h"
 #include "tools/scenes/lattice.h"
 #include "voxspan/error.h"

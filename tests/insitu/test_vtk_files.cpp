@@ -12,7 +12,7 @@
 #include <vtkXMLPolyDataReader.h>
 
 #include "insitu/io/particle_data.h"
-#include "insitu/outputs/vtk_files.h"
+#include "insitu/outputs/formats/vtk_files.h"
 #include "temp_folder.h"
 #include "tools/scenes/lattice.h"
 #include "voxspan/error.h"

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "insitu/outputs/png_image.h"
+#include "insitu/outputs/formats/png_image.h"
 
 namespace fs = std::filesystem;
 

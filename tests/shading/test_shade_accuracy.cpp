@@ -17,7 +17,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "insitu/outputs/png_image.h"
+#include "insitu/outputs/formats/png_image.h"
 #include "render/reference/exact_spans.h"
 #include "render/reference/reference_shading.h"
 #include "render_fixture.h"

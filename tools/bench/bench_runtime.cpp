@@ -18,12 +18,12 @@
 #include <thread>
 #include <unistd.h>
 
-#include "insitu/outputs/atomic_file.h"
-#include "insitu/outputs/background_writer.h"
+#include "insitu/outputs/formats/png_image.h"
+#include "insitu/outputs/formats/vdb_snapshot.h"
+#include "insitu/outputs/writer/atomic_file.h"
+#include "insitu/outputs/writer/background_writer.h"
 #include "insitu/runtime/config_file.h"
-#include "insitu/outputs/png_image.h"
 #include "insitu/runtime/schedule.h"
-#include "insitu/outputs/vdb_snapshot.h"
 #include "tools/scenes/lattice.h"
 
 namespace {

@@ -10,8 +10,8 @@
 #include <sstream>
 #include <string>
 
-#include "insitu/outputs/png_image.h"
 #include "insitu/io/vdb_inspect.h"
+#include "insitu/outputs/formats/png_image.h"
 #include "voxspan/error.h"
 
 namespace {

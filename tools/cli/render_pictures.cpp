@@ -20,7 +20,7 @@
 #include <filesystem>
 #include <string>
 
-#include "insitu/outputs/png_image.h"
+#include "insitu/outputs/formats/png_image.h"
 #include "render/gl/context.h"
 #include "render/gl/gpu_recorder.h"
 #include "render/gl/renderer.h"

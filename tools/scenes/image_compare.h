@@ -1,9 +1,10 @@
 // Picture comparisons for the shading tests and tools (bench_shading, render_pictures --compare):
 // PSNR and largest difference of two float images as they are seen, i.e. after the 8-bit sRGB
-// encoding the PNG frames get (insitu/outputs/png_image.h), over the RGB channels of every pixel.
+// encoding the PNG frames get (insitu/outputs/formats/png_image.h), over the RGB channels of every
+// pixel.
 #pragma once
 
-#include "insitu/outputs/png_image.h"
+#include "insitu/outputs/formats/png_image.h"
 #include "render/float_image.h"
 
 namespace voxspan::test {

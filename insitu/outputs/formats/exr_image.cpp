@@ -1,4 +1,4 @@
-#include "insitu/outputs/exr_image.h"
+#include "insitu/outputs/formats/exr_image.h"
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfDoubleAttribute.h>
@@ -16,7 +16,7 @@
 #include <initializer_list>
 #include <vector>
 
-#include "insitu/outputs/atomic_file.h"
+#include "insitu/outputs/writer/atomic_file.h"
 #include "voxspan/error.h"
 
 namespace voxspan {

@@ -1,4 +1,4 @@
-// insitu/outputs/stats_record.h - what one step cost and counted, as one JSON line.
+// insitu/outputs/formats/stats_record.h - what one step cost and counted, as one JSON line.
 //
 // Generic on purpose: every pass adds named timings and counters, so a new pass needs no new
 // field. A record has totals and one section per view, each a FrameStats (render/frame_stats.h),

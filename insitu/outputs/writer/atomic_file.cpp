@@ -1,4 +1,4 @@
-#include "insitu/outputs/atomic_file.h"
+#include "insitu/outputs/writer/atomic_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -1,6 +1,6 @@
-// insitu/outputs/vtk_output.h - outputs.vtk: the boundary particles as .vtp, the cell states as
-// .vti, each with its .pvd series, for ParaView (insitu/outputs/vtk_files.h). Its settings, for
-// the code that reads them by type (the tests).
+// insitu/outputs/kinds/vtk_output.h - outputs.vtk: the boundary particles as .vtp, the cell states
+// as .vti, each with its .pvd series, for ParaView (insitu/outputs/formats/vtk_files.h). Its
+// settings, for the code that reads them by type (the tests).
 #pragma once
 
 #include <string>

@@ -1,6 +1,6 @@
-// insitu/outputs/vdb_output.h - outputs.vdb: an OpenVDB snapshot of the whole fluid,
-// <folder>/fluid_<step>.vdb (insitu/outputs/vdb_snapshot.h has the grids). Its settings, for
-// the code that reads them by type (the tests).
+// insitu/outputs/kinds/vdb_output.h - outputs.vdb: an OpenVDB snapshot of the whole fluid,
+// <folder>/fluid_<step>.vdb (insitu/outputs/formats/vdb_snapshot.h has the grids). Its settings,
+// for the code that reads them by type (the tests).
 #pragma once
 
 #include <optional>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "insitu/config/settings.h"
-#include "insitu/outputs/vdb_snapshot.h"
+#include "insitu/outputs/formats/vdb_snapshot.h"
 
 namespace voxspan {
 

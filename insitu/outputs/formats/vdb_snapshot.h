@@ -1,5 +1,5 @@
-// insitu/outputs/vdb_snapshot.h - an OpenVDB snapshot of the whole fluid for offline work (Houdini,
-// Blender, ParaView), from what the renderer already has: the boundary particles and the
+// insitu/outputs/formats/vdb_snapshot.h - an OpenVDB snapshot of the whole fluid for offline work
+// (Houdini, Blender, ParaView), from what the renderer already has: the boundary particles and the
 // cell states.
 //
 // Grids in the file:

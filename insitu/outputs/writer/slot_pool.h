@@ -1,4 +1,4 @@
-// insitu/outputs/slot_pool.h - reusable buffers for the background writer's jobs.
+// insitu/outputs/writer/slot_pool.h - reusable buffers for the background writer's jobs.
 //
 // A job must own its data (the solver's memory changes at the next step), but copying into
 // fresh vectors every render step would allocate every step. Instead the solver's thread

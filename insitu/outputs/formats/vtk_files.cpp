@@ -1,4 +1,4 @@
-#include "insitu/outputs/vtk_files.h"
+#include "insitu/outputs/formats/vtk_files.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -15,7 +15,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "insitu/outputs/atomic_file.h"
+#include "insitu/outputs/writer/atomic_file.h"
 #include "voxspan/error.h"
 
 namespace voxspan {

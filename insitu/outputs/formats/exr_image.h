@@ -1,4 +1,4 @@
-// insitu/outputs/exr_image.h - OpenEXR images of a view, for compositors (Nuke, Houdini,
+// insitu/outputs/formats/exr_image.h - OpenEXR images of a view, for compositors (Nuke, Houdini,
 // OpenEXR's own tools): scanline files, ZIP-compressed, row 0 at the top (line order
 // INCREASING_Y), 32-bit float channels. Encoded in memory, so the file is written atomically.
 // Everything OpenEXR stays inside exr_image.cpp.
@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <string>
 
-#include "render/float_image.h"
 #include "insitu/views/view_products.h"
+#include "render/float_image.h"
 #include "render/span_image.h"
 
 namespace voxspan {

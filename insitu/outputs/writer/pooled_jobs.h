@@ -1,6 +1,6 @@
-// insitu/outputs/pooled_jobs.h - an output's writes as background jobs on pooled slots: the
+// insitu/outputs/writer/pooled_jobs.h - an output's writes as background jobs on pooled slots: the
 // solver's thread fills a slot (its vectors keep their capacity from the slot's last use,
-// insitu/outputs/slot_pool.h) and hands it to the writer, whose job writes it and gives it
+// insitu/outputs/writer/slot_pool.h) and hands it to the writer, whose job writes it and gives it
 // back. Counts what was handed over, written, and refused for want of a slot, and the writer
 // thread's time in the jobs: what OutputTally reports.
 #pragma once
@@ -10,9 +10,9 @@
 #include <functional>
 #include <memory>
 
-#include "insitu/outputs/background_writer.h"
 #include "insitu/outputs/output.h"
-#include "insitu/outputs/slot_pool.h"
+#include "insitu/outputs/writer/background_writer.h"
+#include "insitu/outputs/writer/slot_pool.h"
 #include "voxspan/stopwatch.h"
 
 namespace voxspan {

@@ -1,4 +1,4 @@
-#include "insitu/outputs/png_image.h"
+#include "insitu/outputs/formats/png_image.h"
 
 #include <png.h>
 
@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "insitu/outputs/atomic_file.h"
+#include "insitu/outputs/writer/atomic_file.h"
 #include "voxspan/error.h"
 
 namespace voxspan {

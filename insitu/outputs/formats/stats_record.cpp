@@ -1,4 +1,4 @@
-#include "insitu/outputs/stats_record.h"
+#include "insitu/outputs/formats/stats_record.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,5 @@
-// insitu/outputs/atomic_file.h - a file that appears under its final name only when it is complete.
+// insitu/outputs/writer/atomic_file.h - a file that appears under its final name only when it is
+// complete.
 //
 // Writes go to a hidden temporary file in the same folder (".<name>.tmp.<pid>.<n>"), so that
 // the final rename(2) is atomic; commit() flushes, optionally fsyncs, closes and renames.

@@ -1,4 +1,4 @@
-#include "insitu/outputs/snapshot_copy.h"
+#include "insitu/outputs/kinds/snapshot_copy.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
 // outputs.png: every rendered view as an 8-bit sRGB PNG, <folder>/<view>_<step>.png. The
 // picture is copied on the solver's thread; the sRGB conversion and the encoding run on the
-// writer's (insitu/outputs/png_image.h).
+// writer's (insitu/outputs/formats/png_image.h).
+#include "insitu/outputs/formats/png_image.h"
+#include "insitu/outputs/kinds/view_images.h"
 #include "insitu/outputs/output.h"
-#include "insitu/outputs/png_image.h"
-#include "insitu/outputs/view_images.h"
 
 namespace voxspan {
 namespace {

@@ -1,17 +1,17 @@
 // outputs.vtk: the boundary particles, the attributes it names and the cell states copied on
 // the solver's thread; <folder>/particles_<step>.vtp and cells_<step>.vti written on the
 // writer's, each then listed in its .pvd series (particles.pvd, cells.pvd).
-#include "insitu/outputs/vtk_output.h"
+#include "insitu/outputs/kinds/vtk_output.h"
 
 #include <cstdio>
 #include <cstring>
 #include <memory>
 
-#include "insitu/outputs/atomic_file.h"
+#include "insitu/outputs/formats/vtk_files.h"
+#include "insitu/outputs/kinds/snapshot_copy.h"
 #include "insitu/outputs/output.h"
-#include "insitu/outputs/pooled_jobs.h"
-#include "insitu/outputs/snapshot_copy.h"
-#include "insitu/outputs/vtk_files.h"
+#include "insitu/outputs/writer/atomic_file.h"
+#include "insitu/outputs/writer/pooled_jobs.h"
 
 namespace voxspan {
 namespace {

@@ -1,6 +1,6 @@
-// insitu/outputs/vtk_files.h - ParaView-readable snapshots: the boundary particles as a .vtp
-// (points with a "radius" array and the named attributes), the cell states as a .vti (cell data
-// "state", the byte of voxspan/cell_states.h: 0 empty, 1 partial, 2 full, +4 inner), and a
+// insitu/outputs/formats/vtk_files.h - ParaView-readable snapshots: the boundary particles as a
+// .vtp (points with a "radius" array and the named attributes), the cell states as a .vti (cell
+// data "state", the byte of voxspan/cell_states.h: 0 empty, 1 partial, 2 full, +4 inner), and a
 // .pvd time series that lists them. Documents are made in memory (VTK's XML writers, inline
 // binary, no appended section) and written atomically; the .pvd is rewritten whole, atomically,
 // after each new entry, so ParaView never reads a half-updated series.

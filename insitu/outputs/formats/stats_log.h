@@ -1,4 +1,4 @@
-// insitu/outputs/stats_log.h - the per-step stats file: JSON lines appended to one file.
+// insitu/outputs/formats/stats_log.h - the per-step stats file: JSON lines appended to one file.
 //
 // A line is written with one write(2); if it fails part-way (ENOSPC, EFBIG), the file is cut
 // back to its last complete line, so a reader never sees half a record. Failures throw

@@ -1,9 +1,9 @@
-#include "insitu/outputs/background_writer.h"
+#include "insitu/outputs/writer/background_writer.h"
 
 #include <exception>
 #include <utility>
 
-#include "insitu/outputs/atomic_file.h"
+#include "insitu/outputs/writer/atomic_file.h"
 
 #include "voxspan/log.h"
 

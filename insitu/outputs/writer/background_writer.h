@@ -1,4 +1,5 @@
-// insitu/outputs/background_writer.h - one thread that writes files while the solver goes on.
+// insitu/outputs/writer/background_writer.h - one thread that writes files while the solver goes
+// on.
 //
 // submit() hands over a job that owns its data (the solver's memory changes at the next
 // step). The queue is bounded: when full, policy `wait` blocks the caller until a slot frees,

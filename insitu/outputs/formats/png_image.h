@@ -1,4 +1,4 @@
-// insitu/outputs/png_image.h - 8-bit sRGB PNG frames from the renderer's images.
+// insitu/outputs/formats/png_image.h - 8-bit sRGB PNG frames from the renderer's images.
 //
 // The shade passes produce linear RGBA floats (or RGBA8 already in sRGB); PNG stores 8-bit
 // sRGB with an sRGB chunk, top row first. GL read-backs are bottom row first: pass

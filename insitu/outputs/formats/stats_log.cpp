@@ -1,4 +1,4 @@
-#include "insitu/outputs/stats_log.h"
+#include "insitu/outputs/formats/stats_log.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -6,7 +6,7 @@
 
 #include <cerrno>
 
-#include "insitu/outputs/atomic_file.h"
+#include "insitu/outputs/writer/atomic_file.h"
 
 namespace voxspan {
 

@@ -7,10 +7,10 @@
 // encoding and the writing (each file atomically) run on the writer's. A slice view has no
 // spans: its file is <folder>/<view>_<step>.exr with its raw values as 32-bit floats (channels
 // `value` and `weight`) and the plane's pixel-to-world mapping in the header.
-#include "insitu/outputs/atomic_file.h"
-#include "insitu/outputs/exr_image.h"
+#include "insitu/outputs/formats/exr_image.h"
 #include "insitu/outputs/output.h"
-#include "insitu/outputs/pooled_jobs.h"
+#include "insitu/outputs/writer/atomic_file.h"
+#include "insitu/outputs/writer/pooled_jobs.h"
 
 namespace voxspan {
 namespace {

@@ -1,4 +1,4 @@
-// insitu/outputs/view_images.h - the outputs that write one image per view and step (PNG
+// insitu/outputs/kinds/view_images.h - the outputs that write one image per view and step (PNG
 // pictures, EXR depth images): each view's image copied into a pooled slot on the solver's
 // thread (no allocation once the slots have held the largest view), written as
 // <folder>/<view>_<step>.<extension> on the writer's. Such a kind is its settings, its schema
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "insitu/outputs/output.h"
-#include "insitu/outputs/pooled_jobs.h"
+#include "insitu/outputs/writer/pooled_jobs.h"
 
 namespace voxspan {
 

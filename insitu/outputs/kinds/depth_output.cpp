@@ -3,9 +3,9 @@
 // ray through the pixel centre to where it first enters the fluid (the span image's first
 // entry, render/gl/passes/first_hit.h), row 0 at the top; 0 where the ray misses. The camera
 // model is in docs/runtime.md ("Depth images").
-#include "insitu/outputs/exr_image.h"
+#include "insitu/outputs/formats/exr_image.h"
+#include "insitu/outputs/kinds/view_images.h"
 #include "insitu/outputs/output.h"
-#include "insitu/outputs/view_images.h"
 
 namespace voxspan {
 namespace {

@@ -1,11 +1,11 @@
 // outputs.vdb: the boundary particles, the attributes it names and the cell states copied on
 // the solver's thread; the grids built and written on the writer's (insitu/outputs/
 // vdb_snapshot.h).
-#include "insitu/outputs/vdb_output.h"
+#include "insitu/outputs/kinds/vdb_output.h"
 
+#include "insitu/outputs/kinds/snapshot_copy.h"
 #include "insitu/outputs/output.h"
-#include "insitu/outputs/pooled_jobs.h"
-#include "insitu/outputs/snapshot_copy.h"
+#include "insitu/outputs/writer/pooled_jobs.h"
 
 namespace voxspan {
 namespace {

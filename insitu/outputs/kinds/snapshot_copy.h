@@ -1,4 +1,4 @@
-// insitu/outputs/snapshot_copy.h - what a snapshot output (OpenVDB, VTK) keeps of a render
+// insitu/outputs/kinds/snapshot_copy.h - what a snapshot output (OpenVDB, VTK) keeps of a render
 // step for its writer job: the boundary spheres, the attributes it asked for and the cell
 // states, copied into a pooled slot whose vectors keep their capacity.
 #pragma once

@@ -1,6 +1,6 @@
 // The OpenVDB snapshot (see vdb_snapshot.h). The one translation unit that builds grids:
 // OpenVDB's templates compile slowly, so nothing else includes them.
-#include "insitu/outputs/vdb_snapshot.h"
+#include "insitu/outputs/formats/vdb_snapshot.h"
 
 #include <openvdb/io/Archive.h>
 #include <openvdb/openvdb.h>
@@ -15,7 +15,7 @@
 #include <mutex>
 #include <optional>
 
-#include "insitu/outputs/atomic_file.h"
+#include "insitu/outputs/writer/atomic_file.h"
 #include "voxspan/error.h"
 #include "voxspan/stopwatch.h"
 #include "voxspan/version.h"

@@ -1,9 +1,9 @@
-// outputs.stats: the step's stats record (insitu/outputs/stats_record.h) as one JSON line of
-// <folder>/<file>. The line is made on the solver's thread into a pooled string and appended on
-// the writer's (insitu/outputs/stats_log.h: a failed write never leaves half a line).
+// outputs.stats: the step's stats record (insitu/outputs/formats/stats_record.h) as one JSON line
+// of <folder>/<file>. The line is made on the solver's thread into a pooled string and appended on
+// the writer's (insitu/outputs/formats/stats_log.h: a failed write never leaves half a line).
+#include "insitu/outputs/formats/stats_log.h"
 #include "insitu/outputs/output.h"
-#include "insitu/outputs/pooled_jobs.h"
-#include "insitu/outputs/stats_log.h"
+#include "insitu/outputs/writer/pooled_jobs.h"
 #include "voxspan/error.h"
 #include "voxspan/log.h"
 
