@@ -1,11 +1,12 @@
 // Classifier::run - the step from the solver's particles and grid to the cell states and the
 // compacted boundary particles ([ZD15] sec. 3.1: "a fast reduction and compaction step
-// before voxelization"). Stages, each parallel over cells or particles:
-//   1. cell ranges: the solver's own (compact grid), or a counting sort of a per-particle cell
-//      index (the solver's, or computed from the positions);
+// before voxelization"). Phases (voxspan/classify.h's ClassifyPhase, each timed), each parallel
+// over cells or particles:
+//   1. ranges: the solver's own cell ranges (compact grid), or a counting sort of a per-particle
+//      cell index (the solver's, or computed from the positions);
 //   2. count: per cell the valid particles (NaN/inf dropped and counted), checking ranges
 //      always and claimed cells under `validate`;
-//   3. states: occupancy and the inner bit (cell_occupancy.cpp);
+//   3. classify: the cell states, occupancy and the inner bit (cell_occupancy.cpp);
 //   4. compact: the particles of non-inner cells, in cell order, into packed float spheres and
 //      the requested attributes.
 #include <tbb/blocked_range.h>
@@ -96,20 +97,129 @@ std::int64_t particle_at(const CellRanges& r, std::int64_t k) {
   return r.order.present() ? r.order[std::size_t(k)] - r.base : k;
 }
 
+// The particles' radii: per particle from the view, else the view's one radius, the option's,
+// or the spacing.
+detail::Radii radii_of(const ParticleView& view, const ClassifyOptions& options) {
+  detail::Radii radii{view.radii(), 0.f};
+  const double uniform = view.uniform_radius() > 0 ? view.uniform_radius()
+                         : options.radius > 0      ? options.radius
+                                                   : options.particle_spacing;
+  radii.uniform = static_cast<float>(uniform);
+  if (!radii.varies() && !(uniform > 0 && std::isfinite(uniform)))
+    throw make_error(
+        "no particle radius: give one in the particle view, or set radius or "
+        "particle_spacing in the options");
+  return radii;
+}
+
+// Which particles compact() emits: the owned ones, and the ghosts when asked.
+struct Emits {
+  std::size_t owned;
+  bool ghosts;
+  bool operator()(std::size_t i) const { return ghosts || i < owned; }
+};
+
+// One cell as count() finds it: its valid particles, and those of them compact() emits unless
+// the cell is inner.
+struct CellCount {
+  std::uint32_t valid = 0, emitted = 0;
+};
+
+// count()'s common case: the cell's particles [b, e) stored in cell order, one radius, no
+// validation: per particle only the finiteness test.
+template <class T>
+CellCount count_in_order(const detail::Positions<T>& pos, std::int64_t b, std::int64_t e,
+                         const Emits& emits, Tallies& t) {
+  CellCount found;
+  T x, y, z;
+  for (std::int64_t k = b; k < e; ++k) {
+    if (!pos.load(std::size_t(k), x, y, z)) {
+      ++t.nonfinite;
+      continue;
+    }
+    ++found.valid;
+    found.emitted += emits(std::size_t(k)) ? 1 : 0;
+  }
+  return found;
+}
+
+// What count() checks of the grid's lists beyond their ranges, and where it says what it found:
+// always that each entry is a particle; under `cells` that the particle lies in the cell that
+// lists it; with `seen` (a flag per particle) that no particle is listed twice.
+struct CountChecks {
+  const GridGeometry& grid;
+  std::size_t particles;
+  bool cells;
+  std::uint8_t* seen;
+  detail::FirstError& error;
+};
+
+// count()'s general case: cell c's slots [b, e) of the ranges, in any order, radii per particle,
+// with the checks.
+template <class T>
+CellCount count_listed(const detail::Positions<T>& pos, const CellRanges& ranges,
+                       const detail::Radii& radii, std::size_t c, std::int64_t b, std::int64_t e,
+                       const Emits& emits, const CountChecks& checks, Tallies& t) {
+  const GridGeometry& g = checks.grid;
+  const std::size_t n = checks.particles;
+  CellCount found;
+  T x, y, z;
+  for (std::int64_t k = b; k < e; ++k) {
+    const std::int64_t idx = particle_at(ranges, k);
+    if (idx < 0 || idx >= static_cast<std::int64_t>(n)) {
+      checks.error.offer(c, "grid order entry ", k, " (in cell ", CellName{g, c}, ") is particle ",
+                         idx, ", not one of the ", n, " particles");
+      break;
+    }
+    const auto i = std::size_t(idx);
+    if (checks.seen && std::atomic_ref<std::uint8_t>(checks.seen[i]).exchange(1) != 0)
+      checks.error.offer(c, "particle ", i, " is listed twice by the grid (again in cell ",
+                         CellName{g, c}, ")");
+    if (!pos.load(i, x, y, z) || !detail::Radii::usable(radii.get(i))) {
+      ++t.nonfinite;
+      continue;
+    }
+    if (checks.cells && !point_in_cell(g, c, x, y, z)) {
+      const auto ijk = cell_of_point(g, x, y, z);
+      checks.error.offer(c, "particle ", i, " at (", x, ", ", y, ", ", z, ") lies in cell (",
+                         ijk[0], ", ", ijk[1], ", ", ijk[2], ") but the grid lists it in cell ",
+                         CellName{g, c}, " (-1: outside the grid)");
+    }
+    ++found.valid;
+    if (emits(i)) ++found.emitted;
+  }
+  return found;
+}
+
 }  // namespace
 
 struct Classifier::Work {
   Classification result;
   std::vector<AttributeView> requested;  // the attributes asked for, kept from run to run
-  std::vector<std::uint32_t> cell_of, offsets, order, fill;
-  std::vector<std::uint32_t> counts, emit, emit_offsets;
-  std::vector<std::uint8_t> scratch, seen;
+  std::vector<std::uint32_t> cell_of, offsets, order, fill;  // cell_ranges()' counting sort
+  std::vector<std::uint32_t> counts, emit;                   // count()'s, per cell
+  std::vector<std::uint32_t> emit_offsets;                   // compact()'s
+  std::vector<std::uint8_t> scratch, seen;  // classify_states()' scratch; count()'s flags
 
   template <class T>
   void run(const detail::Positions<T>& pos, const ParticleView& view, const GridView& grid,
            const ClassifyOptions& options, const std::vector<AttributeView>& attributes);
 
  private:
+  // The phases of run() (ClassifyPhase), in order.
+  template <class T>
+  CellRanges cell_ranges(const detail::Positions<T>& pos, std::size_t n, const GridView& grid,
+                         const ClassifyOptions& options, Tallies& built);
+  template <class T>
+  Tallies count(const detail::Positions<T>& pos, const ParticleView& view, const CellRanges& ranges,
+                const ClassifyOptions& options, const detail::Radii& radii);
+  void classify_states(std::size_t cells);
+  template <class T>
+  void compact(const detail::Positions<T>& pos, const ParticleView& view, const CellRanges& ranges,
+               const ClassifyOptions& options, const detail::Radii& radii,
+               const std::vector<AttributeView>& attributes);
+
+  // cell_ranges()' steps where the solver gives no ranges.
   template <class T>
   GridGeometry bounds_geometry(const detail::Positions<T>& pos, std::size_t n,
                                const ClassifyOptions& options);
@@ -118,13 +228,6 @@ struct Classifier::Work {
                                const GridGeometry& g);
   template <class T>
   Tallies cells_from_index(const detail::Positions<T>& pos, std::size_t n, const GridView& grid);
-  template <class T>
-  Tallies count(const detail::Positions<T>& pos, const ParticleView& view, const CellRanges& ranges,
-                const ClassifyOptions& options, const detail::Radii& radii);
-  template <class T>
-  void compact(const detail::Positions<T>& pos, const ParticleView& view, const CellRanges& ranges,
-               const ClassifyOptions& options, const detail::Radii& radii,
-               const std::vector<AttributeView>& attributes);
 };
 
 namespace {
@@ -256,29 +359,30 @@ Tallies Classifier::Work::cells_from_index(const detail::Positions<T>& pos, std:
   return t;
 }
 
+// Count: per cell its valid particles (counts) and those compact() emits from it (emit),
+// NaN/inf left out and tallied; the grid's ranges checked always, its lists under `validate`.
 template <class T>
 Tallies Classifier::Work::count(const detail::Positions<T>& positions, const ParticleView& view,
                                 const CellRanges& ranges, const ClassifyOptions& options,
                                 const detail::Radii& radii) {
   const GridGeometry& g = result.geometry;
-  const std::size_t cells = g.cell_count(), n = view.size(), owned = view.owned_count();
+  const std::size_t cells = g.cell_count(), n = view.size();
   const auto n64 = static_cast<std::int64_t>(n);
-  const bool check_cells = options.validate;
   const bool check_once = options.validate && !ranges.built;
   counts.resize(cells);
   emit.resize(cells);
   if (check_once) seen.assign(n, 0);
 
-  // The common case: particles stored in cell order, one radius, no validation: per particle
-  // only the finiteness test.
-  const bool fast = !ranges.order.present() && !check_cells && !check_once && !radii.varies();
   detail::FirstError error;
+  const CountChecks checks{g, n, options.validate, check_once ? seen.data() : nullptr, error};
+  const Emits emits{view.owned_count(), options.include_ghosts};
+  // The common case: particles stored in cell order, one radius, no validation.
+  const bool in_order = !ranges.order.present() && !options.validate && !radii.varies();
   tbb::combinable<Tallies> tallies;
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, cells, kCellGrain),
       [&](const tbb::blocked_range<std::size_t>& r) {
         Tallies& t = tallies.local();
-        T x, y, z;
         const detail::Positions<T> pos = positions;  // a local copy stays in registers
         for (std::size_t c = r.begin(); c != r.end(); ++c) {
           counts[c] = emit[c] = 0;
@@ -290,46 +394,11 @@ Tallies Classifier::Work::count(const detail::Positions<T>& positions, const Par
             continue;
           }
           t.entries += std::size_t(e - b);
-          std::uint32_t valid = 0, emitted = 0;
-          if (fast) {
-            for (std::int64_t k = b; k < e; ++k) {
-              if (!pos.load(std::size_t(k), x, y, z)) {
-                ++t.nonfinite;
-                continue;
-              }
-              ++valid;
-              emitted += options.include_ghosts || std::size_t(k) < owned ? 1 : 0;
-            }
-            counts[c] = valid;
-            emit[c] = emitted;
-            continue;
-          }
-          for (std::int64_t k = b; k < e; ++k) {
-            const std::int64_t idx = particle_at(ranges, k);
-            if (idx < 0 || idx >= n64) {
-              error.offer(c, "grid order entry ", k, " (in cell ", CellName{g, c}, ") is particle ",
-                          idx, ", not one of the ", n, " particles");
-              break;
-            }
-            const auto i = std::size_t(idx);
-            if (check_once && std::atomic_ref<std::uint8_t>(seen[i]).exchange(1) != 0)
-              error.offer(c, "particle ", i, " is listed twice by the grid (again in cell ",
-                          CellName{g, c}, ")");
-            if (!pos.load(i, x, y, z) || !detail::Radii::usable(radii.get(i))) {
-              ++t.nonfinite;
-              continue;
-            }
-            if (check_cells && !point_in_cell(g, c, x, y, z)) {
-              const auto ijk = cell_of_point(g, x, y, z);
-              error.offer(c, "particle ", i, " at (", x, ", ", y, ", ", z, ") lies in cell (",
-                          ijk[0], ", ", ijk[1], ", ", ijk[2], ") but the grid lists it in cell ",
-                          CellName{g, c}, " (-1: outside the grid)");
-            }
-            ++valid;
-            if (options.include_ghosts || i < owned) ++emitted;
-          }
-          counts[c] = valid;
-          emit[c] = emitted;
+          const CellCount found = in_order
+                                      ? count_in_order(pos, b, e, emits, t)
+                                      : count_listed(pos, ranges, radii, c, b, e, emits, checks, t);
+          counts[c] = found.valid;
+          emit[c] = found.emitted;
         }
       });
   error.throw_if_raised();
@@ -340,12 +409,15 @@ Tallies Classifier::Work::count(const detail::Positions<T>& positions, const Par
   return total(tallies);
 }
 
+// Compact: the particles of the cells that are not inner, in cell order, into the boundary
+// spheres and the attributes asked for; inner cells' emit counts zeroed on the way.
 template <class T>
 void Classifier::Work::compact(const detail::Positions<T>& positions, const ParticleView& view,
                                const CellRanges& ranges, const ClassifyOptions& options,
                                const detail::Radii& radii,
                                const std::vector<AttributeView>& attributes) {
-  const std::size_t cells = result.geometry.cell_count(), owned = view.owned_count();
+  const std::size_t cells = result.geometry.cell_count();
+  const Emits emits{view.owned_count(), options.include_ghosts};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, 1 << 14),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t c = r.begin(); c != r.end(); ++c)
@@ -373,7 +445,7 @@ void Classifier::Work::compact(const detail::Positions<T>& positions, const Part
           const std::int64_t b = ranges.begin[c] - ranges.base, e = ranges.end[c] - ranges.base;
           for (std::int64_t k = b; k < e; ++k) {
             const auto i = std::size_t(particle_at(ranges, k));
-            if (!options.include_ghosts && i >= owned) continue;
+            if (!emits(i)) continue;
             const float radius = radii.get(i);
             if (!pos.load(i, x, y, z) || !detail::Radii::usable(radius)) continue;
             result.boundary[out] = {float(x), float(y), float(z), radius};
@@ -389,30 +461,13 @@ void Classifier::Work::compact(const detail::Positions<T>& positions, const Part
       });
 }
 
+// Ranges: the geometry of result (the grid's, or one fitted to the particles) and the cell
+// ranges: the solver's own, or a counting sort of a per-particle cell index (the solver's, or
+// computed from the positions), whose tallies go to `built`.
 template <class T>
-void Classifier::Work::run(const detail::Positions<T>& pos, const ParticleView& view,
-                           const GridView& grid, const ClassifyOptions& options,
-                           const std::vector<AttributeView>& attributes) {
-  const Stopwatch t0;
-  const std::size_t n = view.size();
-  ClassifyCounts& counts_out = result.counts;
-  counts_out = {};
-  counts_out.particles = n;
-  counts_out.owned = view.owned_count();
-
-  detail::Radii radii{view.radii(), 0.f};
-  const double uniform = view.uniform_radius() > 0 ? view.uniform_radius()
-                         : options.radius > 0      ? options.radius
-                                                   : options.particle_spacing;
-  radii.uniform = static_cast<float>(uniform);
-  if (!radii.varies() && !(uniform > 0 && std::isfinite(uniform)))
-    throw make_error(
-        "no particle radius: give one in the particle view, or set radius or "
-        "particle_spacing in the options");
-
-  // 1. Cell ranges.
-  CellRanges ranges;
-  Tallies built;
+CellRanges Classifier::Work::cell_ranges(const detail::Positions<T>& pos, std::size_t n,
+                                         const GridView& grid, const ClassifyOptions& options,
+                                         Tallies& built) {
   switch (grid.layout()) {
     case GridView::Layout::none:
     case GridView::Layout::geometry_only:
@@ -433,42 +488,70 @@ void Classifier::Work::run(const detail::Positions<T>& pos, const ParticleView& 
       if (!grid.begin().present() || !grid.end().present())
         throw make_error("the grid's cell range arrays (begin/end or offsets) are missing");
       result.geometry = grid.geometry();
-      ranges = {grid.begin(), grid.end(), grid.order(), grid.index_base(), false};
-      break;
+      return {grid.begin(), grid.end(), grid.order(), grid.index_base(), false};
   }
-  if (grid.layout() != GridView::Layout::cell_ranges) {
-    detail::counting_sort(cell_of, result.geometry.cell_count(), offsets, order, fill);
-    ranges = {IndexArray::of(offsets.data()), IndexArray::of(offsets.data() + 1),
-              IndexArray::of(order.data()), 0, true};
-    counts_out.grid_built = true;
-  }
+  detail::counting_sort(cell_of, result.geometry.cell_count(), offsets, order, fill);
+  return {IndexArray::of(offsets.data()), IndexArray::of(offsets.data() + 1),
+          IndexArray::of(order.data()), 0, true};
+}
+
+// Classify: the cell states from the counts (occupancy and the inner bit), tallied.
+void Classifier::Work::classify_states(std::size_t cells) {
+  result.states.resize(cells);
+  if (cells > 0)
+    detail::classify_cells(result.geometry, counts, result.counts.full_count, result.states,
+                           scratch);
+  detail::tally_cells(result.states, result.counts);
+}
+
+template <class T>
+void Classifier::Work::run(const detail::Positions<T>& pos, const ParticleView& view,
+                           const GridView& grid, const ClassifyOptions& options,
+                           const std::vector<AttributeView>& attributes) {
+  // Each phase's wall time, read between the phases (nothing inside them).
+  Stopwatch clock;
+  const auto lap = [&](ClassifyPhase p) {
+    result.phase_ms[std::size_t(p)] = clock.ms();
+    clock.restart();
+  };
+  const std::size_t n = view.size();
+  ClassifyCounts& counts_out = result.counts;
+  counts_out = {};
+  counts_out.particles = n;
+  counts_out.owned = view.owned_count();
+  const detail::Radii radii = radii_of(view, options);
+
+  Tallies built;
+  const CellRanges ranges = cell_ranges(pos, n, grid, options, built);
   const std::size_t cells = result.geometry.cell_count();
+  counts_out.grid_built = ranges.built;
   counts_out.cell_size = result.geometry.cell_size;
   counts_out.full_count = full_count_for(options, result.geometry.cell_size);
+  lap(ClassifyPhase::ranges);
 
-  // 2. Count.
   const Tallies counted = cells > 0 ? count(pos, view, ranges, options, radii) : Tallies{};
   counts_out.dropped_nonfinite = built.nonfinite + counted.nonfinite;
   counts_out.not_in_grid = ranges.built          ? built.outside
                            : counted.entries < n ? n - counted.entries
                                                  : 0;
+  lap(ClassifyPhase::count);
 
-  // 3. States.
-  result.states.resize(cells);
-  if (cells > 0)
-    detail::classify_cells(result.geometry, counts, counts_out.full_count, result.states, scratch);
-  detail::tally_cells(result.states, counts_out);
-  result.seconds_classify = t0.seconds();
+  classify_states(cells);
+  lap(ClassifyPhase::classify);
 
-  // 4. Compact.
-  const Stopwatch t1;
   if (cells > 0) {
     compact(pos, view, ranges, options, radii, attributes);
   } else {
     result.boundary.clear();
     result.attributes.clear();
   }
-  result.seconds_compact = t1.seconds();
+  lap(ClassifyPhase::compact);
+
+  const auto& ms = result.phase_ms;
+  result.seconds_classify =
+      1e-3 * (ms[std::size_t(ClassifyPhase::ranges)] + ms[std::size_t(ClassifyPhase::count)] +
+              ms[std::size_t(ClassifyPhase::classify)]);
+  result.seconds_compact = 1e-3 * ms[std::size_t(ClassifyPhase::compact)];
 }
 
 Classifier::Classifier() : work_(std::make_unique<Work>()) {}

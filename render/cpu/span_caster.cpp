@@ -11,6 +11,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "voxspan/stopwatch.h"
+
 namespace voxspan {
 namespace {
 
@@ -74,10 +76,15 @@ struct Bins {
 
 // The screen's kTile^2 tiles, row by row: an item's bins are the tiles its pixels touch.
 struct Tiles {
-  int nx = 0, ny = 0;
-  Tiles(int width, int height)
-      : nx((width + kTile - 1) / kTile), ny((height + kTile - 1) / kTile) {}
+  int width = 0, height = 0, nx = 0, ny = 0;
+  Tiles(int w, int h)
+      : width(w), height(h), nx((w + kTile - 1) / kTile), ny((h + kTile - 1) / kTile) {}
   std::size_t count() const { return std::size_t(nx) * std::size_t(ny); }
+  // Tile t's pixels, clipped to the screen.
+  PixelRect rect(std::size_t t) const {
+    const int x0 = int(t % std::size_t(nx)) * kTile, y0 = int(t / std::size_t(nx)) * kTile;
+    return {x0, y0, std::min(x0 + kTile, width) - 1, std::min(y0 + kTile, height) - 1};
+  }
   template <class F> void each(const PixelRect& r, F&& f) const {
     for (int ty = r.y0 / kTile; ty <= r.y1 / kTile; ++ty)
       for (int tx = r.x0 / kTile; tx <= r.x1 / kTile; ++tx)
@@ -110,10 +117,10 @@ struct CellBox {
 // The inner-full cells as few boxes (greedy: runs along x, runs of equal runs along y, then
 // along z): the union is the same, and a ray through a calm body of water meets a few boxes
 // instead of one cell after another.
-// Scratch, kept from frame to frame: the boxes still growing along z, the next ones, and one
-// z-layer's rectangles (x runs grown along y).
+// Scratch, kept from frame to frame: the merged boxes; the boxes still growing along z, the next
+// ones, and one z-layer's rectangles (x runs grown along y).
 struct BoxScratch {
-  std::vector<CellBox> open, next, slab;
+  std::vector<CellBox> merged, open, next, slab;
 };
 
 void merge_inner_full(const CellStatesView& cells, std::vector<CellBox>& out, BoxScratch& w) {
@@ -196,12 +203,12 @@ PixelRect box_pixels(const PerspectiveGrid& grid, const Box& b) {
 }
 
 // The inner-full cells as world boxes, with the pixels each may cover.
-void cell_boxes(const PerspectiveGrid& grid, const CellStatesView& cells,
-                std::vector<CellBox>& merged, BoxScratch& scratch, std::vector<Box>& boxes,
-                std::vector<PixelRect>& rects) {
+void cell_boxes(const PerspectiveGrid& grid, const CellStatesView& cells, BoxScratch& scratch,
+                std::vector<Box>& boxes, std::vector<PixelRect>& rects) {
   boxes.clear();
   rects.clear();
   if (cells.empty() || !(cells.cell_size > 0)) return;
+  std::vector<CellBox>& merged = scratch.merged;
   merge_inner_full(cells, merged, scratch);
   const double h = cells.cell_size;
   const glm::dvec3 origin(cells.origin[0], cells.origin[1], cells.origin[2]);
@@ -218,8 +225,9 @@ void cell_boxes(const PerspectiveGrid& grid, const CellStatesView& cells,
   }
 }
 
-PixelRect clip(const PixelRect& r, int x0, int y0, int x1, int y1) {
-  return {std::max(r.x0, x0), std::max(r.y0, y0), std::min(r.x1, x1), std::min(r.y1, y1)};
+PixelRect clip(const PixelRect& r, const PixelRect& to) {
+  return {std::max(r.x0, to.x0), std::max(r.y0, to.y0), std::min(r.x1, to.x1),
+          std::min(r.y1, to.y1)};
 }
 
 // One tile's unions, per pixel of the tile; a thread's, reused from tile to tile. A pixel's
@@ -330,26 +338,280 @@ inline void join(TileLists& l, std::size_t p, Interval iv, double gap) {
   list.pop_back();
 }
 
-}  // namespace
+// What a chord keeps: its part in [near, far] (the grid's); in the union, gaps shorter than
+// `gap` along the ray close.
+struct DepthRule {
+  double near, far, gap;
+};
+
+// A chord into pixel p's union (join), clipped by the rule.
+inline void keep(TileLists& l, std::size_t p, Interval iv, const DepthRule& rule) {
+  iv.entry = std::max(iv.entry, rule.near);
+  iv.exit = std::min(iv.exit, rule.far);
+  if (iv.entry < iv.exit) join(l, p, iv, rule.gap);
+}
+
+// ---- The phases of SpanCaster::run (span_caster.h's CastPhase), in the order they run: each
+// reads the products of those before it and writes its own.
 
 struct BinnedSphere {
   Sphere sphere;
   PixelRect rect;
 };
 
+// How many spheres are in view, and the depth range of their nearest points.
+struct InView {
+  std::size_t count = 0;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+};
+
+// project's product: the spheres and the inner-full cells' boxes with the pixels each may cover.
+struct Projected {
+  std::vector<Sphere> spheres;          // per particle, view space (stale where out of view)
+  std::vector<PixelRect> sphere_rects;  // per particle; empty: out of view
+  InView in_view;
+  std::vector<Box> boxes;            // the inner-full cells merged, world space
+  std::vector<PixelRect> box_rects;  // per box
+};
+
+// bin's product: per screen tile its spheres, nearest first, and its boxes.
+struct TileBins {
+  Bins sphere_bins, box_bins;         // per tile its range of `spheres`, of `boxes`
+  std::vector<BinnedSphere> spheres;  // each tile's side by side: a tile reads them as a stream
+  std::vector<std::uint32_t> boxes;   // indices into Projected::boxes
+
+  std::span<const BinnedSphere> spheres_of(std::size_t t) const {
+    return std::span(spheres).subspan(sphere_bins.start[t],
+                                      sphere_bins.start[t + 1] - sphere_bins.start[t]);
+  }
+  std::span<const std::uint32_t> boxes_of(std::size_t t) const {
+    return std::span(boxes).subspan(box_bins.start[t], box_bins.start[t + 1] - box_bins.start[t]);
+  }
+};
+
+// What the tiles counted on the way (CastCounts).
+struct TileTallies {
+  std::int64_t chord_tests = 0, spans_found = 0, capped_pixels = 0;
+};
+
+// Project: every sphere to view space with the pixels it may cover (none: out of view), in
+// parallel, and the depth range of the nearest points of those in view; the inner-full cells
+// (none when `cells` is empty) as merged world boxes with theirs.
+void project(const PerspectiveGrid& grid, std::span<const ParticleSphere> particles,
+             const CellStatesView& cells, BoxScratch& scratch, Projected& out) {
+  const ViewFrame& view = grid.view();
+  const double near = grid.near();
+  const std::size_t n = particles.size();
+  out.spheres.resize(n);
+  out.sphere_rects.resize(n);
+  out.in_view = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, 4096), InView{},
+      [&](const tbb::blocked_range<std::size_t>& range, InView found) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          const ParticleSphere& p = particles[i];
+          out.sphere_rects[i] = {};
+          if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) &&
+                std::isfinite(p.radius) && p.radius > 0))
+            continue;
+          const Sphere s{view.to_view(glm::dvec3(p.x, p.y, p.z)), p.radius};
+          if (s.center.z + s.radius <= near) continue;
+          const PixelRect r = grid.sphere_pixels(s.center, s.radius);
+          if (r.empty()) continue;
+          out.spheres[i] = s;
+          out.sphere_rects[i] = r;
+          ++found.count;
+          found.lo = std::min(found.lo, s.center.z - s.radius);
+          found.hi = std::max(found.hi, s.center.z - s.radius);
+        }
+        return found;
+      },
+      [](InView a, const InView& b) {
+        return InView{a.count + b.count, std::min(a.lo, b.lo), std::max(a.hi, b.hi)};
+      });
+  cell_boxes(grid, cells, scratch, out.boxes, out.box_rects);
+}
+
+// Sort: the spheres in view, nearest first, to a kDepthBins-th of the depth range (a counting
+// sort: two passes instead of n log n comparisons). The tiles keep this order, so each pixel's
+// chords arrive almost in depth order and most of them only move the last exit of its union
+// (join). The union does not depend on the order. At 100 k particles 8 439 of 1.17 M joins take
+// the slow path with 256 bins, 7 798 with 4 096, 165 742 with 16.
+void sort_by_depth(const Projected& in, Bins& depth_bins, std::vector<BinnedSphere>& sorted) {
+  constexpr std::size_t kDepthBins = 256;
+  const InView& in_view = in.in_view;
+  const double per_depth =
+      in_view.hi > in_view.lo ? double(kDepthBins - 1) / (in_view.hi - in_view.lo) : 0.0;
+  const auto depth_bin = [&](std::size_t i, auto&& f) {
+    if (in.sphere_rects[i].empty()) return;
+    const Sphere& s = in.spheres[i];
+    f(std::size_t((s.center.z - s.radius - in_view.lo) * per_depth));
+  };
+  depth_bins.count(kDepthBins, in.spheres.size(), depth_bin);
+  sorted.resize(in_view.count);
+  depth_bins.place(depth_bin, [&](std::size_t i, std::size_t slot) {
+    sorted[slot] = {in.spheres[i], in.sphere_rects[i]};
+  });
+}
+
+// Bin: the boxes and the sorted spheres into the tiles their pixels touch, each tile's in the
+// order they come.
+void bin_to_tiles(const Tiles& screen, std::span<const BinnedSphere> sorted,
+                  std::span<const PixelRect> box_rects, TileBins& out) {
+  const auto box_tiles = [&](std::size_t i, auto&& f) { screen.each(box_rects[i], f); };
+  out.box_bins.count(screen.count(), box_rects.size(), box_tiles);
+  out.boxes.resize(out.box_bins.size());
+  out.box_bins.place(box_tiles,
+                     [&](std::size_t i, std::size_t slot) { out.boxes[slot] = std::uint32_t(i); });
+  const auto sphere_tiles = [&](std::size_t k, auto&& f) { screen.each(sorted[k].rect, f); };
+  out.sphere_bins.count(screen.count(), sorted.size(), sphere_tiles);
+  out.spheres.resize(out.sphere_bins.size());
+  out.sphere_bins.place(sphere_tiles,
+                        [&](std::size_t k, std::size_t slot) { out.spheres[slot] = sorted[k]; });
+}
+
+// Pixel (x, y)'s place in a tile's arrays.
+inline std::size_t local(const PixelRect& tile, int x, int y) {
+  return std::size_t(x - tile.x0 + (y - tile.y0) * kTile);
+}
+
+// The rays of a tile's pixels and their empty unions: per column a, per row b (view space),
+// per pixel 1 / |ray|^2 and |ray|.
+void start_tile(TileLists& l, const PixelRect& tile, const ViewFrame& view) {
+  for (int x = tile.x0; x <= tile.x1; ++x) l.a[x - tile.x0] = view.view_ray(x, tile.y0).x;
+  for (int y = tile.y0; y <= tile.y1; ++y) l.b[y - tile.y0] = view.view_ray(tile.x0, y).y;
+  for (int y = tile.y0; y <= tile.y1; ++y)
+    for (int x = tile.x0; x <= tile.x1; ++x) {
+      const std::size_t p = local(tile, x, y);
+      l.before[p].clear();
+      l.last[p] = {kNone, kNone};
+      const double a = l.a[x - tile.x0], b = l.b[y - tile.y0];
+      const double d2 = a * a + b * b + 1.0;
+      l.inv_d2[p] = 1 / d2;
+      l.scale[p] = std::sqrt(d2);
+    }
+}
+
+// The spheres' chords over the tile, into its pixels' unions: row_chords per row of each sphere,
+// the square root only where the chord can change the union.
+void sphere_chords(TileLists& l, const PixelRect& tile, std::span<const BinnedSphere> spheres,
+                   const DepthRule& rule) {
+  for (const BinnedSphere& binned : spheres) {
+    const PixelRect r = clip(binned.rect, tile);
+    l.chord_tests += r.area();
+    for (int y = r.y0 - tile.y0; y <= r.y1 - tile.y0; ++y) {
+      row_chords(l, binned.sphere, y, r.x0 - tile.x0, r.x1 - tile.x0);
+      for (int x = r.x0 - tile.x0; x <= r.x1 - tile.x0; ++x) {
+        if (!(l.changes[x] > 0)) continue;
+        const double half = std::sqrt(l.h2[x] * l.inv_d2[x + y * kTile]);
+        keep(l, std::size_t(x + y * kTile), {l.zc[x] - half, l.zc[x] + half}, rule);
+      }
+    }
+  }
+}
+
+// Sec. 4.3: inner-full cells are fluid whose particles were left out. The chords of the tile's
+// boxes (`items` into `in`'s) into its pixels' unions.
+void box_chords(TileLists& l, const PixelRect& tile, const ViewFrame& view,
+                std::span<const std::uint32_t> items, const Projected& in, const DepthRule& rule) {
+  for (const std::uint32_t i : items) {
+    const PixelRect r = clip(in.box_rects[i], tile);
+    for (int y = r.y0; y <= r.y1; ++y)
+      for (int x = r.x0; x <= r.x1; ++x) {
+        Interval iv;
+        if (box_chord(view.eye, view.world_ray(x, y), in.boxes[i], iv))
+          keep(l, local(tile, x, y), iv, rule);
+      }
+  }
+}
+
+// The tile's unions as its spans (SpanListBuilder: the span cap), each pixel's PixelSpans into
+// `pixels` (rows of `width`) with its offset into the tile's spans.
+void tile_spans(TileLists& l, const PixelRect& tile, std::uint32_t max_spans,
+                std::vector<Span>& spans, std::span<PixelSpans> pixels, int width) {
+  spans.clear();
+  SpanListBuilder builder(spans, max_spans);
+  for (int y = tile.y0; y <= tile.y1; ++y)
+    for (int x = tile.x0; x <= tile.x1; ++x) {
+      const std::size_t p = local(tile, x, y);
+      const double scale = l.scale[p];
+      builder.begin();
+      for (const Interval& iv : l.before[p]) builder.add(iv.entry, iv.exit, scale);
+      if (l.last[p].exit != kNone) builder.add(l.last[p].entry, l.last[p].exit, scale);
+      const PixelSpans found = builder.end();
+      l.spans_found += found.total;
+      l.capped_pixels += found.capped();
+      pixels[std::size_t(x) + std::size_t(y) * std::size_t(width)] = found;
+    }
+}
+
+// Cast tiles: per tile, in parallel, each pixel's union of the chords of the tile's spheres and
+// boxes, and from the unions the tile's spans; every pixel of `pixels` written, its offset into
+// its tile's spans. Memory: one union per pixel of the tiles in flight.
+TileTallies cast_tiles(const PerspectiveGrid& grid, const CastSettings& settings,
+                       const Tiles& screen, const TileBins& bins, const Projected& in,
+                       tbb::enumerable_thread_specific<TileLists>& lists,
+                       std::vector<std::vector<Span>>& tile_spans_out,
+                       std::vector<PixelSpans>& pixels) {
+  pixels.assign(std::size_t(screen.width) * std::size_t(screen.height), PixelSpans{});
+  tile_spans_out.resize(screen.count());
+  for (TileLists& l : lists) l.chord_tests = l.spans_found = l.capped_pixels = 0;
+  const ViewFrame& view = grid.view();
+  const DepthRule rule{grid.near(), grid.grid_far(), settings.gap_bridging};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, screen.count()),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      TileLists& l = lists.local();
+                      for (std::size_t t = range.begin(); t != range.end(); ++t) {
+                        const PixelRect tile = screen.rect(t);
+                        start_tile(l, tile, view);
+                        sphere_chords(l, tile, bins.spheres_of(t), rule);
+                        box_chords(l, tile, view, bins.boxes_of(t), in, rule);
+                        tile_spans(l, tile, settings.max_spans, tile_spans_out[t], pixels,
+                                   screen.width);
+                      }
+                    });
+  TileTallies sum;
+  for (const TileLists& l : lists) {
+    sum.chord_tests += l.chord_tests;
+    sum.spans_found += l.spans_found;
+    sum.capped_pixels += l.capped_pixels;
+  }
+  return sum;
+}
+
+// Join: the tiles' spans into `out` in tile order, each pixel's offset moved by the spans of the
+// tiles before its own, so that the image does not depend on the threads. `base`: scratch.
+void join_tiles(const Tiles& screen, const std::vector<std::vector<Span>>& tile_spans,
+                std::vector<std::uint32_t>& base, SpanImage& out) {
+  const std::size_t tiles = screen.count();
+  base.assign(tiles + 1, 0);
+  for (std::size_t t = 0; t < tiles; ++t)
+    base[t + 1] = base[t] + std::uint32_t(tile_spans[t].size());
+  out.spans.resize(base.back());
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, tiles), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t t = range.begin(); t != range.end(); ++t) {
+          std::copy(tile_spans[t].begin(), tile_spans[t].end(), out.spans.begin() + base[t]);
+          const PixelRect r = screen.rect(t);
+          for (int y = r.y0; y <= r.y1; ++y)
+            for (int x = r.x0; x <= r.x1; ++x)
+              out.pixels[std::size_t(x) + std::size_t(y) * std::size_t(screen.width)].offset +=
+                  base[t];
+        }
+      });
+}
+
+}  // namespace
+
+// Each phase's product, kept from frame to frame (their storage reused).
 struct SpanCaster::Work {
-  std::vector<BinnedSphere> sorted;  // the spheres in view, nearest first
-  std::vector<BinnedSphere> binned;  // sphere_bins' items, the spheres themselves
-  std::vector<Sphere> spheres;
-  std::vector<PixelRect> sphere_rects, box_rects;
-  std::vector<std::uint32_t> box_items;  // box_bins' items
-  std::vector<Box> boxes;
-  std::vector<CellBox> cell_boxes;
+  Projected projected;
   BoxScratch box_scratch;
-  Bins depth_bins, sphere_bins, box_bins;
-  std::vector<std::vector<Span>> tile_spans;
-  std::vector<std::uint32_t> tile_base;  // the first span of each tile in the image
+  Bins depth_bins;
+  std::vector<BinnedSphere> sorted;  // the spheres in view, nearest first
+  TileBins tile_bins;
   tbb::enumerable_thread_specific<TileLists> lists;
+  std::vector<std::vector<Span>> tile_spans;  // per tile
+  std::vector<std::uint32_t> tile_base;       // the first span of each tile in the image
 };
 
 SpanCaster::SpanCaster() : work_(std::make_unique<Work>()) {}
@@ -361,180 +623,39 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
                            const CellStatesView& cells, const CastSettings& settings,
                            SpanImage& out) {
   Work& w = *work_;
-  const int width = grid.width(), height = grid.height();
   out.grid = grid;
-  out.pixels.assign(std::size_t(width) * std::size_t(height), PixelSpans{});
   out.spans.clear();
   CastCounts counts;
-  if (grid.empty()) return counts;
-  const ViewFrame& view = grid.view();
-  const double near = grid.near(), far = grid.grid_far();
-
-  // Every sphere to view space with the pixels it may cover (none: out of view), in parallel,
-  // and the depth range of the nearest points of those in view.
-  struct InView {
-    std::size_t count = 0;
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  };
-  const std::size_t n = particles.size();
-  w.spheres.resize(n);
-  w.sphere_rects.resize(n);
-  const InView in_view = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, n, 4096), InView{},
-      [&](const tbb::blocked_range<std::size_t>& range, InView found) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-          const ParticleSphere& p = particles[i];
-          w.sphere_rects[i] = {};
-          if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) &&
-                std::isfinite(p.radius) && p.radius > 0))
-            continue;
-          const Sphere s{view.to_view(glm::dvec3(p.x, p.y, p.z)), p.radius};
-          if (s.center.z + s.radius <= near) continue;
-          const PixelRect r = grid.sphere_pixels(s.center, s.radius);
-          if (r.empty()) continue;
-          w.spheres[i] = s;
-          w.sphere_rects[i] = r;
-          ++found.count;
-          found.lo = std::min(found.lo, s.center.z - s.radius);
-          found.hi = std::max(found.hi, s.center.z - s.radius);
-        }
-        return found;
-      },
-      [](InView a, const InView& b) {
-        return InView{a.count + b.count, std::min(a.lo, b.lo), std::max(a.hi, b.hi)};
-      });
-  const std::size_t kept = in_view.count;
-  // Nearest first, to a kDepthBins-th of the depth range (a counting sort: two passes instead
-  // of n log n comparisons): the bins keep this order, so each pixel's chords arrive almost
-  // in depth order and most of them only move the last exit of its union (join). The union
-  // does not depend on the order. At 100 k particles 8 439 of 1.17 M joins take the slow
-  // path with 256 bins, 7 798 with 4 096, 165 742 with 16.
-  constexpr std::size_t kDepthBins = 256;
-  const double per_depth =
-      in_view.hi > in_view.lo ? double(kDepthBins - 1) / (in_view.hi - in_view.lo) : 0.0;
-  const auto depth_bin = [&](std::size_t i, auto&& f) {
-    if (w.sphere_rects[i].empty()) return;
-    const Sphere& s = w.spheres[i];
-    f(std::size_t((s.center.z - s.radius - in_view.lo) * per_depth));
-  };
-  w.depth_bins.count(kDepthBins, n, depth_bin);
-  w.sorted.resize(kept);
-  w.depth_bins.place(depth_bin, [&](std::size_t i, std::size_t slot) {
-    w.sorted[slot] = {w.spheres[i], w.sphere_rects[i]};
-  });
-  if (settings.use_cell_states)
-    cell_boxes(grid, cells, w.cell_boxes, w.box_scratch, w.boxes, w.box_rects);
-  else w.boxes.clear(), w.box_rects.clear();
-  const Tiles screen(width, height);
-  const auto box_tiles = [&](std::size_t i, auto&& f) { screen.each(w.box_rects[i], f); };
-  w.box_bins.count(screen.count(), w.box_rects.size(), box_tiles);
-  w.box_items.resize(w.box_bins.size());
-  w.box_bins.place(box_tiles,
-                   [&](std::size_t i, std::size_t slot) { w.box_items[slot] = std::uint32_t(i); });
-  // Each tile's spheres side by side, nearest first: the tiles read them as a stream.
-  const auto sphere_tiles = [&](std::size_t k, auto&& f) { screen.each(w.sorted[k].rect, f); };
-  w.sphere_bins.count(screen.count(), kept, sphere_tiles);
-  w.binned.resize(w.sphere_bins.size());
-  w.sphere_bins.place(sphere_tiles,
-                      [&](std::size_t k, std::size_t slot) { w.binned[slot] = w.sorted[k]; });
-  const int tiles_x = screen.nx, tiles = int(screen.count());
-  w.tile_spans.resize(std::size_t(tiles));
-  for (TileLists& l : w.lists) l.chord_tests = l.spans_found = l.capped_pixels = 0;
-
-  tbb::parallel_for(tbb::blocked_range<int>(0, tiles), [&](const tbb::blocked_range<int>& range) {
-    TileLists& l = w.lists.local();
-    for (int t = range.begin(); t != range.end(); ++t) {
-      const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
-      const int x1 = std::min(x0 + kTile, width) - 1, y1 = std::min(y0 + kTile, height) - 1;
-      const auto local = [&](int x, int y) { return std::size_t(x - x0 + (y - y0) * kTile); };
-      for (int x = x0; x <= x1; ++x) l.a[x - x0] = view.view_ray(x, y0).x;
-      for (int y = y0; y <= y1; ++y) l.b[y - y0] = view.view_ray(x0, y).y;
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-          const std::size_t p = local(x, y);
-          l.before[p].clear();
-          l.last[p] = {kNone, kNone};
-          const double a = l.a[x - x0], b = l.b[y - y0];
-          const double d2 = a * a + b * b + 1.0;
-          l.inv_d2[p] = 1 / d2;
-          l.scale[p] = std::sqrt(d2);
-        }
-      const double gap = settings.gap_bridging;
-      const auto keep = [&](std::size_t pixel, Interval iv) {
-        iv.entry = std::max(iv.entry, near);
-        iv.exit = std::min(iv.exit, far);
-        if (iv.entry < iv.exit) join(l, pixel, iv, gap);
-      };
-      const std::size_t first = w.sphere_bins.start[std::size_t(t)];
-      const std::size_t last = w.sphere_bins.start[std::size_t(t) + 1];
-      for (std::size_t k = first; k < last; ++k) {
-        const Sphere& s = w.binned[k].sphere;
-        const PixelRect r = clip(w.binned[k].rect, x0, y0, x1, y1);
-        l.chord_tests += r.area();
-        for (int y = r.y0 - y0; y <= r.y1 - y0; ++y) {
-          row_chords(l, s, y, r.x0 - x0, r.x1 - x0);
-          for (int x = r.x0 - x0; x <= r.x1 - x0; ++x) {
-            if (!(l.changes[x] > 0)) continue;
-            const double half = std::sqrt(l.h2[x] * l.inv_d2[x + y * kTile]);
-            keep(std::size_t(x + y * kTile), {l.zc[x] - half, l.zc[x] + half});
-          }
-        }
-      }
-      // Sec. 4.3: inner-full cells are fluid whose particles were left out.
-      for (std::size_t k = w.box_bins.start[std::size_t(t)];
-           k < w.box_bins.start[std::size_t(t) + 1]; ++k) {
-        const std::uint32_t i = w.box_items[k];
-        const PixelRect r = clip(w.box_rects[i], x0, y0, x1, y1);
-        for (int y = r.y0; y <= r.y1; ++y)
-          for (int x = r.x0; x <= r.x1; ++x) {
-            Interval iv;
-            if (box_chord(view.eye, view.world_ray(x, y), w.boxes[i], iv)) keep(local(x, y), iv);
-          }
-      }
-      std::vector<Span>& spans = w.tile_spans[std::size_t(t)];
-      spans.clear();
-      SpanListBuilder builder(spans, settings.max_spans);
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-          const double scale = l.scale[local(x, y)];
-          const std::size_t p = local(x, y);
-          builder.begin();
-          for (const Interval& iv : l.before[p]) builder.add(iv.entry, iv.exit, scale);
-          if (l.last[p].exit != kNone) builder.add(l.last[p].entry, l.last[p].exit, scale);
-          const PixelSpans found = builder.end();
-          l.spans_found += found.total;
-          l.capped_pixels += found.capped();
-          out.pixels[std::size_t(x) + std::size_t(y) * std::size_t(width)] = found;
-        }
-    }
-  });
-
-  // Tiles join in their order: offsets move by the spans of the tiles before.
-  std::vector<std::uint32_t>& base = w.tile_base;
-  base.assign(std::size_t(tiles) + 1, 0);
-  for (int t = 0; t < tiles; ++t)
-    base[std::size_t(t) + 1] =
-        base[std::size_t(t)] + std::uint32_t(w.tile_spans[std::size_t(t)].size());
-  out.spans.resize(base.back());
-  tbb::parallel_for(tbb::blocked_range<int>(0, tiles), [&](const tbb::blocked_range<int>& range) {
-    for (int t = range.begin(); t != range.end(); ++t) {
-      const std::vector<Span>& spans = w.tile_spans[std::size_t(t)];
-      std::copy(spans.begin(), spans.end(), out.spans.begin() + base[std::size_t(t)]);
-      const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
-      for (int y = y0; y < std::min(y0 + kTile, height); ++y)
-        for (int x = x0; x < std::min(x0 + kTile, width); ++x)
-          out.pixels[std::size_t(x) + std::size_t(y) * std::size_t(width)].offset +=
-              base[std::size_t(t)];
-    }
-  });
-  counts.spheres = std::int64_t(kept);
-  counts.cell_boxes = std::int64_t(w.boxes.size());
-  counts.tiles = tiles;
-  for (const TileLists& l : w.lists) {
-    counts.chord_tests += l.chord_tests;
-    counts.spans_found += l.spans_found;
-    counts.capped_pixels += l.capped_pixels;
+  if (grid.empty()) {
+    out.pixels.assign(std::size_t(grid.width()) * std::size_t(grid.height()), PixelSpans{});
+    return counts;
   }
+  // Each phase's wall time, read between the phases (nothing inside them).
+  Stopwatch clock;
+  const auto lap = [&](CastPhase p) {
+    counts.phase_ms[std::size_t(p)] = clock.ms();
+    clock.restart();
+  };
+  const Tiles screen(grid.width(), grid.height());
+  project(grid, particles, settings.use_cell_states ? cells : CellStatesView{}, w.box_scratch,
+          w.projected);
+  lap(CastPhase::project);
+  sort_by_depth(w.projected, w.depth_bins, w.sorted);
+  lap(CastPhase::sort);
+  bin_to_tiles(screen, w.sorted, w.projected.box_rects, w.tile_bins);
+  lap(CastPhase::bin);
+  const TileTallies tallies = cast_tiles(grid, settings, screen, w.tile_bins, w.projected, w.lists,
+                                         w.tile_spans, out.pixels);
+  lap(CastPhase::cast_tiles);
+  join_tiles(screen, w.tile_spans, w.tile_base, out);
+  lap(CastPhase::join);
+
+  counts.spheres = std::int64_t(w.projected.in_view.count);
+  counts.cell_boxes = std::int64_t(w.projected.boxes.size());
+  counts.tiles = std::int64_t(screen.count());
+  counts.chord_tests = tallies.chord_tests;
+  counts.spans_found = tallies.spans_found;
+  counts.capped_pixels = tallies.capped_pixels;
   return counts;
 }
 

@@ -12,6 +12,7 @@
 // Parallel with oneTBB. Standard library only in this header.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -68,6 +69,18 @@ struct ClassifyCounts {
   bool grid_built = false;  // the adapter sorted the particles itself
 };
 
+// The phases of a classification, in the order they run; kClassifyPhaseNames[p] names phase p.
+//   ranges    the grid's geometry and per-cell ranges of the particles: the solver's own, or a
+//             counting sort of a per-particle cell index (the solver's, or from the positions)
+//   count     per cell its valid particles (NaN/inf left out), the grid's claims checked
+//   classify  per cell its state: occupancy and the inner bit
+//   compact   the particles of the cells that are not inner into the boundary spheres and the
+//             attributes asked for
+enum class ClassifyPhase { ranges, count, classify, compact };
+inline constexpr std::array<const char*, 4> kClassifyPhaseNames{"ranges", "count", "classify",
+                                                                "compact"};
+static_assert(kClassifyPhaseNames.size() == std::size_t(ClassifyPhase::compact) + 1);
+
 // A compacted attribute: `components` floats per boundary particle, in boundary order.
 
 struct Classification {
@@ -78,6 +91,9 @@ struct Classification {
   ClassifyCounts counts;
   double seconds_classify = 0;  // counting (and sorting) and the cell states
   double seconds_compact = 0;   // the boundary spheres and attributes
+  // Wall time of each phase, milliseconds, by ClassifyPhase: seconds_classify is the first
+  // three, seconds_compact the last.
+  std::array<double, kClassifyPhaseNames.size()> phase_ms{};
 
   CellStatesView cell_states() const {
     return {geometry.origin, geometry.cell_size, geometry.dims,

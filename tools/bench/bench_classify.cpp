@@ -8,10 +8,12 @@
 // solver's own compact grid R times (the adapter's render-step work, with the velocity and density
 // attributes compacted too) and reports the median, the throughput in particles per second,
 // and the classification's cost as a fraction of one solver step. The same for the layout
-// where the solver shares no grid (the adapter's counting sort).
+// where the solver shares no grid (the adapter's counting sort). Under each size's row, the
+// medians of the classification's phases (voxspan/classify.h's ClassifyPhase) for both layouts.
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -53,6 +55,7 @@ std::vector<std::size_t> parse_sizes(const std::string& text) {
 
 struct Timing {
   double seconds = 0, classify = 0, compact = 0;
+  std::array<double, voxspan::kClassifyPhaseNames.size()> phase_ms{};  // medians, by phase
   voxspan::ClassifyCounts counts;
 };
 
@@ -61,14 +64,26 @@ Timing time_classification(const voxspan::ParticleView& view, const voxspan::Gri
   voxspan::Classifier classifier;
   classifier.run(view, grid, options);  // warm: buffers allocated as in the steady state
   std::vector<double> total, classify, compact;
+  std::array<std::vector<double>, voxspan::kClassifyPhaseNames.size()> phases;
   for (int r = 0; r < repeats; ++r) {
     const auto t0 = Clock::now();
     const voxspan::Classification& c = classifier.run(view, grid, options);
     total.push_back(seconds_since(t0));
     classify.push_back(c.seconds_classify);
     compact.push_back(c.seconds_compact);
+    for (std::size_t p = 0; p < phases.size(); ++p) phases[p].push_back(c.phase_ms[p]);
   }
-  return {median(total), median(classify), median(compact), classifier.result().counts};
+  Timing t{median(total), median(classify), median(compact), {}, classifier.result().counts};
+  for (std::size_t p = 0; p < phases.size(); ++p) t.phase_ms[p] = median(phases[p]);
+  return t;
+}
+
+// The phases' medians of one layout, on a line of their own.
+void print_phases(const char* layout, const Timing& t) {
+  std::printf("%10s %-9s", "", layout);
+  for (std::size_t p = 0; p < t.phase_ms.size(); ++p)
+    std::printf(" %s %.2f", voxspan::kClassifyPhaseNames[p], t.phase_ms[p]);
+  std::printf(" ms\n");
 }
 
 }  // namespace
@@ -133,6 +148,8 @@ int main(int argc, char** argv) {
                 f.size(), 100.0 * double(own.counts.boundary) / np, 1e3 * step, 1e3 * own.seconds,
                 np / own.seconds, 100 * own.seconds / step, 1e3 * built.seconds, np / built.seconds,
                 1e3 * own.classify, 1e3 * own.compact);
+    print_phases("own grid:", own);
+    print_phases("no grid:", built);
     std::fflush(stdout);
   }
   return 0;

@@ -1,7 +1,8 @@
 // bench_renderers: the GPU renderer (GL: an NVIDIA GPU, or llvmpipe on a CPU) and the CPU
 // renderer (render/cpu/cpu_renderer.h) on the same particles and camera in one run, per pass
 // side by side with the ratio, and the exact reference's caster (render/reference/
-// exact_spans.h: per pixel every candidate of its 8x8 bin, in double) on the spans alone.
+// exact_spans.h: per pixel every candidate of its 8x8 bin, in double) on the spans alone, with
+// the CPU renderer's caster on the same grid phase by phase (span_caster.h's CastPhase).
 //
 // The scene is bench_shading's: the WCSPH dam break at Martin & Moyce's T (--time), about
 // --particles fluid particles, state cached in --state (or --ritter). Each frame runs the
@@ -15,6 +16,7 @@
 //                   [--frames F] [--modes opaque,translucent,refractive] [--ao]
 //                   [--renderers gl,cpu] [--csv FILE] [--platform auto|nvidia|device|surfaceless]
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -24,6 +26,7 @@
 #include <vector>
 
 #include "render/cpu/cpu_renderer.h"
+#include "render/cpu/span_caster.h"
 #include "render/gl/context.h"
 #include "render/gl/gpu_recorder.h"
 #include "render/gl/renderer.h"
@@ -150,6 +153,30 @@ class CpuFrame final : public Frame {
   const FloatImage* picture_ = nullptr;
 };
 
+// The CPU renderer's cast by phase (render/cpu/span_caster.h): its caster on the same grid,
+// particles and settings, the median of each phase over the frames after one warm-up.
+void print_cast_phases(const PerspectiveGrid& grid, const tools::DamBreakState& s,
+                       const VoxelizeOptions& o, const Args& a, std::ofstream& csv) {
+  SpanCaster caster;
+  SpanImage spans;
+  std::array<std::vector<double>, kCastPhaseNames.size()> ms;
+  for (int f = -1; f < std::max(1, a.frames); ++f) {
+    const CastCounts counts =
+        caster.run(grid, s.classification.boundary, s.classification.cell_states(),
+                   {o.gap_bridging, o.max_spans, o.use_cell_states}, spans);
+    if (f < 0) continue;  // the warm-up
+    for (std::size_t p = 0; p < ms.size(); ++p) ms[p].push_back(counts.phase_ms[p]);
+  }
+  std::printf("CPU renderer's cast by phase, median ms:");
+  for (std::size_t p = 0; p < ms.size(); ++p) {
+    std::printf(" %s %.2f", kCastPhaseNames[p], tools::median(ms[p]));
+    if (csv)
+      csv << s.x.size() << ',' << a.width << ',' << a.height << ",spans,cpu,cast."
+          << kCastPhaseNames[p] << ',' << tools::median(ms[p]) << '\n';
+  }
+  std::printf("\n\n");
+}
+
 RenderOptions options_for(const tools::DamBreakState& s, const Args& a) {
   RenderOptions o;
   o.voxelize.grid.alpha_degrees = a.alpha;
@@ -209,6 +236,7 @@ int run(const Args& a) {
     if (csv)
       csv << s.x.size() << ',' << a.width << ',' << a.height << ",spans,reference,cast,"
           << tools::median(ms) << '\n';
+    print_cast_phases(grid, s, o.voxelize, a, csv);
   }
 
   std::printf("%-12s %-4s", "median ms", "");
