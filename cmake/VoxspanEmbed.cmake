@@ -7,7 +7,7 @@ set(VOXSPAN_EMBED_SCRIPT "${CMAKE_CURRENT_LIST_DIR}/embed_files.cmake")
 
 function(voxspan_embed_files target)
   cmake_parse_arguments(ARG "" "NAME" "FILES" ${ARGN})
-  set(out "${CMAKE_CURRENT_BINARY_DIR}/embedded_${ARG_NAME}.cpp")
+  set(out "${CMAKE_CURRENT_BINARY_DIR}/embedded_${target}_${ARG_NAME}.cpp")
   set(abs_files "")
   foreach(f IN LISTS ARG_FILES)
     get_filename_component(a "${f}" ABSOLUTE)

@@ -18,12 +18,12 @@
 #include <regex>
 #include <sstream>
 
-#include "fresh_child.h"
 #include "dambreak_run.h"
-#include "error_message.h"
-#include "log_capture.h"
+#include "fresh_child.h"
 #include "output_files.h"
-#include "temp_folder.h"
+#include "tests/support/error_message.h"
+#include "tests/support/log_capture.h"
+#include "tests/support/temp_folder.h"
 #include "voxspan/adapter.h"
 #include "voxspan/insitu.h"
 #include "voxspan/voxspan.h"

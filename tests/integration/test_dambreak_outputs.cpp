@@ -12,10 +12,10 @@
 
 #include "dambreak_run.h"
 #include "output_files.h"
-#include "temp_folder.h"
+#include "tests/support/temp_folder.h"
 #include "voxspan/adapter.h"
-#include "voxspan/insitu.h"
 #include "voxspan/error.h"
+#include "voxspan/insitu.h"
 #include "voxspan/voxspan.h"
 
 namespace voxspan {

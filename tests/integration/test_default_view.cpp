@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "output_files.h"
-#include "temp_folder.h"
+#include "tests/support/temp_folder.h"
 #include "tools/scenes/scenes.h"
 #include "voxspan/adapter.h"
 #include "voxspan/insitu.h"

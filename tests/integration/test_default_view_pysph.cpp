@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "output_files.h"
-#include "temp_folder.h"
+#include "tests/support/temp_folder.h"
 #include "water_contrast.h"
 
 namespace voxspan {

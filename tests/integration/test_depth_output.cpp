@@ -13,9 +13,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "deep_exr_reader.h"
 #include "output_files.h"
-#include "temp_folder.h"
+#include "tests/support/deep_exr_reader.h"
+#include "tests/support/temp_folder.h"
 #include "tools/scenes/lattice.h"
 #include "voxspan/adapter.h"
 #include "voxspan/insitu.h"

@@ -10,7 +10,7 @@
 #include <regex>
 
 #include "output_files.h"
-#include "temp_folder.h"
+#include "tests/support/temp_folder.h"
 
 namespace voxspan {
 namespace {

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "allocation_counter.h"
 #include "dambreak_run.h"
-#include "temp_folder.h"
+#include "tests/support/allocation_counter.h"
+#include "tests/support/temp_folder.h"
 #include "voxspan/adapter.h"
 #include "voxspan/insitu.h"
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "log_capture.h"
 #include "output_files.h"
+#include "tests/support/log_capture.h"
 #include "voxspan/error.h"
 #include "voxspan/mpi.h"
 

@@ -1,8 +1,13 @@
 // The one stats record every pass reports into: times add up per pass, counts and figures by
-// name, one JSON line.
+// name, one JSON line; and the recorder the passes report through (the CPU renderer's, on the
+// wall clock: the GL one is tested with the GL passes, tests/render/gl/test_passes.cpp).
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "render/frame_stats.h"
+#include "render/recorder.h"
 
 namespace voxspan {
 namespace {
@@ -34,6 +39,36 @@ TEST(FrameStats, TimesCountsAndFiguresByName) {
             "\"gpu_bytes\":10,\"gpu_peak_bytes\":20}");
   s.clear();
   EXPECT_TRUE(s.passes.empty());
+}
+
+TEST(Recorder, ScopesAddTheirTimesWhenCollectedIntoTheStatsNamed) {
+  constexpr StatName sleep{"sleep"}, device{"device"}, tiles{"tiles"}, near{"grid.near"};
+  FrameStats first, second;
+  Recorder recorder(first);
+  {
+    auto outer = recorder.host(sleep);
+    auto inner = recorder.device(device);  // nests: no device timer here
+    std::this_thread::sleep_for(std::chrono::milliseconds(3));
+  }
+  recorder.count(tiles, 4);
+  recorder.add(tiles, 2);
+  recorder.figure(near, 0.5);
+  EXPECT_EQ(first.runs(sleep), 0) << "times arrive when collected";
+  EXPECT_EQ(first.count(tiles), 6) << "counts arrive at once";
+  recorder.collect();
+  EXPECT_EQ(first.runs(sleep), 1);
+  EXPECT_GE(first.ms(sleep), 2.5);
+  EXPECT_GE(first.ms(device), 2.5);
+  EXPECT_LE(first.ms(device), first.ms(sleep));
+  EXPECT_DOUBLE_EQ(first.figure(near), 0.5);
+  EXPECT_EQ(first.gpu_bytes, 0);
+
+  recorder.record_into(second);
+  { auto t = recorder.host(sleep); }
+  recorder.collect();
+  EXPECT_EQ(first.runs(sleep), 1) << "the first frame's stats are left alone";
+  EXPECT_EQ(second.runs(sleep), 1);
+  EXPECT_FALSE(second.has_count(tiles));
 }
 
 }  // namespace

@@ -5,15 +5,15 @@
 #include <cmath>
 #include <cstdio>
 
-#include "../gl/gl_fixture.h"
 #include "render/gl/gpu_recorder.h"
 #include "render/gl/tiling.h"
 #include "render/reference/exact_spans.h"
+#include "tests/render/gl/gl_fixture.h"
 #include "tools/scenes/accuracy_scenes.h"
 #include "voxspan/stopwatch.h"
 
 namespace voxspan::embedded {
-// The suite needs no test shaders of its own (tests/gl's fixture asks for the list).
+// The suite needs no test shaders of its own (tests/render/gl's fixture asks for the list).
 std::span<const EmbeddedFile> test_shaders() { return {}; }
 }  // namespace voxspan::embedded
 

@@ -7,7 +7,7 @@
 //     stats' stored and found counts those of the image, the layers within the grid's cap, and
 //     the GL renderer's GPU memory under a bound stated in pixels, layers and particles;
 //   - the spans within their stated error of the exact reference (render/reference): the GL
-//     ones by the voxelization's bounds (tests/render/test_voxelize_accuracy.cpp: counts and
+//     ones by the voxelization's bounds (tests/render/gl/test_voxelize_accuracy.cpp: counts and
 //     boundaries within one layer on >= 99.5 % of pixels, the summed inside length within
 //     1 % or 3/4 of a layer per boundary), the CPU ones equal to it up to float rounding (1e-3 of a
 //     layer).

@@ -1,4 +1,4 @@
-// The voxelization issue's accuracy scenes (tests/render/test_voxelize_accuracy.cpp: one
+// The voxelization issue's accuracy scenes (tests/render/gl/test_voxelize_accuracy.cpp: one
 // sphere, a lattice block, the dam break, 24 stacked layers, a 3D checkerboard, a random cloud
 // with mixed radii) with their cameras and voxelization options, for measuring how close the
 // shaded pictures come to the exact reference's.

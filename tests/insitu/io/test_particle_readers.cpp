@@ -1,0 +1,268 @@
+// Particle files for the offline tools: CSV (ours and ParaView's), XYZ, and PySPH's HDF5
+// output, written here with the HDF5 C API in PySPH's layout.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+#include "insitu/io/particle_data.h"
+#include "tests/support/error_message.h"
+#include "tests/support/temp_folder.h"
+
+namespace voxspan {
+namespace {
+
+std::string error_of(const std::filesystem::path& path, const ParticleReadOptions& options = {}) {
+  return test::error_message([&] { read_particles(path, options); });
+}
+
+TEST(CsvParticles, HeaderNamesPositionsRadiiScalarsAndVectors) {
+  test::TempFolder dir;
+  std::ofstream(dir / "p.csv") << "# made by a solver\n"
+                                  "x,y,z,radius,vx,vy,vz,pressure\n"
+                                  "0,0,0,0.5,1,2,3,100\n"
+                                  "1.5,-2,3e-2,0.25,4,5,6,200\n";
+  ParticleData d = read_particles(dir / "p.csv");
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_DOUBLE_EQ(d.positions[1][0], 1.5);
+  EXPECT_DOUBLE_EQ(d.positions[1][2], 0.03);
+  EXPECT_EQ(d.radii, (std::vector<float>{0.5f, 0.25f}));
+  ASSERT_EQ(d.attributes.size(), 2u);
+  EXPECT_EQ(d.attributes[0].name, "v");
+  EXPECT_EQ(d.attributes[0].components, 3);
+  EXPECT_EQ(d.attributes[0].values, (std::vector<float>{1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(d.attributes[1].name, "pressure");
+  EXPECT_EQ(d.spheres(1.f)[1].radius, 0.25f);
+}
+
+TEST(CsvParticles, ParaViewExportWithQuotedPointColumns) {
+  test::TempFolder dir;
+  std::ofstream(dir / "pv.csv") << "\"density\",\"velocity:0\",\"velocity:1\",\"velocity:2\","
+                                   "\"Points:0\",\"Points:1\",\"Points:2\"\n"
+                                   "1000,0,0,-1,0.1,0.2,0.3\n";
+  ParticleData d = read_particles(dir / "pv.csv");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_DOUBLE_EQ(d.positions[0][2], 0.3);
+  EXPECT_TRUE(d.radii.empty());
+  ASSERT_NE(d.attribute("velocity"), nullptr);
+  EXPECT_EQ(d.attribute("velocity")->values, (std::vector<float>{0, 0, -1}));
+  EXPECT_EQ(d.attribute("density")->values, (std::vector<float>{1000}));
+  EXPECT_EQ(d.spheres(0.1f)[0].radius, 0.1f);
+}
+
+TEST(CsvParticles, ErrorsNameFileAndLine) {
+  test::TempFolder dir;
+  std::ofstream(dir / "a.csv") << "1,2,3\n";
+  EXPECT_NE(error_of(dir / "a.csv").find("a.csv:1: the first row holds numbers"),
+            std::string::npos);
+  std::ofstream(dir / "b.csv") << "x,y,z\n1,2,3\n1,2\n";
+  EXPECT_NE(error_of(dir / "b.csv").find("b.csv:3: 2 fields; the header has 3"), std::string::npos);
+  std::ofstream(dir / "c.csv") << "x,y,z\n1,2,abc\n";
+  EXPECT_NE(error_of(dir / "c.csv").find("c.csv:2: column \"z\" is not a number: \"abc\""),
+            std::string::npos);
+  std::ofstream(dir / "d.csv") << "a,b\n1,2\n";
+  EXPECT_NE(error_of(dir / "d.csv").find("no position columns"), std::string::npos);
+  EXPECT_NE(error_of(dir / "none.csv").find("cannot open"), std::string::npos);
+  EXPECT_NE(error_of(dir / "x.obj").find("unknown extension \".obj\""), std::string::npos);
+}
+
+TEST(XyzParticles, PlainAndExtended) {
+  test::TempFolder dir;
+  std::ofstream(dir / "p.xyz") << "# x y z r\n0 0 0 0.5\n1 2 3 0.25\n";
+  ParticleData d = read_particles(dir / "p.xyz");
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_EQ(d.radii, (std::vector<float>{0.5f, 0.25f}));
+  std::ofstream(dir / "e.xyz") << "3\ncomment line\nO 0 0 0\nH 1 0 0\nH 0 1 0\n";
+  d = read_particles(dir / "e.xyz");
+  ASSERT_EQ(d.size(), 3u);
+  EXPECT_TRUE(d.radii.empty());
+  EXPECT_DOUBLE_EQ(d.positions[2][1], 1);
+  std::ofstream(dir / "w.xyz") << "2\n\n0 0 0\n";
+  EXPECT_NE(error_of(dir / "w.xyz").find("header says 2 particles; the file has 1"),
+            std::string::npos);
+  std::ofstream(dir / "x.xyz") << "0 0 0 1 7\n1 1 1\n";
+  EXPECT_NE(error_of(dir / "x.xyz").find("x.xyz:2: 3 columns; earlier lines have 5"),
+            std::string::npos);
+}
+
+// ---- PySPH ----
+
+void write_dataset(hid_t group, const char* name, const std::vector<double>& values,
+                   bool stored = true) {
+  hsize_t n = values.size();
+  hid_t space = H5Screate_simple(1, &n, nullptr);
+  hid_t set = H5Dcreate2(group, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (n > 0) H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+  // PySPH's per-property attributes: stored (numpy's bool, which h5py writes as an enum over
+  // int8), name, type, default.
+  hid_t scalar = H5Screate(H5S_SCALAR);
+  hid_t boolean = H5Tenum_create(H5T_NATIVE_SCHAR);
+  const signed char no = 0, yes = 1;
+  H5Tenum_insert(boolean, "FALSE", &no);
+  H5Tenum_insert(boolean, "TRUE", &yes);
+  hid_t flag = H5Acreate2(set, "stored", boolean, scalar, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(flag, boolean, stored ? &yes : &no);
+  H5Aclose(flag);
+  H5Tclose(boolean);
+  hid_t text = H5Tcopy(H5T_C_S1);
+  H5Tset_size(text, std::strlen(name));
+  hid_t attr = H5Acreate2(set, "name", text, scalar, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(attr, text, name);
+  H5Aclose(attr);
+  H5Tclose(text);
+  H5Sclose(scalar);
+  H5Dclose(set);
+  H5Sclose(space);
+}
+
+void write_array(hid_t particles, const char* name, const std::vector<std::array<double, 3>>& xyz,
+                 bool three_d, const std::vector<std::string>& extra, bool still = false) {
+  hid_t g = H5Gcreate2(particles, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t arrays = H5Gcreate2(g, "arrays", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t constants = H5Gcreate2(g, "constants", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  std::vector<double> x, y, z, u, v, w, m, rho;
+  for (std::size_t i = 0; i < xyz.size(); ++i) {
+    x.push_back(xyz[i][0]), y.push_back(xyz[i][1]), z.push_back(xyz[i][2]);
+    u.push_back(still ? 0.0 : 1.0 + i), v.push_back(still ? 0.0 : 2.0),
+        w.push_back(still ? 0.0 : -1.0), m.push_back(0.001), rho.push_back(1000 + i);
+  }
+  write_dataset(arrays, "x", x);
+  write_dataset(arrays, "y", y);
+  if (three_d) write_dataset(arrays, "z", z);
+  write_dataset(arrays, "u", u);
+  write_dataset(arrays, "v", v);
+  if (three_d) write_dataset(arrays, "w", w);
+  write_dataset(arrays, "m", m);
+  write_dataset(arrays, "rho", rho);
+  write_dataset(arrays, "au", {}, /*stored=*/false);  // declared, not output
+  for (const std::string& e : extra)
+    write_dataset(arrays, e.c_str(), std::vector<double>(xyz.size(), 7.0));
+  write_dataset(constants, "c0", {10.0});
+  H5Gclose(constants);
+  H5Gclose(arrays);
+  H5Gclose(g);
+}
+
+void write_pysph_file(const std::filesystem::path& path) {
+  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t solver = H5Gcreate2(f, "solver_data", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t scalar = H5Screate(H5S_SCALAR);
+  double t = 0.75;
+  long long count = 1500;
+  hid_t a = H5Acreate2(solver, "t", H5T_IEEE_F64LE, scalar, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(a, H5T_NATIVE_DOUBLE, &t);
+  H5Aclose(a);
+  a = H5Acreate2(solver, "count", H5T_STD_I64LE, scalar, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(a, H5T_NATIVE_LLONG, &count);
+  H5Aclose(a);
+  H5Sclose(scalar);
+  H5Gclose(solver);
+  hid_t particles = H5Gcreate2(f, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  write_array(particles, "fluid", {{0, 0, 0}, {0.1, 0, 0}, {0.2, 0.1, 0.3}}, true, {"p"});
+  write_array(particles, "solid", {{-1, -1, -1}, {-2, -2, -2}}, true, {});
+  H5Gclose(particles);
+  H5Fclose(f);
+}
+
+TEST(PySphParticles, ReadsEveryArrayWithTimeStepAndCommonProperties) {
+  test::TempFolder dir;
+  write_pysph_file(dir / "dam_break_1500.hdf5");
+  ParticleData d = read_particles(dir / "dam_break_1500.hdf5", {{"all"}});
+  ASSERT_EQ(d.size(), 5u);
+  EXPECT_TRUE(d.chosen.empty());
+  EXPECT_DOUBLE_EQ(d.positions[2][2], 0.3);
+  EXPECT_DOUBLE_EQ(d.positions[4][0], -2);
+  EXPECT_EQ(d.time, 0.75);
+  EXPECT_EQ(d.step, 1500);
+  EXPECT_TRUE(d.radii.empty());
+  ASSERT_NE(d.attribute("rho"), nullptr);
+  EXPECT_EQ(d.attribute("rho")->values, (std::vector<float>{1000, 1001, 1002, 1000, 1001}));
+  EXPECT_NE(d.attribute("m"), nullptr);
+  EXPECT_EQ(d.attribute("p"), nullptr);   // only the fluid has it
+  EXPECT_EQ(d.attribute("au"), nullptr);  // not stored
+  const Attribute* vel = d.attribute("velocity");
+  ASSERT_NE(vel, nullptr);
+  EXPECT_EQ(vel->components, 3);
+  EXPECT_EQ(std::vector<float>(vel->values.begin(), vel->values.begin() + 6),
+            (std::vector<float>{1, 2, -1, 2, 2, -1}));
+}
+
+TEST(PySphParticles, SelectsArraysByName) {
+  test::TempFolder dir;
+  write_pysph_file(dir / "out.hdf5");
+  ParticleData fluid = read_particles(dir / "out.hdf5", {{"fluid"}});
+  ASSERT_EQ(fluid.size(), 3u);
+  EXPECT_NE(fluid.attribute("p"), nullptr);
+  std::string e = error_of(dir / "out.hdf5", {{"water"}});
+  EXPECT_NE(e.find("no particle array \"water\" (the file has: fluid, solid)"), std::string::npos)
+      << e;
+  std::ofstream(dir / "fake.h5") << "not hdf5";
+  EXPECT_NE(error_of(dir / "fake.h5").find("not an HDF5 file"), std::string::npos);
+}
+
+TEST(PySphParticles, WithoutNamesTheFluidIsReadAndTheSpacingComesFromMassAndDensity) {
+  test::TempFolder dir;
+  write_pysph_file(dir / "named.hdf5");  // arrays fluid and solid, both moving
+  const ParticleData named = read_particles(dir / "named.hdf5");
+  EXPECT_EQ(named.size(), 3u);
+  EXPECT_EQ(named.chosen,
+            "PySPH arrays fluid (named like a fluid); left out: solid (--arrays picks)");
+  // m = 0.001, rho = 1000..1002: (m / rho)^(1/3) about 0.01 (the median particle has 1001).
+  ASSERT_TRUE(named.spacing.has_value());
+  EXPECT_NEAR(*named.spacing, std::cbrt(0.001 / 1001), 1e-12);
+
+  hid_t f = H5Fcreate((dir / "moving.h5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t particles = H5Gcreate2(f, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  write_array(particles, "tank", {{0, 0, 0}, {1, 0, 0}}, true, {}, /*still=*/true);
+  write_array(particles, "water", {{0.5, 0.5, 0.5}}, true, {});
+  H5Gclose(particles);
+  H5Fclose(f);
+  const ParticleData moving = read_particles(dir / "moving.h5");
+  ASSERT_EQ(moving.size(), 1u);
+  EXPECT_DOUBLE_EQ(moving.positions[0][0], 0.5);
+  EXPECT_EQ(moving.chosen,
+            "PySPH arrays water (their particles move, the others' do not); left out: tank "
+            "(--arrays picks)");
+  EXPECT_EQ(read_particles(dir / "moving.h5", {{"all"}}).size(), 3u);
+}
+
+TEST(PySphParticles, TwoDimensionalRunsGetZeroZ) {
+  test::TempFolder dir;
+  hid_t f = H5Fcreate((dir / "2d.h5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t particles = H5Gcreate2(f, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  write_array(particles, "fluid", {{1, 2, 99}, {3, 4, 99}}, false, {});
+  H5Gclose(particles);
+  H5Fclose(f);
+  ParticleData d = read_particles(dir / "2d.h5");
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_DOUBLE_EQ(d.positions[1][1], 4);
+  EXPECT_DOUBLE_EQ(d.positions[1][2], 0);
+  EXPECT_FALSE(d.time.has_value());
+  EXPECT_EQ(d.attribute("velocity")->values[5], 0.f);
+}
+
+// As PySPH writes a 2D run (trivial_inlet_outlet): z stored, all 0, the mass an area's; and
+// an array with no particles yet, its stored properties empty.
+TEST(PySphParticles, TwoDimensionalRunsWithZStoredAndAnEmptyFluid) {
+  test::TempFolder dir;
+  hid_t f = H5Fcreate((dir / "inlet.h5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t particles = H5Gcreate2(f, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  write_array(particles, "fluid", {}, true, {});
+  write_array(particles, "inlet", {{0, 0, 0}, {0.1, 0, 0}, {0.2, 0, 0}}, true, {"p"});
+  H5Gclose(particles);
+  H5Fclose(f);
+  const ParticleData fluid = read_particles(dir / "inlet.h5");
+  EXPECT_EQ(fluid.size(), 0u);
+  EXPECT_EQ(fluid.chosen,
+            "PySPH arrays fluid (named like a fluid); left out: inlet (--arrays picks)");
+  const ParticleData all = read_particles(dir / "inlet.h5", {{"all"}});
+  ASSERT_EQ(all.size(), 3u);
+  EXPECT_NE(all.attribute("p"), nullptr);  // the empty array has no say
+  ASSERT_TRUE(all.spacing.has_value());
+  EXPECT_NEAR(*all.spacing, std::sqrt(0.001 / 1001), 1e-12);
+}
+
+}  // namespace
+}  // namespace voxspan

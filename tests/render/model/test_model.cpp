@@ -1,0 +1,197 @@
+// The shared model files (render/model/*.glsl) as the CPU compiles them: octahedral normals
+// (and the GPU's compilation of the same file against the CPU's), Fresnel, Snell's law and
+// total internal reflection, the environment, Beer-Lambert over spans (exact past a span cap)
+// and a straight path through a flat slab, each against numbers worked out by hand.
+#include <cmath>
+#include <random>
+
+#include "render/model/host.h"
+#include "render/reference/reference_shading.h"
+#include "tests/render/gl/shading_fixture.h"
+
+namespace voxspan {
+namespace {
+
+using model::Host;
+
+// One environment colour everywhere and no sun: every lookup gives `c`.
+ShadeOptions uniform_environment(ShadeMode mode, glm::dvec3 c) {
+  ShadeOptions o = test::test_shading(mode);
+  Environment& e = o.environment;
+  e.sky_zenith = e.sky_horizon = e.ground_light = e.ground_dark = c;
+  e.sun_color = {0, 0, 0};
+  return o;
+}
+
+// Angle between two directions from their chord (acos of a float dot product cannot resolve
+// thousandths of a degree).
+double degrees_between(glm::vec3 a, glm::vec3 b) {
+  const glm::dvec3 u = glm::normalize(glm::dvec3(a)), v = glm::normalize(glm::dvec3(b));
+  return glm::degrees(2 * std::asin(std::min(1.0, glm::length(u - v) / 2)));
+}
+
+TEST(Model, OctahedralNormalsRoundTrip) {
+  const SpanImage none = test::hand_made(1, 1, {{}});
+  Host host(none, {});
+  std::mt19937 rng(3);
+  std::normal_distribution<float> g;
+  std::vector<glm::vec4> inputs;
+  for (int i = 0; i < 20000; ++i)
+    inputs.emplace_back(glm::normalize(glm::vec3(g(rng), g(rng), g(rng))), 0.0f);
+  for (glm::vec3 axis :
+       {glm::vec3(1, 0, 0), glm::vec3(0, -1, 0), glm::vec3(0, 0, 1), glm::vec3(0, 0, -1)})
+    inputs.emplace_back(axis, 0.0f);
+  double worst = 0;
+  for (const glm::vec4& v : inputs)
+    worst = std::max(
+        worst, degrees_between(host.decode_normal(host.encode_normal(glm::vec3(v))), glm::vec3(v)));
+  EXPECT_LT(worst, 0.01) << "degrees";
+
+  // The GPU's compilation of the same file gives the same words, and decodes them alike.
+  const auto n = static_cast<unsigned>(inputs.size());
+  gl::Program probe = test::shaders().compute("tests/render/model/octahedral_probe.comp");
+  gl::Buffer in(inputs.size() * 16, inputs.data()), words(inputs.size() * 4),
+      decoded(inputs.size() * 16);
+  in.bind(GL_SHADER_STORAGE_BUFFER, 0);
+  words.bind(GL_SHADER_STORAGE_BUFFER, 1);
+  decoded.bind(GL_SHADER_STORAGE_BUFFER, 2);
+  probe.set("u_count", n);
+  probe.dispatch((n + 63) / 64);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  const auto gpu_words = words.read<std::uint32_t>(n);
+  const auto gpu_decoded = decoded.read<glm::vec4>(n);
+  int differing = 0;
+  for (unsigned i = 0; i < n; ++i) {
+    const std::uint32_t cpu = host.encode_normal(glm::vec3(inputs[i]));
+    const glm::ivec2 a(std::int16_t(cpu & 0xFFFF), std::int16_t(cpu >> 16));
+    const glm::ivec2 b(std::int16_t(gpu_words[i] & 0xFFFF), std::int16_t(gpu_words[i] >> 16));
+    differing += a != b;
+    ASSERT_LE(std::abs(a.x - b.x) + std::abs(a.y - b.y), 2) << "input " << i;
+    ASSERT_LT(degrees_between(glm::vec3(gpu_decoded[i]), host.decode_normal(gpu_words[i])), 1e-3);
+  }
+  EXPECT_LT(differing, int(n) / 100) << "words differing by a rounding step";
+}
+
+TEST(Model, FresnelAndSnell) {
+  const SpanImage none = test::hand_made(1, 1, {{}});
+  Host host(none, model::shade_uniforms(test::test_shading(ShadeMode::refractive)));
+  const float ior = host.u_ior;
+  const float f0 = std::pow((ior - 1) / (ior + 1), 2.0f);
+  EXPECT_NEAR(host.fresnel(1.0f), f0, 1e-7);
+  EXPECT_NEAR(host.fresnel(0.0f), 1.0f, 1e-7);
+  EXPECT_LT(host.fresnel(0.9f), host.fresnel(0.5f));
+
+  const glm::vec3 n(0, 0, -1);  // outward normal of a surface facing the eye
+  for (float degrees : {0.0f, 20.0f, 45.0f, 70.0f}) {
+    const float a = glm::radians(degrees);
+    Host::RayState s = host.ray_start({0, 0});
+    s.dir = glm::vec3(std::sin(a), 0.0f, std::cos(a));
+    s.throughput = glm::vec3(1.0f);
+    s.color = glm::vec3(0.0f);
+    const Host::RayState in = host.ray_interface(s, n, true);
+    EXPECT_TRUE(in.inside);
+    const float sin_t = std::sqrt(in.dir.x * in.dir.x + in.dir.y * in.dir.y);
+    EXPECT_NEAR(sin_t * ior, std::sin(a), 1e-5) << degrees << " degrees in";
+    EXPECT_NEAR(in.throughput.x, 1 - host.fresnel(std::cos(a)), 1e-6);
+    EXPECT_GT(in.color.x + in.color.y + in.color.z, 0.0f) << "reflection of the environment";
+  }
+  // Leaving through the back (outward normal away from the eye): Snell below the critical
+  // angle; just below it the reflected share (Fresnel > 1/2) dominates and the ray follows
+  // it; total internal reflection above it.
+  const glm::vec3 back(0, 0, 1);
+  const float critical = std::asin(1 / ior);
+  for (float a : {critical - 0.05f, critical - 0.003f, critical + 0.05f}) {
+    Host::RayState s = host.ray_start({0, 0});
+    s.inside = true;
+    s.dir = glm::vec3(std::sin(a), 0.0f, std::cos(a));
+    const Host::RayState out = host.ray_interface(s, back, false);
+    if (a < critical - 0.01f) {
+      EXPECT_FALSE(out.inside);
+      EXPECT_NEAR(std::sqrt(out.dir.x * out.dir.x + out.dir.y * out.dir.y), ior * std::sin(a),
+                  1e-4);
+      EXPECT_LT(out.throughput.x, 1.0f);
+    } else {
+      EXPECT_TRUE(out.inside) << "internal reflection keeps the ray inside";
+      EXPECT_NEAR(out.dir.x, std::sin(a), 1e-5);
+      EXPECT_NEAR(out.dir.z, -std::cos(a), 1e-5);
+      if (a > critical) {
+        EXPECT_EQ(out.throughput, s.throughput) << "total: nothing leaves";
+      } else {
+        EXPECT_GT(out.throughput.x, 0.5f);
+        EXPECT_LT(out.throughput.x, 1.0f);
+      }
+    }
+  }
+}
+
+TEST(Model, EnvironmentSkyGroundAndHorizon) {
+  const SpanImage none = test::hand_made(1, 1, {{}});
+  ShadeOptions o = test::test_shading(ShadeMode::opaque);
+  o.environment.sun_color = {0, 0, 0};
+  Host host(none, model::shade_uniforms(o));
+  const glm::vec3 eye(0, 1, 0);
+  EXPECT_NEAR(glm::distance(host.environment(eye, {0, 1, 0}), glm::vec3(o.environment.sky_zenith)),
+              0, 1e-6);
+  // Straight down onto the ground: a checker tile's colour (light or dark, or between at an edge).
+  const glm::vec3 ground = host.environment(eye, {0, -1, 0});
+  EXPECT_LE(ground.r, float(o.environment.ground_light.r) + 1e-6f);
+  EXPECT_GE(ground.r, float(o.environment.ground_dark.r) * 0.9f);
+  // The pattern changes from tile to tile.
+  const glm::vec3 a = host.environment({0.05, 1, 0.05}, {0, -1, 0});
+  const glm::vec3 b = host.environment({0.15, 1, 0.05}, {0, -1, 0});
+  EXPECT_GT(glm::distance(a, b), 0.2f);
+  // Far towards the horizon the ground fades into the sky's horizon colour: no seam.
+  const glm::vec3 above = host.environment(eye, glm::normalize(glm::vec3(1, 1e-4f, 0)));
+  const glm::vec3 below = host.environment(eye, glm::normalize(glm::vec3(1, -1e-4f, 0)));
+  EXPECT_LT(glm::distance(above, below), 0.01f);
+}
+
+TEST(Model, TranslucentBeerLambertExactPastTheCap) {
+  // One pixel looking down the axis through 24 slabs of 0.05 with gaps of 0.05, uncapped and
+  // capped at 7 (the 7th span extended to the last exit, `inside` still counting fluid only).
+  std::vector<Span> all, capped;
+  for (int k = 0; k < 24; ++k) all.push_back({2.0f + 0.1f * k, 2.05f + 0.1f * k});
+  capped.assign(all.begin(), all.begin() + 7);
+  capped.back().exit = all.back().exit;
+  SpanImage a = test::hand_made(1, 1, {all});
+  SpanImage c = test::hand_made(1, 1, {capped});
+  c.pixels[0].total = 24;
+  c.pixels[0].inside = a.pixels[0].inside;
+  const glm::dvec3 env(0.6, 0.7, 0.8);
+  const ShadeOptions o = uniform_environment(ShadeMode::translucent, env);
+  const glm::vec4 got_all = reference_shading(a, o).at(0, 0);
+  const glm::vec4 got_capped = reference_shading(c, o).at(0, 0);
+  // By hand: F at normal incidence, T = exp(-absorption * 24 * 0.05), scattering (1 - T) * s.
+  const double f = std::pow((o.material.ior - 1) / (o.material.ior + 1), 2);
+  for (int ch = 0; ch < 3; ++ch) {
+    const double t = std::exp(-o.material.absorption[ch] * 24 * 0.05);
+    const double want =
+        f * env[ch] + (1 - f) * (t * env[ch] + (1 - t) * o.material.scatter_color[ch]);
+    EXPECT_NEAR(got_all[ch], want, 2e-5) << "channel " << ch;
+    EXPECT_NEAR(got_capped[ch], want, 2e-5) << "channel " << ch << ", capped";
+  }
+}
+
+TEST(Model, RefractionStraightThroughAFlatSlab) {
+  // A slab [2, 3] in depth over a 9 x 9 image: the centre ray meets it head on, goes straight
+  // through and leaves: F at entry, (1 - F) twice, Beer-Lambert over 1, scattering on the way.
+  std::vector<std::vector<Span>> columns(81, std::vector<Span>{{2.0f, 3.0f}});
+  const SpanImage slab = test::hand_made(9, 9, columns);
+  const glm::dvec3 env(0.6, 0.7, 0.8);
+  const ShadeOptions o = uniform_environment(ShadeMode::refractive, env);
+  const glm::vec4 got = reference_shading(slab, o).at(4, 4);
+  const double f = std::pow((o.material.ior - 1) / (o.material.ior + 1), 2);
+  const double len = 1.0 * slab.grid.view().ray_scale(4, 4);
+  for (int ch = 0; ch < 3; ++ch) {
+    const double t = std::exp(-o.material.absorption[ch] * len);
+    const double want =
+        f * env[ch] + (1 - f) * ((1 - t) * o.material.scatter_color[ch] + t * (1 - f) * env[ch]);
+    EXPECT_NEAR(got[ch], want, 1e-4) << "channel " << ch;
+  }
+  // And the GPU agrees.
+  const glm::vec4 gpu = test::shade_on_gpu(slab, {}, o).image.at(4, 4);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(gpu[ch], got[ch], 1e-5);
+}
+
+}  // namespace
+}  // namespace voxspan

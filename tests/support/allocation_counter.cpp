@@ -1,0 +1,48 @@
+#include "tests/support/allocation_counter.h"
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+// GCC takes the free() in a replaced operator delete for a mismatch; here malloc is what
+// operator new returns.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
+namespace {
+std::atomic<long> g_allocations{0};
+thread_local long t_allocations = 0;
+}  // namespace
+
+// Every form that a non-replaced default would pair with another allocator is replaced, so
+// that each block is freed by the allocator that made it (AddressSanitizer checks: a nothrow
+// new left to the runtime and freed here is an alloc-dealloc mismatch).
+namespace {
+void* counted_malloc(std::size_t size) noexcept {
+  ++g_allocations;
+  ++t_allocations;
+  return std::malloc(size ? size : 1);
+}
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (void* p = counted_malloc(size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return ::operator new(size); }
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  return counted_malloc(size);
+}
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+  return counted_malloc(size);
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+
+namespace voxspan::test {
+long allocations() { return g_allocations.load(); }
+long thread_allocations() { return t_allocations; }
+}  // namespace voxspan::test
