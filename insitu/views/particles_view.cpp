@@ -13,6 +13,22 @@
 namespace voxspan {
 namespace {
 
+// The view's counts in the step's stats: the glyphs' (GlyphCounts), each under its name, and the
+// trails drawn.
+struct GlyphCount {
+  StatName name;
+  std::int64_t GlyphCounts::*count;
+  bool cut_only = false;  // only where the slice cuts the glyphs
+};
+constexpr GlyphCount kGlyphCounts[] = {
+    {StatName("glyphs_drawn"), &GlyphCounts::drawn},
+    {StatName("glyphs_frustum_culled"), &GlyphCounts::frustum_culled},
+    {StatName("glyphs_occlusion_culled"), &GlyphCounts::occlusion_culled},
+    {StatName("glyphs_range_culled"), &GlyphCounts::range_culled},
+    {StatName("glyphs_cut"), &GlyphCounts::cut, true},
+    {StatName("glyph_cells_hidden"), &GlyphCounts::cells_hidden}};
+constexpr StatName kTrails{"trails"};
+
 const schema::Section<TrailSettings>& trails_section() {
   using T = TrailSettings;
   static const schema::Section<T> s{
@@ -150,7 +166,7 @@ class ParticlesView final : public View {
     if (trail_choice().any()) {
       const Vec3d& c = settings_.trails.colour;
       trails_.draw(step.camera, depth_, glm::vec3(c[0], c[1], c[2]), out.picture);
-      recorder.count(counter::trails, std::int64_t(trails_.count()));
+      recorder.count(kTrails, std::int64_t(trails_.count()));
     }
     if (settings_.legend && shading.by_value)
       draw_color_bar(out.picture, settings_.color_map, lo, hi);
@@ -245,12 +261,9 @@ class ParticlesView final : public View {
 
   void report(Recorder& recorder) const {
     const GlyphCounts& c = glyphs_.counts;
-    recorder.count(counter::glyphs_drawn, c.drawn);
-    recorder.count(counter::glyphs_frustum_culled, c.frustum_culled);
-    recorder.count(counter::glyphs_occlusion_culled, c.occlusion_culled);
-    recorder.count(counter::glyphs_range_culled, c.range_culled);
-    if (settings_.slice.cut && slice_) recorder.count(counter::glyphs_cut, c.cut);
-    recorder.count(counter::glyph_cells_hidden, c.cells_hidden);
+    const bool cut = settings_.slice.cut && slice_;
+    for (const GlyphCount& k : kGlyphCounts)
+      if (cut || !k.cut_only) recorder.count(k.name, c.*k.count);
   }
 
   const ParticlesSettings settings_;

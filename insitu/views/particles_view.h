@@ -25,21 +25,12 @@
 
 namespace voxspan {
 
-// What the view times and counts on a step (besides its slice's).
+// What the view times on a step (besides its slice's); its counts: particles_view.cpp.
 namespace pass {
 inline constexpr StatName glyph_raster{"glyph_raster"};  // every rank's glyphs and trail points
 inline constexpr StatName glyph_composite{"glyph_composite"};  // MPI: the nearest of all ranks
 inline constexpr StatName glyph_shade{"glyph_shade"};
 }  // namespace pass
-namespace counter {
-inline constexpr StatName glyphs_drawn{"glyphs_drawn"};
-inline constexpr StatName glyphs_frustum_culled{"glyphs_frustum_culled"};
-inline constexpr StatName glyphs_occlusion_culled{"glyphs_occlusion_culled"};
-inline constexpr StatName glyphs_range_culled{"glyphs_range_culled"};
-inline constexpr StatName glyphs_cut{"glyphs_cut"};  // behind the slice's plane, with `cut`
-inline constexpr StatName glyph_cells_hidden{"glyph_cells_hidden"};
-inline constexpr StatName trails{"trails"};
-}  // namespace counter
 
 enum class GlyphSubset : std::uint8_t { all, boundary };
 inline constexpr EnumName<GlyphSubset> kGlyphSubsetNames[] = {{"all", GlyphSubset::all},

@@ -4,17 +4,13 @@
 // (the camera model of docs/runtime.md, "Depth images").
 #include <gtest/gtest.h>
 
-#include <OpenEXR/ImfChannelList.h>
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfInputFile.h>
-
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 #include "output_files.h"
 #include "tests/support/deep_exr_reader.h"
+#include "tests/support/depth_exr_reader.h"
 #include "tests/support/temp_folder.h"
 #include "tools/scenes/lattice.h"
 #include "voxspan/adapter.h"
@@ -22,29 +18,6 @@
 
 namespace voxspan {
 namespace {
-
-struct ExrDepth {
-  int width = 0, height = 0;
-  std::vector<std::string> channels;
-  std::vector<float> z;  // row 0 at the top
-};
-
-ExrDepth read_exr(const std::filesystem::path& path) {
-  Imf::InputFile file(path.c_str());
-  const Imath::Box2i window = file.header().dataWindow();
-  ExrDepth d;
-  d.width = window.max.x - window.min.x + 1;
-  d.height = window.max.y - window.min.y + 1;
-  for (auto c = file.header().channels().begin(); c != file.header().channels().end(); ++c)
-    d.channels.push_back(c.name());
-  d.z.assign(std::size_t(d.width) * d.height, -1.0f);
-  Imf::FrameBuffer frame;
-  frame.insert("Z", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(d.z.data()), sizeof(float),
-                               sizeof(float) * std::size_t(d.width)));
-  file.setFrameBuffer(frame);
-  file.readPixels(window.min.y, window.max.y);
-  return d;
-}
 
 // The distance along the unit ray from `eye` to the nearest sphere; 0 when it meets none.
 double first_hit(const std::array<double, 3>& eye, const std::array<double, 3>& dir,
@@ -108,7 +81,7 @@ writer: {fsync: false}
     EXPECT_NE(adapter.summary().find("1 depth images"), std::string::npos) << adapter.summary();
   }
   EXPECT_TRUE(test::temporaries_under(dir.path()).empty());
-  const ExrDepth d = read_exr(dir / "depth" / "corner_00000003.exr");
+  const test::DepthExr d = test::read_depth_exr(dir / "depth" / "corner_00000003.exr");
   ASSERT_EQ(d.width, width);
   ASSERT_EQ(d.height, height);
   EXPECT_EQ(d.channels, std::vector<std::string>{"Z"});
@@ -183,7 +156,7 @@ writer: {fsync: false}
     EXPECT_NE(adapter.summary().find("1 deep EXR images"), std::string::npos) << adapter.summary();
   }
   EXPECT_TRUE(test::temporaries_under(dir.path()).empty());
-  const ExrDepth flat = read_exr(dir / "depth" / "corner_00000004.exr");
+  const test::DepthExr flat = test::read_depth_exr(dir / "depth" / "corner_00000004.exr");
   const test::DeepExr deep = test::read_deep_exr(dir / "exr" / "corner_00000004.exr");
   ASSERT_EQ(deep.width, 80);
   ASSERT_EQ(deep.height, 60);

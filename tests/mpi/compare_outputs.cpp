@@ -3,10 +3,6 @@
 // (REFERENCE): every PNG within N/255 per channel (default 1), every depth image with the same
 // pixels hit and each distance within L depth layers (default 1; a layer is `--layer F` of the
 // distance, default 0.0025). Prints one line per file; exit status 1 when any is outside.
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfInputFile.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,28 +12,11 @@
 #include <vector>
 
 #include "insitu/outputs/formats/png_image.h"
+#include "tests/support/depth_exr_reader.h"
 
 namespace fs = std::filesystem;
 
 namespace {
-
-struct Depth {
-  int width = 0, height = 0;
-  std::vector<float> z;
-};
-
-Depth read_depth(const fs::path& path) {
-  Imf::InputFile file(path.c_str());
-  const Imath::Box2i w = file.header().dataWindow();
-  Depth d{w.max.x - w.min.x + 1, w.max.y - w.min.y + 1, {}};
-  d.z.assign(std::size_t(d.width) * std::size_t(d.height), 0.0f);
-  Imf::FrameBuffer frame;
-  frame.insert("Z", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(d.z.data()), sizeof(float),
-                               sizeof(float) * std::size_t(d.width)));
-  file.setFrameBuffer(frame);
-  file.readPixels(w.min.y, w.max.y);
-  return d;
-}
 
 bool compare_png(const fs::path& a, const fs::path& b, int tolerance) {
   const voxspan::ImageRGBA8 x = voxspan::read_png(a), y = voxspan::read_png(b);
@@ -59,7 +38,8 @@ bool compare_png(const fs::path& a, const fs::path& b, int tolerance) {
 }
 
 bool compare_depth(const fs::path& a, const fs::path& b, double layers, double layer) {
-  const Depth x = read_depth(a), y = read_depth(b);
+  const voxspan::test::DepthExr x = voxspan::test::read_depth_exr(a),
+                                y = voxspan::test::read_depth_exr(b);
   if (x.width != y.width || x.height != y.height) {
     std::printf("FAIL %s: %dx%d against %dx%d\n", b.c_str(), y.width, y.height, x.width, x.height);
     return false;

@@ -183,11 +183,7 @@ RenderOptions options_for(const tools::DamBreakState& s, const Args& a) {
   o.voxelize.grid.max_layers = a.max_layers;
   o.voxelize.gap_bridging = s.spacing;
   o.surfaces.filter_radius = s.spacing;
-  o.shade.environment.up = s.up;
-  o.shade.environment.rest_on_floor(s.ground, s.spacing);
-  o.shade.environment.ground_tile = s.length / 3;
-  o.shade.material.absorption = glm::dvec3(3.0, 1.0, 0.4) / s.length;
-  o.shade.ao.radius = 4 * s.spacing;
+  o.shade = tools::bench_shading(s);
   o.shade.deep_ao = a.ao;
   return o;
 }

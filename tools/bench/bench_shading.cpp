@@ -116,11 +116,7 @@ void time_modes(const Args& a, const gl::Context& context, Renderer& renderer) {
   o.voxelize.gap_bridging = s.spacing;
   o.voxelize.tiles.memory_budget = static_cast<std::size_t>(a.budget_mib * (1 << 20));
   o.surfaces.filter_radius = 1.5 * s.spacing;
-  o.shade.environment.up = s.up;
-  o.shade.environment.rest_on_floor(s.ground, s.spacing);
-  o.shade.environment.ground_tile = s.length / 3;
-  o.shade.material.absorption = glm::dvec3(3.0, 1.0, 0.4) / s.length;
-  o.shade.ao.radius = 4 * s.spacing;
+  o.shade = tools::bench_shading(s);
   o.shade.deep_ao = a.ao;
 
   bool first = true;

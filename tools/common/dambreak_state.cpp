@@ -144,4 +144,14 @@ DamBreakState dam_break_state(bool ritter, double particles, double time,
                 : solver_dam_break(particles, time < 0 ? 5.0 : time, cache);
 }
 
+ShadeOptions bench_shading(const DamBreakState& s) {
+  ShadeOptions o;
+  o.environment.up = s.up;
+  o.environment.rest_on_floor(s.ground, s.spacing);
+  o.environment.ground_tile = s.length / 3;
+  o.material.absorption = glm::dvec3(3.0, 1.0, 0.4) / s.length;
+  o.ao.radius = 4 * s.spacing;
+  return o;
+}
+
 }  // namespace voxspan::tools

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "render/camera.h"
+#include "render/shade_options.h"
 #include "voxspan/classify.h"
 
 namespace voxspan::tools {
@@ -34,6 +35,11 @@ DamBreakState solver_dam_break(double particles, double nondimensional_time,
 DamBreakState ritter_dam_break(double particles, double t);
 
 bool have_solver();
+
+// The benchmarks' shading of a state, in its own scale: the ground at its floor with a checker
+// a third of the column wide, a blue-green tint through the column, deep AO (when on) over four
+// spacings.
+ShadeOptions bench_shading(const DamBreakState& s);
 
 // The shading tools' scene: the Ritter profile at `time` seconds (< 0: 0.3) when `ritter`, else
 // the solver at T = `time` (< 0: 5, the run-up on the far wall), cached in `cache`.
