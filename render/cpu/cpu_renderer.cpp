@@ -73,52 +73,62 @@ class CpuRenderer::Passes final : public SurfacePasses {
  private:
   Recorder::Scope time(Recorder& recorder, StatName pass) override { return recorder.host(pass); }
 
+  // Each step names its objects as locals: the loops' lambdas then reach them directly, not
+  // through this object's members.
   std::int64_t connect() override {
-    host_.fill_per_span(host_.links_, [&](model::ivec2 p, model::uint s) {
-      return host_.connect_span(p, s - host_.sd_offset(p));
+    model::Host& host = host_;
+    host.fill_per_span(host.links_, [&](model::ivec2 p, model::uint s) {
+      return host.connect_span(p, s - host.sd_offset(p));
     });
     return tallies_.unlinkable;
   }
 
   void filter(int iterations, const SurfaceOptions& options) override {
     if (iterations <= 0) return;
-    host_.u_max_iterations = model::uint(options.max_iterations);
-    host_.u_radius = float(options.filter_radius);
-    host_.u_iteration_scale = float(filter_iteration_scale(spans_.grid, options.filter_radius));
+    model::Host& host = host_;
+    std::vector<model::vec2>& next = r_.next_depths_;
+    host.u_max_iterations = model::uint(options.max_iterations);
+    host.u_radius = float(options.filter_radius);
+    host.u_iteration_scale = float(filter_iteration_scale(spans_.grid, options.filter_radius));
     for (int pass = 0; pass < kFilterPasses; ++pass) {
-      host_.u_filter_pass = model::uint(pass);
-      host_.fill_per_span(r_.next_depths_,
-                          [&](model::ivec2 p, model::uint s) { return host_.filter_span(p, s); });
-      host_.depths_.swap(r_.next_depths_);  // pass 0 read the span depths (depths_ empty)
+      host.u_filter_pass = model::uint(pass);
+      host.fill_per_span(next,
+                         [&](model::ivec2 p, model::uint s) { return host.filter_span(p, s); });
+      host.depths_.swap(next);  // pass 0 read the span depths (depths_ empty)
     }
   }
 
   void normals() override {
-    host_.fill_per_span(host_.normals_, [&](model::ivec2 p, model::uint s) {
-      return host_.span_normal_words(p, s);
-    });
+    model::Host& host = host_;
+    host.fill_per_span(host.normals_,
+                       [&](model::ivec2 p, model::uint s) { return host.span_normal_words(p, s); });
   }
 
   void deep_ao() override {
-    host_.ao_.assign(spans_.pixels.size(), 1.0f);
-    host_.each_pixel([&](model::ivec2 p) { host_.ao_[host_.pixel_index(p)] = host_.deep_ao(p); });
+    model::Host& host = host_;
+    host.ao_.assign(spans_.pixels.size(), 1.0f);
+    host.each_pixel([&](model::ivec2 p) { host.ao_[host.pixel_index(p)] = host.deep_ao(p); });
   }
 
   RefractTally shade(const ShadeOptions& options) override {
+    model::Host& host = host_;
+    const SpanImage& spans = spans_;
+    FloatImage& image = image_;
     RefractTally tally;
     tally.dispatches =
-        refract_dispatch_limit(spans_.width(), spans_.height(), tallies_.most_spans, options);
-    if (options.mode == ShadeMode::refractive) host_.gather_block_bounds();
-    else host_.use_background(r_.background_);
-    if (image_.width != spans_.width() || image_.height != spans_.height())
-      image_ = FloatImage(spans_.width(), spans_.height());
+        refract_dispatch_limit(spans.width(), spans.height(), tallies_.most_spans, options);
+    if (options.mode == ShadeMode::refractive) host.gather_block_bounds();
+    else host.use_background(r_.background_);
+    if (image.width != spans.width() || image.height != spans.height())
+      image = FloatImage(spans.width(), spans.height());
+    const int dispatches = tally.dispatches;
     std::atomic<std::int64_t> unfinished{0};
-    host_.each_pixel([&](model::ivec2 p) {
+    host.each_pixel([&](model::ivec2 p) {
       bool left = false;
       const model::vec3 c =
-          host_.shade_pixel(p, options.mode, tally.dispatches, options.march_budget, left);
+          host.shade_pixel(p, options.mode, dispatches, options.march_budget, left);
       if (left) ++unfinished;
-      image_.set(p.x, p.y, glm::vec4(c, 1.0f));
+      image.set(p.x, p.y, glm::vec4(c, 1.0f));
     });
     tally.unfinished = unfinished.load();
     return tally;
