@@ -4,39 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "insitu/views/view_attributes.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
-
-double kernel_support(SphKernel kernel) { return kernel == SphKernel::quintic ? 3.0 : 2.0; }
-
-double kernel_value(SphKernel kernel, double r, double h) {
-  const double q = r / h;
-  const double h3 = h * h * h;
-  constexpr double pi = std::numbers::pi;
-  switch (kernel) {
-    case SphKernel::cubic_spline: {
-      const double s = 1.0 / (pi * h3);
-      if (q < 1) return s * (1 - 1.5 * q * q * (1 - 0.5 * q));
-      if (q < 2) return s * 0.25 * (2 - q) * (2 - q) * (2 - q);
-      return 0;
-    }
-    case SphKernel::wendland_c2: {
-      if (q >= 2) return 0;
-      const double t = 1 - 0.5 * q;
-      return 21.0 / (16.0 * pi * h3) * t * t * t * t * (2 * q + 1);
-    }
-    case SphKernel::quintic: {
-      if (q >= 3) return 0;
-      auto p5 = [](double x) { return x > 0 ? x * x * x * x * x : 0.0; };
-      return 1.0 / (120.0 * pi * h3) * (p5(3 - q) - 6 * p5(2 - q) + 15 * p5(1 - q));
-    }
-  }
-  return 0;
-}
 
 SlicePlane SlicePlane::make(glm::dvec3 origin, glm::dvec3 normal, double width, double height,
                             glm::dvec3 up) {

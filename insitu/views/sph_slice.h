@@ -17,21 +17,10 @@
 
 #include <glm/glm.hpp>
 
-#include "render/enum_names.h"
+#include "render/sph_kernel.h"
 #include "voxspan/particles.h"
 
 namespace voxspan {
-
-enum class SphKernel : std::uint8_t { cubic_spline, wendland_c2, quintic };
-inline constexpr EnumName<SphKernel> kSphKernelNames[] = {{"cubic_spline", SphKernel::cubic_spline},
-                                                          {"wendland_c2", SphKernel::wendland_c2},
-                                                          {"quintic", SphKernel::quintic}};
-
-// The kernel's support radius in units of h: 2 (cubic spline, Wendland C2), 3 (quintic).
-double kernel_support(SphKernel kernel);
-// The 3D kernel W(r, h), normalised to integrate to 1 over space: Monaghan's cubic spline,
-// Wendland's C2, Morris's quintic spline (the forms and constants of PySPH's kernels).
-double kernel_value(SphKernel kernel, double r, double h);
 
 // A rectangle of the plane through `origin` with unit normal `normal`: `width` along u and
 // `height` along v (u, v, normal right-handed; v is the projection of `up` onto the plane, or

@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "render/cpu/screen_bins.h"
 #include "voxspan/stopwatch.h"
 
 namespace voxspan {
@@ -29,67 +30,6 @@ struct Box {
 
 struct Interval {
   double entry, exit;
-};
-
-// Items sorted into bins (a counting sort): count() the items' bins, then place() each item in
-// each of its bins. Both run in parallel over fixed chunks of the items, each chunk's items
-// placed after those of the chunks before it, so that every bin holds its items in their
-// order, whatever the threads. bins_of(i, f): f(bin) for each bin item i goes in.
-struct Bins {
-  std::vector<std::uint32_t> start;  // per bin its first slot, then the total
-
-  template <class BinsOf> void count(std::size_t bins, std::size_t n, BinsOf&& bins_of) {
-    start.assign(bins + 1, 0);
-    cursor.assign(kChunks * bins, 0);
-    each_chunk(n, [&](std::size_t i, std::uint32_t* count) {
-      bins_of(i, [&](std::size_t b) { ++count[b]; });
-    });
-    // Each chunk's counts become its first slot in each bin.
-    std::uint32_t slot = 0;
-    for (std::size_t b = 0; b < bins; ++b) {
-      start[b] = slot;
-      for (std::size_t c = 0; c < kChunks; ++c) slot += std::exchange(cursor[c * bins + b], slot);
-    }
-    start[bins] = slot;
-    items = n;
-  }
-  std::size_t size() const { return start.empty() ? 0 : start.back(); }
-  // put(i, slot) for each bin of item i: slot is its place in the bins.
-  template <class BinsOf, class Put> void place(BinsOf&& bins_of, Put&& put) {
-    each_chunk(items, [&](std::size_t i, std::uint32_t* next) {
-      bins_of(i, [&](std::size_t b) { put(i, next[b]++); });
-    });
-  }
-
- private:
-  static constexpr std::size_t kChunks = 16;
-  // body(i, the chunk's row of cursor) for every item, chunks in parallel.
-  template <class F> void each_chunk(std::size_t n, F&& body) {
-    tbb::parallel_for(std::size_t(0), kChunks, [&](std::size_t c) {
-      std::uint32_t* row = cursor.data() + c * (start.size() - 1);
-      for (std::size_t i = n * c / kChunks; i < n * (c + 1) / kChunks; ++i) body(i, row);
-    });
-  }
-  std::vector<std::uint32_t> cursor;  // per chunk, per bin: its count, then its next slot
-  std::size_t items = 0;              // count()'s, for place()
-};
-
-// The screen's kTile^2 tiles, row by row: an item's bins are the tiles its pixels touch.
-struct Tiles {
-  int width = 0, height = 0, nx = 0, ny = 0;
-  Tiles(int w, int h)
-      : width(w), height(h), nx((w + kTile - 1) / kTile), ny((h + kTile - 1) / kTile) {}
-  std::size_t count() const { return std::size_t(nx) * std::size_t(ny); }
-  // Tile t's pixels, clipped to the screen.
-  PixelRect rect(std::size_t t) const {
-    const int x0 = int(t % std::size_t(nx)) * kTile, y0 = int(t / std::size_t(nx)) * kTile;
-    return {x0, y0, std::min(x0 + kTile, width) - 1, std::min(y0 + kTile, height) - 1};
-  }
-  template <class F> void each(const PixelRect& r, F&& f) const {
-    for (int ty = r.y0 / kTile; ty <= r.y1 / kTile; ++ty)
-      for (int tx = r.x0 / kTile; tx <= r.x1 / kTile; ++tx)
-        f(std::size_t(tx) + std::size_t(ty) * std::size_t(nx));
-  }
 };
 
 // Depth interval of the ray eye + z * w inside a box (slabs); false when it misses.
@@ -636,7 +576,7 @@ CastCounts SpanCaster::run(const PerspectiveGrid& grid, std::span<const Particle
     counts.phase_ms[std::size_t(p)] = clock.ms();
     clock.restart();
   };
-  const Tiles screen(grid.width(), grid.height());
+  const Tiles screen(grid.width(), grid.height(), kTile);
   project(grid, particles, settings.use_cell_states ? cells : CellStatesView{}, w.box_scratch,
           w.projected);
   lap(CastPhase::project);

@@ -1,0 +1,442 @@
+#include "render/cpu/volume_caster.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include "render/cpu/screen_bins.h"
+#include "render/model/volume_host.h"
+#include "render/perspective_grid.h"
+#include "voxspan/error.h"
+#include "voxspan/stopwatch.h"
+
+namespace voxspan {
+namespace {
+
+constexpr int kTile = VolumeCaster::kTile;
+constexpr int kTilePixels = kTile * kTile;
+// The most samples one support may span: its rays' pending samples live in a window this long
+// per pixel of a tile in flight (16 bytes each). A support larger than that (a particle around
+// the eye at a fine lattice) is refused with the reason.
+constexpr std::int64_t kMaxSupportSamples = std::int64_t(1) << 16;
+
+// A particle's support in view space, as the march reads it.
+struct Support {
+  glm::dvec3 c;            // centre
+  double radius = 0;       // R = kernel support * h
+  double inv_h = 0;        // 1 / h
+  double vq = 0, v = 0;    // V q / h^3, V / h^3: the kernel's shape times these is the sum
+  std::int64_t first = 0;  // the first sample at or after its nearest depth (and the near clip)
+  std::int64_t last = -1;  // the last sample at or before its farthest depth
+  PixelRect rect;
+};
+
+// The frame's samples: depth(i) for i in [base, base + depth.size()).
+struct Samples {
+  VolumeLattice lattice;
+  double near = 0;  // the near clip: no sample before it
+  std::int64_t base = 0;
+  std::vector<double> depths;
+  double depth(std::int64_t i) const { return depths[std::size_t(i - base)]; }
+};
+
+// A ray's state in the march.
+struct RayState {
+  model::VolumeHost::VolumeRay ray;
+  std::int64_t front = 0;     // the next sample to composite
+  std::int64_t last = -1;     // the last sample some support added to
+  float scale = 1;            // world length per unit of depth
+  float first_depth = 0;      // VolumeFrame::depth
+  bool first_is_hit = false;  // first_depth is the first iso hit's
+  bool done = false;
+  model::RayHits hits;
+};
+
+// A tile's working storage, one per thread, kept from frame to frame.
+struct TileScratch {
+  std::vector<RayState> rays;
+  std::vector<glm::dvec3> dirs;     // view_ray per pixel
+  std::vector<double> sum, weight;  // the pending samples: window per pixel, a ring
+  std::vector<FieldSums> hit_sums;  // light: per pixel and hit
+};
+
+struct Tallies {
+  std::int64_t samples = 0, evaluations = 0, stopped = 0, hits = 0, unlit = 0;
+};
+
+}  // namespace
+
+struct VolumeCaster::Work {
+  std::vector<Support> supports;      // in view, in input order
+  std::vector<std::uint64_t> keys;    // (first - base) << 32 | position in `supports`
+  std::vector<std::uint32_t> sorted;  // positions in `supports`, nearest first
+  Bins tile_bins;
+  std::vector<std::uint32_t> tile_lists;  // per tile its supports, in order
+  Samples samples;
+  tbb::enumerable_thread_specific<TileScratch> scratch;
+};
+
+VolumeCaster::VolumeCaster() : work_(std::make_unique<Work>()) {}
+VolumeCaster::~VolumeCaster() = default;
+VolumeCaster::VolumeCaster(VolumeCaster&&) noexcept = default;
+VolumeCaster& VolumeCaster::operator=(VolumeCaster&&) noexcept = default;
+
+namespace {
+
+bool finite(const VolumeParticle& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.h) &&
+         std::isfinite(p.volume) && std::isfinite(p.value) && p.h > 0 && p.volume > 0;
+}
+
+// Project: each valid particle's support in view space, culled where it meets no pixel centre
+// or no sample; `counts` gets the invalid and the culled.
+void project(const PerspectiveGrid& view_grid, const Samples& s,
+             std::span<const VolumeParticle> particles, double support, VolumeCounts& counts,
+             std::vector<Support>& out) {
+  const ViewFrame& f = view_grid.view();
+  out.assign(particles.size(), Support{});
+  tbb::combinable<std::array<std::int64_t, 2>> tally([] { return std::array<std::int64_t, 2>{}; });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, particles.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      std::array<std::int64_t, 2>& t = tally.local();
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const VolumeParticle& p = particles[i];
+                        Support& o = out[i];
+                        if (!finite(p)) {
+                          ++t[0];
+                          continue;
+                        }
+                        o.c = f.to_view(glm::dvec3(p.x, p.y, p.z));
+                        o.radius = support * p.h;
+                        o.rect = view_grid.sphere_pixels(o.c, o.radius);
+                        const double lo = std::max(o.c.z - o.radius, s.near);
+                        const double hi = o.c.z + o.radius;
+                        if (o.rect.empty() || !(hi > lo)) {
+                          ++t[1];
+                          continue;
+                        }
+                        o.first = s.lattice.first_at_or_after(lo);
+                        o.last = s.lattice.last_at_or_before(hi);
+                        if (o.last < o.first) {
+                          o.rect = {};
+                          ++t[1];
+                          continue;
+                        }
+                        const double h = p.h;
+                        o.inv_h = 1 / h;
+                        o.v = double(p.volume) / (h * h * h);
+                        o.vq = o.v * double(p.value);
+                      }
+                    });
+  tally.combine_each([&](const std::array<std::int64_t, 2>& t) {
+    counts.particles_invalid += t[0];
+    counts.particles_culled += t[1];
+  });
+}
+
+// Sort: the supports in view, nearest first sample first, ties by input order.
+void sort_supports(const std::vector<Support>& supports, std::int64_t base,
+                   std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& sorted) {
+  keys.clear();
+  for (std::size_t i = 0; i < supports.size(); ++i)
+    if (!supports[i].rect.empty())
+      keys.push_back(std::uint64_t(supports[i].first - base) << 32 | std::uint64_t(i));
+  tbb::parallel_sort(keys.begin(), keys.end());
+  sorted.resize(keys.size());
+  for (std::size_t k = 0; k < keys.size(); ++k) sorted[k] = std::uint32_t(keys[k] & 0xffffffffu);
+}
+
+// Bin: per tile the supports whose rectangles touch it, in the sorted order.
+void bin_supports(const Tiles& screen, const std::vector<Support>& supports,
+                  std::span<const std::uint32_t> sorted, Bins& bins,
+                  std::vector<std::uint32_t>& lists) {
+  const auto tiles_of = [&](std::size_t k, auto&& f) { screen.each(supports[sorted[k]].rect, f); };
+  bins.count(screen.count(), sorted.size(), tiles_of);
+  lists.resize(bins.size());
+  bins.place(tiles_of, [&](std::size_t k, std::uint32_t slot) { lists[slot] = sorted[k]; });
+}
+
+// The march and the light of one tile, for kernel K.
+template <SphKernel K> class TileMarch {
+ public:
+  TileMarch(const Samples& s, const VolumeOptions& o, const ViewFrame& f, model::VolumeHost& host,
+            TileScratch& scratch, Tallies& tallies)
+      : s_(s), o_(o), f_(f), host_(host), w_(scratch), t_(tallies) {}
+
+  void run(const PixelRect& tile, std::span<const std::uint32_t> list,
+           const std::vector<Support>& supports, VolumeFrame& out) {
+    tile_ = tile;
+    start(list, supports);
+    for (std::uint32_t k : list) {
+      add(supports[k]);
+      if (done_ == pixels_) break;  // every ray opaque: the supports behind are not read
+    }
+    for (int p = 0; p < pixels_; ++p) flush(p, w_.rays[std::size_t(p)].last + 1);
+    if (has_hits_) light(list, supports);
+    finish(out);
+  }
+
+ private:
+  int width() const { return tile_.x1 - tile_.x0 + 1; }
+
+  void start(std::span<const std::uint32_t> list, const std::vector<Support>& supports) {
+    pixels_ = width() * (tile_.y1 - tile_.y0 + 1);
+    done_ = 0;
+    has_hits_ = false;
+    std::int64_t span = 1;
+    for (std::uint32_t k : list) span = std::max(span, supports[k].last - supports[k].first + 1);
+    window_ = std::int64_t(std::bit_ceil(std::uint64_t(span)));
+    mask_ = window_ - 1;
+    w_.rays.assign(std::size_t(pixels_), RayState{});
+    w_.dirs.resize(std::size_t(pixels_));
+    w_.sum.assign(std::size_t(window_) * std::size_t(pixels_), 0.0);
+    w_.weight.assign(w_.sum.size(), 0.0);
+    for (int p = 0; p < pixels_; ++p) {
+      const int x = tile_.x0 + p % width(), y = tile_.y0 + p / width();
+      w_.dirs[std::size_t(p)] = f_.view_ray(x, y);
+      RayState& r = w_.rays[std::size_t(p)];
+      r.ray = host_.vx_ray_start();
+      r.scale = float(glm::length(w_.dirs[std::size_t(p)]));
+      r.front = std::numeric_limits<std::int64_t>::min();
+    }
+  }
+
+  // One support into every ray of the tile it crosses.
+  void add(const Support& s) {
+    const int x0 = std::max(s.rect.x0, tile_.x0), x1 = std::min(s.rect.x1, tile_.x1);
+    const int y0 = std::max(s.rect.y0, tile_.y0), y1 = std::min(s.rect.y1, tile_.y1);
+    const double cc = glm::dot(s.c, s.c) - s.radius * s.radius;
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const int p = (x - tile_.x0) + (y - tile_.y0) * width();
+        RayState& r = w_.rays[std::size_t(p)];
+        if (r.done) continue;
+        const glm::dvec3& d = w_.dirs[std::size_t(p)];
+        const double a = glm::dot(d, d), b = glm::dot(d, s.c);
+        const double disc = b * b - a * cc;
+        if (!(disc > 0)) continue;
+        const double root = std::sqrt(disc);
+        const double d0 = std::max((b - root) / a, s_.near), d1 = (b + root) / a;
+        if (d1 < d0) continue;
+        flush(p, s.first);
+        if (r.done) continue;
+        std::int64_t i = s.first;
+        while (i <= s.last && s_.depth(i) < d0) ++i;
+        double* sum = &w_.sum[std::size_t(p) * std::size_t(window_)];
+        double* weight = &w_.weight[std::size_t(p) * std::size_t(window_)];
+        std::int64_t n = 0;
+        for (; i <= s.last; ++i) {
+          const double z = s_.depth(i);
+          if (z > d1) break;
+          const glm::dvec3 x3 = z * d - s.c;
+          const double shape = kernel_shape<K>(std::sqrt(glm::dot(x3, x3)) * s.inv_h);
+          const std::size_t slot = std::size_t(i & mask_);
+          sum[slot] += s.vq * shape;
+          weight[slot] += s.v * shape;
+          ++n;
+        }
+        t_.evaluations += n;
+        if (n > 0) r.last = std::max(r.last, i - 1);
+      }
+  }
+
+  // Composites pixel p's samples before `upto`: no later support reaches them.
+  void flush(int p, std::int64_t upto) {
+    RayState& r = w_.rays[std::size_t(p)];
+    if (r.done) return;
+    if (r.front == std::numeric_limits<std::int64_t>::min()) r.front = upto;  // its first support
+    double* sum = &w_.sum[std::size_t(p) * std::size_t(window_)];
+    double* weight = &w_.weight[std::size_t(p) * std::size_t(window_)];
+    host_.record_into(&r.hits);
+    for (; r.front < upto; ++r.front) {
+      if (r.front > r.last) {  // the samples up to `upto` are empty: the ray leaves the field
+        r.ray.defined = 0u;
+        r.front = upto;
+        break;
+      }
+      const std::size_t slot = std::size_t(r.front & mask_);
+      const double s = sum[slot], w = weight[slot];
+      sum[slot] = weight[slot] = 0;
+      composite(r, r.front, s, w);
+      if (r.done) return;
+    }
+  }
+
+  void composite(RayState& r, std::int64_t i, double s, double w) {
+    const bool defined = w > 0 && (!o_.shepard || w >= o_.weight_floor);
+    const double q = !defined ? 0.0 : o_.shepard ? s / w : s;
+    t_.samples += defined ? 1 : 0;
+    const double z = s_.depth(i);
+    const float length = float(s_.lattice.extent(z) * r.scale);
+    const float before = r.ray.transmittance;
+    const int hits = r.hits.count + r.hits.unlit_count;
+    r.ray = host_.vx_sample(r.ray, float(q), defined ? 1u : 0u, float(z), length);
+    const int new_hits = r.hits.count + r.hits.unlit_count - hits;
+    if (new_hits > 0) {
+      t_.hits += new_hits;
+      has_hits_ = true;
+      if (r.first_depth == 0 && r.hits.count > 0) {
+        r.first_depth = r.hits.hit[0].depth * r.scale;
+        r.first_is_hit = true;
+      }
+    }
+    if (r.first_depth == 0 && before >= 0.5f && r.ray.transmittance < 0.5f)
+      r.first_depth = float(z * r.scale);
+    if (r.ray.transmittance < o_.termination) {
+      r.done = true;
+      ++done_;
+      ++t_.stopped;
+    }
+  }
+
+  // The iso hits' gradients from the tile's supports, then their light.
+  void light(std::span<const std::uint32_t> list, const std::vector<Support>& supports) {
+    const std::size_t per_pixel = std::size_t(model::kMaxIsoHits);
+    w_.hit_sums.assign(per_pixel * std::size_t(pixels_), FieldSums{});
+    for (std::uint32_t k : list) {
+      const Support& s = supports[k];
+      const int x0 = std::max(s.rect.x0, tile_.x0), x1 = std::min(s.rect.x1, tile_.x1);
+      const int y0 = std::max(s.rect.y0, tile_.y0), y1 = std::min(s.rect.y1, tile_.y1);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const int p = (x - tile_.x0) + (y - tile_.y0) * width();
+          const RayState& r = w_.rays[std::size_t(p)];
+          for (int h = 0; h < r.hits.count; ++h) {
+            const glm::dvec3 d =
+                double(r.hits.hit[std::size_t(h)].depth) * w_.dirs[std::size_t(p)] - s.c;
+            const double dist = std::sqrt(glm::dot(d, d));
+            const double q = dist * s.inv_h;
+            const double shape = kernel_shape<K>(q);
+            if (shape == 0 && q >= kernel_support(K)) continue;
+            const glm::dvec3 g =
+                dist > 0 ? (kernel_slope<K>(q) * s.inv_h / dist) * d : glm::dvec3(0);
+            FieldSums& a = w_.hit_sums[std::size_t(p) * per_pixel + std::size_t(h)];
+            a.s += s.vq * shape;
+            a.w += s.v * shape;
+            a.grad_s += s.vq * g;
+            a.grad_w += s.v * g;
+          }
+        }
+    }
+    for (int p = 0; p < pixels_; ++p) {
+      RayState& r = w_.rays[std::size_t(p)];
+      const int x = tile_.x0 + p % width(), y = tile_.y0 + p / width();
+      const glm::dvec3& dir = w_.dirs[std::size_t(p)];
+      for (int h = 0; h < r.hits.count; ++h) {
+        model::IsoHit& hit = r.hits.hit[std::size_t(h)];
+        const FieldSums& sums = w_.hit_sums[std::size_t(p) * per_pixel + std::size_t(h)];
+        host_.refine_hit(hit, sums, dir, o_.shepard, s_.lattice.k * double(hit.depth));
+        r.ray.color += host_.hit_light(hit, field_gradient(sums, o_.shepard), f_, x, y);
+      }
+      if (r.first_is_hit) r.first_depth = r.hits.hit[0].depth * r.scale;
+    }
+  }
+
+  void finish(VolumeFrame& out) {
+    for (int p = 0; p < pixels_; ++p) {
+      const RayState& r = w_.rays[std::size_t(p)];
+      const int x = tile_.x0 + p % width(), y = tile_.y0 + p / width();
+      out.picture.set(x, y, host_.pixel_color(r.ray, r.hits.unlit, o_.background, f_, x, y));
+      out.depth[std::size_t(x) + std::size_t(y) * std::size_t(out.picture.width)] = r.first_depth;
+      t_.unlit += r.hits.unlit_count;
+    }
+  }
+
+  const Samples& s_;
+  const VolumeOptions& o_;
+  const ViewFrame& f_;
+  model::VolumeHost& host_;
+  TileScratch& w_;
+  Tallies& t_;
+  PixelRect tile_;
+  int pixels_ = 0, done_ = 0;
+  std::int64_t window_ = 1, mask_ = 0;
+  bool has_hits_ = false;
+};
+
+}  // namespace
+
+VolumeCounts VolumeCaster::run(const Camera& camera, std::span<const VolumeParticle> particles,
+                               const VolumeOptions& options, VolumeFrame& out,
+                               std::array<double, kVolumeCastPhaseNames.size()>* phase_ms) {
+  validate(camera);
+  validate(options);
+  Work& w = *work_;
+  Stopwatch clock;
+  const auto lap = [&](VolumeCastPhase p) {
+    if (phase_ms != nullptr) (*phase_ms)[std::size_t(p)] = clock.ms();
+    clock.restart();
+  };
+  VolumeCounts counts;
+  counts.particles = std::int64_t(particles.size());
+  const double support = kernel_support(options.kernel);
+  // The supports' pixel rectangles: PerspectiveGrid::sphere_pixels over any depth range.
+  const PerspectiveGrid view_grid = PerspectiveGrid::over(camera, 1, 2, GridOptions{});
+  const ViewFrame& f = view_grid.view();
+  Samples& s = w.samples;
+  s.lattice = volume_lattice(f.tan_half_y, f.height, options);
+  s.near =
+      options.anchor;  // one spacing in front of the eye: a camera inside the fluid sees from there
+  project(view_grid, s, particles, support, counts, w.supports);
+  lap(VolumeCastPhase::project);
+
+  std::int64_t lo = std::numeric_limits<std::int64_t>::max(), hi = lo;
+  hi = std::numeric_limits<std::int64_t>::min();
+  for (const Support& p : w.supports)
+    if (!p.rect.empty()) lo = std::min(lo, p.first), hi = std::max(hi, p.last);
+  if (hi < lo) lo = hi = 0;
+  for (const Support& p : w.supports)
+    if (!p.rect.empty() && p.last - p.first + 1 > kMaxSupportSamples)
+      throw make_error("a particle's support spans ", p.last - p.first + 1,
+                       " samples along the view (at most ", kMaxSupportSamples,
+                       "): a smoothing length far above the particle spacing, or a particle "
+                       "around the eye; coarsen `sampling` or move the camera");
+  s.base = lo;
+  s.depths.resize(std::size_t(hi - lo + 2));
+  for (std::size_t k = 0; k < s.depths.size(); ++k)
+    s.depths[k] = s.lattice.depth(lo + std::int64_t(k));
+  sort_supports(w.supports, s.base, w.keys, w.sorted);
+  lap(VolumeCastPhase::sort);
+
+  const Tiles screen(camera.width, camera.height, kTile);
+  bin_supports(screen, w.supports, w.sorted, w.tile_bins, w.tile_lists);
+  lap(VolumeCastPhase::bin);
+
+  if (out.picture.width != camera.width || out.picture.height != camera.height)
+    out.picture = FloatImage(camera.width, camera.height);
+  out.depth.assign(std::size_t(camera.width) * std::size_t(camera.height), 0.0f);
+  tbb::enumerable_thread_specific<model::VolumeHost> hosts(options);
+  tbb::combinable<Tallies> tallies;
+  with_kernel(options.kernel, [&]<SphKernel K>() {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, screen.count(), 1),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        TileMarch<K> march(s, options, f, hosts.local(), w.scratch.local(),
+                                           tallies.local());
+                        for (std::size_t t = range.begin(); t != range.end(); ++t) {
+                          const std::span<const std::uint32_t> list(
+                              w.tile_lists.data() + w.tile_bins.start[t],
+                              w.tile_lists.data() + w.tile_bins.start[t + 1]);
+                          march.run(screen.rect(t), list, w.supports, out);
+                        }
+                      });
+  });
+  lap(VolumeCastPhase::march);
+  tallies.combine_each([&](const Tallies& t) {
+    counts.samples += t.samples;
+    counts.kernel_evaluations += t.evaluations;
+    counts.rays_stopped += t.stopped;
+    counts.iso_hits += t.hits;
+    counts.iso_hits_unlit += t.unlit;
+  });
+  return counts;
+}
+
+}  // namespace voxspan

@@ -1,0 +1,57 @@
+// render/cpu/volume_caster.h - a volume view's frame on the CPU ([FAW10] sec. 3-5, [HOK16] sec.
+// 2, 6): every pixel's ray sampled on the lattice of render/volume.h, each sample the exact SPH
+// sum, in double, of the particles whose support holds it, composited front to back by
+// render/model/volume.glsl. No grid in memory: the work and the memory follow the particles'
+// supports and the pixels.
+//
+// Phases (VolumeCastPhase, each timed):
+//   project  each particle's support to view space: its pixel rectangle and its first and last
+//            samples (culled where it reaches no pixel centre or no sample);
+//   sort     the supports nearest first (by first sample, then by index: one order whatever the
+//            threads);
+//   bin      into screen tiles of kTile^2 pixels, the order kept (render/cpu/screen_bins.h);
+//   march    per tile, in parallel: the tile's supports in order, each adding its kernel to the
+//            samples of the rays it crosses; a ray's samples are composited as soon as no later
+//            support can reach them (every later one starts at or after this one's first
+//            sample), the ray stops when its transmittance falls under the termination and the
+//            tile when all its rays have; then the iso hits' gradients from the same supports,
+//            the hits lit, and the background behind what is left of each ray's transmittance.
+// Each sample's sum adds its particles in the sorted order: the picture does not depend on the
+// number of threads.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/volume.h"
+
+namespace voxspan {
+
+enum class VolumeCastPhase { project, sort, bin, march };
+inline constexpr std::array<const char*, 4> kVolumeCastPhaseNames{"project", "sort", "bin",
+                                                                  "march"};
+
+class VolumeCaster {
+ public:
+  static constexpr int kTile = 16;
+
+  VolumeCaster();
+  ~VolumeCaster();
+  VolumeCaster(VolumeCaster&&) noexcept;
+  VolumeCaster& operator=(VolumeCaster&&) noexcept;
+
+  // One frame into `out` (its storage reused). Throws voxspan::Error on bad options or camera;
+  // bad particles are counted and skipped. phase_ms (when given) gets each phase's wall time.
+  VolumeCounts run(const Camera& camera, std::span<const VolumeParticle> particles,
+                   const VolumeOptions& options, VolumeFrame& out,
+                   std::array<double, kVolumeCastPhaseNames.size()>* phase_ms = nullptr);
+
+ private:
+  struct Work;
+  std::unique_ptr<Work> work_;
+};
+
+}  // namespace voxspan

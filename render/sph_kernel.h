@@ -1,0 +1,90 @@
+// render/sph_kernel.h - the SPH smoothing kernels W(r, h) the views interpolate with, 3D and
+// normalised to integrate to 1 over space: Monaghan's cubic spline, Wendland's C2 and Morris's
+// quintic spline (the forms and constants of PySPH's kernels, support 2h, 2h and 3h), and
+// Mueller's poly6 ([FAW10] sec. 6's fluid kernel, support h). The shape functions are inline:
+// the volume renderers call them once per sample and particle.
+#pragma once
+
+#include <cstdint>
+#include <numbers>
+
+#include "render/enum_names.h"
+
+namespace voxspan {
+
+enum class SphKernel : std::uint8_t { cubic_spline, wendland_c2, quintic, poly6 };
+inline constexpr EnumName<SphKernel> kSphKernelNames[] = {{"cubic_spline", SphKernel::cubic_spline},
+                                                          {"wendland_c2", SphKernel::wendland_c2},
+                                                          {"quintic", SphKernel::quintic},
+                                                          {"poly6", SphKernel::poly6}};
+
+// The kernel's support radius in units of h.
+constexpr double kernel_support(SphKernel kernel) {
+  switch (kernel) {
+    case SphKernel::quintic: return 3.0;
+    case SphKernel::poly6: return 1.0;
+    default: return 2.0;
+  }
+}
+
+// h^3 W(q h, h) at q = r / h (0 past the support): W without its 1 / h^3.
+template <SphKernel K> inline double kernel_shape(double q) {
+  constexpr double pi = std::numbers::pi;
+  if constexpr (K == SphKernel::cubic_spline) {
+    if (q < 1) return (1 - 1.5 * q * q * (1 - 0.5 * q)) / pi;
+    if (q < 2) return 0.25 / pi * (2 - q) * (2 - q) * (2 - q);
+    return 0;
+  } else if constexpr (K == SphKernel::wendland_c2) {
+    if (q >= 2) return 0;
+    const double t = 1 - 0.5 * q;
+    return 21.0 / (16.0 * pi) * t * t * t * t * (2 * q + 1);
+  } else if constexpr (K == SphKernel::quintic) {
+    if (q >= 3) return 0;
+    const auto p5 = [](double x) { return x > 0 ? x * x * x * x * x : 0.0; };
+    return 1.0 / (120.0 * pi) * (p5(3 - q) - 6 * p5(2 - q) + 15 * p5(1 - q));
+  } else {
+    if (q >= 1) return 0;
+    const double t = 1 - q * q;
+    return 315.0 / (64.0 * pi) * t * t * t;
+  }
+}
+
+// d(h^3 W)/dq at q: the kernel's slope, for gradients of interpolated fields.
+template <SphKernel K> inline double kernel_slope(double q) {
+  constexpr double pi = std::numbers::pi;
+  if constexpr (K == SphKernel::cubic_spline) {
+    if (q < 1) return (-3 * q + 2.25 * q * q) / pi;
+    if (q < 2) return -0.75 / pi * (2 - q) * (2 - q);
+    return 0;
+  } else if constexpr (K == SphKernel::wendland_c2) {
+    if (q >= 2) return 0;
+    const double t = 1 - 0.5 * q;
+    return 21.0 / (16.0 * pi) * (-5 * q) * t * t * t;
+  } else if constexpr (K == SphKernel::quintic) {
+    if (q >= 3) return 0;
+    const auto p4 = [](double x) { return x > 0 ? x * x * x * x : 0.0; };
+    return -5.0 / (120.0 * pi) * (p4(3 - q) - 6 * p4(2 - q) + 15 * p4(1 - q));
+  } else {
+    if (q >= 1) return 0;
+    const double t = 1 - q * q;
+    return 315.0 / (64.0 * pi) * (-6 * q) * t * t;
+  }
+}
+
+// f.template operator()<K>() for the kernel named at run time: one dispatch per call site, the
+// kernel inlined in the loop inside.
+template <class F> decltype(auto) with_kernel(SphKernel kernel, F&& f) {
+  switch (kernel) {
+    case SphKernel::wendland_c2: return f.template operator()<SphKernel::wendland_c2>();
+    case SphKernel::quintic: return f.template operator()<SphKernel::quintic>();
+    case SphKernel::poly6: return f.template operator()<SphKernel::poly6>();
+    default: return f.template operator()<SphKernel::cubic_spline>();
+  }
+}
+
+// W(r, h), normalised.
+inline double kernel_value(SphKernel kernel, double r, double h) {
+  return with_kernel(kernel, [&]<SphKernel K>() { return kernel_shape<K>(r / h) / (h * h * h); });
+}
+
+}  // namespace voxspan

@@ -1,0 +1,157 @@
+// render/volume.h - volume rendering and iso-surfaces of an SPH field ([FAW10], [HOK16]): what
+// both renderers and the reference take and give, and the one sample lattice they share.
+//
+// The field at a point x is the SPH sum over the particles whose support holds it ([HOK16]
+// Eq. 1-2):
+//   S(x) = sum_j V_j q_j W(|x - x_j|, h_j),   w(x) = sum_j V_j W(|x - x_j|, h_j)
+//   Q(x) = S / w (Shepard, [HOK16]'s CSPH), or S (a plain sum; with q = 1 the volume fraction w)
+// in double on the CPU. Samples lie on every pixel's ray at the depths of one lattice,
+// d_i = anchor (1 + K)^i with K = 2 tan(fov_y / 2) / height / sampling: at sampling 1 the
+// spacing along the ray equals the spacing across ([FAW10] sec. 3's s_z). The anchor is the
+// particle spacing, so that the samples stay put from step to step (no shimmering) and scale
+// with the scene (the same picture at any scale). A sample no particle's support reaches is
+// empty; with Shepard one whose weight is under `weight_floor` too (the free surface, where
+// w -> 0 makes S / w noise).
+//
+// The samples are composited front to back (render/model/volume.glsl, shared by every
+// renderer): direct volume rendering through a transfer function (colour and opacity per value;
+// an opacity holds for one `opacity_length` of fluid, corrected to each sample's length), iso
+// crossings between neighbouring samples (placed by linear interpolation, lit with the field's
+// gradient there), or both; a ray stops when its transmittance falls under `termination`.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "render/enum_names.h"
+#include "render/float_image.h"
+#include "render/shade_options.h"
+#include "render/sph_kernel.h"
+
+namespace voxspan {
+
+enum class VolumeMode : std::uint8_t { dvr, iso, mixed };
+inline constexpr EnumName<VolumeMode> kVolumeModeNames[] = {
+    {"dvr", VolumeMode::dvr}, {"iso", VolumeMode::iso}, {"mixed", VolumeMode::mixed}};
+
+// One particle as the volume renderers read it (std430: 6 floats). volume = m / rho (or the
+// rest volume), value = q (a vector's magnitude; 1 for the volume fraction), h its smoothing
+// length.
+struct VolumeParticle {
+  float x, y, z;
+  float h;
+  float volume;
+  float value;
+};
+static_assert(sizeof(VolumeParticle) == 24);
+
+// The transfer function as a table: kTransferEntries linear RGB + opacity entries evenly over
+// [lo, hi], looked up with linear interpolation, clamped at the ends.
+inline constexpr int kTransferEntries = 256;
+struct TransferTable {
+  double lo = 0, hi = 1;
+  std::array<glm::vec4, kTransferEntries> rgba{};
+};
+
+inline constexpr int kMaxIsoSurfaces = 4;
+struct IsoSurface {
+  double value = 0.5;
+  glm::dvec3 color{0.85, 0.85, 0.9};  // linear RGB
+  double opacity = 1;
+  bool operator==(const IsoSurface&) const = default;
+};
+
+struct VolumeOptions {
+  VolumeMode mode = VolumeMode::dvr;
+  SphKernel kernel = SphKernel::cubic_spline;
+  bool shepard = true;
+  double weight_floor = 0.05;  // Shepard: w under this is empty (w is about 1 inside the fluid)
+  TransferTable transfer;
+  double opacity_length = 1;     // world units over which a table opacity holds (> 0)
+  std::vector<IsoSurface> isos;  // up to kMaxIsoSurfaces, mode iso or mixed
+  double sampling = 1;           // samples per pixel spacing along the ray (> 0)
+  double anchor = 1;             // the lattice's depth 1 (world units, > 0): the particle spacing
+  double termination = 1e-3;     // a ray stops when its transmittance falls under this
+  // Behind the fluid: the surface views' environment (sky and ground), or nothing (transparent:
+  // alpha = 1 - transmittance, for compositing elsewhere). Its sun lights the iso surfaces.
+  bool background = true;
+  Environment environment;
+  double ambient = 0.3;  // iso surfaces' light from everywhere
+};
+
+// Throws voxspan::Error naming the option that is out of range.
+void validate(const VolumeOptions& options);
+
+// The sample lattice: d_i = anchor (1 + k)^i, i over the integers.
+struct VolumeLattice {
+  double anchor = 1;
+  double k = 0.01;
+  double log_step = std::log1p(0.01);  // ln(1 + k)
+
+  double half_extent = 0.01;  // ((1 + k) - 1 / (1 + k)) / 2
+
+  VolumeLattice() = default;
+  VolumeLattice(double anchor_depth, double k_step)
+      : anchor(anchor_depth),
+        k(k_step),
+        log_step(std::log1p(k_step)),
+        half_extent(0.5 * (k_step + 1 - 1 / (1 + k_step))) {}
+  double depth(std::int64_t i) const { return anchor * std::exp(double(i) * log_step); }
+  // The depth a sample at `depth` stands for: from the middle to the sample before to the
+  // middle to the one after ((d_{i+1} - d_{i-1}) / 2: second-order accurate on the geometric
+  // spacing, where d_{i+1} - d_i alone errs by k / 2 of the integral).
+  double extent(double depth) const { return depth * half_extent; }
+  // The first index whose depth is >= d (d > 0).
+  std::int64_t first_at_or_after(double d) const {
+    std::int64_t i = std::int64_t(std::ceil(std::log(d / anchor) / log_step));
+    while (depth(i - 1) >= d) --i;  // rounding of the logarithm, either way
+    while (depth(i) < d) ++i;
+    return i;
+  }
+  // The last index whose depth is <= d (d > 0).
+  std::int64_t last_at_or_before(double d) const {
+    const std::int64_t i = first_at_or_after(d);
+    return depth(i) > d ? i - 1 : i;
+  }
+};
+
+// The lattice of a view: K = 2 tan(fov_y / 2) / height / sampling.
+VolumeLattice volume_lattice(double tan_half_y, int height, const VolumeOptions& options);
+
+// The sums at one point and their gradients, for the light of an iso hit.
+struct FieldSums {
+  double s = 0, w = 0;
+  glm::dvec3 grad_s{0}, grad_w{0};
+};
+// The field's gradient there: of S / w with Shepard (where w > 0), else of S.
+inline glm::dvec3 field_gradient(const FieldSums& f, bool shepard) {
+  if (!shepard || !(f.w > 0)) return f.grad_s;
+  return (f.grad_s * f.w - f.s * f.grad_w) / (f.w * f.w);
+}
+
+struct VolumeFrame {
+  // Linear RGBA, row 0 at the top: over the background (alpha 1), or with no background the
+  // light premultiplied and alpha = 1 - transmittance.
+  FloatImage picture;
+  // Per pixel, the distance along the ray to the first iso hit or, failing one, to the sample
+  // where the opacity reached 0.5; 0 where neither happened.
+  std::vector<float> depth;
+};
+
+// Counts of one frame.
+struct VolumeCounts {
+  std::int64_t particles = 0;          // given
+  std::int64_t particles_invalid = 0;  // NaN or infinite position, value or volume; h <= 0
+  std::int64_t particles_culled = 0;   // support wholly outside the view or behind the eye
+  std::int64_t samples = 0;            // composited (non-empty)
+  std::int64_t kernel_evaluations = 0;
+  std::int64_t rays_stopped = 0;  // transmittance under `termination` before the last sample
+  std::int64_t iso_hits = 0;
+  std::int64_t iso_hits_unlit = 0;  // past kMaxIsoHits on their ray: ambient light only
+};
+
+}  // namespace voxspan
