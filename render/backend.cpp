@@ -3,6 +3,7 @@
 #include <tbb/info.h>
 
 #include "render/cpu/surface_renderer.h"
+#include "render/cpu/volume_renderer.h"
 #include "render/gl/gpu_recorder.h"
 #include "render/gl/info.h"
 #include "render/gl/surface_renderer.h"
@@ -64,6 +65,10 @@ std::unique_ptr<SurfaceRenderer> make_surface_renderer(RenderBackend backend,
   VoxelizeOptions voxelize;
   voxelize.tiles.memory_budget = gpu_memory_budget;
   return make_gl_surface_renderer(shaders, voxelize);
+}
+
+std::unique_ptr<VolumeRenderer> make_volume_renderer(RenderBackend /*backend*/) {
+  return make_cpu_volume_renderer();
 }
 
 }  // namespace voxspan

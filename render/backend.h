@@ -14,6 +14,7 @@
 
 #include "render/gl/context.h"
 #include "render/surface_renderer.h"
+#include "render/volume_renderer.h"
 
 namespace voxspan {
 
@@ -43,5 +44,8 @@ std::unique_ptr<Recorder> make_recorder(const BackendChoice& choice);
 std::unique_ptr<SurfaceRenderer> make_surface_renderer(RenderBackend backend,
                                                        const gl::ShaderLibrary& shaders,
                                                        std::size_t gpu_memory_budget);
+
+// The volume renderer of `backend` (both draw with the CPU one until the GL pass is built).
+std::unique_ptr<VolumeRenderer> make_volume_renderer(RenderBackend backend);
 
 }  // namespace voxspan

@@ -38,13 +38,14 @@ enum class VolumeMode : std::uint8_t { dvr, iso, mixed };
 inline constexpr EnumName<VolumeMode> kVolumeModeNames[] = {
     {"dvr", VolumeMode::dvr}, {"iso", VolumeMode::iso}, {"mixed", VolumeMode::mixed}};
 
-// One particle as the volume renderers read it (std430: 6 floats). volume = m / rho (or the
-// rest volume), value = q (a vector's magnitude; 1 for the volume fraction), h its smoothing
-// length.
+// One particle as the volume renderers read it (std430: 6 floats): its smoothing length h, its
+// weight m / (rho h^3) (its volume, m / rho or the rest volume, in units of h^3: dimensionless,
+// so that the same scene at any scale gives the same floats) and its value q (a vector's
+// magnitude; 1 for the volume fraction). V W(r, h) = weight * (h^3 W(r, h)).
 struct VolumeParticle {
   float x, y, z;
   float h;
-  float volume;
+  float weight;
   float value;
 };
 static_assert(sizeof(VolumeParticle) == 24);
@@ -145,7 +146,7 @@ struct VolumeFrame {
 // Counts of one frame.
 struct VolumeCounts {
   std::int64_t particles = 0;          // given
-  std::int64_t particles_invalid = 0;  // NaN or infinite position, value or volume; h <= 0
+  std::int64_t particles_invalid = 0;  // NaN or infinite position, value or weight; h, weight <= 0
   std::int64_t particles_culled = 0;   // support wholly outside the view or behind the eye
   std::int64_t samples = 0;            // composited (non-empty)
   std::int64_t kernel_evaluations = 0;

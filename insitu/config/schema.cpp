@@ -24,6 +24,12 @@ void emit_numbers(YAML::Emitter& e, std::span<const double> v) {
 void emit_value(YAML::Emitter& e, const std::array<double, 2>& v) { emit_numbers(e, v); }
 void emit_value(YAML::Emitter& e, const std::array<double, 3>& v) { emit_numbers(e, v); }
 
+void emit_value(YAML::Emitter& e, const std::vector<std::array<double, 2>>& v) {
+  e << YAML::BeginSeq;
+  for (const std::array<double, 2>& pair : v) emit_numbers(e, pair);
+  e << YAML::EndSeq;
+}
+
 void emit_value(YAML::Emitter& e, const std::vector<std::int64_t>& v) {
   e << YAML::Flow << YAML::BeginSeq;
   for (std::int64_t x : v) emit_value(e, x);

@@ -118,6 +118,7 @@ void emit_value(YAML::Emitter& e, const std::array<double, 2>& v);
 void emit_value(YAML::Emitter& e, const std::array<double, 3>& v);
 void emit_value(YAML::Emitter& e, const std::vector<std::string>& v);
 void emit_value(YAML::Emitter& e, const std::vector<std::int64_t>& v);
+void emit_value(YAML::Emitter& e, const std::vector<std::array<double, 2>>& v);
 template <class V> void emit_value(YAML::Emitter& e, const std::optional<V>& v) {
   if (v) emit_value(e, *v);
   else e << "auto";
@@ -256,6 +257,13 @@ Key<T> names(std::string name, std::vector<std::string> T::*member, std::string 
       [name](yaml::MapReader& r, std::vector<std::string>& v) { r.get_names(name, v); });
 }
 
+// A list of [a, b] pairs of finite numbers (a transfer function's points).
+template <class T>
+Key<T> pairs(std::string name, std::vector<std::array<double, 2>> T::*member, std::string help) {
+  return make_key<T, std::vector<std::array<double, 2>>>(
+      name, member, "list of [a, b]", std::move(help),
+      [name](yaml::MapReader& r, std::vector<std::array<double, 2>>& v) { r.get_pairs(name, v); });
+}
 template <class T, class E, std::size_t N>
 Key<T> choice(std::string name, E T::*member, const EnumName<E> (&table)[N], std::string help) {
   const std::span<const EnumName<E>> names(table);
@@ -284,6 +292,37 @@ Key<T> map(std::string name, M T::*member, const Section<M>& section, std::strin
     section.read(r.checker(), r.find(name), r.path(name), out.*member);
   };
   k.emit = [member, &section](YAML::Emitter& e, const T& v) { section.emit(e, v.*member); };
+  return k;
+}
+
+// A list of at most `most` maps, each read by `section` from M{} (a view's iso surfaces).
+template <class T, class M>
+Key<T> maps(std::string name, std::vector<M> T::*member, const Section<M>& section,
+            std::size_t most, std::string help) {
+  Key<T> k;
+  k.name = name;
+  k.type = "list of maps (at most " + std::to_string(most) + ")";
+  k.help = std::move(help);
+  k.shown_default = "see `" + section.path() + "`";
+  k.read = [name, member, &section, most](yaml::MapReader& r, T& out) {
+    if (!r.has(name)) return;
+    const YAML::Node list = r.find(name);
+    if (!list.IsSequence() || list.size() > most) {
+      r.checker().error(list, r.path(name),
+                        "expected a list of at most " + std::to_string(most) + " maps; got " +
+                            yaml::describe(list));
+      return;
+    }
+    std::vector<M> items(list.size());
+    for (std::size_t i = 0; i < list.size(); ++i)
+      section.read(r.checker(), list[i], r.path(name) + "[" + std::to_string(i) + "]", items[i]);
+    out.*member = std::move(items);
+  };
+  k.emit = [member, &section](YAML::Emitter& e, const T& v) {
+    e << YAML::BeginSeq;
+    for (const M& m : v.*member) section.emit(e, m);
+    e << YAML::EndSeq;
+  };
   return k;
 }
 

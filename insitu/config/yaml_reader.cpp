@@ -300,4 +300,28 @@ bool MapReader::get_integers(std::string_view key, std::vector<std::int64_t>& ou
   return true;
 }
 
+bool MapReader::get_pairs(std::string_view key, std::vector<std::array<double, 2>>& out) {
+  YAML::Node value = find(key);
+  if (!value.IsDefined()) return false;
+  std::vector<std::array<double, 2>> v;
+  bool ok = value.IsSequence();
+  for (std::size_t i = 0; ok && i < value.size(); ++i) {
+    const YAML::Node pair = value[i];
+    ok = pair.IsSequence() && pair.size() == 2;
+    try {
+      if (ok) v.push_back({pair[0].as<double>(), pair[1].as<double>()});
+      ok = ok && std::isfinite(v.back()[0]) && std::isfinite(v.back()[1]);
+    } catch (const YAML::Exception&) {
+      ok = false;
+    }
+  }
+  if (!ok) {
+    checker_.error(value, path(key),
+                   "expected a list of [a, b] pairs of numbers; got " + describe(value));
+    return false;
+  }
+  out = std::move(v);
+  return true;
+}
+
 }  // namespace voxspan::yaml

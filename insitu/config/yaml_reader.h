@@ -80,6 +80,8 @@ class MapReader {
   // A list of distinct integers in [min, max], sorted.
   bool get_integers(std::string_view key, std::vector<std::int64_t>& out, std::int64_t min,
                     std::int64_t max);
+  // A list of [a, b] pairs of finite numbers, in the order given.
+  bool get_pairs(std::string_view key, std::vector<std::array<double, 2>>& out);
   template <class E>
   bool get_enum(std::string_view key, E& out, std::span<const EnumName<E>> names) {
     std::string text;

@@ -8,6 +8,7 @@ namespace voxspan {
 ViewKind surface_view_kind();    // insitu/views/surface_view.cpp
 ViewKind slice_view_kind();      // insitu/views/slice_view.cpp
 ViewKind particles_view_kind();  // insitu/views/particles_view.cpp
+ViewKind volume_view_kind();     // insitu/views/volume_view.cpp
 
 OutputKind png_output_kind();    // insitu/outputs/kinds/png_output.cpp
 OutputKind vdb_output_kind();    // insitu/outputs/kinds/vdb_output.cpp
@@ -20,7 +21,7 @@ namespace {
 
 Kinds make_kinds() {
   Kinds k;
-  k.views = {surface_view_kind(), slice_view_kind(), particles_view_kind()};
+  k.views = {surface_view_kind(), slice_view_kind(), particles_view_kind(), volume_view_kind()};
   // Stats last: its line reports the time the other outputs took on the step.
   k.outputs = {png_output_kind(),   vdb_output_kind(), vtk_output_kind(),
                depth_output_kind(), exr_output_kind(), stats_output_kind()};

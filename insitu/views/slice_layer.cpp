@@ -65,31 +65,24 @@ const schema::Section<SlicePlaneConfig>& slice_plane_section() {
 
 std::vector<schema::Key<SliceField>> slice_field_keys() {
   using S = SliceField;
-  return {
-      schema::text("quantity", &S::quantity,
-                   "the particle attribute interpolated on the plane (a vector: its magnitude); "
-                   "required"),
-      schema::choice("kernel", &S::kernel, kSphKernelNames, "the SPH kernel W (3D, normalised)"),
-      schema::number_or_auto("smoothing_length", &S::smoothing_length, schema::above(0),
-                             "h, world units; `auto` = 1.3 particle spacings"),
-      schema::flag("shepard", &S::shepard,
-                   "divide by the sum of (m / rho) W: a uniform field stays flat up to the free "
-                   "surface"),
-      schema::text("mass", &S::mass,
-                   "the mass attribute; without it or `density`, m / rho = "
-                   "spacing^3"),
-      schema::text("density", &S::density, "the density attribute"),
-      schema::map<S, SlicePlaneConfig>("plane", &S::plane, slice_plane_section(),
-                                       "the plane: `origin` and `normal`"),
-      schema::number_or_auto("extent", &S::extent, schema::above(0),
-                             "the plane's width, world units (the height follows the picture's "
-                             "aspect); `auto` = the fluid's box as the plane sees it"),
-      schema::choice("color_map", &S::color_map, kColorMapNames, "the colour map"),
-      schema::interval_or_auto("range", &S::range,
-                               "the values at the colour map's ends; `auto` = the step's "
-                               "smallest and largest"),
-      schema::integer("isolines", &S::isolines, 0, 64,
-                      "isolines, evenly spaced inside the range; 0: none")};
+  std::vector<schema::Key<S>> keys = sph_sum_keys<S>(
+      "the particle attribute interpolated on the plane (a vector: its magnitude); required",
+      "divide by the sum of (m / rho) W: a uniform field stays flat up to the free surface");
+  for (schema::Key<S>& k : std::vector<schema::Key<S>>{
+           schema::map<S, SlicePlaneConfig>("plane", &S::plane, slice_plane_section(),
+                                            "the plane: `origin` and `normal`"),
+           schema::number_or_auto(
+               "extent", &S::extent, schema::above(0),
+               "the plane's width, world units (the height follows the picture's "
+               "aspect); `auto` = the fluid's box as the plane sees it"),
+           schema::choice("color_map", &S::color_map, kColorMapNames, "the colour map"),
+           schema::interval_or_auto("range", &S::range,
+                                    "the values at the colour map's ends; `auto` = the step's "
+                                    "smallest and largest"),
+           schema::integer("isolines", &S::isolines, 0, 64,
+                           "isolines, evenly spaced inside the range; 0: none")})
+    keys.push_back(std::move(k));
+  return keys;
 }
 
 void check_slice_field(yaml::MapReader& r, const SliceField& f) {

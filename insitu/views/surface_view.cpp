@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "insitu/views/view.h"
+#include "insitu/views/view_environment.h"
 #include "render/backend.h"
 #include "render/stat_names.h"
 #include "voxspan/error.h"
@@ -15,37 +16,6 @@ namespace {
 constexpr double kMiB = 1024.0 * 1024.0;
 
 glm::dvec3 vec(const Vec3d& v) { return {v[0], v[1], v[2]}; }
-
-// Towards the sun: mostly up, a little to two sides, whatever axis is up.
-glm::dvec3 sun_direction(glm::dvec3 up) {
-  up = glm::normalize(up);
-  const glm::dvec3 other = std::abs(up.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-  const glm::dvec3 a = glm::normalize(glm::cross(up, other)), b = glm::cross(up, a);
-  return up + 0.35 * a + 0.45 * b;
-}
-
-// The lowest point of the box along `up`.
-double lowest(const Bounds& box, glm::dvec3 up) {
-  up = glm::normalize(up);
-  double low = 1e300;
-  for (int k = 0; k < 8; ++k)
-    low = std::min(
-        low, glm::dot(up, glm::dvec3(k & 1 ? box.hi[0] : box.lo[0], k & 2 ? box.hi[1] : box.lo[1],
-                                     k & 4 ? box.hi[2] : box.lo[2])));
-  return low;
-}
-
-// The floor the fluid rests on, seen from the spheres' box: half a spacing above its lowest
-// point, where a solver's wall lies with the default radius (one spacing); for any radius the
-// union's bottom lies under it.
-double floor_height(const Bounds& sphere_box, glm::dvec3 up, double spacing) {
-  return lowest(sphere_box, up) + 0.5 * spacing;
-}
-
-// The box's smallest side: the depth scale of `absorption: auto`.
-double smallest_side(const Bounds& box) {
-  return std::min({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]});
-}
 
 // What a frame of the view follows, made once; the renderer's own settings (its memory budget)
 // are given when it is made.

@@ -36,7 +36,7 @@ inline constexpr std::array<const char*, 4> kVolumeCastPhaseNames{"project", "so
 
 class VolumeCaster {
  public:
-  static constexpr int kTile = 16;
+  static constexpr int kTile = 32;
 
   VolumeCaster();
   ~VolumeCaster();

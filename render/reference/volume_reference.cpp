@@ -22,7 +22,7 @@ struct Crossing {
 
 bool usable(const VolumeParticle& p) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.h) &&
-         std::isfinite(p.volume) && std::isfinite(p.value) && p.h > 0 && p.volume > 0;
+         std::isfinite(p.weight) && std::isfinite(p.value) && p.h > 0 && p.weight > 0;
 }
 
 struct Sums {
@@ -39,10 +39,9 @@ Sums sums_at(std::span<const VolumeParticle> particles, const std::vector<glm::d
     if (z < c.near || z > c.far) continue;
     const VolumeParticle& p = particles[c.index];
     const glm::dvec3 d = z * dir - centres[c.index];
-    const double h = p.h;
-    const double shape = kernel_shape<K>(std::sqrt(glm::dot(d, d)) / h) / (h * h * h);
-    out.s += double(p.volume) * double(p.value) * shape;
-    out.w += double(p.volume) * shape;
+    const double shape = kernel_shape<K>(std::sqrt(glm::dot(d, d)) / double(p.h));
+    out.s += double(p.weight) * double(p.value) * shape;
+    out.w += double(p.weight) * shape;
     ++evaluations;
   }
   return out;
@@ -58,13 +57,12 @@ FieldSums gradient_at(std::span<const VolumeParticle> particles,
     const glm::dvec3 d = point - centres[c.index];
     const double h = p.h, dist = std::sqrt(glm::dot(d, d)), q = dist / h;
     if (q >= kernel_support(K)) continue;
-    const double h3 = h * h * h;
-    const double shape = kernel_shape<K>(q) / h3;
-    const glm::dvec3 g = dist > 0 ? (kernel_slope<K>(q) / (h * h3 * dist)) * d : glm::dvec3(0);
-    out.s += double(p.volume) * double(p.value) * shape;
-    out.w += double(p.volume) * shape;
-    out.grad_s += double(p.volume) * double(p.value) * g;
-    out.grad_w += double(p.volume) * g;
+    const double shape = kernel_shape<K>(q);
+    const glm::dvec3 g = dist > 0 ? (kernel_slope<K>(q) / (h * dist)) * d : glm::dvec3(0);
+    out.s += double(p.weight) * double(p.value) * shape;
+    out.w += double(p.weight) * shape;
+    out.grad_s += double(p.weight) * double(p.value) * g;
+    out.grad_w += double(p.weight) * g;
   }
   return out;
 }
@@ -180,11 +178,9 @@ FieldValue volume_field(std::span<const VolumeParticle> particles, const VolumeO
   with_kernel(options.kernel, [&]<SphKernel K>() {
     for (const VolumeParticle& p : particles) {
       if (!usable(p)) continue;
-      const double h = p.h;
-      const double shape =
-          kernel_shape<K>(glm::length(point - glm::dvec3(p.x, p.y, p.z)) / h) / (h * h * h);
-      s += double(p.volume) * double(p.value) * shape;
-      w += double(p.volume) * shape;
+      const double shape = kernel_shape<K>(glm::length(point - glm::dvec3(p.x, p.y, p.z)) / p.h);
+      s += double(p.weight) * double(p.value) * shape;
+      w += double(p.weight) * shape;
     }
   });
   FieldValue f;

@@ -50,8 +50,8 @@ template <class F> double simpson(F&& f, double a, double b, int n) {
 }
 
 TEST(VolumeCaster, OneParticleAbsorbsAsTheLineIntegralOfItsKernel) {
-  // Plain sum, q = 1, V = 1: the field is W(r). Opacity alpha(Q) = c Q over one unit of length:
-  // the ray's transmittance is exp(integral of ln(1 - c W(r(s))) ds).
+  // Plain sum, q = 1, V = 1 (weight 1 / h^3): the field is W(r). Opacity alpha(Q) = c Q over one
+  // unit of length: the ray's transmittance is exp(integral of ln(1 - c W(r(s))) ds).
   for (const auto& [name, kernel] : kSphKernelNames) {
     SCOPED_TRACE(name);
     const double h = 0.5;
@@ -65,7 +65,8 @@ TEST(VolumeCaster, OneParticleAbsorbsAsTheLineIntegralOfItsKernel) {
     o.sampling = 2;
     o.transfer = ramp(0, w0, glm::vec3(0), 0.9f);  // opacity 0.9 Q / w0
     const Camera camera = test::look_at({0, 0, 4}, {0, 0, 0}, 48, 48, 30);
-    const std::vector<VolumeParticle> p = {{0.0f, 0.0f, 0.0f, float(h), 1.0f, 1.0f}};
+    const std::vector<VolumeParticle> p = {
+        {0.0f, 0.0f, 0.0f, float(h), float(1 / (h * h * h)), 1.0f}};
     VolumeCaster caster;
     VolumeFrame frame;
     caster.run(camera, p, o, frame);
@@ -110,7 +111,8 @@ TEST(VolumeCaster, OneParticlesIsoSurfaceIsTheSphereWhereTheKernelTakesTheValue)
     o.anchor = spacing;
     o.transfer = ramp(0, 1, glm::vec3(1), 0);
     const Camera camera = test::look_at({0, 0, 3}, {0, 0, 0}, 64, 64, 40);
-    const std::vector<VolumeParticle> p = {{0.0f, 0.0f, 0.0f, float(h), 1.0f, 1.0f}};
+    const std::vector<VolumeParticle> p = {
+        {0.0f, 0.0f, 0.0f, float(h), float(1 / (h * h * h)), 1.0f}};
     VolumeCaster caster;
     VolumeFrame frame;
     const VolumeCounts counts = caster.run(camera, p, o, frame);
@@ -149,7 +151,7 @@ TEST(VolumeCaster, AShepardNormalisedBlockIsFlatInside) {
       for (int k = 0; k < 10; ++k)
         block.push_back({float(i * spacing + jitter(rng)), float(j * spacing + jitter(rng)),
                          float(k * spacing + jitter(rng)), float(1.3 * spacing),
-                         float(std::pow(spacing, 3) * (1 + 10 * jitter(rng))), 2.5f});
+                         float((1 + 10 * jitter(rng)) / std::pow(1.3, 3)), 2.5f});
   VolumeOptions o;
   o.anchor = spacing;
   double worst = 0;
@@ -184,7 +186,7 @@ Cloud cloud(int side, std::uint32_t seed) {
             (glm::dvec3(i, j, k) + glm::dvec3(jitter(rng), jitter(rng), jitter(rng))) * c.spacing;
         const double value = std::sin(3 * p.x) + p.y * p.y + 0.5 * p.z;
         c.particles.push_back({float(p.x), float(p.y), float(p.z), float(1.3 * c.spacing),
-                               float(std::pow(c.spacing, 3)), float(value)});
+                               float(1 / std::pow(1.3, 3)), float(value)});
       }
   const double mid = 0.5 * (side - 1) * c.spacing;
   c.camera = test::look_at({mid + 0.4, mid + 0.5, mid + 2.2}, {mid, mid, mid}, 56, 44, 40);

@@ -1,0 +1,277 @@
+#include "insitu/views/volume_view.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include "insitu/parallel/communicator.h"
+#include "insitu/views/legend.h"
+#include "insitu/views/slice_layer.h"
+#include "insitu/views/view.h"
+#include "insitu/views/view_attributes.h"
+#include "insitu/views/view_environment.h"
+#include "insitu/views/view_framing.h"
+#include "render/backend.h"
+#include "voxspan/error.h"
+
+namespace voxspan {
+
+TransferTable transfer_table(ColorMap map, const std::vector<std::array<double, 2>>& opacity,
+                             double lo, double hi) {
+  TransferTable t;
+  t.lo = lo;
+  t.hi = hi;
+  for (int k = 0; k < kTransferEntries; ++k) {
+    const double u = double(k) / (kTransferEntries - 1);
+    double alpha = opacity.empty() ? 0.0 : opacity.front()[1];
+    for (std::size_t i = 1; i < opacity.size(); ++i) {
+      const auto& [t0, a0] = opacity[i - 1];
+      const auto& [t1, a1] = opacity[i];
+      if (u >= t0 && u <= t1) alpha = t1 > t0 ? a0 + (a1 - a0) * (u - t0) / (t1 - t0) : a1;
+      if (u >= t1) alpha = a1;
+    }
+    t.rgba[std::size_t(k)] = glm::vec4(map_color(map, u), float(alpha));
+  }
+  return t;
+}
+
+namespace {
+
+glm::dvec3 vec(const Vec3d& v) { return {v[0], v[1], v[2]}; }
+
+const schema::Section<VolumeIsoSettings>& iso_section() {
+  using I = VolumeIsoSettings;
+  static const schema::Section<I> s{
+      "views[i].iso[k]",
+      {schema::number("value", &I::value, schema::any_number(), "the field's value on the surface"),
+       schema::vec3("color", &I::color, "its colour, linear RGB"),
+       schema::number("opacity", &I::opacity, schema::between(0, 1),
+                      "its opacity (1: hides what lies behind)")},
+      [](yaml::MapReader& r, I& v) {
+        if (!r.has("value"))
+          r.checker().error(r.node(), r.path("value"), "an iso surface needs its `value`");
+        if (v.color[0] < 0 || v.color[1] < 0 || v.color[2] < 0)
+          r.checker().error(r.find("color"), r.path("color"), "a colour must not be negative");
+      }};
+  return s;
+}
+
+void check_volume(yaml::MapReader& r, VolumeSettings& v) {
+  const auto& points = v.opacity;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!(points[i][0] >= 0 && points[i][0] <= 1) || !(points[i][1] >= 0 && points[i][1] <= 1))
+      r.checker().error(r.find("opacity"), r.path("opacity"),
+                        "each point is [t, alpha] with t and alpha in [0, 1]; point " +
+                            std::to_string(i) + " is [" + yaml::number_text(points[i][0]) + ", " +
+                            yaml::number_text(points[i][1]) + "]");
+    if (i > 0 && points[i][0] < points[i - 1][0])
+      r.checker().error(r.find("opacity"), r.path("opacity"),
+                        "the points' t must not decrease; point " + std::to_string(i) +
+                            " comes before point " + std::to_string(i - 1));
+  }
+  if (points.empty())
+    r.checker().error(r.find("opacity"), r.path("opacity"), "needs at least one point");
+  if (v.mode != VolumeMode::dvr && v.iso.empty())
+    r.checker().error(r.has("mode") ? r.find("mode") : r.node(), r.path("iso"),
+                      "mode `" + std::string(name_of(kVolumeModeNames, v.mode)) +
+                          "` needs at least one iso surface");
+  if (v.quantity.empty() && r.has("shepard") && v.shepard)
+    r.checker().error(r.find("shepard"), r.path("shepard"),
+                      "with no `quantity` the field is the volume fraction, which Shepard "
+                      "normalisation would make 1 everywhere");
+}
+
+std::vector<schema::Key<VolumeSettings>> volume_keys() {
+  using S = VolumeSettings;
+  std::vector<schema::Key<S>> keys = sph_sum_keys<S>(
+      "the particle attribute shown (a vector: its magnitude); empty: the fluid's volume "
+      "fraction sum (m / rho) W",
+      "divide by sum (m / rho) W ([HOK16]'s CSPH): a uniform field stays flat up to the free "
+      "surface; off with no quantity");
+  for (schema::Key<S>& k : std::vector<schema::Key<S>>{
+           schema::text("smoothing_attribute", &S::smoothing_attribute,
+                        "the attribute with each particle's h (astrophysics codes); empty: "
+                        "smoothing_length for all"),
+           schema::choice("mode", &S::mode, kVolumeModeNames,
+                          "`dvr`: the field as a glowing, absorbing medium; `iso`: its iso "
+                          "surfaces; `mixed`: both ([FAW10] sec. 5)"),
+           schema::choice("color_map", &S::color_map, kColorMapNames,
+                          "the transfer function's colours over `range`"),
+           schema::interval_or_auto("range", &S::range,
+                                    "the values at the colour map's ends; `auto` = the particles' "
+                                    "smallest and largest ([0, 1] for the volume fraction)"),
+           schema::pairs("opacity", &S::opacity,
+                         "the transfer function's opacity: [t, alpha] points, t in [0, 1] "
+                         "across `range` (not decreasing), alpha in [0, 1] the opacity of "
+                         "`opacity_length` of fluid at that value; linear between them"),
+           schema::number("opacity_length", &S::opacity_length, schema::above(0),
+                          "the length, in particle spacings, over which `opacity` holds: the "
+                          "picture does not change with the scene's scale"),
+           schema::maps("iso", &S::iso, iso_section(), kMaxIsoSurfaces,
+                        "iso surfaces (modes `iso` and `mixed`), lit with the field's gradient"),
+           schema::number("sampling", &S::sampling, schema::between(0.125, 16),
+                          "samples per pixel spacing along each ray (1: as along as across, "
+                          "[FAW10]'s perspective grid)"),
+           schema::number("termination", &S::termination, schema::between(0, 0.5),
+                          "a ray stops when its transmittance falls under this (the error it "
+                          "makes is at most this times what lies behind)"),
+           schema::number("weight_floor", &S::weight_floor, schema::at_least(0),
+                          "with Shepard, where sum (m / rho) W is under this the field is "
+                          "empty (the free surface, where the ratio is noise)"),
+           schema::number("ambient", &S::ambient, schema::between(0, 1),
+                          "the iso surfaces' light from everywhere"),
+           schema::choice("background", &S::background, kVolumeBackgroundNames,
+                          "`sky`: the surface views' sky and ground behind the fluid; `none`: "
+                          "transparent, alpha = 1 - transmittance (premultiplied)"),
+           schema::flag("legend", &S::legend, "the colour bar with the range's values")})
+    keys.push_back(std::move(k));
+  return keys;
+}
+
+const schema::Section<VolumeSettings>& volume_section() {
+  using S = VolumeSettings;
+  static const schema::Section<S> s{"views[i]", view_keys<S>("volume", volume_keys()),
+                                    check_volume};
+  return s;
+}
+
+class VolumeView final : public View {
+ public:
+  VolumeView(const VolumeSettings& s, const ViewContext& c)
+      : settings_(s), spacing_(c.particle_spacing), renderer_(make_volume_renderer(c.backend)) {
+    if (c.comm != nullptr && c.comm->size() > 1)
+      throw make_error("view ", s.name,
+                       ": volume views in an MPI job are not built yet (each rank's particles "
+                       "would show alone); run them in one process");
+    if (!(spacing_ > 0) || !std::isfinite(spacing_))
+      throw make_error("view ", s.name,
+                       ": the particle spacing is needed (the samples and "
+                       "the opacity follow it); set classification.particle_spacing or pass it "
+                       "to the adapter");
+  }
+
+  bool render(const ViewStep& step, Recorder& recorder, ViewProducts& out) override {
+    if (step.data.particles == nullptr) throw make_error("volume: the step has no particles");
+    const ParticleView& particles = *step.data.particles;
+    const std::array<double, 2> range = gather(particles);
+    const VolumeOptions o = options(step, range);
+    renderer_->render(step.camera, particles_, o, recorder, frame_);
+    std::swap(out.picture, frame_.picture);
+    if (settings_.legend && settings_.mode != VolumeMode::iso)
+      draw_color_bar(out.picture, settings_.color_map, range[0], range[1]);
+    if (step.needs.first_hit_depth) {
+      FloatImage& d = out.first_hit_depth;
+      if (d.width != settings_.width || d.height != settings_.height)
+        d = FloatImage(settings_.width, settings_.height);
+      for (std::size_t k = 0; k < frame_.depth.size(); ++k) d.rgba[4 * k] = frame_.depth[k];
+    }
+    out.shaded_spans = nullptr;
+    out.shaded_field = nullptr;
+    return true;
+  }
+
+  std::string description() const override {
+    return "volume " + std::string(name_of(kVolumeModeNames, settings_.mode)) + " of " +
+           (settings_.quantity.empty() ? std::string("the volume fraction") : settings_.quantity) +
+           " " + std::to_string(settings_.width) + "x" + std::to_string(settings_.height);
+  }
+
+ private:
+  // The step's owned particles as the renderer reads them; returns the colour map's range.
+  std::array<double, 2> gather(const ParticleView& particles) {
+    const AttributeView* q =
+        settings_.quantity.empty()
+            ? nullptr
+            : &require_attribute(particles, settings_.quantity, settings_.key_path("quantity"));
+    const AttributeView* h_attr =
+        settings_.smoothing_attribute.empty()
+            ? nullptr
+            : &require_attribute(particles, settings_.smoothing_attribute,
+                                 settings_.key_path("smoothing_attribute"));
+    const AttributeView* mass = particles.find_attribute(settings_.mass);
+    const AttributeView* density = particles.find_attribute(settings_.density);
+    const bool per_particle_volume = mass != nullptr && density != nullptr;
+    const double rest_volume = spacing_ * spacing_ * spacing_;
+    const double h = settings_.smoothing_length.value_or(kAutoSmoothingFactor * spacing_);
+    const std::size_t n = particles.owned_count();
+    particles_.resize(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        const auto p = particles.position(i);
+        const double volume =
+            per_particle_volume ? mass->magnitude(i) / density->magnitude(i) : rest_volume;
+        const double hi = h_attr != nullptr ? h_attr->magnitude(i) : h;
+        particles_[i] = {float(p[0]),
+                         float(p[1]),
+                         float(p[2]),
+                         float(hi),
+                         float(volume / (hi * hi * hi)),
+                         q != nullptr ? float(q->magnitude(i)) : 1.0f};
+      }
+    });
+    if (settings_.range) return *settings_.range;
+    if (q == nullptr) return {0.0, 1.0};
+    using Span = std::array<double, 2>;
+    const Span found = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, n, 16384), Span{1e300, -1e300},
+        [&](const auto& r, Span s) {
+          for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            const double v = particles_[i].value;
+            if (std::isfinite(v)) s = {std::min(s[0], v), std::max(s[1], v)};
+          }
+          return s;
+        },
+        [](const Span& a, const Span& b) {
+          return Span{std::min(a[0], b[0]), std::max(a[1], b[1])};
+        });
+    return display_range(found[0], found[1]);
+  }
+
+  VolumeOptions options(const ViewStep& step, std::array<double, 2> range) const {
+    const VolumeSettings& s = settings_;
+    VolumeOptions o;
+    o.mode = s.mode;
+    o.kernel = s.kernel;
+    o.shepard = s.shepard && !s.quantity.empty();
+    o.weight_floor = s.weight_floor;
+    o.transfer = transfer_table(s.color_map, s.opacity, range[0], range[1]);
+    o.opacity_length = s.opacity_length * spacing_;
+    for (const VolumeIsoSettings& iso : s.iso)
+      o.isos.push_back({iso.value, vec(iso.color), iso.opacity});
+    o.sampling = s.sampling;
+    o.anchor = spacing_;
+    o.termination = s.termination;
+    o.background = s.background == VolumeBackground::sky;
+    o.ambient = s.ambient;
+    Environment& e = o.environment;
+    e.up = step.camera.up;
+    e.sun_direction = sun_direction(e.up);
+    e.ground_tile = 12 * spacing_;
+    if (!step.fluid_box.empty())
+      e.rest_on_floor(floor_height(step.fluid_box, e.up, spacing_), spacing_);
+    return o;
+  }
+
+  const VolumeSettings settings_;
+  const double spacing_;
+  std::unique_ptr<VolumeRenderer> renderer_;
+  std::vector<VolumeParticle> particles_;
+  VolumeFrame frame_;
+};
+
+}  // namespace
+
+ViewKind volume_view_kind() {
+  ViewKind kind = view_kind<VolumeSettings, VolumeView>("volume", volume_section());
+  kind.config.reference = [] {
+    return volume_section().reference() + "\n#### `views[i].iso[k]` (kind `volume`)\n\n" +
+           iso_section().reference();
+  };
+  return kind;
+}
+
+}  // namespace voxspan

@@ -1,0 +1,29 @@
+// render/volume_renderer.h - what a volume view asks of a renderer (render/volume.h says what a
+// frame is), whichever one the process uses: made once by make_volume_renderer
+// (render/backend.h). Implementation: render/cpu/volume_renderer.h (exact sums in double). The
+// GL renderer's own pass is not built yet: the GL backend draws volume views with the CPU one.
+#pragma once
+
+#include <span>
+
+#include "render/camera.h"
+#include "render/recorder.h"
+#include "render/volume.h"
+
+namespace voxspan {
+
+class VolumeRenderer {
+ public:
+  virtual ~VolumeRenderer() = default;
+  // One frame into `out` (its storage reused), timed as pass::volume and counted (volume.*:
+  // render/stat_names.h). Throws voxspan::Error on bad options or camera; bad particles are
+  // counted and skipped.
+  virtual VolumeCounts render(const Camera& camera, std::span<const VolumeParticle> particles,
+                              const VolumeOptions& options, Recorder& recorder,
+                              VolumeFrame& out) = 0;
+};
+
+// A frame's counts into the recorder, as every volume renderer reports them.
+void record(const VolumeCounts& counts, Recorder& recorder);
+
+}  // namespace voxspan

@@ -1,0 +1,175 @@
+// bench_volume: the volume views' renderer on the CPU (render/cpu/volume_caster.h) on the dam
+// break, per phase, with what it did (samples, kernel evaluations, rays stopped early, iso hits),
+// and with --convergence its error against the converged integral (render/reference/
+// volume_reference.h: the sampling doubled until the picture changes under 1e-4) per sampling
+// setting beside its time.
+//
+// The scene is bench_renderers': the WCSPH dam break at Martin & Moyce's T (--time), about
+// --particles fluid particles, state cached in --state (or --ritter, the Ritter-profile scene).
+// The field: the volume fraction (--quantity fraction, the view's default) or the height above
+// the floor (--quantity height), h = 1.3 spacings, the view's default transfer function (viridis,
+// opacity 0 to 0.25 per spacing), iso surfaces at 0.5 (fraction) or the middle of the range.
+// Milliseconds are medians over --frames frames after one warm-up.
+//
+//   bench_volume [--particles N] [--time T] [--state FILE] [--ritter] [--size WxH] [--frames F]
+//                [--modes dvr,iso,mixed] [--sampling S,...] [--quantity fraction|height]
+//                [--convergence] [--check]
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "insitu/views/volume_view.h"
+#include "render/cpu/volume_caster.h"
+#include "render/reference/volume_reference.h"
+#include "tools/common/dambreak_state.h"
+#include "tools/common/tool_args.h"
+#include "voxspan/error.h"
+#include "voxspan/stopwatch.h"
+
+namespace {
+
+using namespace voxspan;
+
+struct Args : tools::BenchArgs {
+  std::string state = "build/dambreak_state.bin";
+  bool ritter = !tools::have_solver();
+  std::vector<VolumeMode> modes = {VolumeMode::dvr, VolumeMode::iso, VolumeMode::mixed};
+  std::vector<double> samplings = {1};
+  bool height_field = false;  // the field: height above the floor, else the volume fraction
+  bool convergence = false, check = false;
+};
+
+constexpr char kUsage[] =
+    "usage: bench_volume [--particles N] [--time T] [--state FILE] [--ritter] [--size WxH]\n"
+    "         [--frames F] [--modes dvr,iso,mixed] [--sampling S,...]\n"
+    "         [--quantity fraction|height] [--convergence] [--check]\n";
+
+bool read_flag(tools::Arg& arg, Args& a) {
+  if (const char* v = arg.value("--modes")) {
+    a.modes.clear();
+    for (const std::string& m : tools::comma_list(v)) {
+      const std::optional<VolumeMode> mode = value_of<VolumeMode>(kVolumeModeNames, m);
+      if (!mode) return false;
+      a.modes.push_back(*mode);
+    }
+    return !a.modes.empty();
+  }
+  if (const char* v = arg.value("--sampling")) {
+    a.samplings.clear();
+    for (const std::string& s : tools::comma_list(v)) a.samplings.push_back(std::atof(s.c_str()));
+    return !a.samplings.empty() &&
+           std::all_of(a.samplings.begin(), a.samplings.end(), [](double s) { return s > 0; });
+  }
+  if (const char* v = arg.value("--quantity")) {
+    a.height_field = std::string(v) == "height";
+    return a.height_field || std::string(v) == "fraction";
+  }
+  return arg.value("--state", a.state) || arg.flag("--ritter", a.ritter) ||
+         arg.flag("--convergence", a.convergence) || arg.flag("--check", a.check) ||
+         tools::read_bench_flag(arg, a);
+}
+
+bool parse(int argc, char** argv, Args& a) { return tools::read_args(argc, argv, a, read_flag); }
+
+std::vector<VolumeParticle> particles_of(const tools::DamBreakState& s, bool height) {
+  std::vector<VolumeParticle> out;
+  const double weight = 1 / (1.3 * 1.3 * 1.3);  // m / (rho h^3), h = 1.3 spacings
+  for (std::size_t i = 0; i < s.x.size(); ++i) {
+    const double z = glm::dot(glm::dvec3(s.x[i], s.y[i], s.z[i]), s.up) - s.ground;
+    out.push_back(
+        {s.x[i], s.y[i], s.z[i], float(1.3 * s.spacing), float(weight), height ? float(z) : 1.0f});
+  }
+  return out;
+}
+
+VolumeOptions options_for(const tools::DamBreakState& s, const std::vector<VolumeParticle>& p,
+                          bool height, VolumeMode mode, double sampling) {
+  VolumeOptions o;
+  o.mode = mode;
+  o.shepard = height;
+  double lo = 0, hi = 1;
+  if (height) {
+    lo = 1e300, hi = -1e300;
+    for (const VolumeParticle& q : p)
+      lo = std::min(lo, double(q.value)), hi = std::max(hi, double(q.value));
+  }
+  o.transfer = transfer_table(ColorMap::viridis, {{0.0, 0.0}, {1.0, 0.25}}, lo, hi);
+  o.opacity_length = s.spacing;
+  if (mode != VolumeMode::dvr) o.isos = {IsoSurface{0.5 * (lo + hi), {0.8, 0.85, 0.95}, 0.6}};
+  o.sampling = sampling;
+  o.anchor = s.spacing;
+  o.environment.up = s.up;
+  o.environment.rest_on_floor(s.ground, s.spacing);
+  o.environment.ground_tile = s.length / 3;
+  return o;
+}
+
+// The largest and the 99th-percentile channel error of `a` against `b`.
+std::array<double, 2> errors(const FloatImage& a, const FloatImage& b) {
+  std::vector<double> e(a.rgba.size());
+  for (std::size_t i = 0; i < e.size(); ++i) e[i] = std::abs(double(a.rgba[i]) - b.rgba[i]);
+  std::sort(e.begin(), e.end());
+  return {e.empty() ? 0 : e.back(), e.empty() ? 0 : e[e.size() * 99 / 100]};
+}
+
+int run(const Args& a) {
+  tools::DamBreakState s = tools::dam_break_state(a.ritter, a.particles, a.time, a.state);
+  s.camera.width = a.width;
+  s.camera.height = a.height;
+  const std::vector<VolumeParticle> particles = particles_of(s, a.height_field);
+  std::printf("scene: %s; %dx%d, %zu particles, field %s\n", s.description.c_str(), a.width,
+              a.height, particles.size(), a.height_field ? "height (Shepard)" : "volume fraction");
+  std::printf("%-5s %8s | %8s %8s %8s %8s %8s | %10s %12s %9s %9s", "mode", "sampling", "project",
+              "sort", "bin", "march", "total", "samples", "evaluations", "stopped", "iso hits");
+  if (a.convergence) std::printf(" | %9s %9s %5s", "max err", "p99 err", "dbl");
+  if (a.check) std::printf(" | %9s", "vs ref");
+  std::printf("\n");
+  VolumeCaster caster;
+  for (VolumeMode mode : a.modes)
+    for (double sampling : a.samplings) {
+      const VolumeOptions o = options_for(s, particles, a.height_field, mode, sampling);
+      std::array<std::vector<double>, kVolumeCastPhaseNames.size() + 1> ms;
+      VolumeFrame frame;
+      VolumeCounts counts;
+      for (int f = -1; f < a.frames; ++f) {
+        std::array<double, kVolumeCastPhaseNames.size()> phase{};
+        const Stopwatch watch;
+        counts = caster.run(s.camera, particles, o, frame, &phase);
+        const double total = watch.ms();
+        if (f < 0) continue;  // the warm-up
+        for (std::size_t p = 0; p < phase.size(); ++p) ms[p].push_back(phase[p]);
+        ms.back().push_back(total);
+      }
+      std::printf("%-5s %8g |", name_of(kVolumeModeNames, mode).data(), sampling);
+      for (const std::vector<double>& m : ms) std::printf(" %8.1f", tools::median(m));
+      std::printf(" | %10lld %12lld %9lld %9lld", static_cast<long long>(counts.samples),
+                  static_cast<long long>(counts.kernel_evaluations),
+                  static_cast<long long>(counts.rays_stopped),
+                  static_cast<long long>(counts.iso_hits));
+      if (a.convergence) {
+        VolumeOptions exact = o;
+        exact.termination = 0;
+        int doublings = 0;
+        const VolumeFrame converged =
+            converged_volume(s.camera, particles, exact, 1e-4, 8, &doublings);
+        const std::array<double, 2> e = errors(frame.picture, converged.picture);
+        std::printf(" | %9.2e %9.2e %5d", e[0], e[1], doublings);
+      }
+      if (a.check) {
+        VolumeFrame reference;
+        volume_reference(s.camera, particles, o, reference);
+        std::printf(" | %9.2e", errors(frame.picture, reference.picture)[0]);
+      }
+      std::printf("\n");
+    }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return voxspan::tools::tool_main<Args>("bench_volume", argc, argv, kUsage, parse, run);
+}
