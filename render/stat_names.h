@@ -60,15 +60,7 @@ inline constexpr StatName refract_dispatches{"refract.dispatches"};
 inline constexpr StatName refract_unfinished{"refract.unfinished"};
 inline constexpr StatName refract_events{"refract.events"};            // GL
 inline constexpr StatName refract_most_events{"refract.most_events"};  // GL
-// A volume frame (VolumeCounts, render/volume.h).
-inline constexpr StatName volume_particles{"volume.particles"};
-inline constexpr StatName volume_particles_invalid{"volume.particles_invalid"};
-inline constexpr StatName volume_particles_culled{"volume.particles_culled"};
-inline constexpr StatName volume_samples{"volume.samples"};
-inline constexpr StatName volume_kernel_evaluations{"volume.kernel_evaluations"};
-inline constexpr StatName volume_rays_stopped{"volume.rays_stopped"};
-inline constexpr StatName volume_iso_hits{"volume.iso_hits"};
-inline constexpr StatName volume_iso_hits_unlit{"volume.iso_hits_unlit"};
+// A volume frame: kVolumeCountNames (render/volume.h).
 }  // namespace counter
 
 // Figures: the frame's perspective grid.

@@ -23,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -141,6 +142,12 @@ struct VolumeFrame {
   // Per pixel, the distance along the ray to the first iso hit or, failing one, to the sample
   // where the opacity reached 0.5; 0 where neither happened.
   std::vector<float> depth;
+
+  // Sized for a camera's picture, depths 0, the picture's storage kept when its size is.
+  void reset(int width, int height) {
+    if (picture.width != width || picture.height != height) picture = FloatImage(width, height);
+    depth.assign(std::size_t(width) * std::size_t(height), 0.0f);
+  }
 };
 
 // Counts of one frame.
@@ -154,5 +161,25 @@ struct VolumeCounts {
   std::int64_t iso_hits = 0;
   std::int64_t iso_hits_unlit = 0;  // past kMaxIsoHits on their ray: ambient light only
 };
+
+// Each count with the name a stats record gives it.
+struct VolumeCountName {
+  std::string_view name;
+  std::int64_t VolumeCounts::*member;
+};
+inline constexpr VolumeCountName kVolumeCountNames[] = {
+    {"volume.particles", &VolumeCounts::particles},
+    {"volume.particles_invalid", &VolumeCounts::particles_invalid},
+    {"volume.particles_culled", &VolumeCounts::particles_culled},
+    {"volume.samples", &VolumeCounts::samples},
+    {"volume.kernel_evaluations", &VolumeCounts::kernel_evaluations},
+    {"volume.rays_stopped", &VolumeCounts::rays_stopped},
+    {"volume.iso_hits", &VolumeCounts::iso_hits},
+    {"volume.iso_hits_unlit", &VolumeCounts::iso_hits_unlit}};
+
+inline VolumeCounts& operator+=(VolumeCounts& a, const VolumeCounts& b) {
+  for (const VolumeCountName& c : kVolumeCountNames) a.*c.member += b.*c.member;
+  return a;
+}
 
 }  // namespace voxspan

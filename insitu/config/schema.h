@@ -22,6 +22,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <iterator>
 #include <optional>
 #include <span>
 #include <string>
@@ -356,6 +357,15 @@ template <class T, class Base> std::vector<Key<T>> from_base(std::vector<Key<Bas
   std::vector<Key<T>> out;
   for (Key<Base>& k : keys) out.push_back(rebased<T>(std::move(k), AsBase{}));
   return out;
+}
+
+// The keys of `lists`, one after another (a kind's own keys after keys shared with others).
+template <class T, class... Lists>
+std::vector<Key<T>> joined(std::vector<Key<T>> first, Lists... lists) {
+  (first.insert(first.end(), std::make_move_iterator(lists.begin()),
+                std::make_move_iterator(lists.end())),
+   ...);
+  return first;
 }
 
 // Names that become parts of file names: letters, digits, '_', '-', '.' (not "." or "..").

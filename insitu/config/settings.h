@@ -94,8 +94,7 @@ std::vector<schema::Key<S>> output_keys(std::vector<schema::Key<S>> own = {},
       schema::map<S, TriggerSpec>("trigger", &OutputSettings::trigger, trigger_section(),
                                   "when it writes", true)};
   keys.back().shown_default = std::move(trigger_default);
-  for (schema::Key<S>& k : own) keys.push_back(std::move(k));
-  return keys;
+  return schema::joined(std::move(keys), std::move(own));
 }
 
 // ---- views: views[i]
@@ -176,8 +175,7 @@ std::vector<schema::Key<S>> view_keys(std::string_view kind, std::vector<schema:
       schema::integer<S, int>("height", &ViewSettings::height, 1, 16384, "pixels"),
       schema::map<S, CameraConfig>("camera", &ViewSettings::camera, camera_section(),
                                    "automatic framing unless `eye` and `target` are given")};
-  for (schema::Key<S>& k : own) keys.push_back(std::move(k));
-  return keys;
+  return schema::joined(std::move(keys), std::move(own));
 }
 
 // ---- how a kind describes itself to the config

@@ -8,6 +8,7 @@
 #include "insitu/views/legend.h"
 #include "insitu/views/trails.h"
 #include "insitu/views/view.h"
+#include "insitu/views/view_keys.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
@@ -65,34 +66,40 @@ const schema::Section<ParticlesSettings>& particles_section() {
       "views[i]",
       view_keys<S>(
           "particles",
-          {schema::text("color_by", &S::color_by,
-                        "the attribute that colours the glyphs (a vector: its magnitude); "
-                        "empty: one colour"),
-           schema::choice("color_map", &S::color_map, kColorMapNames, "the colour map"),
-           schema::interval_or_auto("range", &S::range,
-                                    "the values at the colour map's ends; `auto` = the drawn "
-                                    "particles' smallest and largest"),
-           schema::text("cull_by", &S::cull_by, "the attribute cull_range tests; empty: color_by"),
-           schema::interval_or_auto("cull_range", &S::cull_range,
-                                    "draw only the particles with cull_by in [min, max]; "
-                                    "`auto`: all"),
-           schema::choice("draw", &S::draw, kGlyphSubsetNames,
-                          "every owned particle, or only those of the cells that are not inner "
-                          "(the fluid's shell)"),
-           schema::choice("culling", &S::culling, kGlyphCullingNames,
-                          "skip particles outside the view (`frustum`) and also cells hidden "
-                          "behind drawn glyphs (`occlusion`); never changes a pixel"),
-           schema::number_or_auto("radius", &S::radius, schema::above(0),
-                                  "the glyphs' radius, world units; `auto` = half the particle "
-                                  "spacing (glyphs at rest touch)"),
-           schema::number("ambient_occlusion", &S::ambient_occlusion, schema::between(0, 1),
-                          "how much neighbouring glyphs darken a glyph (0: not at all)"),
-           schema::flag("legend", &S::legend, "draw the colour bar with its values"),
-           schema::map<S, TrailSettings>("trails", &S::trails, trails_section(),
-                                         "paths of chosen particles over the last render steps"),
-           schema::map<S, ParticleSlice>("slice", &S::slice, slice_section(),
-                                         "an SPH slice plane placed among the glyphs", true)
-               .only_when([](const S& v) { return !v.slice.quantity.empty(); })}),
+          schema::joined(
+              std::vector<schema::Key<S>>{
+                  schema::text("color_by", &S::color_by,
+                               "the attribute that colours the glyphs (a vector: its magnitude); "
+                               "empty: one colour")},
+              color_map_keys<S>("the colour map", "the drawn particles' smallest and largest"),
+              std::vector<schema::Key<S>>{
+                  schema::text("cull_by", &S::cull_by,
+                               "the attribute cull_range tests; empty: color_by"),
+                  schema::interval_or_auto("cull_range", &S::cull_range,
+                                           "draw only the particles with cull_by in [min, max]; "
+                                           "`auto`: all"),
+                  schema::choice(
+                      "draw", &S::draw, kGlyphSubsetNames,
+                      "every owned particle, or only those of the cells that are not inner "
+                      "(the fluid's shell)"),
+                  schema::choice(
+                      "culling",
+                      &S::culling, kGlyphCullingNames,
+                      "skip particles outside the view (`frustum`) and also cells hidden "
+                      "behind drawn glyphs (`occlusion`); never changes a pixel"),
+                  schema::number_or_auto(
+                      "radius", &S::radius, schema::above(0),
+                      "the glyphs' radius, world units; `auto` = half the particle "
+                      "spacing (glyphs at rest touch)"),
+                  schema::number("ambient_occlusion", &S::ambient_occlusion, schema::between(0, 1),
+                                 "how much neighbouring glyphs darken a glyph (0: not at all)"),
+                  schema::flag("legend", &S::legend, "draw the colour bar with its values"),
+                  schema::map<S, TrailSettings>(
+                      "trails", &S::trails, trails_section(),
+                      "paths of chosen particles over the last render steps"),
+                  schema::map<S, ParticleSlice>("slice", &S::slice, slice_section(),
+                                                "an SPH slice plane placed among the glyphs", true)
+                      .only_when([](const S& v) { return !v.slice.quantity.empty(); })})),
       [](yaml::MapReader& r, S& v) {
         if (v.cull_range && v.cull_by.empty() && v.color_by.empty())
           r.checker().error(r.find("cull_range"), r.path("cull_range"),
@@ -283,13 +290,11 @@ class ParticlesView final : public View {
 }  // namespace
 
 ViewKind particles_view_kind() {
-  ViewKind kind = view_kind<ParticlesSettings, ParticlesView>("particles", particles_section());
-  kind.config.reference = [] {
-    return particles_section().reference() + "\n#### `views[i].trails` (kind `particles`)\n\n" +
-           trails_section().reference() + "\n#### `views[i].slice` (kind `particles`)\n\n" +
-           slice_section().reference() + "\nIts `plane` is a `views[i].plane` (kind `slice`).\n";
-  };
-  return kind;
+  return view_kind<ParticlesSettings, ParticlesView>("particles", particles_section(), [] {
+    return part_reference("trails", "particles", trails_section()) +
+           part_reference("slice", "particles", slice_section()) +
+           "\nIts `plane` is a `views[i].plane` (kind `slice`).\n";
+  });
 }
 
 }  // namespace voxspan

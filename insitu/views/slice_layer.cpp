@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "insitu/parallel/communicator.h"
+#include "insitu/views/view_keys.h"
 #include "voxspan/error.h"
 #include "voxspan/log.h"
 
@@ -65,24 +66,20 @@ const schema::Section<SlicePlaneConfig>& slice_plane_section() {
 
 std::vector<schema::Key<SliceField>> slice_field_keys() {
   using S = SliceField;
-  std::vector<schema::Key<S>> keys = sph_sum_keys<S>(
-      "the particle attribute interpolated on the plane (a vector: its magnitude); required",
-      "divide by the sum of (m / rho) W: a uniform field stays flat up to the free surface");
-  for (schema::Key<S>& k : std::vector<schema::Key<S>>{
-           schema::map<S, SlicePlaneConfig>("plane", &S::plane, slice_plane_section(),
-                                            "the plane: `origin` and `normal`"),
-           schema::number_or_auto(
-               "extent", &S::extent, schema::above(0),
-               "the plane's width, world units (the height follows the picture's "
-               "aspect); `auto` = the fluid's box as the plane sees it"),
-           schema::choice("color_map", &S::color_map, kColorMapNames, "the colour map"),
-           schema::interval_or_auto("range", &S::range,
-                                    "the values at the colour map's ends; `auto` = the step's "
-                                    "smallest and largest"),
-           schema::integer("isolines", &S::isolines, 0, 64,
-                           "isolines, evenly spaced inside the range; 0: none")})
-    keys.push_back(std::move(k));
-  return keys;
+  return schema::joined(
+      sph_sum_keys<S>(
+          "the particle attribute interpolated on the plane (a vector: its magnitude); required",
+          "divide by the sum of (m / rho) W: a uniform field stays flat up to the free surface"),
+      std::vector<schema::Key<S>>{
+          schema::map<S, SlicePlaneConfig>("plane", &S::plane, slice_plane_section(),
+                                           "the plane: `origin` and `normal`"),
+          schema::number_or_auto("extent", &S::extent, schema::above(0),
+                                 "the plane's width, world units (the height follows the "
+                                 "picture's aspect); `auto` = the fluid's box as the plane "
+                                 "sees it")},
+      color_map_keys<S>("the colour map", "the step's smallest and largest"),
+      std::vector<schema::Key<S>>{schema::integer(
+          "isolines", &S::isolines, 0, 64, "isolines, evenly spaced inside the range; 0: none")});
 }
 
 void check_slice_field(yaml::MapReader& r, const SliceField& f) {

@@ -57,30 +57,12 @@ struct SliceField {
   bool operator==(const SliceField&) const = default;
 };
 
-// h = 1.3 spacings when the view does not say: PySPH's usual hdx.
-inline constexpr double kAutoSmoothingFactor = 1.3;
-
 // A particles view's `slice`: a SliceField placed in the view; with `cut`, the particles whose
 // spheres reach the camera's side of the plane are not drawn, so that it shows inside the fluid.
 struct ParticleSlice : SliceField {
   bool cut = true;
   bool operator==(const ParticleSlice&) const = default;
 };
-
-// The keys of an SPH sum, for any settings with these members (the slice's, the volume view's):
-// quantity, kernel, smoothing_length, shepard, mass, density.
-template <class S>
-std::vector<schema::Key<S>> sph_sum_keys(std::string quantity_help, std::string shepard_help) {
-  return {
-      schema::text("quantity", &S::quantity, std::move(quantity_help)),
-      schema::choice("kernel", &S::kernel, kSphKernelNames, "the SPH kernel W (3D, normalised)"),
-      schema::number_or_auto("smoothing_length", &S::smoothing_length, schema::above(0),
-                             "h, world units; `auto` = 1.3 particle spacings"),
-      schema::flag("shepard", &S::shepard, std::move(shepard_help)),
-      schema::text("mass", &S::mass,
-                   "the mass attribute; without it or `density`, m / rho = spacing^3"),
-      schema::text("density", &S::density, "the density attribute")};
-}
 
 // The keys of a SliceField, and the check that a given one names its quantity.
 std::vector<schema::Key<SliceField>> slice_field_keys();

@@ -66,12 +66,9 @@ class SliceView final : public View {
 }  // namespace
 
 ViewKind slice_view_kind() {
-  ViewKind kind = view_kind<SliceSettings, SliceView>("slice", slice_section());
-  kind.config.reference = [] {
-    return slice_section().reference() + "\n#### `views[i].plane` (kind `slice`)\n\n" +
-           slice_plane_section().reference();
-  };
-  return kind;
+  return view_kind<SliceSettings, SliceView>("slice", slice_section(), [] {
+    return part_reference("plane", "slice", slice_plane_section());
+  });
 }
 
 }  // namespace voxspan

@@ -244,12 +244,10 @@ class SurfaceView final : public View {
 }  // namespace
 
 ViewKind surface_view_kind() {
-  ViewKind kind = view_kind<SurfaceSettings, SurfaceView>("surface", surface_section());
-  kind.config.reference = [] {
-    return surface_section().reference() + "\n#### `views[i].slice` (kind `surface`)\n\n" +
-           slice_section().reference() + "\nIts `plane` is a `views[i].plane` (kind `slice`).\n";
-  };
-  return kind;
+  return view_kind<SurfaceSettings, SurfaceView>("surface", surface_section(), [] {
+    return part_reference("slice", "surface", slice_section()) +
+           "\nIts `plane` is a `views[i].plane` (kind `slice`).\n";
+  });
 }
 
 }  // namespace voxspan

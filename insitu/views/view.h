@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "insitu/config/config.h"
@@ -85,12 +86,25 @@ struct ViewKind {
   std::function<std::unique_ptr<View>(const ViewSettings&, const ViewContext&)> make;
 };
 
+// The table of a kind's nested map for its reference: `key` as the config writes it ("iso[k]").
+template <class T>
+std::string part_reference(std::string_view key, std::string_view kind,
+                           const schema::Section<T>& part) {
+  return "\n#### `views[i]." + std::string(key) + "` (kind `" + std::string(kind) + "`)\n\n" +
+         part.reference();
+}
+
+// The kind `name` of settings S drawn by view V; `parts`, when given, appends the tables of its
+// nested maps (part_reference) to the section's in the reference.
 template <class S, class V>
-ViewKind view_kind(std::string_view name, const schema::Section<S>& section) {
-  return {config_kind<ViewSettings>(name, section),
-          [](const ViewSettings& s, const ViewContext& c) -> std::unique_ptr<View> {
-            return std::make_unique<V>(dynamic_cast<const S&>(s), c);
-          }};
+ViewKind view_kind(std::string_view name, const schema::Section<S>& section,
+                   std::function<std::string()> parts = {}) {
+  ViewKind kind{config_kind<ViewSettings>(name, section),
+                [](const ViewSettings& s, const ViewContext& c) -> std::unique_ptr<View> {
+                  return std::make_unique<V>(dynamic_cast<const S&>(s), c);
+                }};
+  if (parts) kind.config.reference = [&section, parts] { return section.reference() + parts(); };
+  return kind;
 }
 
 }  // namespace voxspan

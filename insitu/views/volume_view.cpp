@@ -10,11 +10,11 @@
 
 #include "insitu/parallel/communicator.h"
 #include "insitu/views/legend.h"
-#include "insitu/views/slice_layer.h"
 #include "insitu/views/view.h"
 #include "insitu/views/view_attributes.h"
 #include "insitu/views/view_environment.h"
 #include "insitu/views/view_framing.h"
+#include "insitu/views/view_keys.h"
 #include "render/backend.h"
 #include "voxspan/error.h"
 
@@ -87,49 +87,46 @@ void check_volume(yaml::MapReader& r, VolumeSettings& v) {
 
 std::vector<schema::Key<VolumeSettings>> volume_keys() {
   using S = VolumeSettings;
-  std::vector<schema::Key<S>> keys = sph_sum_keys<S>(
-      "the particle attribute shown (a vector: its magnitude); empty: the fluid's volume "
-      "fraction sum (m / rho) W",
-      "divide by sum (m / rho) W ([HOK16]'s CSPH): a uniform field stays flat up to the free "
-      "surface; off with no quantity");
-  for (schema::Key<S>& k : std::vector<schema::Key<S>>{
-           schema::text("smoothing_attribute", &S::smoothing_attribute,
-                        "the attribute with each particle's h (astrophysics codes); empty: "
-                        "smoothing_length for all"),
-           schema::choice("mode", &S::mode, kVolumeModeNames,
-                          "`dvr`: the field as a glowing, absorbing medium; `iso`: its iso "
-                          "surfaces; `mixed`: both ([FAW10] sec. 5)"),
-           schema::choice("color_map", &S::color_map, kColorMapNames,
-                          "the transfer function's colours over `range`"),
-           schema::interval_or_auto("range", &S::range,
-                                    "the values at the colour map's ends; `auto` = the particles' "
-                                    "smallest and largest ([0, 1] for the volume fraction)"),
-           schema::pairs("opacity", &S::opacity,
-                         "the transfer function's opacity: [t, alpha] points, t in [0, 1] "
-                         "across `range` (not decreasing), alpha in [0, 1] the opacity of "
-                         "`opacity_length` of fluid at that value; linear between them"),
-           schema::number("opacity_length", &S::opacity_length, schema::above(0),
-                          "the length, in particle spacings, over which `opacity` holds: the "
-                          "picture does not change with the scene's scale"),
-           schema::maps("iso", &S::iso, iso_section(), kMaxIsoSurfaces,
-                        "iso surfaces (modes `iso` and `mixed`), lit with the field's gradient"),
-           schema::number("sampling", &S::sampling, schema::between(0.125, 16),
-                          "samples per pixel spacing along each ray (1: as along as across, "
-                          "[FAW10]'s perspective grid)"),
-           schema::number("termination", &S::termination, schema::between(0, 0.5),
-                          "a ray stops when its transmittance falls under this (the error it "
-                          "makes is at most this times what lies behind)"),
-           schema::number("weight_floor", &S::weight_floor, schema::at_least(0),
-                          "with Shepard, where sum (m / rho) W is under this the field is "
-                          "empty (the free surface, where the ratio is noise)"),
-           schema::number("ambient", &S::ambient, schema::between(0, 1),
-                          "the iso surfaces' light from everywhere"),
-           schema::choice("background", &S::background, kVolumeBackgroundNames,
-                          "`sky`: the surface views' sky and ground behind the fluid; `none`: "
-                          "transparent, alpha = 1 - transmittance (premultiplied)"),
-           schema::flag("legend", &S::legend, "the colour bar with the range's values")})
-    keys.push_back(std::move(k));
-  return keys;
+  return schema::joined(
+      sph_sum_keys<S>(
+          "the particle attribute shown (a vector: its magnitude); empty: the fluid's volume "
+          "fraction sum (m / rho) W",
+          "divide by sum (m / rho) W ([HOK16]'s CSPH): a uniform field stays flat up to the "
+          "free surface; off with no quantity"),
+      std::vector<schema::Key<S>>{
+          schema::text("smoothing_attribute", &S::smoothing_attribute,
+                       "the attribute with each particle's h (astrophysics codes); empty: "
+                       "smoothing_length for all"),
+          schema::choice("mode", &S::mode, kVolumeModeNames,
+                         "`dvr`: the field as a glowing, absorbing medium; `iso`: its iso "
+                         "surfaces; `mixed`: both ([FAW10] sec. 5)")},
+      color_map_keys<S>("the transfer function's colours over `range`",
+                        "the particles' smallest and largest ([0, 1] for the volume fraction)"),
+      std::vector<schema::Key<S>>{
+          schema::pairs("opacity", &S::opacity,
+                        "the transfer function's opacity: [t, alpha] points, t in [0, 1] "
+                        "across `range` (not decreasing), alpha in [0, 1] the opacity of "
+                        "`opacity_length` of fluid at that value; linear between them"),
+          schema::number("opacity_length", &S::opacity_length, schema::above(0),
+                         "the length, in particle spacings, over which `opacity` holds: the "
+                         "picture does not change with the scene's scale"),
+          schema::maps("iso", &S::iso, iso_section(), kMaxIsoSurfaces,
+                       "iso surfaces (modes `iso` and `mixed`), lit with the field's gradient"),
+          schema::number("sampling", &S::sampling, schema::between(0.125, 16),
+                         "samples per pixel spacing along each ray (1: as along as across, "
+                         "[FAW10]'s perspective grid)"),
+          schema::number("termination", &S::termination, schema::between(0, 0.5),
+                         "a ray stops when its transmittance falls under this (the error it "
+                         "makes is at most this times what lies behind)"),
+          schema::number("weight_floor", &S::weight_floor, schema::at_least(0),
+                         "with Shepard, where sum (m / rho) W is under this the field is "
+                         "empty (the free surface, where the ratio is noise)"),
+          schema::number("ambient", &S::ambient, schema::between(0, 1),
+                         "the iso surfaces' light from everywhere"),
+          schema::choice("background", &S::background, kVolumeBackgroundNames,
+                         "`sky`: the surface views' sky and ground behind the fluid; `none`: "
+                         "transparent, alpha = 1 - transmittance (premultiplied)"),
+          schema::flag("legend", &S::legend, "the colour bar with the range's values")});
 }
 
 const schema::Section<VolumeSettings>& volume_section() {
@@ -266,12 +263,8 @@ class VolumeView final : public View {
 }  // namespace
 
 ViewKind volume_view_kind() {
-  ViewKind kind = view_kind<VolumeSettings, VolumeView>("volume", volume_section());
-  kind.config.reference = [] {
-    return volume_section().reference() + "\n#### `views[i].iso[k]` (kind `volume`)\n\n" +
-           iso_section().reference();
-  };
-  return kind;
+  return view_kind<VolumeSettings, VolumeView>(
+      "volume", volume_section(), [] { return part_reference("iso[k]", "volume", iso_section()); });
 }
 
 }  // namespace voxspan

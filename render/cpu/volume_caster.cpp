@@ -74,10 +74,6 @@ struct TileScratch {
   std::vector<FieldSums> hit_sums;  // light: per pixel and hit
 };
 
-struct Tallies {
-  std::int64_t samples = 0, evaluations = 0, stopped = 0, hits = 0, unlit = 0;
-};
-
 }  // namespace
 
 struct VolumeCaster::Work {
@@ -92,8 +88,6 @@ struct VolumeCaster::Work {
 
 VolumeCaster::VolumeCaster() : work_(std::make_unique<Work>()) {}
 VolumeCaster::~VolumeCaster() = default;
-VolumeCaster::VolumeCaster(VolumeCaster&&) noexcept = default;
-VolumeCaster& VolumeCaster::operator=(VolumeCaster&&) noexcept = default;
 
 namespace {
 
@@ -193,7 +187,7 @@ __attribute__((target_clones("avx2", "default"))) void add_kernel(
 template <SphKernel K> class TileMarch {
  public:
   TileMarch(const Samples& s, const VolumeOptions& o, const ViewFrame& f, model::VolumeHost& host,
-            TileScratch& scratch, Tallies& tallies)
+            TileScratch& scratch, VolumeCounts& tallies)
       : s_(s), o_(o), f_(f), host_(host), w_(scratch), t_(tallies) {}
 
   void run(const PixelRect& tile, std::span<const std::uint32_t> list,
@@ -258,7 +252,7 @@ template <SphKernel K> class TileMarch {
         const std::int64_t i0 = first_sample(s, d0), i1 = last_sample(s, d1);
         if (i1 < i0) continue;
         accumulate(p, s, w_.a[std::size_t(p)], zc, w_.m2[k], i0, i1);
-        t_.evaluations += i1 - i0 + 1;
+        t_.kernel_evaluations += i1 - i0 + 1;
         r.last = std::max(r.last, i1);
       }
     }
@@ -352,7 +346,7 @@ template <SphKernel K> class TileMarch {
     r.ray = host_.vx_sample(r.ray, float(q), defined ? 1u : 0u, float(z), length);
     const int new_hits = r.hits.count + r.hits.unlit_count - hits;
     if (new_hits > 0) {
-      t_.hits += new_hits;
+      t_.iso_hits += new_hits;
       has_hits_ = true;
       if (r.first_depth == 0 && r.hits.count > 0) {
         r.first_depth = r.hits.hit[0].depth * r.scale;
@@ -364,7 +358,7 @@ template <SphKernel K> class TileMarch {
     if (r.ray.transmittance < o_.termination) {
       r.done = true;
       ++done_;
-      ++t_.stopped;
+      ++t_.rays_stopped;
     }
   }
 
@@ -417,7 +411,7 @@ template <SphKernel K> class TileMarch {
       const int x = tile_.x0 + p % width(), y = tile_.y0 + p / width();
       out.picture.set(x, y, host_.pixel_color(r.ray, r.hits.unlit, o_.background, f_, x, y));
       out.depth[std::size_t(x) + std::size_t(y) * std::size_t(out.picture.width)] = r.first_depth;
-      t_.unlit += r.hits.unlit_count;
+      t_.iso_hits_unlit += r.hits.unlit_count;
     }
   }
 
@@ -426,7 +420,7 @@ template <SphKernel K> class TileMarch {
   const ViewFrame& f_;
   model::VolumeHost& host_;
   TileScratch& w_;
-  Tallies& t_;
+  VolumeCounts& t_;
   PixelRect tile_;
   int pixels_ = 0, done_ = 0;
   std::int64_t window_ = 1, mask_ = 0;
@@ -481,11 +475,9 @@ VolumeCounts VolumeCaster::run(const Camera& camera, std::span<const VolumeParti
   bin_supports(screen, w.supports, w.sorted, w.tile_bins, w.tile_lists);
   lap(VolumeCastPhase::bin);
 
-  if (out.picture.width != camera.width || out.picture.height != camera.height)
-    out.picture = FloatImage(camera.width, camera.height);
-  out.depth.assign(std::size_t(camera.width) * std::size_t(camera.height), 0.0f);
+  out.reset(camera.width, camera.height);
   tbb::enumerable_thread_specific<model::VolumeHost> hosts(options);
-  tbb::combinable<Tallies> tallies;
+  tbb::combinable<VolumeCounts> tallies;
   with_kernel(options.kernel, [&]<SphKernel K>() {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, screen.count(), 1),
                       [&](const tbb::blocked_range<std::size_t>& range) {
@@ -500,13 +492,7 @@ VolumeCounts VolumeCaster::run(const Camera& camera, std::span<const VolumeParti
                       });
   });
   lap(VolumeCastPhase::march);
-  tallies.combine_each([&](const Tallies& t) {
-    counts.samples += t.samples;
-    counts.kernel_evaluations += t.evaluations;
-    counts.rays_stopped += t.stopped;
-    counts.iso_hits += t.hits;
-    counts.iso_hits_unlit += t.unlit;
-  });
+  tallies.combine_each([&](const VolumeCounts& t) { counts += t; });
   return counts;
 }
 

@@ -34,14 +34,15 @@ enum class VolumeCastPhase { project, sort, bin, march };
 inline constexpr std::array<const char*, 4> kVolumeCastPhaseNames{"project", "sort", "bin",
                                                                   "march"};
 
+// Holds its scratch (supports, bins, per-thread rings) from frame to frame.
 class VolumeCaster {
  public:
-  static constexpr int kTile = 32;
+  static constexpr int kTile = 32;  // as the span caster's (render/cpu/span_caster.h)
 
   VolumeCaster();
   ~VolumeCaster();
-  VolumeCaster(VolumeCaster&&) noexcept;
-  VolumeCaster& operator=(VolumeCaster&&) noexcept;
+  VolumeCaster(const VolumeCaster&) = delete;
+  VolumeCaster& operator=(const VolumeCaster&) = delete;
 
   // One frame into `out` (its storage reused). Throws voxspan::Error on bad options or camera;
   // bad particles are counted and skipped. phase_ms (when given) gets each phase's wall time.

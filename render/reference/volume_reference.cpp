@@ -87,18 +87,13 @@ VolumeCounts volume_reference(const Camera& camera, std::span<const VolumePartic
     }
     centres[i] = f.to_view(glm::dvec3(particles[i].x, particles[i].y, particles[i].z));
   }
-  if (out.picture.width != camera.width || out.picture.height != camera.height)
-    out.picture = FloatImage(camera.width, camera.height);
-  out.depth.assign(std::size_t(camera.width) * std::size_t(camera.height), 0.0f);
+  out.reset(camera.width, camera.height);
   tbb::enumerable_thread_specific<model::VolumeHost> hosts(options);
-  struct Tally {
-    std::int64_t samples = 0, evaluations = 0, stopped = 0, hits = 0, unlit = 0;
-  };
-  tbb::combinable<Tally> tallies;
+  tbb::combinable<VolumeCounts> tallies;
   with_kernel(options.kernel, [&]<SphKernel K>() {
     tbb::parallel_for(0, camera.height, [&](int y) {
       model::VolumeHost& host = hosts.local();
-      Tally& t = tallies.local();
+      VolumeCounts& t = tallies.local();
       std::vector<Crossing> crossings;
       for (int x = 0; x < camera.width; ++x) {
         const glm::dvec3 dir = f.view_ray(x, y);
@@ -128,7 +123,7 @@ VolumeCounts volume_reference(const Camera& camera, std::span<const VolumePartic
         bool first_is_hit = false;
         for (std::int64_t i = first; !crossings.empty() && i <= last; ++i) {
           const double z = lattice.depth(i);
-          const Sums sum = sums_at<K>(particles, centres, crossings, dir, z, t.evaluations);
+          const Sums sum = sums_at<K>(particles, centres, crossings, dir, z, t.kernel_evaluations);
           const bool defined = sum.w > 0 && (!options.shepard || sum.w >= options.weight_floor);
           const double q = !defined ? 0.0 : options.shepard ? sum.s / sum.w : sum.s;
           t.samples += defined ? 1 : 0;
@@ -143,12 +138,12 @@ VolumeCounts volume_reference(const Camera& camera, std::span<const VolumePartic
           if (first_depth == 0 && before >= 0.5f && ray.transmittance < 0.5f)
             first_depth = float(z * float(scale));
           if (ray.transmittance < options.termination) {
-            ++t.stopped;
+            ++t.rays_stopped;
             break;
           }
         }
-        t.hits += hits.count + hits.unlit_count;
-        t.unlit += hits.unlit_count;
+        t.iso_hits += hits.count + hits.unlit_count;
+        t.iso_hits_unlit += hits.unlit_count;
         for (int h = 0; h < hits.count; ++h) {
           model::IsoHit& hit = hits.hit[std::size_t(h)];
           const FieldSums g =
@@ -162,13 +157,7 @@ VolumeCounts volume_reference(const Camera& camera, std::span<const VolumePartic
       }
     });
   });
-  tallies.combine_each([&](const Tally& t) {
-    counts.samples += t.samples;
-    counts.kernel_evaluations += t.evaluations;
-    counts.rays_stopped += t.stopped;
-    counts.iso_hits += t.hits;
-    counts.iso_hits_unlit += t.unlit;
-  });
+  tallies.combine_each([&](const VolumeCounts& t) { counts += t; });
   return counts;
 }
 

@@ -96,17 +96,6 @@ const StatName kComposite[] = {pass::composite_download, pass::composite, pass::
 const StatName kSurfaces[] = {pass::connect, pass::filter, pass::normals,
                               pass::deep_ao, pass::shade,  pass::readback};
 
-template <class E, std::size_t N>
-bool read_names(const char* list, const EnumName<E> (&table)[N], std::vector<E>& out) {
-  out.clear();
-  for (const std::string& name : tools::comma_list(list)) {
-    const std::optional<E> value = value_of(table, name);
-    if (!value) return false;
-    out.push_back(*value);
-  }
-  return !out.empty();
-}
-
 bool read_sizes(const char* list, std::vector<Size>& out) {
   out.clear();
   for (const std::string& item : tools::comma_list(list)) {
@@ -120,8 +109,9 @@ bool read_sizes(const char* list, std::vector<Size>& out) {
 bool read_flag(tools::Arg& arg, Args& a) {
   if (const char* v = arg.value("--sizes")) return read_sizes(v, a.sizes);
   if (const char* v = arg.value("--schemes"))
-    return read_names(v, kCompositeSchemeNames, a.schemes);
-  if (const char* v = arg.value("--splits")) return read_names(v, tools::kSplitNames, a.splits);
+    return tools::read_names(v, kCompositeSchemeNames, a.schemes);
+  if (const char* v = arg.value("--splits"))
+    return tools::read_names(v, tools::kSplitNames, a.splits);
   return tools::read_bench_flag(arg, a) || arg.value("--budget-mib", a.budget_mib) ||
          arg.value("--csv", a.csv);
 }

@@ -35,18 +35,14 @@ namespace {
 
 using namespace voxspan;
 
-struct Args : tools::BenchArgs {
-  std::string state = "build/dambreak_state.bin";
-  bool ritter = !tools::have_solver();
-};
+struct Args : tools::BenchArgs, tools::StateFlags {};
 
 constexpr char kUsage[] =
     "usage: bench_embree [--particles N] [--time T] [--state FILE] [--ritter] [--size WxH]\n"
     "         [--frames F]\n";
 
 bool read_flag(tools::Arg& arg, Args& a) {
-  return tools::read_bench_flag(arg, a) || arg.value("--state", a.state) ||
-         arg.flag("--ritter", a.ritter);
+  return tools::read_bench_flag(arg, a) || tools::read_state_flag(arg, a);
 }
 
 bool parse(int argc, char** argv, Args& a) {
@@ -173,7 +169,7 @@ PixelSpans spans_of(const PerspectiveGrid& grid, int x, int y, const std::vector
 }
 
 int run(const Args& a) {
-  tools::DamBreakState s = tools::dam_break_state(a.ritter, a.particles, a.time, a.state);
+  tools::DamBreakState s = tools::dam_break_state(a, a);
   s.camera.width = a.width;
   s.camera.height = a.height;
   const std::vector<ParticleSphere>& spheres = s.classification.boundary;

@@ -69,9 +69,7 @@ namespace {
 using namespace voxspan;
 using tools::PeerSurface;
 
-struct Args : tools::BenchArgs {
-  std::string state = "build/dambreak_state.bin";
-  bool ritter = !tools::have_solver();
+struct Args : tools::BenchArgs, tools::StateFlags {
   std::set<std::string> methods = {"exact", "cpu", "gl", "openvdb", "vtk"};
   bool quick = false;
   bool check = false;
@@ -92,9 +90,8 @@ bool read_flag(tools::Arg& arg, Args& a) {
     }
     return !a.methods.empty();
   }
-  return tools::read_bench_flag(arg, a) || arg.value("--state", a.state) ||
-         arg.flag("--ritter", a.ritter) || arg.flag("--quick", a.quick) ||
-         arg.flag("--check", a.check) || arg.value("--csv", a.csv);
+  return tools::read_bench_flag(arg, a) || tools::read_state_flag(arg, a) ||
+         arg.flag("--quick", a.quick) || arg.flag("--check", a.check) || arg.value("--csv", a.csv);
 }
 
 bool parse(int argc, char** argv, Args& a) {
@@ -458,7 +455,7 @@ std::vector<Method> methods_for(const Args& a, const Scene& scene,
 }
 
 int run(const Args& a) {
-  Scene scene{tools::dam_break_state(a.ritter, a.particles, a.time, a.state), {}, {}, {}};
+  Scene scene{tools::dam_break_state(a, a), {}, {}, {}};
   tools::DamBreakState& s = scene.state;
   s.camera.width = a.width;
   s.camera.height = a.height;

@@ -43,9 +43,7 @@ namespace {
 
 using namespace voxspan;
 
-struct Args : tools::BenchArgs {
-  std::string state = "build/dambreak_state.bin";
-  bool ritter = !tools::have_solver();
+struct Args : tools::BenchArgs, tools::StateFlags {
   std::vector<ShadeMode> modes = {ShadeMode::opaque, ShadeMode::translucent, ShadeMode::refractive};
   bool ao = false;
   bool gl = true, cpu = true;
@@ -63,15 +61,7 @@ const char* kPasses[] = {"classify", "frame",    "upload", "bin",      "clear",
                          "normals",  "deep_ao",  "shade",  "readback", "step"};
 
 bool read_flag(tools::Arg& arg, Args& a) {
-  if (const char* v = arg.value("--modes")) {
-    a.modes.clear();
-    for (const std::string& m : tools::comma_list(v)) {
-      const std::optional<ShadeMode> mode = value_of<ShadeMode>(kShadeModeNames, m);
-      if (!mode) return false;
-      a.modes.push_back(*mode);
-    }
-    return !a.modes.empty();
-  }
+  if (const char* v = arg.value("--modes")) return tools::read_names(v, kShadeModeNames, a.modes);
   if (const char* v = arg.value("--renderers")) {
     a.gl = a.cpu = false;
     for (const std::string& r : tools::comma_list(v)) {
@@ -81,8 +71,8 @@ bool read_flag(tools::Arg& arg, Args& a) {
     }
     return a.gl || a.cpu;
   }
-  return tools::read_bench_flag(arg, a) || arg.value("--state", a.state) ||
-         arg.flag("--ritter", a.ritter) || arg.flag("--ao", a.ao) || arg.value("--csv", a.csv);
+  return tools::read_bench_flag(arg, a) || tools::read_state_flag(arg, a) ||
+         arg.flag("--ao", a.ao) || arg.value("--csv", a.csv);
 }
 
 bool parse(int argc, char** argv, Args& a) {
@@ -189,7 +179,7 @@ RenderOptions options_for(const tools::DamBreakState& s, const Args& a) {
 }
 
 int run(const Args& a) {
-  tools::DamBreakState s = tools::dam_break_state(a.ritter, a.particles, a.time, a.state);
+  tools::DamBreakState s = tools::dam_break_state(a, a);
   s.camera.width = a.width;
   s.camera.height = a.height;
   std::vector<std::unique_ptr<Frame>> frames;

@@ -44,9 +44,7 @@ namespace {
 
 using namespace voxspan;
 
-struct Args : tools::BenchArgs {
-  std::string state = "build/dambreak_state.bin";
-  bool ritter = !tools::have_solver();
+struct Args : tools::BenchArgs, tools::StateFlags {
   double budget_mib = 512;
   std::vector<ShadeMode> modes = {ShadeMode::opaque, ShadeMode::translucent, ShadeMode::refractive};
   bool ao = false;
@@ -86,10 +84,9 @@ bool read_flag(tools::Arg& arg, Args& a) {
       a.alphas.push_back(std::atof(alpha.c_str()));
     return true;
   }
-  return tools::read_bench_flag(arg, a) || arg.value("--state", a.state) ||
-         arg.flag("--ritter", a.ritter) || arg.value("--budget-mib", a.budget_mib) ||
-         arg.flag("--ao", a.ao) || arg.value("--accuracy", a.accuracy) ||
-         arg.value("--bounces", a.bounces);
+  return tools::read_bench_flag(arg, a) || tools::read_state_flag(arg, a) ||
+         arg.value("--budget-mib", a.budget_mib) || arg.flag("--ao", a.ao) ||
+         arg.value("--accuracy", a.accuracy) || arg.value("--bounces", a.bounces);
 }
 
 bool parse(int argc, char** argv, Args& a) {
@@ -97,7 +94,7 @@ bool parse(int argc, char** argv, Args& a) {
 }
 
 void time_modes(const Args& a, const gl::Context& context, Renderer& renderer) {
-  tools::DamBreakState s = tools::dam_break_state(a.ritter, a.particles, a.time, a.state);
+  tools::DamBreakState s = tools::dam_break_state(a, a);
   const Classification& c = s.classification;
   std::vector<ParticleSphere> all;
   if (a.all_particles)

@@ -33,9 +33,7 @@ namespace {
 
 using namespace voxspan;
 
-struct Args : tools::BenchArgs {
-  std::string state = "build/dambreak_state.bin";
-  bool ritter = !tools::have_solver();
+struct Args : tools::BenchArgs, tools::StateFlags {
   std::vector<VolumeMode> modes = {VolumeMode::dvr, VolumeMode::iso, VolumeMode::mixed};
   std::vector<double> samplings = {1};
   bool height_field = false;  // the field: height above the floor, else the volume fraction
@@ -48,15 +46,7 @@ constexpr char kUsage[] =
     "         [--quantity fraction|height] [--convergence] [--check]\n";
 
 bool read_flag(tools::Arg& arg, Args& a) {
-  if (const char* v = arg.value("--modes")) {
-    a.modes.clear();
-    for (const std::string& m : tools::comma_list(v)) {
-      const std::optional<VolumeMode> mode = value_of<VolumeMode>(kVolumeModeNames, m);
-      if (!mode) return false;
-      a.modes.push_back(*mode);
-    }
-    return !a.modes.empty();
-  }
+  if (const char* v = arg.value("--modes")) return tools::read_names(v, kVolumeModeNames, a.modes);
   if (const char* v = arg.value("--sampling")) {
     a.samplings.clear();
     for (const std::string& s : tools::comma_list(v)) a.samplings.push_back(std::atof(s.c_str()));
@@ -67,9 +57,8 @@ bool read_flag(tools::Arg& arg, Args& a) {
     a.height_field = std::string(v) == "height";
     return a.height_field || std::string(v) == "fraction";
   }
-  return arg.value("--state", a.state) || arg.flag("--ritter", a.ritter) ||
-         arg.flag("--convergence", a.convergence) || arg.flag("--check", a.check) ||
-         tools::read_bench_flag(arg, a);
+  return tools::read_state_flag(arg, a) || arg.flag("--convergence", a.convergence) ||
+         arg.flag("--check", a.check) || tools::read_bench_flag(arg, a);
 }
 
 bool parse(int argc, char** argv, Args& a) { return tools::read_args(argc, argv, a, read_flag); }
@@ -116,7 +105,7 @@ std::array<double, 2> errors(const FloatImage& a, const FloatImage& b) {
 }
 
 int run(const Args& a) {
-  tools::DamBreakState s = tools::dam_break_state(a.ritter, a.particles, a.time, a.state);
+  tools::DamBreakState s = tools::dam_break_state(a, a);
   s.camera.width = a.width;
   s.camera.height = a.height;
   const std::vector<VolumeParticle> particles = particles_of(s, a.height_field);

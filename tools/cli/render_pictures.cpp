@@ -36,10 +36,8 @@ namespace {
 
 using namespace voxspan;
 
-struct Args : tools::SceneArgs {
+struct Args : tools::SceneArgs, tools::StateFlags {
   std::string out = "docs/images";
-  std::string state = "build/dambreak_state.bin";  // cache of the solver state
-  bool ritter = !tools::have_solver();
   bool reference = false;
   std::string compare;  // folder of pictures to compare with; empty: none
 };
@@ -51,9 +49,8 @@ constexpr char kUsage[] =
 
 // The flags beyond the scene's.
 bool read_flag(tools::Arg& arg, Args& a) {
-  return arg.value("--out", a.out) || arg.value("--state", a.state) ||
-         arg.flag("--ritter", a.ritter) || arg.flag("--reference", a.reference) ||
-         arg.value("--compare", a.compare);
+  return arg.value("--out", a.out) || tools::read_state_flag(arg, a) ||
+         arg.flag("--reference", a.reference) || arg.value("--compare", a.compare);
 }
 
 bool parse(int argc, char** argv, Args& a) {
@@ -115,7 +112,7 @@ int run(const Args& a) {
   gl::ShaderLibrary shaders;
   Renderer renderer(shaders);
 
-  tools::DamBreakState s = tools::dam_break_state(a.ritter, a.particles, a.time, a.state);
+  tools::DamBreakState s = tools::dam_break_state(a, a);
   const Classification& c = s.classification;
   std::printf("%s: %zu boundary particles of %zu, %zu inner-full cells\n", s.description.c_str(),
               c.boundary.size(), s.x.size(), c.counts.cells_inner_full);

@@ -138,10 +138,10 @@ DamBreakState ritter_dam_break(double particles, double t) {
   return s;
 }
 
-DamBreakState dam_break_state(bool ritter, double particles, double time,
-                              const std::string& cache) {
-  return ritter ? ritter_dam_break(particles, time < 0 ? 0.3 : time)
-                : solver_dam_break(particles, time < 0 ? 5.0 : time, cache);
+DamBreakState dam_break_state(const StateFlags& flags, const SceneArgs& scene) {
+  const double t = scene.time;
+  return flags.ritter ? ritter_dam_break(scene.particles, t < 0 ? 0.3 : t)
+                      : solver_dam_break(scene.particles, t < 0 ? 5.0 : t, flags.state);
 }
 
 ShadeOptions bench_shading(const DamBreakState& s) {

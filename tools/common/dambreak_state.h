@@ -11,6 +11,7 @@
 
 #include "render/camera.h"
 #include "render/shade_options.h"
+#include "tools/common/tool_args.h"
 #include "voxspan/classify.h"
 
 namespace voxspan::tools {
@@ -41,8 +42,19 @@ bool have_solver();
 // spacings.
 ShadeOptions bench_shading(const DamBreakState& s);
 
-// The shading tools' scene: the Ritter profile at `time` seconds (< 0: 0.3) when `ritter`, else
-// the solver at T = `time` (< 0: 5, the run-up on the far wall), cached in `cache`.
-DamBreakState dam_break_state(bool ritter, double particles, double time, const std::string& cache);
+// The flags of the tools that load a state: --state FILE (the solver's cache) and --ritter (the
+// test scene instead of the solver).
+struct StateFlags {
+  std::string state = "build/dambreak_state.bin";
+  bool ritter = !have_solver();
+};
+inline bool read_state_flag(Arg& arg, StateFlags& f) {
+  return arg.value("--state", f.state) || arg.flag("--ritter", f.ritter);
+}
+
+// The shading tools' scene, about `scene.particles` of them: the Ritter profile at `scene.time`
+// seconds (< 0: 0.3) with --ritter, else the solver at T = `scene.time` (< 0: 5, the run-up on
+// the far wall), cached in --state's file.
+DamBreakState dam_break_state(const StateFlags& flags, const SceneArgs& scene);
 
 }  // namespace voxspan::tools

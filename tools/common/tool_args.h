@@ -11,12 +11,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <type_traits>
 #include <vector>
 
 #include "render/gl/context.h"
+#include "render/enum_names.h"
 #include "render/gl/info.h"
 #include "tools/common/usage.h"
 
@@ -44,6 +46,19 @@ inline std::vector<std::string> comma_list(const std::string& text) {
   std::stringstream s(text);
   for (std::string item; std::getline(s, item, ',');) items.push_back(item);
   return items;
+}
+
+// The values a comma-separated list of enum names gives, from an EnumName table: false when a
+// name is not in it or the list is empty.
+template <class E, std::size_t N>
+bool read_names(const char* list, const EnumName<E> (&table)[N], std::vector<E>& out) {
+  out.clear();
+  for (const std::string& name : comma_list(list)) {
+    const std::optional<E> value = value_of(table, name);
+    if (!value) return false;
+    out.push_back(*value);
+  }
+  return !out.empty();
 }
 
 // Reads argv[i] when it is --particles N, --time T, --size WxH, --alpha DEG or --platform P,

@@ -8,11 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "insitu/runtime/config_file.h"
-#include "insitu/runtime/pipeline.h"
 #include "insitu/views/particles_view.h"
-#include "voxspan/error.h"
-#include "voxspan/insitu.h"
+#include "tests/support/view_tests.h"
 
 namespace voxspan {
 namespace {
@@ -20,48 +17,23 @@ namespace {
 constexpr double kSpacing = 0.05;
 
 // A block 1.0 x 0.5 x 0.5 with a speed rising along x.
-struct Block {
-  std::vector<double> xyz, speed;
-  Block() {
-    for (int k = 0; k < 10; ++k)
-      for (int j = 0; j < 10; ++j)
-        for (int i = 0; i < 20; ++i) {
-          for (int a : {i, j, k}) xyz.push_back((a + 0.5) * kSpacing);
-          speed.push_back(xyz[xyz.size() - 3]);
-        }
-  }
-  ParticleView view() const {
-    return ParticleView::aos(xyz.data(), speed.size()).with_scalar("speed", speed.data());
-  }
-};
+test::ParticleBlock block() {
+  return {kSpacing, "speed", [](int, double x) { return x; }};
+}
 
 std::string config(const std::string& keys) {
-  return "output_folder: " + testing::TempDir() +
-         "particles_view\n"
-         "outputs: {png: {enabled: false}, stats: {enabled: false}}\n"
-         "trigger: {every_steps: 1}\n"
-         "views:\n  - {name: p, kind: particles, width: 96, height: 54, "
-         "camera: {direction: [0, 0, -1], up: [0, 1, 0]}, " +
-         keys + "}\n";
-}
-
-const InsituPipeline& pipeline_of(const Adapter& a) {
-  return dynamic_cast<const InsituPipeline&>(*a.pipeline());
-}
-
-AdapterOptions options() {
-  AdapterOptions o;
-  o.classify.particle_spacing = kSpacing;
-  return o;
+  return test::one_view_config("particles_view",
+                               "name: p, kind: particles, width: 96, height: 54, "
+                               "camera: {direction: [0, 0, -1], up: [0, 1, 0]}, " +
+                                   keys);
 }
 
 TEST(ParticlesView, KeysAreReadAsWritten) {
-  const Config c = load_config_string(
-      "views:\n  - {kind: particles, color_by: velocity, color_map: coolwarm, range: [0, 2],"
+  const ParticlesSettings s = test::read_view<ParticlesSettings>(
+      "kind: particles, color_by: velocity, color_map: coolwarm, range: [0, 2],"
       " cull_by: p, cull_range: [1, 5], draw: boundary, culling: frustum, radius: 0.01,"
       " ambient_occlusion: 0.5, legend: false,"
-      " slice: {quantity: p, cut: false, plane: {normal: [1, 0, 0]}}}\n");
-  const auto& s = dynamic_cast<const ParticlesSettings&>(*c.views[0].settings);
+      " slice: {quantity: p, cut: false, plane: {normal: [1, 0, 0]}}");
   EXPECT_EQ(s.color_by, "velocity");
   EXPECT_EQ(s.color_map, ColorMap::coolwarm);
   ASSERT_TRUE(s.range && s.cull_range);
@@ -73,36 +45,23 @@ TEST(ParticlesView, KeysAreReadAsWritten) {
   EXPECT_EQ(s.slice.quantity, "p");
   EXPECT_FALSE(s.slice.cut);
   EXPECT_EQ(s.slice.plane.normal[0], 1.0);
-  EXPECT_EQ(load_config_string(to_yaml(c)).views[0], c.views[0]);
 }
 
 TEST(ParticlesView, BadKeysAreRefusedWithTheirLine) {
-  for (const auto& [yaml, words] : std::vector<std::pair<std::string, std::string>>{
-           {"color_map: rainbow", "color_map"},
-           {"culling: some", "culling"},
-           {"range: [2, 1]", "range"},
-           {"radius: -1", "radius"},
-           {"cull_range: [0, 1]", "needs `cull_by` or `color_by`"},
-           {"colour_by: speed", "colour_by"},
-           {"slice: {plane: {normal: [1, 0, 0]}}", "views[0].slice.quantity"},
-           {"slice: {quantity: p, kernel: gauss}", "views[0].slice.kernel"}}) {
-    try {
-      load_config_string("views:\n  - {kind: particles, " + yaml + "}\n", "p.yaml");
-      ADD_FAILURE() << yaml << " was accepted";
-    } catch (const Error& e) {
-      const std::string what = e.what();
-      EXPECT_NE(what.find("p.yaml:2:"), std::string::npos) << what;
-      EXPECT_NE(what.find(words), std::string::npos) << what;
-    }
-  }
+  test::expect_refused_with_line(
+      "particles", {{"color_map: rainbow", "color_map"},
+                    {"culling: some", "culling"},
+                    {"range: [2, 1]", "range"},
+                    {"radius: -1", "radius"},
+                    {"cull_range: [0, 1]", "needs `cull_by` or `color_by`"},
+                    {"colour_by: speed", "colour_by"},
+                    {"slice: {plane: {normal: [1, 0, 0]}}", "views[0].slice.quantity"},
+                    {"slice: {quantity: p, kernel: gauss}", "views[0].slice.kernel"}});
 }
 
 TEST(ParticlesView, ColoursTheGlyphsAndDrawsTheLegend) {
-  const Block b;
-  Adapter a = adapter_from_config_text(config("color_by: speed"), options());
-  ASSERT_TRUE(a.execute(0, 0, b.view()).ok());
-  const InsituPipeline& pipeline = pipeline_of(a);
-  const FloatImage& p = *pipeline.latest_views()[0].picture;
+  const test::ParticleBlock b = block();
+  const FloatImage p = test::first_picture(config("color_by: speed"), b);
   // Seen from +z with +x to the right: slow (viridis: blue-violet) on the left, fast
   // (yellow-green) on the right; the colour bar at the right edge runs from yellow at its top
   // to violet at its bottom.
@@ -117,10 +76,10 @@ TEST(ParticlesView, ColoursTheGlyphsAndDrawsTheLegend) {
 }
 
 TEST(ParticlesView, ReportsWhatItDrewAndCulled) {
-  const Block b;
-  Adapter a = adapter_from_config_text(config("radius: 0.04"), options());
+  const test::ParticleBlock b = block();
+  Adapter a = adapter_from_config_text(config("radius: 0.04"), test::spaced(kSpacing));
   ASSERT_TRUE(a.execute(0, 0, b.view()).ok());
-  const FrameStats& stats = *pipeline_of(a).latest_views()[0].stats;
+  const FrameStats& stats = *test::latest_view(a).stats;
   EXPECT_GT(stats.count("glyphs_drawn"), 0);
   EXPECT_GT(stats.count("glyphs_occlusion_culled"), 0);
   EXPECT_EQ(stats.count("glyphs_drawn") + stats.count("glyphs_occlusion_culled") +
@@ -129,10 +88,10 @@ TEST(ParticlesView, ReportsWhatItDrewAndCulled) {
 }
 
 glm::vec4 centre_of(const std::string& keys, std::int64_t* cut = nullptr) {
-  const Block b;
-  Adapter a = adapter_from_config_text(config(keys), options());
+  const test::ParticleBlock b = block();
+  Adapter a = adapter_from_config_text(config(keys), test::spaced(kSpacing));
   EXPECT_TRUE(a.execute(0, 0, b.view()).ok());
-  const auto& view = pipeline_of(a).latest_views()[0];
+  const auto& view = test::latest_view(a);
   if (cut != nullptr) *cut = view.stats->count("glyphs_cut");
   return view.picture->at(48, 27);
 }
@@ -156,9 +115,8 @@ TEST(ParticlesView, ASlicePlaneCompositesByDepthAndCutsTheGlyphsInFront) {
 }
 
 TEST(ParticlesView, AMissingColourAttributeFailsTheStepByName) {
-  const Block b;
-  Adapter a = adapter_from_config_text(config("color_by: pressure"), options());
-  const Status s = a.execute(0, 0, b.view());
+  const test::ParticleBlock b = block();
+  const Status s = test::first_step(config("color_by: pressure"), b);
   EXPECT_FALSE(s.ok());
   EXPECT_NE(s.message.find("<config>:5:5: views[0].color_by \"pressure\""), std::string::npos)
       << s.message;
@@ -188,14 +146,11 @@ struct Movers {
 };
 
 std::string trail_config(const std::string& trails) {
-  return "output_folder: " + testing::TempDir() +
-         "particles_trails\n"
-         "outputs: {png: {enabled: false}, stats: {enabled: false}}\n"
-         "trigger: {every_steps: 1}\n"
-         "views:\n  - {name: p, kind: particles, width: 160, height: 120, radius: 0.05,"
-         " ambient_occlusion: 0, camera: {eye: [0.4, 0.75, 3], target: [0.4, 0.75, 0], up: [0, 1, "
-         "0]}, trails: " +
-         trails + "}\n";
+  return test::one_view_config(
+      "particles_trails",
+      "name: p, kind: particles, width: 160, height: 120, radius: 0.05, ambient_occlusion: 0,"
+      " camera: {eye: [0.4, 0.75, 3], target: [0.4, 0.75, 0], up: [0, 1, 0]}, trails: " +
+          trails);
 }
 
 // Pixels with the trail's colour (more red than blue: the glyphs and background are bluish).
@@ -208,14 +163,12 @@ int trail_pixels(const FloatImage& p) {
 
 TEST(ParticlesView, TrailsFollowTheChosenIds) {
   Movers m;
-  AdapterOptions o;
-  o.classify.particle_spacing = 0.1;
-  Adapter a = adapter_from_config_text(trail_config("{every: 2, length: 8}"), o);
+  Adapter a = adapter_from_config_text(trail_config("{every: 2, length: 8}"), test::spaced(0.1));
   std::vector<int> pixels;
   for (int step = 0; step < 8; ++step) {
     m.at_step(step);
     ASSERT_TRUE(a.execute(step, step, m.view()).ok());
-    const ViewResult& r = pipeline_of(a).latest_views()[0];
+    const ViewResult& r = test::latest_view(a);
     EXPECT_EQ(r.stats->count("trails"), 3);  // ids 100, 102, 104
     pixels.push_back(trail_pixels(*r.picture));
   }
@@ -228,8 +181,9 @@ TEST(ParticlesView, TrailsFollowTheChosenIds) {
 }
 
 TEST(ParticlesView, TrailsNeedTheIdAttribute) {
-  const Block b;
-  Adapter a = adapter_from_config_text(config("trails: {every: 10, id: tag}"), options());
+  const test::ParticleBlock b = block();
+  Adapter a =
+      adapter_from_config_text(config("trails: {every: 10, id: tag}"), test::spaced(kSpacing));
   const Status s = a.execute(0, 0, b.view());
   EXPECT_FALSE(s.ok());
   EXPECT_NE(s.message.find("\"tag\""), std::string::npos) << s.message;

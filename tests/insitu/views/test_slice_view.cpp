@@ -8,59 +8,28 @@
 #include <string>
 #include <vector>
 
-#include "insitu/runtime/config_file.h"
-#include "insitu/runtime/pipeline.h"
 #include "insitu/views/legend.h"
 #include "insitu/views/slice_view.h"
-#include "voxspan/error.h"
-#include "voxspan/insitu.h"
+#include "tests/support/view_tests.h"
 
 namespace voxspan {
 namespace {
 
-constexpr double kSpacing = 0.05;
-
 // A block 1.0 x 0.5 x 0.5 with density rising along x.
-struct Block {
-  std::vector<double> xyz, density;
-  Block() {
-    for (int k = 0; k < 10; ++k)
-      for (int j = 0; j < 10; ++j)
-        for (int i = 0; i < 20; ++i) {
-          for (int a : {i, j, k}) xyz.push_back((a + 0.5) * kSpacing);
-          density.push_back(1000 + 10 * xyz[xyz.size() - 3]);
-        }
-  }
-  ParticleView view() const {
-    return ParticleView::aos(xyz.data(), density.size()).with_scalar("density", density.data());
-  }
-};
+test::ParticleBlock block() {
+  return {0.05, "density", [](int, double x) { return 1000 + 10 * x; }};
+}
 
 std::string config(const std::string& slice, const std::string& size = "width: 64, height: 32") {
-  return "output_folder: " + testing::TempDir() +
-         "slice_view\n"
-         "outputs: {png: {enabled: false}, stats: {enabled: false}}\n"
-         "trigger: {every_steps: 1}\n"
-         "views:\n  - {name: s, kind: slice, " +
-         size + ", " + slice + "}\n";
+  return test::one_view_config("slice_view", "name: s, kind: slice, " + size + ", " + slice);
 }
 
-const FloatImage& picture_of(const Adapter& a) {
-  const auto& pipeline = dynamic_cast<const InsituPipeline&>(*a.pipeline());
-  return *pipeline.latest_views()[0].picture;
-}
-
-AdapterOptions options() {
-  AdapterOptions o;
-  o.classify.particle_spacing = kSpacing;
-  return o;
-}
+const FloatImage& picture_of(const Adapter& a) { return *test::latest_view(a).picture; }
 
 TEST(SliceView, KeysAreReadAsWritten) {
-  const Config c = load_config_string(
-      "views:\n  - {kind: slice, quantity: p, kernel: quintic, shepard: true, range: [1, 2],"
-      " color_map: coolwarm, plane: {origin: [1, 2, 3], normal: [0, 0, 2]}, isolines: 0}\n");
-  const auto& s = dynamic_cast<const SliceSettings&>(*c.views[0].settings);
+  const SliceSettings s = test::read_view<SliceSettings>(
+      "kind: slice, quantity: p, kernel: quintic, shepard: true, range: [1, 2],"
+      " color_map: coolwarm, plane: {origin: [1, 2, 3], normal: [0, 0, 2]}, isolines: 0");
   EXPECT_EQ(s.quantity, "p");
   EXPECT_EQ(s.kernel, SphKernel::quintic);
   EXPECT_TRUE(s.shepard);
@@ -68,34 +37,21 @@ TEST(SliceView, KeysAreReadAsWritten) {
   EXPECT_EQ((*s.range)[1], 2.0);
   EXPECT_EQ(s.color_map, ColorMap::coolwarm);
   EXPECT_EQ(s.plane.normal[2], 2.0);
-  EXPECT_EQ(load_config_string(to_yaml(c)).views[0], c.views[0]);
 }
 
 TEST(SliceView, BadKeysAreRefusedWithTheirLine) {
-  for (const auto& [yaml, words] : std::vector<std::pair<std::string, std::string>>{
-           {"color_map: rainbow, quantity: p", "color_map"},
-           {"range: [2, 1], quantity: p", "range"},
-           {"plane: {normal: [0, 0, 0]}, quantity: p", "must not be zero"},
-           {"kernel: gauss, quantity: p", "kernel"},
-           {"width: 10", "needs `quantity`"}}) {
-    try {
-      load_config_string("views:\n  - {kind: slice, " + yaml + "}\n", "s.yaml");
-      ADD_FAILURE() << yaml << " was accepted";
-    } catch (const Error& e) {
-      const std::string what = e.what();
-      EXPECT_NE(what.find("s.yaml:2:"), std::string::npos) << what;
-      EXPECT_NE(what.find(words), std::string::npos) << what;
-    }
-  }
+  test::expect_refused_with_line("slice",
+                                 {{"color_map: rainbow, quantity: p", "color_map"},
+                                  {"range: [2, 1], quantity: p", "range"},
+                                  {"plane: {normal: [0, 0, 0]}, quantity: p", "must not be zero"},
+                                  {"kernel: gauss, quantity: p", "kernel"},
+                                  {"width: 10", "needs `quantity`"}});
 }
 
 TEST(SliceView, ColoursThePlaneWhereItMeetsTheFluid) {
-  const Block b;
-  Adapter a = adapter_from_config_text(
-      config("quantity: density, shepard: true, plane: {normal: [0, -1, 0]}, isolines: 0"),
-      options());
-  ASSERT_TRUE(a.execute(0, 0, b.view()).ok());
-  const FloatImage& p = picture_of(a);
+  const test::ParticleBlock b = block();
+  const FloatImage p = test::first_picture(
+      config("quantity: density, shepard: true, plane: {normal: [0, -1, 0]}, isolines: 0"), b);
   // The plane through the box's centre seen from -y (its normal's side), fitted: +x to the
   // right. The left of the picture is the low density end (viridis: dark blue), the right the
   // high end (yellow-green); the colour bar is further right.
@@ -106,9 +62,8 @@ TEST(SliceView, ColoursThePlaneWhereItMeetsTheFluid) {
 }
 
 TEST(SliceView, AMissingQuantityFailsTheStepByName) {
-  const Block b;
-  Adapter a = adapter_from_config_text(config("quantity: pressure"), options());
-  const Status s = a.execute(0, 0, b.view());
+  const test::ParticleBlock b = block();
+  const Status s = test::first_step(config("quantity: pressure"), b);
   EXPECT_FALSE(s.ok());
   // The key with the line the config gave the view on.
   EXPECT_NE(s.message.find("<config>:5:5: views[0].quantity \"pressure\""), std::string::npos)
@@ -117,25 +72,23 @@ TEST(SliceView, AMissingQuantityFailsTheStepByName) {
 }
 
 TEST(SliceView, APlaneThatMissesTheFluidDrawsAnEmptyPicture) {
-  const Block b;
-  Adapter a = adapter_from_config_text(
-      config("quantity: density, plane: {origin: [0, 0, 9], normal: [0, 0, 1]}"), options());
-  ASSERT_TRUE(a.execute(0, 0, b.view()).ok());
-  const FloatImage& p = picture_of(a);
+  const test::ParticleBlock b = block();
+  const FloatImage p = test::first_picture(
+      config("quantity: density, plane: {origin: [0, 0, 9], normal: [0, 0, 1]}"), b);
   for (int x : {0, 10, 30}) EXPECT_LT(p.at(x, 16).g, 0.05f) << x;
 }
 
 bool light(glm::vec4 c) { return c.r > 0.8f && c.g > 0.8f && c.b > 0.8f; }
 
 TEST(SliceView, AxesTickRoundValuesInWorldUnits) {
-  const Block b;
+  const test::ParticleBlock b = block();
   // Seen from -y with +z up: +x to the right, x from -0.3 to 1.3 over 320 pixels and z from
   // -0.2 to 0.7 over 180 rows. Ticks every 0.2 (-0.2 to 1.2), the middle one (0.6) named.
   Adapter a =
       adapter_from_config_text(config("quantity: density, extent: 1.6,"
                                       " plane: {origin: [0.5, 0.25, 0.25], normal: [0, -1, 0]}",
                                       "width: 320, height: 180"),
-                               options());
+                               test::spaced(b.spacing));
   ASSERT_TRUE(a.execute(0, 0, b.view()).ok());
   const FloatImage& p = picture_of(a);
   for (const double x : {0.0, 0.4, 1.0}) {
@@ -154,7 +107,7 @@ TEST(SliceView, AxesTickRoundValuesInWorldUnits) {
 
 // The centre pixel of an opaque surface view of the block seen from +z, with `slice` keys.
 glm::vec4 surface_centre(const std::string& slice) {
-  const Block b;
+  const test::ParticleBlock b = block();
   Adapter a =
       adapter_from_config_text("output_folder: " + testing::TempDir() +
                                    "slice_in_surface\n"
@@ -162,7 +115,7 @@ glm::vec4 surface_centre(const std::string& slice) {
                                    "views:\n  - {name: w, shading: opaque, width: 96, height: 54,"
                                    " camera: {direction: [0, 0, -1], up: [0, 1, 0]}" +
                                    slice + "}\n",
-                               options());
+                               test::spaced(b.spacing));
   EXPECT_TRUE(a.execute(0, 0, b.view()).ok());
   return picture_of(a).at(48, 27);
 }

@@ -9,60 +9,30 @@
 #include <string>
 #include <vector>
 
-#include "insitu/runtime/config_file.h"
-#include "insitu/runtime/pipeline.h"
 #include "insitu/views/volume_view.h"
-#include "voxspan/error.h"
-#include "voxspan/insitu.h"
+#include "tests/support/view_tests.h"
 
 namespace voxspan {
 namespace {
 
-// A block 1.0 x 0.5 x 0.5 of spacing `spacing`, with pressure rising along x.
-struct Block {
-  double spacing;
-  std::vector<double> xyz, pressure;
-  explicit Block(double s = 0.05) : spacing(s) {
-    for (int k = 0; k < 10; ++k)
-      for (int j = 0; j < 10; ++j)
-        for (int i = 0; i < 20; ++i) {
-          for (int a : {i, j, k}) xyz.push_back((a + 0.5) * spacing);
-          pressure.push_back(100 * i);
-        }
-  }
-  ParticleView view() const {
-    return ParticleView::aos(xyz.data(), pressure.size()).with_scalar("pressure", pressure.data());
-  }
-};
+// A block 1.0 x 0.5 x 0.5 (at spacing 0.05) with pressure rising along x.
+test::ParticleBlock block(double spacing = 0.05) {
+  return {spacing, "pressure", [](int i, double) { return 100.0 * i; }};
+}
 
 std::string config(const std::string& keys, const std::string& folder = "volume_view") {
-  return "output_folder: " + testing::TempDir() + folder +
-         "\n"
-         "outputs: {png: {enabled: false}, stats: {enabled: false}}\n"
-         "trigger: {every_steps: 1}\n"
-         "views:\n  - {name: v, kind: volume, width: 64, height: 40,"
-         " camera: {direction: [0.2, -1, -0.5], up: [0, 0, 1]}, " +
-         keys + "}\n";
-}
-
-const ViewResult& result_of(const Adapter& a) {
-  const auto& pipeline = dynamic_cast<const InsituPipeline&>(*a.pipeline());
-  return pipeline.latest_views()[0];
-}
-
-AdapterOptions options(double spacing) {
-  AdapterOptions o;
-  o.classify.particle_spacing = spacing;
-  return o;
+  return test::one_view_config(folder,
+                               "name: v, kind: volume, width: 64, height: 40,"
+                               " camera: {direction: [0.2, -1, -0.5], up: [0, 0, 1]}, " +
+                                   keys);
 }
 
 TEST(VolumeView, KeysAreReadAsWritten) {
-  const Config c = load_config_string(
-      "views:\n  - {kind: volume, quantity: p, kernel: poly6, mode: mixed, shepard: false,"
+  const VolumeSettings s = test::read_view<VolumeSettings>(
+      "kind: volume, quantity: p, kernel: poly6, mode: mixed, shepard: false,"
       " range: [1, 2], opacity: [[0, 0], [0.5, 0.1], [1, 1]], opacity_length: 3,"
       " iso: [{value: 1.5, color: [1, 0, 0], opacity: 0.5}, {value: 1.8}], sampling: 2,"
-      " smoothing_attribute: h, background: none, legend: false}\n");
-  const auto& s = dynamic_cast<const VolumeSettings&>(*c.views[0].settings);
+      " smoothing_attribute: h, background: none, legend: false");
   EXPECT_EQ(s.quantity, "p");
   EXPECT_EQ(s.kernel, SphKernel::poly6);
   EXPECT_EQ(s.mode, VolumeMode::mixed);
@@ -72,37 +42,26 @@ TEST(VolumeView, KeysAreReadAsWritten) {
   EXPECT_EQ(s.iso[0].color[0], 1.0);
   EXPECT_EQ(s.iso[1].opacity, 1.0);
   EXPECT_EQ(s.background, VolumeBackground::none);
-  EXPECT_EQ(load_config_string(to_yaml(c)).views[0], c.views[0]);
 }
 
 TEST(VolumeView, BadTransferFunctionsAndIsoSurfacesAreRefusedWithTheirLine) {
-  for (const auto& [yaml, words] : std::vector<std::pair<std::string, std::string>>{
-           {"opacity: [[0.5, 0], [0.2, 1]]", "must not decrease"},
-           {"opacity: [[0, 0], [1, 1.5]]", "alpha in [0, 1]"},
-           {"opacity: [[0, -0.1]]", "alpha in [0, 1]"},
-           {"opacity: [0, 1]", "[a, b] pairs"},
-           {"mode: iso", "needs at least one iso surface"},
-           {"mode: iso, iso: [{value: .nan}]", "views[0].iso[0].value"},
-           {"mode: iso, iso: [{value: .inf}]", "views[0].iso[0].value"},
-           {"mode: iso, iso: [{color: [1, 1, 1]}]", "needs its `value`"},
-           {"iso: [{value: 1}, {value: 2}, {value: 3}, {value: 4}, {value: 5}]", "at most 4"},
-           {"shepard: true", "volume fraction"},
-           {"sampling: 0", "sampling"}}) {
-    try {
-      load_config_string("views:\n  - {kind: volume, " + yaml + "}\n", "v.yaml");
-      ADD_FAILURE() << yaml << " was accepted";
-    } catch (const Error& e) {
-      const std::string what = e.what();
-      EXPECT_NE(what.find("v.yaml:2:"), std::string::npos) << what;
-      EXPECT_NE(what.find(words), std::string::npos) << yaml << ": " << what;
-    }
-  }
+  test::expect_refused_with_line(
+      "volume", {{"opacity: [[0.5, 0], [0.2, 1]]", "must not decrease"},
+                 {"opacity: [[0, 0], [1, 1.5]]", "alpha in [0, 1]"},
+                 {"opacity: [[0, -0.1]]", "alpha in [0, 1]"},
+                 {"opacity: [0, 1]", "[a, b] pairs"},
+                 {"mode: iso", "needs at least one iso surface"},
+                 {"mode: iso, iso: [{value: .nan}]", "views[0].iso[0].value"},
+                 {"mode: iso, iso: [{value: .inf}]", "views[0].iso[0].value"},
+                 {"mode: iso, iso: [{color: [1, 1, 1]}]", "needs its `value`"},
+                 {"iso: [{value: 1}, {value: 2}, {value: 3}, {value: 4}, {value: 5}]", "at most 4"},
+                 {"shepard: true", "volume fraction"},
+                 {"sampling: 0", "sampling"}});
 }
 
 TEST(VolumeView, AMissingQuantityFailsTheStepByName) {
-  const Block b;
-  Adapter a = adapter_from_config_text(config("quantity: temperature"), options(b.spacing));
-  const Status s = a.execute(0, 0, b.view());
+  const test::ParticleBlock b = block();
+  const Status s = test::first_step(config("quantity: temperature"), b);
   EXPECT_FALSE(s.ok());
   EXPECT_NE(s.message.find("views[0].quantity \"temperature\""), std::string::npos) << s.message;
   EXPECT_NE(s.message.find("(it passes: pressure)"), std::string::npos) << s.message;
@@ -110,10 +69,8 @@ TEST(VolumeView, AMissingQuantityFailsTheStepByName) {
 
 // The centre pixel (over the block) and a corner (the sky) of the view of a block at `spacing`.
 std::array<glm::vec4, 2> centre_and_corner(const std::string& keys, double spacing) {
-  const Block b(spacing);
-  Adapter a = adapter_from_config_text(config(keys), options(spacing));
-  EXPECT_TRUE(a.execute(0, 0, b.view()).ok());
-  const FloatImage& p = *result_of(a).picture;
+  const test::ParticleBlock b = block(spacing);
+  const FloatImage p = test::first_picture(config(keys), b);
   return {p.at(32, 20), p.at(1, 1)};
 }
 
@@ -135,7 +92,7 @@ TEST(VolumeView, TheFluidIsTintedWhereItIsAndTheSameAtEveryScale) {
 }
 
 TEST(VolumeView, TheDepthOutputIsTheFirstIsoHit) {
-  const Block b;
+  const test::ParticleBlock b = block();
   Adapter a = adapter_from_config_text(
       "output_folder: " + testing::TempDir() +
           "volume_depth\n"
@@ -144,9 +101,9 @@ TEST(VolumeView, TheDepthOutputIsTheFirstIsoHit) {
           "views:\n  - {name: v, kind: volume, width: 64, height: 40, mode: iso,"
           " iso: [{value: 0.5}], camera: {eye: [0.5, 0.25, 2], target: [0.5, 0.25, 0],"
           " up: [0, 1, 0]}}\n",
-      options(b.spacing));
+      test::spaced(b.spacing));
   ASSERT_TRUE(a.execute(0, 0, b.view()).ok());
-  const ViewResult& r = result_of(a);
+  const ViewResult& r = test::latest_view(a);
   ASSERT_NE(r.first_hit_depth, nullptr);
   // Straight down onto the block's top (z = 0.5): the volume fraction's half-way surface lies
   // about half a spacing above the top particles' centres (z = 0.475): 1.5 from the eye.

@@ -1,0 +1,42 @@
+// insitu/views/view_keys.h - config keys that several view kinds share, written once: an SPH
+// sum's (the slice's and the volume view's) and a colour map's.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "insitu/config/schema.h"
+#include "insitu/views/color_map.h"
+#include "render/sph_kernel.h"
+
+namespace voxspan {
+
+// h = 1.3 spacings when the view does not say: PySPH's usual hdx.
+inline constexpr double kAutoSmoothingFactor = 1.3;
+
+// The keys of an SPH sum, for any settings with these members: quantity, kernel,
+// smoothing_length, shepard, mass, density.
+template <class S>
+std::vector<schema::Key<S>> sph_sum_keys(std::string quantity_help, std::string shepard_help) {
+  return {
+      schema::text("quantity", &S::quantity, std::move(quantity_help)),
+      schema::choice("kernel", &S::kernel, kSphKernelNames, "the SPH kernel W (3D, normalised)"),
+      schema::number_or_auto("smoothing_length", &S::smoothing_length, schema::above(0),
+                             "h, world units; `auto` = 1.3 particle spacings"),
+      schema::flag("shepard", &S::shepard, std::move(shepard_help)),
+      schema::text("mass", &S::mass,
+                   "the mass attribute; without it or `density`, m / rho = spacing^3"),
+      schema::text("density", &S::density, "the density attribute")};
+}
+
+// `color_map` and `range`, for any settings with these members; `range_auto` says what `auto`
+// takes.
+template <class S>
+std::vector<schema::Key<S>> color_map_keys(std::string map_help, std::string range_auto) {
+  return {schema::choice("color_map", &S::color_map, kColorMapNames, std::move(map_help)),
+          schema::interval_or_auto(
+              "range", &S::range,
+              "the values at the colour map's ends; `auto` = " + std::move(range_auto))};
+}
+
+}  // namespace voxspan
