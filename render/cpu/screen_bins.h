@@ -73,6 +73,10 @@ struct Tiles {
     const int x0 = int(t % std::size_t(nx)) * tile, y0 = int(t / std::size_t(nx)) * tile;
     return {x0, y0, std::min(x0 + tile, width) - 1, std::min(y0 + tile, height) - 1};
   }
+  // The tile of pixel (x, y).
+  std::size_t of(int x, int y) const {
+    return std::size_t(x / tile) + std::size_t(y / tile) * std::size_t(nx);
+  }
   template <class F> void each(const PixelRect& r, F&& f) const {
     for (int ty = r.y0 / tile; ty <= r.y1 / tile; ++ty)
       for (int tx = r.x0 / tile; tx <= r.x1 / tile; ++tx)

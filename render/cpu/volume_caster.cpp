@@ -60,6 +60,25 @@ struct RayState {
   bool first_is_hit = false;  // first_depth is the first iso hit's
   bool done = false;
   model::RayHits hits;
+  // A rank's part (run_part): the next of the pixel's shared ranges, and the segment being
+  // composited (its index among the pixel's; -1: none), with the ray's unlit light and hit
+  // count when it opened.
+  std::uint32_t next_shared = 0;
+  int open = -1;
+  model::vec3 unlit_at_open{0.0f};
+};
+
+// A segment as the march builds it: which of the ray's hits it holds.
+struct LocalSegment {
+  PartSegment out;
+  int hit_begin = 0, hit_end = 0;
+};
+
+// One tile's part: per pixel of the tile (row-major in the tile) its counts, then the items.
+struct TilePart {
+  std::vector<std::uint32_t> raw_count, segment_count;
+  std::vector<RawSample> raws;
+  std::vector<PartSegment> segments;
 };
 
 // A tile's working storage, one per thread, kept from frame to frame.
@@ -72,6 +91,9 @@ struct TileScratch {
   double zc[kTile], m2[kTile], h2[kTile];
   std::vector<double> sum, weight;  // the pending samples: window per pixel, a ring
   std::vector<FieldSums> hit_sums;  // light: per pixel and hit
+  // A rank's part: per pixel its shared samples' sums and its segments.
+  std::vector<std::vector<RawSample>> raws;
+  std::vector<std::vector<LocalSegment>> segments;
 };
 
 }  // namespace
@@ -84,6 +106,11 @@ struct VolumeCaster::Work {
   std::vector<std::uint32_t> tile_lists;  // per tile its supports, in order
   Samples samples;
   tbb::enumerable_thread_specific<TileScratch> scratch;
+  // The frame the last start_frame() began, for run_part() and field_sums().
+  Camera camera;
+  VolumeOptions options;
+  ViewFrame frame;
+  std::vector<TilePart> tile_parts;
 };
 
 VolumeCaster::VolumeCaster() : work_(std::make_unique<Work>()) {}
@@ -183,30 +210,79 @@ __attribute__((target_clones("avx2", "default"))) void add_kernel(
   }
 }
 
-// The march and the light of one tile, for kernel K.
-template <SphKernel K> class TileMarch {
+// Support s's part of the field's sums and their gradients at view point x (an iso hit's).
+template <SphKernel K> void add_field_sums(glm::dvec3 x, const Support& s, FieldSums& a) {
+  const glm::dvec3 d = x - s.c;
+  const double dist = std::sqrt(glm::dot(d, d));
+  const double q = dist * s.inv_h;
+  const double shape = kernel_shape<K>(q);
+  if (shape == 0 && q >= kernel_support(K)) return;
+  const glm::dvec3 g = dist > 0 ? (kernel_slope<K>(q) * s.inv_h / dist) * d : glm::dvec3(0);
+  a.s += s.vq * shape;
+  a.w += s.v * shape;
+  a.grad_s += s.vq * g;
+  a.grad_w += s.v * g;
+}
+
+// The march and the light of one tile, for kernel K: of the whole frame, or with kPart of a
+// rank's part of it, given `shared` (per pixel, the samples other ranks reach too).
+template <SphKernel K, bool kPart> class TileMarch {
  public:
   TileMarch(const Samples& s, const VolumeOptions& o, const ViewFrame& f, model::VolumeHost& host,
-            TileScratch& scratch, VolumeCounts& tallies)
-      : s_(s), o_(o), f_(f), host_(host), w_(scratch), t_(tallies) {}
+            TileScratch& scratch, VolumeCounts& tallies, const PixelRanges* shared = nullptr)
+      : s_(s), o_(o), f_(f), host_(host), w_(scratch), t_(tallies), shared_(shared) {}
 
   void run(const PixelRect& tile, std::span<const std::uint32_t> list,
            const std::vector<Support>& supports, VolumeFrame& out) {
-    tile_ = tile;
-    start(list, supports);
-    for (std::uint32_t k : list) {
-      add(supports[k]);
-      if (done_ == pixels_) break;  // every ray opaque: the supports behind are not read
-    }
-    for (int p = 0; p < pixels_; ++p) flush(p, w_.rays[std::size_t(p)].last + 1);
-    if (has_hits_) light(list, supports);
+    march(tile, list, supports);
     finish(out);
+  }
+
+  void run_part(const PixelRect& tile, std::span<const std::uint32_t> list,
+                const std::vector<Support>& supports, TilePart& out) {
+    march(tile, list, supports);
+    finish_part(out);
+  }
+
+  // Per pixel of the tile, the hull of the samples the supports reach, into hulls (the frame's).
+  void cover(const PixelRect& tile, std::span<const std::uint32_t> list,
+             const std::vector<Support>& supports, std::vector<SampleRange>& hulls) {
+    start(tile, {}, supports);
+    for (std::uint32_t k : list)
+      each_chord(supports[k], [&](int p, const Support& s, double, double, double d0, double d1) {
+        const std::int64_t i0 = first_sample(s, d0), i1 = last_sample(s, d1);
+        if (i1 < i0) return;
+        SampleRange& h = hulls[global_pixel(p)];
+        if (h.empty()) h = {std::int32_t(i0), std::int32_t(i1)};
+        h.first = std::min(h.first, std::int32_t(i0));
+        h.last = std::max(h.last, std::int32_t(i1));
+      });
   }
 
  private:
   int width() const { return tile_.x1 - tile_.x0 + 1; }
+  std::size_t global_pixel(int p) const {
+    return std::size_t(tile_.x0 + p % width()) +
+           std::size_t(tile_.y0 + p / width()) * std::size_t(f_.width);
+  }
 
-  void start(std::span<const std::uint32_t> list, const std::vector<Support>& supports) {
+  void march(const PixelRect& tile, std::span<const std::uint32_t> list,
+             const std::vector<Support>& supports) {
+    start(tile, list, supports);
+    for (std::uint32_t k : list) {
+      add(supports[k]);
+      if (done_ == pixels_) break;  // every ray opaque: the supports behind are not read
+    }
+    for (int p = 0; p < pixels_; ++p) {
+      flush(p, w_.rays[std::size_t(p)].last + 1);
+      if constexpr (kPart) close(p);
+    }
+    if (has_hits_) light(list, supports);
+  }
+
+  void start(const PixelRect& tile, std::span<const std::uint32_t> list,
+             const std::vector<Support>& supports) {
+    tile_ = tile;
     pixels_ = width() * (tile_.y1 - tile_.y0 + 1);
     done_ = 0;
     has_hits_ = false;
@@ -220,6 +296,10 @@ template <SphKernel K> class TileMarch {
     w_.inv_a.resize(std::size_t(pixels_));
     w_.sum.assign(std::size_t(window_) * std::size_t(pixels_), 0.0);
     w_.weight.assign(w_.sum.size(), 0.0);
+    if constexpr (kPart) {
+      w_.raws.resize(std::size_t(pixels_));
+      w_.segments.resize(std::size_t(pixels_));
+    }
     for (int p = 0; p < pixels_; ++p) {
       const int x = tile_.x0 + p % width(), y = tile_.y0 + p / width();
       w_.dirs[std::size_t(p)] = f_.view_ray(x, y);
@@ -229,11 +309,18 @@ template <SphKernel K> class TileMarch {
       r.ray = host_.vx_ray_start();
       r.scale = float(glm::length(w_.dirs[std::size_t(p)]));
       r.front = std::numeric_limits<std::int64_t>::min();
+      if constexpr (kPart) {
+        w_.raws[std::size_t(p)].clear();
+        w_.segments[std::size_t(p)].clear();
+        r.next_shared = shared_->start[global_pixel(p)];
+      }
     }
   }
 
-  // One support into every ray of the tile it crosses.
-  void add(const Support& s) {
+  // f(p, s, zc, m2, d0, d1) for every pixel p of the tile whose ray crosses support s, with the
+  // depth nearest its centre, the ray's squared distance from it there (chord_row) and the
+  // chord's ends d0 <= d1 (d0 clipped to the near plane), in row order.
+  template <class F> void each_chord(const Support& s, F&& f) {
     const int x0 = std::max(s.rect.x0, tile_.x0), x1 = std::min(s.rect.x1, tile_.x1);
     const int y0 = std::max(s.rect.y0, tile_.y0), y1 = std::min(s.rect.y1, tile_.y1);
     for (int y = y0; y <= y1; ++y) {
@@ -241,21 +328,27 @@ template <SphKernel K> class TileMarch {
       chord_row(s, row + (x0 - tile_.x0), x1 - x0 + 1);
       for (int k = 0; k <= x1 - x0; ++k) {
         if (!(w_.h2[k] > 0)) continue;  // the ray misses the support
-        const int p = row + (x0 - tile_.x0) + k;
-        RayState& r = w_.rays[std::size_t(p)];
-        if (r.done) continue;
         const double half = std::sqrt(w_.h2[k]), zc = w_.zc[k];
         const double d0 = std::max(zc - half, s_.near), d1 = zc + half;
         if (d1 < d0) continue;
-        flush(p, s.first);
-        if (r.done) continue;
-        const std::int64_t i0 = first_sample(s, d0), i1 = last_sample(s, d1);
-        if (i1 < i0) continue;
-        accumulate(p, s, w_.a[std::size_t(p)], zc, w_.m2[k], i0, i1);
-        t_.kernel_evaluations += i1 - i0 + 1;
-        r.last = std::max(r.last, i1);
+        f(row + (x0 - tile_.x0) + k, s, zc, w_.m2[k], d0, d1);
       }
     }
+  }
+
+  // One support into every ray of the tile it crosses.
+  void add(const Support& s) {
+    each_chord(s, [&](int p, const Support& sp, double zc, double m2, double d0, double d1) {
+      RayState& r = w_.rays[std::size_t(p)];
+      if (r.done) return;
+      flush(p, sp.first);
+      if (r.done) return;
+      const std::int64_t i0 = first_sample(sp, d0), i1 = last_sample(sp, d1);
+      if (i1 < i0) return;
+      accumulate(p, sp, w_.a[std::size_t(p)], zc, m2, i0, i1);
+      t_.kernel_evaluations += i1 - i0 + 1;
+      r.last = std::max(r.last, i1);
+    });
   }
 
   // The support's chords along n pixels of a row from pixel p: the ray z d meets the centre's
@@ -325,17 +418,63 @@ template <SphKernel K> class TileMarch {
       if (r.front > r.last) {  // the samples up to `upto` are empty: the ray leaves the field
         r.ray.defined = 0u;
         r.front = upto;
+        if constexpr (kPart) close(p);
         break;
       }
       const std::size_t slot = std::size_t(r.front & mask_);
       const double s = sum[slot], w = weight[slot];
       sum[slot] = weight[slot] = 0;
-      composite(r, r.front, s, w);
+      if (kPart && shared(p, r, r.front)) {
+        close(p);
+        if (w > 0) w_.raws[std::size_t(p)].push_back({std::int32_t(r.front), s, w});
+        continue;
+      }
+      if (kPart && r.open < 0) {
+        // A segment starts at a sample some particle reaches: one before this rank's first on
+        // the ray (the march starts at its supports' first samples over their whole spheres)
+        // may lie among another rank's samples, and no particle reaches it.
+        if (!(w > 0)) continue;
+        open(p, r.front);
+      }
+      composite(p, r, r.front, s, w);
       if (r.done) return;
     }
   }
 
-  void composite(RayState& r, std::int64_t i, double s, double w) {
+  // Whether sample i of pixel p's ray is one other ranks reach too (i grows along the ray).
+  bool shared(int p, RayState& r, std::int64_t i) const {
+    const std::uint32_t end = shared_->start[global_pixel(p) + 1];
+    while (r.next_shared < end && shared_->ranges[r.next_shared].last < i) ++r.next_shared;
+    return r.next_shared < end && shared_->ranges[r.next_shared].first <= i;
+  }
+
+  // A segment of pixel p's ray from sample i: the ray composited afresh from transmittance 1.
+  void open(int p, std::int64_t i) {
+    RayState& r = w_.rays[std::size_t(p)];
+    std::vector<LocalSegment>& segments = w_.segments[std::size_t(p)];
+    r.open = int(segments.size());
+    r.ray = host_.vx_ray_start();
+    r.unlit_at_open = r.hits.unlit;
+    LocalSegment& seg = segments.emplace_back();
+    seg.out.first = seg.out.last = std::int32_t(i);
+    seg.hit_begin = seg.hit_end = r.hits.count;
+  }
+
+  // Ends pixel p's open segment, if any, where the ray is.
+  void close(int p) {
+    RayState& r = w_.rays[std::size_t(p)];
+    if (r.open < 0) return;
+    LocalSegment& seg = w_.segments[std::size_t(p)][std::size_t(r.open)];
+    seg.out.q_last = r.ray.q;
+    if (r.ray.defined == 1u) seg.out.flags |= PartSegment::kLastDefined;
+    if (r.done) seg.out.flags |= PartSegment::kStopped;
+    seg.out.color = r.ray.color + (r.hits.unlit - r.unlit_at_open);
+    seg.out.transmittance = r.ray.transmittance;
+    seg.hit_end = r.hits.count;
+    r.open = -1;
+  }
+
+  void composite(int p, RayState& r, std::int64_t i, double s, double w) {
     const bool defined = w > 0 && (!o_.shepard || w >= o_.weight_floor);
     const double q = !defined ? 0.0 : o_.shepard ? s / w : s;
     t_.samples += defined ? 1 : 0;
@@ -353,12 +492,22 @@ template <SphKernel K> class TileMarch {
         r.first_is_hit = true;
       }
     }
-    if (r.first_depth == 0 && before >= 0.5f && r.ray.transmittance < 0.5f)
-      r.first_depth = float(z * r.scale);
+    const bool half = before >= 0.5f && r.ray.transmittance < 0.5f;
+    if (r.first_depth == 0 && half) r.first_depth = float(z * r.scale);
+    if constexpr (kPart) {
+      PartSegment& seg = w_.segments[std::size_t(p)][std::size_t(r.open)].out;
+      if (i == seg.first) {
+        seg.q_first = r.ray.q;
+        if (defined) seg.flags |= PartSegment::kFirstDefined;
+      }
+      seg.last = std::int32_t(i);
+      if (seg.half_depth == 0 && half) seg.half_depth = float(z * r.scale);
+    }
     if (r.ray.transmittance < o_.termination) {
       r.done = true;
       ++done_;
       ++t_.rays_stopped;
+      if constexpr (kPart) close(p);
     }
   }
 
@@ -374,21 +523,9 @@ template <SphKernel K> class TileMarch {
         for (int x = x0; x <= x1; ++x) {
           const int p = (x - tile_.x0) + (y - tile_.y0) * width();
           const RayState& r = w_.rays[std::size_t(p)];
-          for (int h = 0; h < r.hits.count; ++h) {
-            const glm::dvec3 d =
-                double(r.hits.hit[std::size_t(h)].depth) * w_.dirs[std::size_t(p)] - s.c;
-            const double dist = std::sqrt(glm::dot(d, d));
-            const double q = dist * s.inv_h;
-            const double shape = kernel_shape<K>(q);
-            if (shape == 0 && q >= kernel_support(K)) continue;
-            const glm::dvec3 g =
-                dist > 0 ? (kernel_slope<K>(q) * s.inv_h / dist) * d : glm::dvec3(0);
-            FieldSums& a = w_.hit_sums[std::size_t(p) * per_pixel + std::size_t(h)];
-            a.s += s.vq * shape;
-            a.w += s.v * shape;
-            a.grad_s += s.vq * g;
-            a.grad_w += s.v * g;
-          }
+          for (int h = 0; h < r.hits.count; ++h)
+            add_field_sums<K>(double(r.hits.hit[std::size_t(h)].depth) * w_.dirs[std::size_t(p)], s,
+                              w_.hit_sums[std::size_t(p) * per_pixel + std::size_t(h)]);
         }
     }
     for (int p = 0; p < pixels_; ++p) {
@@ -399,7 +536,16 @@ template <SphKernel K> class TileMarch {
         model::IsoHit& hit = r.hits.hit[std::size_t(h)];
         const FieldSums& sums = w_.hit_sums[std::size_t(p) * per_pixel + std::size_t(h)];
         host_.refine_hit(hit, sums, dir, o_.shepard, s_.lattice.k * double(hit.depth));
-        r.ray.color += host_.hit_light(hit, field_gradient(sums, o_.shepard), f_, x, y);
+        const model::vec3 light = host_.hit_light(hit, field_gradient(sums, o_.shepard), f_, x, y);
+        if constexpr (!kPart) {
+          r.ray.color += light;
+          continue;
+        }
+        for (LocalSegment& seg : w_.segments[std::size_t(p)])
+          if (h >= seg.hit_begin && h < seg.hit_end) {
+            seg.out.color += light;
+            if (h == seg.hit_begin) seg.out.hit_depth = hit.depth * r.scale;
+          }
       }
       if (r.first_is_hit) r.first_depth = r.hits.hit[0].depth * r.scale;
     }
@@ -415,12 +561,29 @@ template <SphKernel K> class TileMarch {
     }
   }
 
+  void finish_part(TilePart& out) {
+    out.raw_count.resize(std::size_t(pixels_));
+    out.segment_count.resize(std::size_t(pixels_));
+    out.raws.clear();
+    out.segments.clear();
+    for (int p = 0; p < pixels_; ++p) {
+      const std::vector<RawSample>& raws = w_.raws[std::size_t(p)];
+      const std::vector<LocalSegment>& segments = w_.segments[std::size_t(p)];
+      out.raw_count[std::size_t(p)] = std::uint32_t(raws.size());
+      out.segment_count[std::size_t(p)] = std::uint32_t(segments.size());
+      out.raws.insert(out.raws.end(), raws.begin(), raws.end());
+      for (const LocalSegment& seg : segments) out.segments.push_back(seg.out);
+      t_.iso_hits_unlit += w_.rays[std::size_t(p)].hits.unlit_count;
+    }
+  }
+
   const Samples& s_;
   const VolumeOptions& o_;
   const ViewFrame& f_;
   model::VolumeHost& host_;
   TileScratch& w_;
   VolumeCounts& t_;
+  const PixelRanges* shared_;
   PixelRect tile_;
   int pixels_ = 0, done_ = 0;
   std::int64_t window_ = 1, mask_ = 0;
@@ -429,25 +592,23 @@ template <SphKernel K> class TileMarch {
 
 }  // namespace
 
-VolumeCounts VolumeCaster::run(const Camera& camera, std::span<const VolumeParticle> particles,
-                               const VolumeOptions& options, VolumeFrame& out,
-                               std::array<double, kVolumeCastPhaseNames.size()>* phase_ms) {
+template <class Lap>
+VolumeCounts VolumeCaster::start_frame(const Camera& camera,
+                                       std::span<const VolumeParticle> particles,
+                                       const VolumeOptions& options, Lap&& lap) {
   validate(camera);
   validate(options);
   Work& w = *work_;
-  Stopwatch clock;
-  const auto lap = [&](VolumeCastPhase p) {
-    if (phase_ms != nullptr) (*phase_ms)[std::size_t(p)] = clock.ms();
-    clock.restart();
-  };
+  w.camera = camera;
+  w.options = options;
   VolumeCounts counts;
   counts.particles = std::int64_t(particles.size());
   const double support = kernel_support(options.kernel);
   // The supports' pixel rectangles: PerspectiveGrid::sphere_pixels over any depth range.
   const PerspectiveGrid view_grid = PerspectiveGrid::over(camera, 1, 2, GridOptions{});
-  const ViewFrame& f = view_grid.view();
+  w.frame = view_grid.view();
   Samples& s = w.samples;
-  s.lattice = volume_lattice(f.tan_half_y, f.height, options);
+  s.lattice = volume_lattice(w.frame.tan_half_y, w.frame.height, options);
   s.near =
       options.anchor;  // one spacing in front of the eye: a camera inside the fluid sees from there
   project(view_grid, s, particles, support, counts, w.supports);
@@ -471,29 +632,150 @@ VolumeCounts VolumeCaster::run(const Camera& camera, std::span<const VolumeParti
   sort_supports(w.supports, s.base, w.keys, w.sorted);
   lap(VolumeCastPhase::sort);
 
-  const Tiles screen(camera.width, camera.height, kTile);
-  bin_supports(screen, w.supports, w.sorted, w.tile_bins, w.tile_lists);
+  bin_supports(Tiles(camera.width, camera.height, kTile), w.supports, w.sorted, w.tile_bins,
+               w.tile_lists);
   lap(VolumeCastPhase::bin);
+  return counts;
+}
 
-  out.reset(camera.width, camera.height);
+namespace {
+
+// f(march, tile rect, tile index, its supports) for every tile of the frame, in parallel, with
+// the march of kernel K (of a rank's part with kPart) on this thread.
+template <bool kPart, class F>
+void each_tile(const Samples& s, const VolumeOptions& options, const ViewFrame& frame,
+               const Bins& bins, const std::vector<std::uint32_t>& lists,
+               tbb::enumerable_thread_specific<TileScratch>& scratch, VolumeCounts& counts,
+               const PixelRanges* shared, F&& f) {
+  const Tiles screen(frame.width, frame.height, kTile);
   tbb::enumerable_thread_specific<model::VolumeHost> hosts(options);
   tbb::combinable<VolumeCounts> tallies;
   with_kernel(options.kernel, [&]<SphKernel K>() {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, screen.count(), 1),
                       [&](const tbb::blocked_range<std::size_t>& range) {
-                        TileMarch<K> march(s, options, f, hosts.local(), w.scratch.local(),
-                                           tallies.local());
+                        TileMarch<K, kPart> march(s, options, frame, hosts.local(), scratch.local(),
+                                                  tallies.local(), shared);
                         for (std::size_t t = range.begin(); t != range.end(); ++t) {
                           const std::span<const std::uint32_t> list(
-                              w.tile_lists.data() + w.tile_bins.start[t],
-                              w.tile_lists.data() + w.tile_bins.start[t + 1]);
-                          march.run(screen.rect(t), list, w.supports, out);
+                              lists.data() + bins.start[t], lists.data() + bins.start[t + 1]);
+                          f(march, screen.rect(t), t, list);
                         }
                       });
   });
-  lap(VolumeCastPhase::march);
   tallies.combine_each([&](const VolumeCounts& t) { counts += t; });
+}
+
+}  // namespace
+
+VolumeCounts VolumeCaster::run(const Camera& camera, std::span<const VolumeParticle> particles,
+                               const VolumeOptions& options, VolumeFrame& out,
+                               std::array<double, kVolumeCastPhaseNames.size()>* phase_ms) {
+  Stopwatch clock;
+  const auto lap = [&](VolumeCastPhase p) {
+    if (phase_ms != nullptr) (*phase_ms)[std::size_t(p)] = clock.ms();
+    clock.restart();
+  };
+  VolumeCounts counts = start_frame(camera, particles, options, lap);
+  Work& w = *work_;
+  out.reset(camera.width, camera.height);
+  each_tile<false>(w.samples, w.options, w.frame, w.tile_bins, w.tile_lists, w.scratch, counts,
+                   nullptr, [&](auto& march, const PixelRect& rect, std::size_t, auto list) {
+                     march.run(rect, list, w.supports, out);
+                   });
+  lap(VolumeCastPhase::march);
   return counts;
+}
+
+VolumeCounts VolumeCaster::cover(const Camera& camera, std::span<const VolumeParticle> particles,
+                                 const VolumeOptions& options, std::vector<SampleRange>& hulls) {
+  VolumeCounts counts = start_frame(camera, particles, options, [](VolumeCastPhase) {});
+  Work& w = *work_;
+  const std::int64_t n = std::int64_t(w.samples.base) + std::int64_t(w.samples.depths.size());
+  if (w.samples.base < std::numeric_limits<std::int32_t>::min() / 2 ||
+      n > std::numeric_limits<std::int32_t>::max() / 2)
+    throw make_error("the view's samples run from index ", w.samples.base, " to ", n,
+                     ": too far from the particle spacing's depth to merge across ranks");
+  hulls.assign(std::size_t(camera.width) * std::size_t(camera.height), SampleRange{});
+  VolumeCounts unused;
+  each_tile<false>(w.samples, w.options, w.frame, w.tile_bins, w.tile_lists, w.scratch, unused,
+                   nullptr, [&](auto& march, const PixelRect& rect, std::size_t, auto list) {
+                     march.cover(rect, list, w.supports, hulls);
+                   });
+  return counts;
+}
+
+VolumeCounts VolumeCaster::run_part(const PixelRanges& shared, VolumePart& out) {
+  Work& w = *work_;
+  const Tiles screen(w.frame.width, w.frame.height, kTile);
+  w.tile_parts.resize(screen.count());
+  VolumeCounts counts;
+  each_tile<true>(w.samples, w.options, w.frame, w.tile_bins, w.tile_lists, w.scratch, counts,
+                  &shared, [&](auto& march, const PixelRect& rect, std::size_t t, auto list) {
+                    march.run_part(rect, list, w.supports, w.tile_parts[t]);
+                  });
+  // The tiles' items into per-pixel order.
+  const std::size_t pixels = std::size_t(w.frame.width) * std::size_t(w.frame.height);
+  out.width = w.frame.width;
+  out.height = w.frame.height;
+  out.raw_start.assign(pixels + 1, 0);
+  out.segment_start.assign(pixels + 1, 0);
+  const auto each_pixel = [&](auto&& f) {
+    for (std::size_t t = 0; t < screen.count(); ++t) {
+      const PixelRect r = screen.rect(t);
+      const TilePart& part = w.tile_parts[t];
+      std::size_t raw = 0, segment = 0;
+      for (int y = r.y0; y <= r.y1; ++y)
+        for (int x = r.x0; x <= r.x1; ++x) {
+          const std::size_t p =
+              std::size_t(x - r.x0) + std::size_t(y - r.y0) * std::size_t(r.x1 - r.x0 + 1);
+          const std::size_t pixel = std::size_t(x) + std::size_t(y) * std::size_t(out.width);
+          f(part, pixel, raw, part.raw_count[p], segment, part.segment_count[p]);
+          raw += part.raw_count[p];
+          segment += part.segment_count[p];
+        }
+    }
+  };
+  each_pixel([&](const TilePart&, std::size_t pixel, std::size_t, std::uint32_t raws, std::size_t,
+                 std::uint32_t segments) {
+    out.raw_start[pixel + 1] = raws;
+    out.segment_start[pixel + 1] = segments;
+  });
+  for (std::size_t p = 0; p < pixels; ++p) {
+    out.raw_start[p + 1] += out.raw_start[p];
+    out.segment_start[p + 1] += out.segment_start[p];
+  }
+  out.raws.resize(out.raw_start[pixels]);
+  out.segments.resize(out.segment_start[pixels]);
+  each_pixel([&](const TilePart& part, std::size_t pixel, std::size_t raw, std::uint32_t raws,
+                 std::size_t segment, std::uint32_t segments) {
+    std::copy_n(part.raws.begin() + std::ptrdiff_t(raw), raws,
+                out.raws.begin() + std::ptrdiff_t(out.raw_start[pixel]));
+    std::copy_n(part.segments.begin() + std::ptrdiff_t(segment), segments,
+                out.segments.begin() + std::ptrdiff_t(out.segment_start[pixel]));
+  });
+  return counts;
+}
+
+void VolumeCaster::field_sums(std::span<const HitQuery> queries,
+                              std::vector<FieldSums>& out) const {
+  const Work& w = *work_;
+  const Tiles screen(w.frame.width, w.frame.height, kTile);
+  const std::size_t first = out.size();
+  out.resize(first + queries.size());
+  with_kernel(w.options.kernel, [&]<SphKernel K>() {
+    tbb::parallel_for(std::size_t(0), queries.size(), [&](std::size_t q) {
+      const int x = int(queries[q].pixel % std::uint32_t(w.frame.width));
+      const int y = int(queries[q].pixel / std::uint32_t(w.frame.width));
+      const std::size_t t = screen.of(x, y);
+      const glm::dvec3 point = double(queries[q].depth) * w.frame.view_ray(x, y);
+      FieldSums& sums = out[first + q];
+      for (std::uint32_t k = w.tile_bins.start[t]; k < w.tile_bins.start[t + 1]; ++k) {
+        const Support& s = w.supports[w.tile_lists[k]];
+        if (x >= s.rect.x0 && x <= s.rect.x1 && y >= s.rect.y0 && y <= s.rect.y1)
+          add_field_sums<K>(point, s, sums);
+      }
+    });
+  });
 }
 
 }  // namespace voxspan

@@ -27,6 +27,7 @@
 
 #include "render/camera.h"
 #include "render/volume.h"
+#include "render/volume_parts.h"
 
 namespace voxspan {
 
@@ -50,9 +51,24 @@ class VolumeCaster {
                    const VolumeOptions& options, VolumeFrame& out,
                    std::array<double, kVolumeCastPhaseNames.size()>* phase_ms = nullptr);
 
+  // This rank's part of a frame cast over several ranks (render/volume_parts.h). cover() starts
+  // the frame as run() does and gives per pixel the hull of the samples these particles reach;
+  // run_part() marches it given the samples other ranks reach too (`shared`, per pixel), into
+  // `out`; field_sums() adds these particles' sums at the merge's iso hits (appended to `out`,
+  // one per query). The last two read the frame cover() started.
+  VolumeCounts cover(const Camera& camera, std::span<const VolumeParticle> particles,
+                     const VolumeOptions& options, std::vector<SampleRange>& hulls);
+  VolumeCounts run_part(const PixelRanges& shared, VolumePart& out);
+  void field_sums(std::span<const HitQuery> queries, std::vector<FieldSums>& out) const;
+
  private:
   struct Work;
   std::unique_ptr<Work> work_;
+
+  // validate, project, sort, bin: the frame every mode marches; `lap` times each phase.
+  template <class Lap>
+  VolumeCounts start_frame(const Camera& camera, std::span<const VolumeParticle> particles,
+                           const VolumeOptions& options, Lap&& lap);
 };
 
 }  // namespace voxspan

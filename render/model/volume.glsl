@@ -59,32 +59,38 @@ float vx_iso_crossing(VolumeRay r, float q, float depth, uint k) {
   return r.depth + (depth - r.depth) * (a / (a - b));
 }
 
-// One sample at `depth`, standing for `length` world units of the ray, of value q where
-// defined == 1u.
-VolumeRay vx_sample(VolumeRay r, float q, uint defined, float depth, float length) {
-  if (u_mode != VX_VOLUME_DVR && defined == 1u && r.defined == 1u) {
-    float t[VX_MAX_ISO];
-    uint which[VX_MAX_ISO];
-    uint n = 0u;
-    for (uint k = 0u; k < u_iso_count; ++k) {
-      float c = vx_iso_crossing(r, q, depth, k);
-      if (c < 0.0f) continue;
-      uint j = n;  // insertion, nearest first
-      while (j > 0u && t[j - 1u] > c) {
-        t[j] = t[j - 1u];
-        which[j] = which[j - 1u];
-        --j;
-      }
-      t[j] = c;
-      which[j] = k;
-      ++n;
+// The iso crossings between the previous sample and (q, depth), where both are defined: each
+// recorded (nearest first) and its opacity taken from the transmittance.
+VolumeRay vx_iso_crossings(VolumeRay r, float q, uint defined, float depth) {
+  if (u_mode == VX_VOLUME_DVR || defined != 1u || r.defined != 1u) return r;
+  float t[VX_MAX_ISO];
+  uint which[VX_MAX_ISO];
+  uint n = 0u;
+  for (uint k = 0u; k < u_iso_count; ++k) {
+    float c = vx_iso_crossing(r, q, depth, k);
+    if (c < 0.0f) continue;
+    uint j = n;  // insertion, nearest first
+    while (j > 0u && t[j - 1u] > c) {
+      t[j] = t[j - 1u];
+      which[j] = which[j - 1u];
+      --j;
     }
-    for (uint j = 0u; j < n; ++j) {
-      float a = u_iso_opacity[which[j]];
-      vx_record_hit(t[j], r.transmittance * a, which[j]);
-      r.transmittance *= 1.0f - a;
-    }
+    t[j] = c;
+    which[j] = k;
+    ++n;
   }
+  for (uint j = 0u; j < n; ++j) {
+    float a = u_iso_opacity[which[j]];
+    vx_record_hit(t[j], r.transmittance * a, which[j]);
+    r.transmittance *= 1.0f - a;
+  }
+  return r;
+}
+
+// One sample at `depth`, standing for `length` world units of the ray, of value q where
+// defined == 1u: the crossings before it, then its own light and absorption.
+VolumeRay vx_sample(VolumeRay r, float q, uint defined, float depth, float length) {
+  r = vx_iso_crossings(r, q, defined, depth);
   if (u_mode != VX_VOLUME_ISO && defined == 1u) {
     vec4 c = vx_transfer(q);
     float a = vx_length_opacity(c.a, length);

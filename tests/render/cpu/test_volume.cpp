@@ -19,6 +19,7 @@
 #include "render/cpu/volume_caster.h"
 #include "render/reference/volume_reference.h"
 #include "render/sph_kernel.h"
+#include "tests/support/volume_cloud.h"
 #include "tools/scenes/scenes.h"
 
 namespace voxspan {
@@ -168,54 +169,12 @@ TEST(VolumeCaster, AShepardNormalisedBlockIsFlatInside) {
   EXPECT_LT(worst, 1e-6);
 }
 
-// A random block with values varying in space: the renderer's picture against the reference's.
-struct Cloud {
-  std::vector<VolumeParticle> particles;
-  Camera camera;
-  double spacing = 0.1;
-};
-
-Cloud cloud(int side, std::uint32_t seed) {
-  Cloud c;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
-  for (int i = 0; i < side; ++i)
-    for (int j = 0; j < side; ++j)
-      for (int k = 0; k < side; ++k) {
-        const glm::dvec3 p =
-            (glm::dvec3(i, j, k) + glm::dvec3(jitter(rng), jitter(rng), jitter(rng))) * c.spacing;
-        const double value = std::sin(3 * p.x) + p.y * p.y + 0.5 * p.z;
-        c.particles.push_back({float(p.x), float(p.y), float(p.z), float(1.3 * c.spacing),
-                               float(1 / std::pow(1.3, 3)), float(value)});
-      }
-  const double mid = 0.5 * (side - 1) * c.spacing;
-  c.camera = test::look_at({mid + 0.4, mid + 0.5, mid + 2.2}, {mid, mid, mid}, 56, 44, 40);
-  return c;
-}
-
-VolumeOptions cloud_options(VolumeMode mode, double spacing) {
-  VolumeOptions o;
-  o.mode = mode;
-  o.anchor = spacing;
-  o.opacity_length = spacing;
-  TransferTable t;
-  t.lo = -0.5;
-  t.hi = 2.0;
-  for (int k = 0; k < kTransferEntries; ++k) {
-    const float u = float(k) / (kTransferEntries - 1);
-    t.rgba[std::size_t(k)] = glm::vec4(u, 0.5f - 0.4f * u, 1 - u, 0.05f + 0.2f * u * u);
-  }
-  o.transfer = t;
-  if (mode != VolumeMode::dvr) o.isos = {{0.6, {0.9, 0.8, 0.3}, 0.7}, {1.2, {0.3, 0.9, 0.4}, 1}};
-  return o;
-}
-
 TEST(VolumeCaster, PicturesAreTheReferencesAtTheirSamples) {
-  const Cloud c = cloud(9, 7);
+  const test::Cloud c = test::cloud(9, 7);
   for (VolumeMode mode : {VolumeMode::dvr, VolumeMode::iso, VolumeMode::mixed})
     for (bool shepard : {true, false}) {
       SCOPED_TRACE(std::string(name_of(kVolumeModeNames, mode)) + (shepard ? " shepard" : ""));
-      VolumeOptions o = cloud_options(mode, c.spacing);
+      VolumeOptions o = test::cloud_options(mode, c.spacing);
       o.shepard = shepard;
       VolumeCaster caster;
       VolumeFrame mine, reference;
@@ -238,8 +197,8 @@ TEST(VolumeCaster, PicturesAreTheReferencesAtTheirSamples) {
 }
 
 TEST(VolumeCaster, ThePictureDoesNotDependOnTheThreads) {
-  const Cloud c = cloud(10, 3);
-  const VolumeOptions o = cloud_options(VolumeMode::mixed, c.spacing);
+  const test::Cloud c = test::cloud(10, 3);
+  const VolumeOptions o = test::cloud_options(VolumeMode::mixed, c.spacing);
   std::vector<float> first;
   for (int threads : {1, 2, 7}) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
@@ -252,8 +211,8 @@ TEST(VolumeCaster, ThePictureDoesNotDependOnTheThreads) {
 }
 
 TEST(VolumeCaster, BadParticlesAreSkippedAndCountedAndNoParticleGivesTheBackground) {
-  const Cloud c = cloud(6, 5);
-  const VolumeOptions o = cloud_options(VolumeMode::mixed, c.spacing);
+  const test::Cloud c = test::cloud(6, 5);
+  const VolumeOptions o = test::cloud_options(VolumeMode::mixed, c.spacing);
   std::vector<VolumeParticle> dirty = c.particles;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   dirty.push_back({nan, 0, 0, 0.1f, 0.001f, 1});
@@ -280,9 +239,9 @@ TEST(VolumeCaster, TheConvergedIntegralIsCloseAtTheDefaultSampling) {
   // integrand is continuous where the field starts: the samples converge at second order. (With
   // Shepard the field starts at its weight floor with a jump, and converges at first order
   // there: docs/benchmarks.md.)
-  Cloud c = cloud(7, 11);
+  test::Cloud c = test::cloud(7, 11);
   for (VolumeParticle& p : c.particles) p.value += 1.5f;
-  VolumeOptions o = cloud_options(VolumeMode::dvr, c.spacing);
+  VolumeOptions o = test::cloud_options(VolumeMode::dvr, c.spacing);
   o.shepard = false;
   o.termination = 0;  // where a ray stops moves with the samples
   o.transfer.lo = 0;

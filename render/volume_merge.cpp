@@ -1,0 +1,140 @@
+#include "render/volume_merge.h"
+
+#include <limits>
+
+namespace voxspan {
+
+VolumeMerge::VolumeMerge(const Camera& camera, const VolumeOptions& options)
+    : options_(options),
+      frame_(camera),
+      lattice_(volume_lattice(frame_.tan_half_y, frame_.height, options)),
+      host_(options) {}
+
+void VolumeMerge::note_hits(Ray& m, int before) {
+  const int added = m.hits.count + m.hits.unlit_count - before;
+  if (added <= 0) return;
+  counts_.iso_hits += added;
+  if (m.first_depth == 0 && m.hits.count > 0) {
+    m.first_depth = m.hits.hit[0].depth * m.scale;
+    m.first_is_hit = true;
+  }
+}
+
+// One shared sample, as the caster composites one (VolumeCaster's TileMarch::composite).
+void VolumeMerge::composite(Ray& m, std::int32_t index, double s, double w) {
+  const bool defined = w > 0 && (!options_.shepard || w >= options_.weight_floor);
+  const double q = !defined ? 0.0 : options_.shepard ? s / w : s;
+  counts_.samples += defined ? 1 : 0;
+  const double z = lattice_.depth(index);
+  const float length = float(lattice_.extent(z) * m.scale);
+  const float before = m.ray.transmittance;
+  const int hits = m.hits.count + m.hits.unlit_count;
+  m.ray = host_.vx_sample(m.ray, float(q), defined ? 1u : 0u, float(z), length);
+  note_hits(m, hits);
+  if (m.first_depth == 0 && before >= 0.5f && m.ray.transmittance < 0.5f)
+    m.first_depth = float(z * m.scale);
+}
+
+// One rank's segment behind what the ray holds: the crossings at the join, then its light.
+void VolumeMerge::join(Ray& m, const PartSegment& seg) {
+  const int hits = m.hits.count + m.hits.unlit_count;
+  const uint first_defined = (seg.flags & PartSegment::kFirstDefined) != 0 ? 1u : 0u;
+  m.ray =
+      host_.vx_iso_crossings(m.ray, seg.q_first, first_defined, float(lattice_.depth(seg.first)));
+  note_hits(m, hits);
+  if (m.first_depth == 0) {
+    // Its first hit, or where the whole ray's opacity reaches 0.5 in it: the segment's own point
+    // of 0.5 (exact when nothing absorbs in front of it), else its end.
+    float half = 0;
+    if (m.ray.transmittance >= 0.5f && m.ray.transmittance * seg.transmittance < 0.5f)
+      half = seg.half_depth > 0 ? seg.half_depth : float(lattice_.depth(seg.last) * m.scale);
+    const float hit = seg.hit_depth;
+    m.first_depth = hit > 0 && (half == 0 || hit < half) ? hit : half;
+  }
+  m.ray.color += m.ray.transmittance * seg.color;
+  m.ray.transmittance *= seg.transmittance;
+  m.ray.q = seg.q_last;
+  m.ray.depth = float(lattice_.depth(seg.last));
+  m.ray.defined = (seg.flags & PartSegment::kLastDefined) != 0 ? 1u : 0u;
+}
+
+void VolumeMerge::merge(std::uint32_t pixel, std::span<const std::span<const RawSample>> raws,
+                        std::span<const std::span<const PartSegment>> segments,
+                        std::vector<HitQuery>& queries) {
+  Ray& m = rays_.emplace_back();
+  m.pixel = pixel;
+  const int x = int(pixel % std::uint32_t(frame_.width)),
+            y = int(pixel / std::uint32_t(frame_.width));
+  m.ray = host_.vx_ray_start();
+  m.scale = float(glm::length(frame_.view_ray(x, y)));
+  host_.record_into(&m.hits);
+  const std::size_t ranks = raws.size();
+  std::vector<std::size_t> next_raw(ranks, 0), next_segment(ranks, 0);
+  constexpr std::int64_t kNone = std::numeric_limits<std::int64_t>::max();
+  std::int64_t previous = std::numeric_limits<std::int64_t>::min();
+  for (;;) {
+    // The nearest item left: a shared sample (whose sums every rank adds) or a segment.
+    std::int64_t raw_at = kNone, segment_at = kNone;
+    std::size_t segment_rank = 0;
+    for (std::size_t r = 0; r < ranks; ++r) {
+      if (next_raw[r] < raws[r].size())
+        raw_at = std::min<std::int64_t>(raw_at, raws[r][next_raw[r]].index);
+      if (next_segment[r] < segments[r].size() && segments[r][next_segment[r]].first < segment_at) {
+        segment_at = segments[r][next_segment[r]].first;
+        segment_rank = r;
+      }
+    }
+    if (raw_at == kNone && segment_at == kNone) break;
+    bool stopped = false;
+    if (raw_at < segment_at) {
+      double s = 0, w = 0;
+      for (std::size_t r = 0; r < ranks; ++r)
+        if (next_raw[r] < raws[r].size() && raws[r][next_raw[r]].index == raw_at) {
+          s += raws[r][next_raw[r]].s;
+          w += raws[r][next_raw[r]].w;
+          ++next_raw[r];
+        }
+      if (raw_at != previous + 1) m.ray.defined = 0u;
+      composite(m, std::int32_t(raw_at), s, w);
+      previous = raw_at;
+    } else {
+      const PartSegment& seg = segments[segment_rank][next_segment[segment_rank]++];
+      if (seg.first != previous + 1) m.ray.defined = 0u;
+      join(m, seg);
+      previous = seg.last;
+      stopped = (seg.flags & PartSegment::kStopped) != 0;
+    }
+    if (stopped || m.ray.transmittance < options_.termination) {
+      ++counts_.rays_stopped;
+      break;
+    }
+  }
+  m.first_query = std::uint32_t(queries.size());
+  for (int h = 0; h < m.hits.count; ++h)
+    queries.push_back({pixel, m.hits.hit[std::size_t(h)].depth});
+}
+
+void VolumeMerge::finish(std::span<const FieldSums> sums, std::vector<glm::vec4>& colors,
+                         std::vector<float>& depths) {
+  colors.resize(rays_.size());
+  depths.resize(rays_.size());
+  for (std::size_t k = 0; k < rays_.size(); ++k) {
+    Ray& m = rays_[k];
+    const int x = int(m.pixel % std::uint32_t(frame_.width)),
+              y = int(m.pixel / std::uint32_t(frame_.width));
+    const glm::dvec3 dir = frame_.view_ray(x, y);
+    for (int h = 0; h < m.hits.count; ++h) {
+      model::IsoHit& hit = m.hits.hit[std::size_t(h)];
+      const FieldSums& f = sums[m.first_query + std::size_t(h)];
+      host_.refine_hit(hit, f, dir, options_.shepard, lattice_.k * double(hit.depth));
+      m.ray.color += host_.hit_light(hit, field_gradient(f, options_.shepard), frame_, x, y);
+    }
+    if (m.first_is_hit) m.first_depth = m.hits.hit[0].depth * m.scale;
+    colors[k] = host_.pixel_color(m.ray, m.hits.unlit, options_.background, frame_, x, y);
+    depths[k] = m.first_depth;
+    counts_.iso_hits_unlit += m.hits.unlit_count;
+  }
+  rays_.clear();
+}
+
+}  // namespace voxspan

@@ -1,0 +1,57 @@
+// A random block of particles with values varying in space, its camera and volume options
+// (the volume renderers' tests, tests only).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "render/volume.h"
+#include "tools/scenes/scenes.h"
+
+namespace voxspan::test {
+
+// A random block with values varying in space: the renderer's picture against the reference's.
+struct Cloud {
+  std::vector<VolumeParticle> particles;
+  Camera camera;
+  double spacing = 0.1;
+};
+
+inline Cloud cloud(int side, std::uint32_t seed) {
+  Cloud c;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j)
+      for (int k = 0; k < side; ++k) {
+        const glm::dvec3 p =
+            (glm::dvec3(i, j, k) + glm::dvec3(jitter(rng), jitter(rng), jitter(rng))) * c.spacing;
+        const double value = std::sin(3 * p.x) + p.y * p.y + 0.5 * p.z;
+        c.particles.push_back({float(p.x), float(p.y), float(p.z), float(1.3 * c.spacing),
+                               float(1 / std::pow(1.3, 3)), float(value)});
+      }
+  const double mid = 0.5 * (side - 1) * c.spacing;
+  c.camera = test::look_at({mid + 0.4, mid + 0.5, mid + 2.2}, {mid, mid, mid}, 56, 44, 40);
+  return c;
+}
+
+inline VolumeOptions cloud_options(VolumeMode mode, double spacing) {
+  VolumeOptions o;
+  o.mode = mode;
+  o.anchor = spacing;
+  o.opacity_length = spacing;
+  TransferTable t;
+  t.lo = -0.5;
+  t.hi = 2.0;
+  for (int k = 0; k < kTransferEntries; ++k) {
+    const float u = float(k) / (kTransferEntries - 1);
+    t.rgba[std::size_t(k)] = glm::vec4(u, 0.5f - 0.4f * u, 1 - u, 0.05f + 0.2f * u * u);
+  }
+  o.transfer = t;
+  if (mode != VolumeMode::dvr) o.isos = {{0.6, {0.9, 0.8, 0.3}, 0.7}, {1.2, {0.3, 0.9, 0.4}, 1}};
+  return o;
+}
+
+}  // namespace voxspan::test
