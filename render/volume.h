@@ -129,6 +129,13 @@ struct FieldSums {
   double s = 0, w = 0;
   glm::dvec3 grad_s{0}, grad_w{0};
 };
+inline FieldSums& operator+=(FieldSums& a, const FieldSums& b) {
+  a.s += b.s;
+  a.w += b.w;
+  a.grad_s += b.grad_s;
+  a.grad_w += b.grad_w;
+  return a;
+}
 // The field's gradient there: of S / w with Shepard (where w > 0), else of S.
 inline glm::dvec3 field_gradient(const FieldSums& f, bool shepard) {
   if (!shepard || !(f.w > 0)) return f.grad_s;

@@ -21,11 +21,7 @@
 
 namespace voxspan {
 
-namespace pass {
-inline constexpr StatName composite{"composite"};
-}  // namespace pass
 namespace counter {
-inline constexpr StatName composite_bytes_sent{"composite.bytes_sent"};
 inline constexpr StatName composite_ranks_with_spans{"composite.ranks_with_spans"};
 }  // namespace counter
 

@@ -41,12 +41,18 @@ class SpanStage {
                                Recorder& recorder) = 0;
 };
 
-// The GL renderer's transfers around a view's stages: its span image read back before them,
-// their result uploaded after (the CPU renderer's images are in host memory).
+// Compositing across MPI ranks, in every view that runs it: the exchanges and the merge, and the
+// bytes this rank sent for them; the GL renderer's transfers around a view's stages: its span
+// image read back before them, their result uploaded after (the CPU renderer's images are in
+// host memory).
 namespace pass {
+inline constexpr StatName composite{"composite"};
 inline constexpr StatName composite_download{"composite_download"};
 inline constexpr StatName composite_upload{"composite_upload"};
 }  // namespace pass
+namespace counter {
+inline constexpr StatName composite_bytes_sent{"composite.bytes_sent"};
+}  // namespace counter
 
 // What a view is made with.
 struct ViewContext {

@@ -15,6 +15,7 @@
 #include "insitu/views/view_environment.h"
 #include "insitu/views/view_framing.h"
 #include "insitu/views/view_keys.h"
+#include "insitu/views/volume_compositor.h"
 #include "render/backend.h"
 #include "voxspan/error.h"
 
@@ -139,11 +140,11 @@ const schema::Section<VolumeSettings>& volume_section() {
 class VolumeView final : public View {
  public:
   VolumeView(const VolumeSettings& s, const ViewContext& c)
-      : settings_(s), spacing_(c.particle_spacing), renderer_(make_volume_renderer(c.backend)) {
-    if (c.comm != nullptr && c.comm->size() > 1)
-      throw make_error("view ", s.name,
-                       ": volume views in an MPI job are not built yet (each rank's particles "
-                       "would show alone); run them in one process");
+      : settings_(s),
+        spacing_(c.particle_spacing),
+        renderer_(make_volume_renderer(c.backend)),
+        comm_(c.comm != nullptr && c.comm->size() > 1 ? c.comm : nullptr) {
+    if (comm_ != nullptr) compositor_.emplace(*comm_);
     if (!(spacing_ > 0) || !std::isfinite(spacing_))
       throw make_error("view ", s.name,
                        ": the particle spacing is needed (the samples and "
@@ -153,10 +154,13 @@ class VolumeView final : public View {
 
   bool render(const ViewStep& step, Recorder& recorder, ViewProducts& out) override {
     if (step.data.particles == nullptr) throw make_error("volume: the step has no particles");
-    const ParticleView& particles = *step.data.particles;
-    const std::array<double, 2> range = gather(particles);
+    const std::array<double, 2> range = gathered_range(*step.data.particles);
     const VolumeOptions o = options(step, range);
-    renderer_->render(step.camera, particles_, o, recorder, frame_);
+    if (!compositor_) {
+      renderer_->render(step.camera, particles_, o, recorder, frame_);
+    } else if (!compositor_->render(*renderer_, step.camera, particles_, o, recorder, frame_)) {
+      return false;  // the root draws the frame
+    }
     std::swap(out.picture, frame_.picture);
     if (settings_.legend && settings_.mode != VolumeMode::iso)
       draw_color_bar(out.picture, settings_.color_map, range[0], range[1]);
@@ -178,7 +182,35 @@ class VolumeView final : public View {
   }
 
  private:
-  // The step's owned particles as the renderer reads them; returns the colour map's range.
+  // gather() on every rank, the failure of any failing all (before the collectives that follow);
+  // the colour map's range: the settings', or that of every rank's values.
+  std::array<double, 2> gathered_range(const ParticleView& particles) {
+    std::array<double, 2> found{};
+    if (comm_ == nullptr) {
+      found = gather(particles);
+    } else {
+      std::string failure;
+      bool ok = true;
+      try {
+        found = gather(particles);
+      } catch (const std::exception& e) {
+        ok = false;
+        failure = e.what();
+      }
+      const Agreement agreed = comm_->agree(ok, failure);
+      if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
+      std::array<double, 1> lo{found[0]}, hi{found[1]};
+      comm_->min(lo);
+      comm_->max(hi);
+      found = {lo[0], hi[0]};
+    }
+    if (settings_.range) return *settings_.range;
+    if (settings_.quantity.empty()) return {0.0, 1.0};
+    return display_range(found[0], found[1]);
+  }
+
+  // The step's owned particles as the renderer reads them; returns the smallest and largest
+  // finite value among them.
   std::array<double, 2> gather(const ParticleView& particles) {
     const AttributeView* q =
         settings_.quantity.empty()
@@ -210,8 +242,6 @@ class VolumeView final : public View {
                          q != nullptr ? float(q->magnitude(i)) : 1.0f};
       }
     });
-    if (settings_.range) return *settings_.range;
-    if (q == nullptr) return {0.0, 1.0};
     using Span = std::array<double, 2>;
     const Span found = tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, n, 16384), Span{1e300, -1e300},
@@ -225,7 +255,7 @@ class VolumeView final : public View {
         [](const Span& a, const Span& b) {
           return Span{std::min(a[0], b[0]), std::max(a[1], b[1])};
         });
-    return display_range(found[0], found[1]);
+    return found;
   }
 
   VolumeOptions options(const ViewStep& step, std::array<double, 2> range) const {
@@ -256,6 +286,8 @@ class VolumeView final : public View {
   const VolumeSettings settings_;
   const double spacing_;
   std::unique_ptr<VolumeRenderer> renderer_;
+  Communicator* const comm_;                    // null in one process
+  std::optional<VolumeCompositor> compositor_;  // in an MPI job
   std::vector<VolumeParticle> particles_;
   VolumeFrame frame_;
 };

@@ -19,6 +19,23 @@ class CpuVolumeRenderer final : public VolumeRenderer {
     return counts;
   }
 
+  VolumeCounts cover(const Camera& camera, std::span<const VolumeParticle> particles,
+                     const VolumeOptions& options, Recorder& recorder,
+                     std::vector<SampleRange>& hulls) override {
+    auto t = recorder.host(pass::volume);
+    return caster_.cover(camera, particles, options, hulls);
+  }
+  VolumeCounts render_part(const PixelRanges& shared, Recorder& recorder,
+                           VolumePart& out) override {
+    auto t = recorder.host(pass::volume);
+    return caster_.run_part(shared, out);
+  }
+  void field_sums(std::span<const HitQuery> queries, Recorder& recorder,
+                  std::vector<FieldSums>& out) override {
+    auto t = recorder.host(pass::volume);
+    caster_.field_sums(queries, out);
+  }
+
  private:
   VolumeCaster caster_;
 };

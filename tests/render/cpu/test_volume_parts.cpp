@@ -76,12 +76,7 @@ Merged split_frame(const Camera& camera, const std::vector<VolumeParticle>& part
   for (std::size_t r = 0; r < ranks; ++r) {
     std::vector<FieldSums> mine;
     casters[r].field_sums(queries, mine);
-    for (std::size_t q = 0; q < queries.size(); ++q) {
-      sums[q].s += mine[q].s;
-      sums[q].w += mine[q].w;
-      sums[q].grad_s += mine[q].grad_s;
-      sums[q].grad_w += mine[q].grad_w;
-    }
+    for (std::size_t q = 0; q < queries.size(); ++q) sums[q] += mine[q];
   }
   std::vector<glm::vec4> colors;
   merge.finish(sums, colors, out.frame.depth);

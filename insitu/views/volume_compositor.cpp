@@ -1,0 +1,301 @@
+#include "insitu/views/volume_compositor.h"
+
+#include <cstring>
+#include <exception>
+
+#include "insitu/parallel/span_merge.h"
+#include "insitu/views/view.h"
+#include "render/volume_merge.h"
+#include "voxspan/error.h"
+
+namespace voxspan {
+namespace {
+
+using Bytes = std::vector<std::byte>;
+
+template <class T> void put(Bytes& out, const T& value) {
+  const auto* p = reinterpret_cast<const std::byte*>(&value);
+  out.insert(out.end(), p, p + sizeof(T));
+}
+template <class T> void put(Bytes& out, std::span<const T> values) {
+  const auto* p = reinterpret_cast<const std::byte*>(values.data());
+  out.insert(out.end(), p, p + values.size_bytes());
+}
+
+// Reads what put() wrote, copying into aligned values.
+class Reader {
+ public:
+  explicit Reader(std::span<const std::byte> bytes) : bytes_(bytes) {}
+  bool done() const { return at_ == bytes_.size(); }
+  template <class T> T get() {
+    T value;
+    copy(&value, sizeof(T));
+    return value;
+  }
+  template <class T> void get(std::size_t n, std::vector<T>& out) {
+    const std::size_t first = out.size();
+    out.resize(first + n);
+    copy(out.data() + first, n * sizeof(T));
+  }
+
+ private:
+  void copy(void* to, std::size_t bytes) {
+    if (bytes_.size() - at_ < bytes) throw make_error("volume composite: a message cut short");
+    std::memcpy(to, bytes_.data() + at_, bytes);
+    at_ += bytes;
+  }
+  std::span<const std::byte> bytes_;
+  std::size_t at_ = 0;
+};
+
+// Runs `step`; false with its message when it throws.
+template <class F> bool attempt(F&& step, std::string& failure) {
+  try {
+    step();
+    return true;
+  } catch (const std::exception& e) {
+    failure = e.what();
+    return false;
+  }
+}
+
+// One rank's items on the pixels of a band, as the merge reads them.
+struct RankItems {
+  std::vector<std::uint32_t> pixel, raw_start, segment_start;  // per listed pixel (+1 for starts)
+  std::vector<RawSample> raws;
+  std::vector<PartSegment> segments;
+};
+
+RankItems read_items(std::span<const std::byte> bytes) {
+  RankItems items;
+  items.raw_start.push_back(0);
+  items.segment_start.push_back(0);
+  Reader in(bytes);
+  while (!in.done()) {
+    items.pixel.push_back(in.get<std::uint32_t>());
+    const auto raws = in.get<std::uint32_t>(), segments = in.get<std::uint32_t>();
+    in.get(raws, items.raws);
+    in.get(segments, items.segments);
+    items.raw_start.push_back(std::uint32_t(items.raws.size()));
+    items.segment_start.push_back(std::uint32_t(items.segments.size()));
+  }
+  return items;
+}
+
+Bytes encode_items(const VolumePart& part, RowBand band) {
+  Bytes out;
+  const std::size_t width = std::size_t(part.width);
+  for (std::size_t p = std::size_t(band.begin) * width; p < std::size_t(band.end) * width; ++p) {
+    const std::span<const RawSample> raws = part.raws_of(p);
+    const std::span<const PartSegment> segments = part.segments_of(p);
+    if (raws.empty() && segments.empty()) continue;
+    put(out, std::uint32_t(p));
+    put(out, std::uint32_t(raws.size()));
+    put(out, std::uint32_t(segments.size()));
+    put(out, raws);
+    put(out, segments);
+  }
+  return out;
+}
+
+// Per rank, the samples of its hulls on `band` that other ranks' hulls hold too.
+std::vector<Bytes> shared_replies(std::span<const Bytes> hulls, RowBand band, int width) {
+  const std::size_t ranks = hulls.size();
+  const std::size_t first = std::size_t(band.begin) * std::size_t(width);
+  const std::size_t pixels = std::size_t(band.end - band.begin) * std::size_t(width);
+  std::vector<std::vector<SampleRange>> by_rank(ranks);
+  std::vector<std::uint8_t> holders(pixels, 0);
+  for (std::size_t r = 0; r < ranks; ++r) {
+    by_rank[r].assign(pixels, SampleRange{});
+    Reader in(hulls[r]);
+    while (!in.done()) {
+      const std::size_t p = in.get<std::uint32_t>() - first;
+      by_rank[r][p] = in.get<SampleRange>();
+      holders[p] = std::uint8_t(std::min(2, holders[p] + 1));
+    }
+  }
+  std::vector<Bytes> replies(ranks);
+  std::vector<SampleRange> of_pixel(ranks);
+  std::vector<std::vector<SampleRange>> cut(ranks);
+  for (std::size_t p = 0; p < pixels; ++p) {
+    if (holders[p] < 2) continue;
+    for (std::size_t r = 0; r < ranks; ++r) {
+      of_pixel[r] = by_rank[r][p];
+      cut[r].clear();
+    }
+    shared_ranges(of_pixel, cut);
+    for (std::size_t r = 0; r < ranks; ++r) {
+      if (cut[r].empty()) continue;
+      put(replies[r], std::uint32_t(first + p));
+      put(replies[r], std::uint32_t(cut[r].size()));
+      put(replies[r], std::span<const SampleRange>(cut[r]));
+    }
+  }
+  return replies;
+}
+
+// The owners' replies (in rank order: bands in row order) as per-pixel ranges.
+void read_shared(std::span<const Bytes> replies, std::size_t pixels, PixelRanges& out) {
+  out.start.assign(pixels + 1, 0);
+  out.ranges.clear();
+  std::size_t next = 0;  // the first pixel whose start is not set yet
+  for (const Bytes& reply : replies) {
+    Reader in(reply);
+    while (!in.done()) {
+      const std::size_t p = in.get<std::uint32_t>();
+      const auto n = in.get<std::uint32_t>();
+      for (; next <= p; ++next) out.start[next] = std::uint32_t(out.ranges.size());
+      in.get(n, out.ranges);
+    }
+  }
+  for (; next <= pixels; ++next) out.start[next] = std::uint32_t(out.ranges.size());
+}
+
+bool zero(const FieldSums& f) { return f.s == 0 && f.w == 0; }
+
+}  // namespace
+
+void VolumeCompositor::agree(bool ok, const std::string& failure) {
+  const Agreement agreed = comm_.agree(ok, failure);
+  if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
+}
+
+bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,
+                              std::span<const VolumeParticle> particles,
+                              const VolumeOptions& options, Recorder& recorder, VolumeFrame& out) {
+  const int ranks = comm_.size();
+  const std::size_t rank_count = std::size_t(ranks);
+  const std::int64_t bytes_before = comm_.bytes_sent();
+  const RowBand mine = band_of(comm_.rank(), ranks, camera.height);
+  const std::size_t width = std::size_t(camera.width);
+  const std::size_t pixels = width * std::size_t(camera.height);
+  const std::size_t band_first = std::size_t(mine.begin) * width;
+  std::string failure;
+  VolumeCounts counts;
+
+  agree(attempt([&] { counts = renderer.cover(camera, particles, options, recorder, hulls_); },
+                failure),
+        failure);
+  {
+    auto t = recorder.host(pass::composite);
+    std::vector<Bytes> send(rank_count);
+    for (int r = 0; r < ranks; ++r) {
+      const RowBand band = band_of(r, ranks, camera.height);
+      for (std::size_t p = std::size_t(band.begin) * width; p < std::size_t(band.end) * width; ++p)
+        if (!hulls_[p].empty()) {
+          put(send[std::size_t(r)], std::uint32_t(p));
+          put(send[std::size_t(r)], hulls_[p]);
+        }
+    }
+    const std::vector<Bytes> hulls = comm_.exchange(send);
+    read_shared(comm_.exchange(shared_replies(hulls, mine, camera.width)), pixels, shared_);
+  }
+
+  agree(attempt([&] { counts += renderer.render_part(shared_, recorder, part_); }, failure),
+        failure);
+  VolumeMerge merge(camera, options);
+  std::vector<HitQuery> queries;
+  {
+    auto t = recorder.host(pass::composite);
+    std::vector<Bytes> send(rank_count);
+    for (int r = 0; r < ranks; ++r)
+      send[std::size_t(r)] = encode_items(part_, band_of(r, ranks, camera.height));
+    const std::vector<Bytes> received = comm_.exchange(send);
+    std::vector<RankItems> items;
+    for (const Bytes& b : received) items.push_back(read_items(b));
+    std::vector<std::size_t> next(items.size(), 0);
+    std::vector<std::span<const RawSample>> raws(items.size());
+    std::vector<std::span<const PartSegment>> segments(items.size());
+    for (std::size_t p = band_first; p < std::size_t(mine.end) * width; ++p) {
+      for (std::size_t r = 0; r < items.size(); ++r) {
+        const RankItems& it = items[r];
+        raws[r] = {};
+        segments[r] = {};
+        if (next[r] < it.pixel.size() && it.pixel[next[r]] == p) {
+          const std::size_t k = next[r]++;
+          raws[r] = {it.raws.data() + it.raw_start[k], it.raw_start[k + 1] - it.raw_start[k]};
+          segments[r] = {it.segments.data() + it.segment_start[k],
+                         it.segment_start[k + 1] - it.segment_start[k]};
+        }
+      }
+      merge.merge(std::uint32_t(p), raws, segments, queries);
+    }
+  }
+
+  std::vector<FieldSums> sums(queries.size());
+  if (options.mode != VolumeMode::dvr) {
+    std::vector<Bytes> asked;
+    {
+      auto t = recorder.host(pass::composite);
+      Bytes mine_asked;
+      put(mine_asked, std::span<const HitQuery>(queries));
+      asked = comm_.exchange(std::vector<Bytes>(rank_count, mine_asked));
+    }
+    std::vector<Bytes> answers(rank_count);
+    agree(attempt(
+              [&] {
+                std::vector<HitQuery> q;
+                std::vector<FieldSums> found;
+                for (std::size_t owner = 0; owner < asked.size(); ++owner) {
+                  q.clear();
+                  found.clear();
+                  Reader(asked[owner]).get(asked[owner].size() / sizeof(HitQuery), q);
+                  renderer.field_sums(q, recorder, found);
+                  for (std::size_t k = 0; k < found.size(); ++k)
+                    if (!zero(found[k])) {
+                      put(answers[owner], std::uint32_t(k));
+                      put(answers[owner], found[k]);
+                    }
+                }
+              },
+              failure),
+          failure);
+    auto t = recorder.host(pass::composite);
+    for (const Bytes& answer : comm_.exchange(answers)) {
+      Reader in(answer);
+      while (!in.done()) {
+        const std::size_t k = in.get<std::uint32_t>();
+        sums.at(k) += in.get<FieldSums>();
+      }
+    }
+  }
+
+  std::vector<std::vector<std::byte>> bands;
+  {
+    auto t = recorder.host(pass::composite);
+    std::vector<glm::vec4> colors;
+    std::vector<float> depths;
+    merge.finish(sums, colors, depths);
+    Bytes band;
+    put(band, std::span<const glm::vec4>(colors));
+    put(band, std::span<const float>(depths));
+    bands = comm_.gather(band);
+  }
+  counts += merge.counts();
+  std::vector<std::int64_t> totals;
+  for (const VolumeCountName& c : kVolumeCountNames) totals.push_back(counts.*c.member);
+  comm_.sum(totals);
+  for (std::size_t k = 0; k < totals.size(); ++k) counts.*kVolumeCountNames[k].member = totals[k];
+  record(counts, recorder);
+  recorder.count(counter::composite_bytes_sent, comm_.bytes_sent() - bytes_before);
+  if (!comm_.root()) return false;
+
+  out.reset(camera.width, camera.height);
+  for (int r = 0; r < ranks; ++r) {
+    const RowBand band = band_of(r, ranks, camera.height);
+    const std::size_t n = std::size_t(band.end - band.begin) * width;
+    std::vector<glm::vec4> colors;
+    std::vector<float> depths;
+    Reader in(bands[std::size_t(r)]);
+    in.get(n, colors);
+    in.get(n, depths);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t p = std::size_t(band.begin) * width + k;
+      out.picture.set(int(p % width), int(p / width), colors[k]);
+      out.depth[p] = depths[k];
+    }
+  }
+  return true;
+}
+
+}  // namespace voxspan
