@@ -23,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -142,6 +143,25 @@ inline glm::dvec3 field_gradient(const FieldSums& f, bool shepard) {
   return (f.grad_s * f.w - f.s * f.grad_w) / (f.w * f.w);
 }
 
+// A deep image of a volume frame, for compositors: per pixel the runs of samples along its ray
+// that some particle reaches, front to back, each one deep sample: Z and ZBack the distances
+// from the eye along the unit ray where the run starts and ends, RGBA its light composited
+// from transmittance 1 (premultiplied) and alpha = 1 - its transmittance. Composited over one
+// another in order (OpenEXR's deep flattening), the samples give the picture without its
+// background.
+struct DeepSample {
+  float z = 0, z_back = 0;
+  glm::vec4 rgba{0.0f};
+};
+struct DeepImage {
+  int width = 0, height = 0;
+  std::vector<std::uint32_t> start;  // per pixel (x + y * width) + 1: its first sample
+  std::vector<DeepSample> samples;
+  std::span<const DeepSample> of(std::size_t pixel) const {
+    return {samples.data() + start[pixel], samples.data() + start[pixel + 1]};
+  }
+};
+
 struct VolumeFrame {
   // Linear RGBA, row 0 at the top: over the background (alpha 1), or with no background the
   // light premultiplied and alpha = 1 - transmittance.
@@ -149,6 +169,8 @@ struct VolumeFrame {
   // Per pixel, the distance along the ray to the first iso hit or, failing one, to the sample
   // where the opacity reached 0.5; 0 where neither happened.
   std::vector<float> depth;
+  // When asked for (VolumeRenderer::render's `deep`): the deep image; else empty.
+  DeepImage deep;
 
   // Sized for a camera's picture, depths 0, the picture's storage kept when its size is.
   void reset(int width, int height) {

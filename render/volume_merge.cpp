@@ -2,17 +2,42 @@
 
 #include <limits>
 
+#include "render/stat_names.h"
+
 namespace voxspan {
 
-VolumeMerge::VolumeMerge(const Camera& camera, const VolumeOptions& options)
+VolumeMerge::VolumeMerge(const Camera& camera, const VolumeOptions& options, bool deep)
     : options_(options),
       frame_(camera),
       lattice_(volume_lattice(frame_.tan_half_y, frame_.height, options)),
-      host_(options) {}
+      host_(options),
+      deep_(deep) {}
+
+void VolumeMerge::extend_run(Ray& m, std::int32_t first, std::int32_t last, std::int64_t previous) {
+  if (!deep_) return;
+  if (m.run_end == m.run_begin || first != previous + 1) {
+    end_run(m);
+    Run& r = runs_.emplace_back();
+    r.first = first;
+    r.color_before = m.ray.color;
+    r.transmittance_before = m.ray.transmittance;
+    ++m.run_end;
+  }
+  runs_.back().last = last;
+}
+
+void VolumeMerge::end_run(Ray& m) {
+  if (!deep_ || m.run_end == m.run_begin) return;
+  Run& r = runs_.back();
+  r.color = (m.ray.color - r.color_before) / r.transmittance_before;
+  r.transmittance = m.ray.transmittance / r.transmittance_before;
+}
 
 void VolumeMerge::note_hits(Ray& m, int before) {
   const int added = m.hits.count + m.hits.unlit_count - before;
   if (added <= 0) return;
+  for (int h = std::min(before, model::kMaxIsoHits); h < m.hits.count; ++h)
+    m.hit_run[std::size_t(h)] = m.run_end - m.run_begin - 1;
   counts_.iso_hits += added;
   if (m.first_depth == 0 && m.hits.count > 0) {
     m.first_depth = m.hits.hit[0].depth * m.scale;
@@ -67,6 +92,7 @@ void VolumeMerge::merge(std::uint32_t pixel, std::span<const std::span<const Raw
             y = int(pixel / std::uint32_t(frame_.width));
   m.ray = host_.vx_ray_start();
   m.scale = float(glm::length(frame_.view_ray(x, y)));
+  m.run_begin = m.run_end = std::uint32_t(runs_.size());
   host_.record_into(&m.hits);
   const std::size_t ranks = raws.size();
   std::vector<std::size_t> next_raw(ranks, 0), next_segment(ranks, 0);
@@ -95,11 +121,13 @@ void VolumeMerge::merge(std::uint32_t pixel, std::span<const std::span<const Raw
           ++next_raw[r];
         }
       if (raw_at != previous + 1) m.ray.defined = 0u;
+      extend_run(m, std::int32_t(raw_at), std::int32_t(raw_at), previous);
       composite(m, std::int32_t(raw_at), s, w);
       previous = raw_at;
     } else {
       const PartSegment& seg = segments[segment_rank][next_segment[segment_rank]++];
       if (seg.first != previous + 1) m.ray.defined = 0u;
+      extend_run(m, seg.first, seg.last, previous);
       join(m, seg);
       previous = seg.last;
       stopped = (seg.flags & PartSegment::kStopped) != 0;
@@ -109,13 +137,15 @@ void VolumeMerge::merge(std::uint32_t pixel, std::span<const std::span<const Raw
       break;
     }
   }
+  end_run(m);
   m.first_query = std::uint32_t(queries.size());
   for (int h = 0; h < m.hits.count; ++h)
     queries.push_back({pixel, m.hits.hit[std::size_t(h)].depth});
 }
 
 void VolumeMerge::finish(std::span<const FieldSums> sums, std::vector<glm::vec4>& colors,
-                         std::vector<float>& depths) {
+                         std::vector<float>& depths, std::vector<std::uint32_t>* deep_counts,
+                         std::vector<DeepSample>* deep) {
   colors.resize(rays_.size());
   depths.resize(rays_.size());
   for (std::size_t k = 0; k < rays_.size(); ++k) {
@@ -127,14 +157,77 @@ void VolumeMerge::finish(std::span<const FieldSums> sums, std::vector<glm::vec4>
       model::IsoHit& hit = m.hits.hit[std::size_t(h)];
       const FieldSums& f = sums[m.first_query + std::size_t(h)];
       host_.refine_hit(hit, f, dir, options_.shepard, lattice_.k * double(hit.depth));
-      m.ray.color += host_.hit_light(hit, field_gradient(f, options_.shepard), frame_, x, y);
+      const model::vec3 light =
+          host_.hit_light(hit, field_gradient(f, options_.shepard), frame_, x, y);
+      m.ray.color += light;
+      if (deep_) {
+        Run& r = runs_[m.run_begin + m.hit_run[std::size_t(h)]];
+        r.color += light / r.transmittance_before;
+      }
     }
     if (m.first_is_hit) m.first_depth = m.hits.hit[0].depth * m.scale;
     colors[k] = host_.pixel_color(m.ray, m.hits.unlit, options_.background, frame_, x, y);
     depths[k] = m.first_depth;
     counts_.iso_hits_unlit += m.hits.unlit_count;
+    if (deep_ && deep != nullptr && deep_counts != nullptr) {
+      if (m.run_end > m.run_begin) {  // the hits past the lit ones: the last run's
+        Run& last = runs_[m.run_end - 1];
+        last.color += m.hits.unlit / last.transmittance_before;
+      }
+      deep_counts->push_back(m.run_end - m.run_begin);
+      for (std::uint32_t run = m.run_begin; run < m.run_end; ++run) {
+        const Run& r = runs_[run];
+        const double front = lattice_.depth(r.first), back = lattice_.depth(r.last);
+        deep->push_back({float((front - 0.5 * lattice_.extent(front)) * m.scale),
+                         float((back + 0.5 * lattice_.extent(back)) * m.scale),
+                         glm::vec4(r.color, 1.0f - r.transmittance)});
+      }
+    }
   }
   rays_.clear();
+  runs_.clear();
+}
+
+VolumeCounts render_with_deep(VolumeRenderer& renderer, const Camera& camera,
+                              std::span<const VolumeParticle> particles,
+                              const VolumeOptions& options, Recorder& recorder, VolumeFrame& out) {
+  std::vector<SampleRange> hulls;
+  VolumeCounts counts = renderer.cover(camera, particles, options, recorder, hulls);
+  const std::size_t pixels = std::size_t(camera.width) * std::size_t(camera.height);
+  PixelRanges none;
+  none.start.assign(pixels + 1, 0);
+  VolumePart part;
+  counts += renderer.render_part(none, recorder, part);
+  VolumeMerge merge(camera, options, true);
+  std::vector<HitQuery> queries;
+  std::vector<FieldSums> sums;
+  std::vector<glm::vec4> colors;
+  std::vector<std::uint32_t> deep_counts;
+  {
+    auto t = recorder.host(pass::volume);
+    for (std::size_t p = 0; p < pixels; ++p) {
+      const std::span<const RawSample> raws[] = {part.raws_of(p)};
+      const std::span<const PartSegment> segments[] = {part.segments_of(p)};
+      merge.merge(std::uint32_t(p), raws, segments, queries);
+    }
+  }
+  renderer.field_sums(queries, recorder, sums);
+  auto t = recorder.host(pass::volume);
+  out.reset(camera.width, camera.height);
+  DeepImage& deep = out.deep;
+  deep.width = camera.width;
+  deep.height = camera.height;
+  deep.samples.clear();
+  merge.finish(sums, colors, out.depth, &deep_counts, &deep.samples);
+  deep.start.assign(pixels + 1, 0);
+  for (std::size_t p = 0; p < pixels; ++p) {
+    deep.start[p + 1] = deep.start[p] + deep_counts[p];
+    out.picture.set(int(p % std::size_t(camera.width)), int(p / std::size_t(camera.width)),
+                    colors[p]);
+  }
+  counts += merge.counts();
+  record(counts, recorder);
+  return counts;
 }
 
 }  // namespace voxspan

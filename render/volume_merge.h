@@ -6,6 +6,7 @@
 // made as one process makes them (render/cpu/volume_caster.h).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -14,12 +15,14 @@
 #include "render/model/volume_host.h"
 #include "render/volume.h"
 #include "render/volume_parts.h"
+#include "render/volume_renderer.h"
 
 namespace voxspan {
 
 class VolumeMerge {
  public:
-  VolumeMerge(const Camera& camera, const VolumeOptions& options);
+  // With `deep`, finish() gives the merged pixels' deep samples too.
+  VolumeMerge(const Camera& camera, const VolumeOptions& options, bool deep = false);
 
   // Pixel `pixel` (x + y * width) from every rank's items on it, in rank order: raws[r] and
   // segments[r] (each in sample order). Its iso hits' queries are appended to `queries`.
@@ -28,9 +31,11 @@ class VolumeMerge {
              std::vector<HitQuery>& queries);
 
   // The merged pixels' colours and depths (VolumeFrame's), in the order merge() took them, from
-  // the field's sums at every query (summed over the ranks), in the order they were appended.
+  // the field's sums at every query (summed over the ranks), in the order they were appended;
+  // with `deep`, their deep samples (per pixel a count in `deep_counts`, the samples appended).
   void finish(std::span<const FieldSums> sums, std::vector<glm::vec4>& colors,
-              std::vector<float>& depths);
+              std::vector<float>& depths, std::vector<std::uint32_t>* deep_counts = nullptr,
+              std::vector<DeepSample>* deep = nullptr);
 
   // The merge's own counts (samples composited here, iso hits found here, rays stopped).
   const VolumeCounts& counts() const { return counts_; }
@@ -44,17 +49,40 @@ class VolumeMerge {
     float first_depth = 0;
     bool first_is_hit = false;
     std::uint32_t first_query = 0;
+    // Its deep runs: runs_[run_begin, run_end), the run of each lit hit.
+    std::uint32_t run_begin = 0, run_end = 0;
+    std::array<std::uint32_t, model::kMaxIsoHits> hit_run{};
+  };
+  // A run of samples with no gap, for the deep image: the ray's light and transmittance where
+  // it starts, then its own.
+  struct Run {
+    std::int32_t first = 0, last = 0;
+    glm::vec3 color_before{0.0f};
+    float transmittance_before = 1;
+    glm::vec3 color{0.0f};
+    float transmittance = 1;
   };
   void composite(Ray& m, std::int32_t index, double s, double w);
   void join(Ray& m, const PartSegment& segment);
   void note_hits(Ray& m, int before);
+  // The deep run for samples first..last of the ray: a new one after a gap.
+  void extend_run(Ray& m, std::int32_t first, std::int32_t last, std::int64_t previous);
+  void end_run(Ray& m);
 
   VolumeOptions options_;
   ViewFrame frame_;
   VolumeLattice lattice_;
   model::VolumeHost host_;
   std::vector<Ray> rays_;
+  bool deep_ = false;
+  std::vector<Run> runs_;
   VolumeCounts counts_;
 };
+
+// One process's frame through the merge (the renderer's part with nothing shared, merged): the
+// picture and depths render() gives, to rounding, and the deep image in out.deep.
+VolumeCounts render_with_deep(VolumeRenderer& renderer, const Camera& camera,
+                              std::span<const VolumeParticle> particles,
+                              const VolumeOptions& options, Recorder& recorder, VolumeFrame& out);
 
 }  // namespace voxspan

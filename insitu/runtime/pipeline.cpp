@@ -193,6 +193,7 @@ struct InsituPipeline::Impl {
         if (needs.first_hit_depth) results[i].first_hit_depth = &v.products.first_hit_depth;
         if (needs.spans) results[i].spans = v.products.shaded_spans;
         if (needs.field) results[i].field = v.products.shaded_field;
+        if (needs.deep) results[i].deep = v.products.shaded_deep;
       } catch (const std::exception& e) {
         recorder->collect();  // closes the scopes of the failed frame
         ++totals.failed_views;

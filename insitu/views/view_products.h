@@ -11,6 +11,7 @@
 #include "render/float_image.h"
 #include "render/frame_stats.h"
 #include "render/span_image.h"
+#include "render/volume.h"
 
 namespace voxspan {
 
@@ -20,12 +21,14 @@ struct ViewNeeds {
   bool first_hit_depth = false;  // distance from the eye to the first span entry per pixel
   bool spans = false;            // the span image the picture was shaded from, in host memory
   bool field = false;            // a 2D view's raw values (a slice's), with their world mapping
-  bool any() const { return picture || first_hit_depth || spans || field; }
+  bool deep = false;             // a volume view's deep image (render/volume.h)
+  bool any() const { return picture || first_hit_depth || spans || field || deep; }
   ViewNeeds& operator|=(const ViewNeeds& o) {
     picture |= o.picture;
     first_hit_depth |= o.first_hit_depth;
     spans |= o.spans;
     field |= o.field;
+    deep |= o.deep;
     return *this;
   }
 };
@@ -49,6 +52,7 @@ struct ViewResult {
   const FloatImage* first_hit_depth = nullptr;  // one channel (r) per pixel, 0: no fluid
   const SpanImage* spans = nullptr;
   const FieldImage* field = nullptr;
+  const DeepImage* deep = nullptr;
   const FrameStats* stats = nullptr;  // the view's passes and counts on this process
 };
 
@@ -63,6 +67,8 @@ struct ViewProducts {
   // When asked, from a view that has one: its raw values; null otherwise.
   const FieldImage* shaded_field = nullptr;
   FieldImage field;
+  // When asked, from a volume view: its deep image; null otherwise.
+  const DeepImage* shaded_deep = nullptr;
 };
 
 }  // namespace voxspan

@@ -162,7 +162,8 @@ void VolumeCompositor::agree(bool ok, const std::string& failure) {
 
 bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,
                               std::span<const VolumeParticle> particles,
-                              const VolumeOptions& options, Recorder& recorder, VolumeFrame& out) {
+                              const VolumeOptions& options, bool deep, Recorder& recorder,
+                              VolumeFrame& out) {
   const int ranks = comm_.size();
   const std::size_t rank_count = std::size_t(ranks);
   const std::int64_t bytes_before = comm_.bytes_sent();
@@ -193,7 +194,7 @@ bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,
 
   agree(attempt([&] { counts += renderer.render_part(shared_, recorder, part_); }, failure),
         failure);
-  VolumeMerge merge(camera, options);
+  VolumeMerge merge(camera, options, deep);
   std::vector<HitQuery> queries;
   {
     auto t = recorder.host(pass::composite);
@@ -265,10 +266,16 @@ bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,
     auto t = recorder.host(pass::composite);
     std::vector<glm::vec4> colors;
     std::vector<float> depths;
-    merge.finish(sums, colors, depths);
+    std::vector<std::uint32_t> deep_counts;
+    std::vector<DeepSample> deep_samples;
+    merge.finish(sums, colors, depths, &deep_counts, &deep_samples);
     Bytes band;
     put(band, std::span<const glm::vec4>(colors));
     put(band, std::span<const float>(depths));
+    if (deep) {
+      put(band, std::span<const std::uint32_t>(deep_counts));
+      put(band, std::span<const DeepSample>(deep_samples));
+    }
     bands = comm_.gather(band);
   }
   counts += merge.counts();
@@ -281,20 +288,30 @@ bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,
   if (!comm_.root()) return false;
 
   out.reset(camera.width, camera.height);
+  DeepImage& image = out.deep;
+  image = {camera.width, camera.height, {0}, {}};
   for (int r = 0; r < ranks; ++r) {
     const RowBand band = band_of(r, ranks, camera.height);
     const std::size_t n = std::size_t(band.end - band.begin) * width;
     std::vector<glm::vec4> colors;
     std::vector<float> depths;
+    std::vector<std::uint32_t> deep_counts;
     Reader in(bands[std::size_t(r)]);
     in.get(n, colors);
     in.get(n, depths);
+    if (deep) in.get(n, deep_counts);
+    std::size_t samples = 0;
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t p = std::size_t(band.begin) * width + k;
       out.picture.set(int(p % width), int(p / width), colors[k]);
       out.depth[p] = depths[k];
+      if (!deep) continue;
+      samples += deep_counts[k];
+      image.start.push_back(image.start.back() + deep_counts[k]);
     }
+    if (deep) in.get(samples, image.samples);
   }
+  if (!deep) image = {};
   return true;
 }
 

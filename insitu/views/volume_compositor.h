@@ -30,10 +30,10 @@ class VolumeCompositor {
   explicit VolumeCompositor(Communicator& comm) : comm_(comm) {}
 
   // Collective: every rank calls it with its own particles and the same camera and options.
-  // True on the root, whose `out` then holds the frame. Throws voxspan::Error on every rank,
-  // naming the rank, when any failed.
+  // True on the root, whose `out` then holds the frame (with `deep`, its deep image too).
+  // Throws voxspan::Error on every rank, naming the rank, when any failed.
   bool render(VolumeRenderer& renderer, const Camera& camera,
-              std::span<const VolumeParticle> particles, const VolumeOptions& options,
+              std::span<const VolumeParticle> particles, const VolumeOptions& options, bool deep,
               Recorder& recorder, VolumeFrame& out);
 
  private:

@@ -17,6 +17,7 @@
 #include "insitu/views/view_keys.h"
 #include "insitu/views/volume_compositor.h"
 #include "render/backend.h"
+#include "render/volume_merge.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
@@ -156,11 +157,16 @@ class VolumeView final : public View {
     if (step.data.particles == nullptr) throw make_error("volume: the step has no particles");
     const std::array<double, 2> range = gathered_range(*step.data.particles);
     const VolumeOptions o = options(step, range);
-    if (!compositor_) {
+    const bool deep = step.needs.deep;
+    if (compositor_) {
+      if (!compositor_->render(*renderer_, step.camera, particles_, o, deep, recorder, frame_))
+        return false;  // the root draws the frame
+    } else if (deep) {
+      render_with_deep(*renderer_, step.camera, particles_, o, recorder, frame_);
+    } else {
       renderer_->render(step.camera, particles_, o, recorder, frame_);
-    } else if (!compositor_->render(*renderer_, step.camera, particles_, o, recorder, frame_)) {
-      return false;  // the root draws the frame
     }
+    out.shaded_deep = deep ? &frame_.deep : nullptr;
     std::swap(out.picture, frame_.picture);
     if (settings_.legend && settings_.mode != VolumeMode::iso)
       draw_color_bar(out.picture, settings_.color_map, range[0], range[1]);

@@ -1,8 +1,9 @@
 // Volume views in an MPI job (run under mpiexec on 4 ranks, the tests on the first 2, 3 and 4):
 // the picture of every split (slabs, interleaved, uneven with an empty rank) in every mode equal
 // to one process's up to rounding (1e-5 per linear channel; the iso hits' depths too), within
-// the termination with early termination on; a rank that fails fails the step on all, naming it,
-// and the next step renders. Prints the bytes each rank sent. Only rank 0 prints.
+// the termination with early termination on; the job's deep EXR image flattens into one
+// process's picture; a rank that fails fails the step on all, naming it, and the next step
+// renders. Prints the bytes each rank sent. Only rank 0 prints.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "insitu/runtime/pipeline.h"
+#include "tests/support/deep_exr_reader.h"
 #include "voxspan/error.h"
 #include "voxspan/mpi.h"
 
@@ -70,11 +72,12 @@ struct Share {
   }
 };
 
-std::string config(const std::string& name, const std::string& keys) {
+std::string config(const std::string& name, const std::string& keys,
+                   const std::string& output = "depth: {enabled: true, folder: depth}") {
   return "output_folder: " +
          (std::filesystem::temp_directory_path() / ("voxspan-mpi-volume-" + name)).string() +
-         "\noutputs: {png: {enabled: false}, stats: {enabled: false},"
-         " depth: {enabled: true, folder: depth}}\n"
+         "\noutputs: {png: {enabled: false}, stats: {enabled: false}, " + output +
+         "}\n"
          "trigger: {every_steps: 1}\nwriter: {fsync: false}\n"
          "views:\n  - {name: v, kind: volume, width: 72, height: 54, quantity: p, legend: false,"
          " camera: {direction: [0.3, -1, -0.6], up: [0, 0, 1]}, " +
@@ -188,6 +191,43 @@ TEST(MpiVolume, WithEarlyTerminationThePictureIsWithinTheTermination) {
   if (world_rank() == 0) {
     EXPECT_LT(largest_difference(frame_of(a).rgba, one.rgba), 0.01);
   }
+}
+
+// The deep EXR image of a job on every rank, read back with OpenEXR's deep reader, flattens
+// into one process's picture (no background: premultiplied, alpha = 1 - transmittance).
+TEST(MpiVolume, TheDeepImageOfTheJobFlattensIntoOneProcesssPicture) {
+  const Cloud cloud;
+  const std::string keys =
+      "mode: mixed, iso: [{value: 6, opacity: 0.5}], termination: 0, background: none";
+  Frame one;
+  if (world_rank() == 0) {
+    const Share all(cloud, "slabs", 0, 1);
+    Adapter a = adapter_from_config_text(config("deep-one", keys), options());
+    EXPECT_TRUE(a.execute(0, 0, all.view()).ok());
+    one = frame_of(a);
+  }
+  int ranks = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  const Share mine(cloud, "slabs", world_rank(), ranks);
+  const std::string yaml = config("deep", keys, "exr: {enabled: true, trigger: {every_steps: 1}}");
+  Adapter a = adapter_from_config_text(yaml, options(), MPI_COMM_WORLD);
+  EXPECT_TRUE(a.execute(5, 0, mine.view()).ok());
+  a.finish();
+  if (world_rank() != 0) return;
+  const auto folder = std::filesystem::temp_directory_path() / "voxspan-mpi-volume-deep";
+  const test::DeepExr deep = test::read_deep_exr(folder / "exr" / "v_00000005.exr");
+  EXPECT_TRUE(deep.has_rgba);
+  std::vector<float> flat;
+  for (std::size_t p = 0; p < deep.z.size(); ++p) {
+    float c[4] = {0, 0, 0, 0};
+    for (std::size_t k = 0; k < deep.z[p].size(); ++k) {
+      const float behind = 1 - c[3];
+      c[0] += behind * deep.r[p][k], c[1] += behind * deep.g[p][k];
+      c[2] += behind * deep.b[p][k], c[3] += behind * deep.a[p][k];
+    }
+    flat.insert(flat.end(), c, c + 4);
+  }
+  EXPECT_LT(largest_difference(flat, one.rgba), 1e-5);
 }
 
 TEST(MpiVolume, ARankThatFailsFailsTheStepOnAllAndTheRunGoesOn) {

@@ -1,5 +1,6 @@
 // tests/support/deep_exr_reader.h - a deep scanline OpenEXR file read with OpenEXR's own reader
-// (tests only): per pixel, row 0 at the top, the samples of channels Z and ZBack.
+// (tests only): per pixel, row 0 at the top, the samples of channels Z and ZBack, and R, G, B,
+// A where the file has them.
 #pragma once
 
 #include <OpenEXR/ImfChannelList.h>
@@ -10,6 +11,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace voxspan::test {
@@ -17,8 +19,9 @@ namespace voxspan::test {
 struct DeepExr {
   std::string type;  // the header's part type: "deepscanline"
   int width = 0, height = 0;
-  bool has_z = false, has_z_back = false;
-  std::vector<std::vector<float>> z, z_back;  // per pixel, its samples
+  bool has_z = false, has_z_back = false, has_rgba = false;
+  // per pixel, its samples of each channel (empty where the file has none)
+  std::vector<std::vector<float>> z, z_back, r, g, b, a;
 };
 
 inline DeepExr read_deep_exr(const std::filesystem::path& path) {
@@ -28,29 +31,38 @@ inline DeepExr read_deep_exr(const std::filesystem::path& path) {
   const Imath::Box2i window = file.header().dataWindow();
   d.width = window.max.x - window.min.x + 1;
   d.height = window.max.y - window.min.y + 1;
-  d.has_z = file.header().channels().findChannel("Z") != nullptr;
-  d.has_z_back = file.header().channels().findChannel("ZBack") != nullptr;
+  const auto has = [&](const char* name) {
+    return file.header().channels().findChannel(name) != nullptr;
+  };
+  d.has_z = has("Z");
+  d.has_z_back = has("ZBack");
+  d.has_rgba = has("R") && has("G") && has("B") && has("A");
   const std::size_t n = std::size_t(d.width) * std::size_t(d.height);
+  const std::size_t row = std::size_t(d.width);
+  std::vector<std::pair<const char*, std::vector<std::vector<float>>*>> channels = {
+      {"Z", &d.z}, {"ZBack", &d.z_back}};
+  if (d.has_rgba)
+    for (const auto& c : {std::pair{"R", &d.r}, {"G", &d.g}, {"B", &d.b}, {"A", &d.a}})
+      channels.push_back(c);
   // OpenEXR's order: every slice set, the counts read, then the samples' storage given.
   std::vector<unsigned> counts(n);
-  std::vector<float*> z_at(n), z_back_at(n);
-  const std::size_t row = std::size_t(d.width);
+  std::vector<std::vector<float*>> at(channels.size(), std::vector<float*>(n));
   Imf::DeepFrameBuffer frame;
   frame.insertSampleCountSlice(Imf::Slice(Imf::UINT, reinterpret_cast<char*>(counts.data()),
                                           sizeof(unsigned), sizeof(unsigned) * row));
-  frame.insert("Z", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(z_at.data()), sizeof(float*),
-                                   sizeof(float*) * row, sizeof(float)));
-  frame.insert("ZBack", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(z_back_at.data()),
-                                       sizeof(float*), sizeof(float*) * row, sizeof(float)));
+  for (std::size_t c = 0; c < channels.size(); ++c)
+    frame.insert(channels[c].first,
+                 Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(at[c].data()), sizeof(float*),
+                                sizeof(float*) * row, sizeof(float)));
   file.setFrameBuffer(frame);
   file.readPixelSampleCounts(window.min.y, window.max.y);
-  d.z.resize(n);
-  d.z_back.resize(n);
-  for (std::size_t p = 0; p < n; ++p) {
-    d.z[p].resize(counts[p]);
-    d.z_back[p].resize(counts[p]);
-    z_at[p] = d.z[p].data();
-    z_back_at[p] = d.z_back[p].data();
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    std::vector<std::vector<float>>& samples = *channels[c].second;
+    samples.resize(n);
+    for (std::size_t p = 0; p < n; ++p) {
+      samples[p].resize(counts[p]);
+      at[c][p] = samples[p].data();
+    }
   }
   file.readPixels(window.min.y, window.max.y);
   return d;

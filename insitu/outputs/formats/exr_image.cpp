@@ -14,6 +14,7 @@
 
 #include <functional>
 #include <initializer_list>
+#include <utility>
 #include <vector>
 
 #include "insitu/outputs/writer/atomic_file.h"
@@ -87,45 +88,31 @@ std::string encode_exr_field(const FieldImage& f) {
   });
 }
 
-std::string encode_deep_exr(const SpanImage& spans) {
-  const int width = spans.width(), height = spans.height();
-  if (width <= 0 || height <= 0 || spans.pixels.size() != std::size_t(width) * height)
-    throw make_error("deep EXR image: the span image is ", width, "x", height, " with ",
-                     spans.pixels.size(), " pixel records");
-  // Per pixel its sample count and where its samples start in the channels' arrays.
-  const std::size_t n = spans.pixels.size();
-  std::vector<unsigned> counts(n);
-  std::vector<float> z, z_back;
-  z.reserve(spans.spans.size());
-  z_back.reserve(spans.spans.size());
-  std::vector<std::size_t> first(n);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const std::size_t p = std::size_t(x) + std::size_t(y) * width;
-      const double scale = spans.grid.view().ray_scale(x, y);
-      first[p] = z.size();
-      counts[p] = spans.pixels[p].count;
-      for (const Span& s : spans.spans_at(x, y)) {
-        z.push_back(float(double(s.entry) * scale));
-        z_back.push_back(float(double(s.exit) * scale));
-      }
-    }
-  std::vector<float*> z_at(n), z_back_at(n);
-  for (std::size_t p = 0; p < n; ++p) z_at[p] = z.data() + first[p];
-  for (std::size_t p = 0; p < n; ++p) z_back_at[p] = z_back.data() + first[p];
+namespace {
+
+// A deep scanline image of `counts` samples per pixel (row 0 at the top), each of `channels`
+// (name, values of every sample in pixel order), ZIPS-compressed.
+std::string encode_deep(int width, int height, std::vector<unsigned>& counts,
+                        std::vector<std::pair<const char*, std::vector<float>>>& channels) {
+  const std::size_t n = counts.size();
+  std::vector<std::size_t> first(n + 1, 0);
+  for (std::size_t p = 0; p < n; ++p) first[p + 1] = first[p] + counts[p];
+  std::vector<std::vector<float*>> at(channels.size(), std::vector<float*>(n));
+  for (std::size_t c = 0; c < channels.size(); ++c)
+    for (std::size_t p = 0; p < n; ++p) at[c][p] = channels[c].second.data() + first[p];
   try {
     Imf::Header header(width, height);
     header.setType(Imf::DEEPSCANLINE);
     header.compression() = Imf::ZIPS_COMPRESSION;
-    header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
-    header.channels().insert("ZBack", Imf::Channel(Imf::FLOAT));
+    for (const auto& [name, values] : channels)
+      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
     Imf::DeepFrameBuffer frame;
     frame.insertSampleCountSlice(Imf::Slice(Imf::UINT, reinterpret_cast<char*>(counts.data()),
                                             sizeof(unsigned), sizeof(unsigned) * width));
-    frame.insert("Z", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(z_at.data()),
-                                     sizeof(float*), sizeof(float*) * width, sizeof(float)));
-    frame.insert("ZBack", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(z_back_at.data()),
-                                         sizeof(float*), sizeof(float*) * width, sizeof(float)));
+    for (std::size_t c = 0; c < channels.size(); ++c)
+      frame.insert(channels[c].first,
+                   Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(at[c].data()), sizeof(float*),
+                                  sizeof(float*) * width, sizeof(float)));
     Imf::StdOSStream stream;
     {
       Imf::DeepScanLineOutputFile file(stream, header);
@@ -136,6 +123,49 @@ std::string encode_deep_exr(const SpanImage& spans) {
   } catch (const std::exception& e) {
     throw make_error("OpenEXR could not encode the deep image: ", e.what());
   }
+}
+
+}  // namespace
+
+std::string encode_deep_exr(const SpanImage& spans) {
+  const int width = spans.width(), height = spans.height();
+  if (width <= 0 || height <= 0 || spans.pixels.size() != std::size_t(width) * height)
+    throw make_error("deep EXR image: the span image is ", width, "x", height, " with ",
+                     spans.pixels.size(), " pixel records");
+  const std::size_t n = spans.pixels.size();
+  std::vector<unsigned> counts(n);
+  std::vector<std::pair<const char*, std::vector<float>>> channels = {{"Z", {}}, {"ZBack", {}}};
+  std::vector<float>& z = channels[0].second;
+  std::vector<float>& z_back = channels[1].second;
+  z.reserve(spans.spans.size());
+  z_back.reserve(spans.spans.size());
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t p = std::size_t(x) + std::size_t(y) * width;
+      const double scale = spans.grid.view().ray_scale(x, y);
+      counts[p] = spans.pixels[p].count;
+      for (const Span& s : spans.spans_at(x, y)) {
+        z.push_back(float(double(s.entry) * scale));
+        z_back.push_back(float(double(s.exit) * scale));
+      }
+    }
+  return encode_deep(width, height, counts, channels);
+}
+
+std::string encode_deep_exr(const DeepImage& deep) {
+  const std::size_t n = std::size_t(deep.width) * std::size_t(deep.height);
+  if (deep.width <= 0 || deep.height <= 0 || deep.start.size() != n + 1)
+    throw make_error("deep EXR image: the deep image is ", deep.width, "x", deep.height, " with ",
+                     deep.start.size(), " pixel offsets");
+  std::vector<unsigned> counts(n);
+  for (std::size_t p = 0; p < n; ++p) counts[p] = deep.start[p + 1] - deep.start[p];
+  std::vector<std::pair<const char*, std::vector<float>>> channels = {
+      {"Z", {}}, {"ZBack", {}}, {"R", {}}, {"G", {}}, {"B", {}}, {"A", {}}};
+  for (const DeepSample& s : deep.samples) {
+    const float values[] = {s.z, s.z_back, s.rgba.r, s.rgba.g, s.rgba.b, s.rgba.a};
+    for (std::size_t c = 0; c < channels.size(); ++c) channels[c].second.push_back(values[c]);
+  }
+  return encode_deep(deep.width, deep.height, counts, channels);
 }
 
 void write_exr_channel(const std::filesystem::path& path, const FloatImage& image,

@@ -10,6 +10,7 @@
 #include "insitu/views/view_products.h"
 #include "render/float_image.h"
 #include "render/span_image.h"
+#include "render/volume.h"
 
 namespace voxspan {
 
@@ -23,6 +24,12 @@ std::string encode_exr_rgba(const FloatImage& image);
 // channels Z (its entry) and ZBack (its exit) as distances from the eye along the unit ray
 // through the pixel's centre; ZIPS-compressed, row 0 at the top.
 std::string encode_deep_exr(const SpanImage& spans);
+
+// An OpenEXR 2.0 deep scanline image of a volume view's deep image (render/volume.h): per pixel
+// one sample per run of fluid along the ray, channels Z and ZBack (its ends, distances from the
+// eye along the unit ray) and R, G, B, A (its light, premultiplied, and opacity), which
+// OpenEXR's flattening composites into the picture without its background.
+std::string encode_deep_exr(const DeepImage& deep);
 
 // A slice's raw values as FLOAT channels `value` (the quantity, 0 where no particle reaches) and
 // `weight` (sum_j (m_j / rho_j) W: 0 there), with the plane's pixel-to-world mapping in the

@@ -6,7 +6,9 @@
 // span image and the picture are copied into a pooled slot on the solver's thread; the
 // encoding and the writing (each file atomically) run on the writer's. A slice view has no
 // spans: its file is <folder>/<view>_<step>.exr with its raw values as 32-bit floats (channels
-// `value` and `weight`) and the plane's pixel-to-world mapping in the header.
+// `value` and `weight`) and the plane's pixel-to-world mapping in the header. A volume view's
+// is its deep image: one sample per run of fluid along the ray, Z, ZBack and premultiplied
+// R, G, B, A (render/volume.h).
 #include "insitu/outputs/formats/exr_image.h"
 #include "insitu/outputs/output.h"
 #include "insitu/outputs/writer/atomic_file.h"
@@ -36,13 +38,16 @@ class ExrOutput final : public Output {
   void write(const OutputStep& step) override {
     for (std::size_t v = 0; v < step.views.size(); ++v) {
       const ViewResult& r = step.views[v];
-      // failed, not this rank's, or a view with neither spans nor raw values (particles)
-      if (r.picture == nullptr || (r.field == nullptr && r.spans == nullptr)) continue;
+      // failed, not this rank's, or a view with no spans, deep image or raw values (particles)
+      if (r.picture == nullptr || (r.field == nullptr && r.spans == nullptr && r.deep == nullptr))
+        continue;
       jobs_.submit(r.field != nullptr ? "slice EXR image" : "deep EXR image", [&](Slot& s) {
         s.view = v;
         s.step = step.data.step;
-        s.is_field = r.field != nullptr;  // the slot's vectors keep their capacity
-        if (s.is_field) s.field = *r.field;
+        // the slot's vectors keep their capacity
+        s.kind = r.field != nullptr ? Kind::field : r.deep != nullptr ? Kind::deep : Kind::spans;
+        if (s.kind == Kind::field) s.field = *r.field;
+        else if (s.kind == Kind::deep) s.deep = *r.deep;
         else s.spans = *r.spans;
         s.picture = *r.picture;
       });
@@ -51,10 +56,12 @@ class ExrOutput final : public Output {
   OutputTally tally() const override { return jobs_.tally(); }
 
  private:
+  enum class Kind { spans, field, deep };
   struct Slot {
     SpanImage spans;
     FieldImage field;
-    bool is_field = false;
+    DeepImage deep;
+    Kind kind = Kind::spans;
     FloatImage picture;
     std::size_t view = 0;
     std::int64_t step = 0;
@@ -63,7 +70,10 @@ class ExrOutput final : public Output {
   void run(const Slot& s) const {
     const std::string& name = view_names_[s.view];
     write_file_atomically(folder_ / step_file_name(name, s.step, "exr"),
-                          s.is_field ? encode_exr_field(s.field) : encode_deep_exr(s.spans), sync_);
+                          s.kind == Kind::field  ? encode_exr_field(s.field)
+                          : s.kind == Kind::deep ? encode_deep_exr(s.deep)
+                                                 : encode_deep_exr(s.spans),
+                          sync_);
     write_file_atomically(folder_ / step_file_name(name + "_color", s.step, "exr"),
                           encode_exr_rgba(s.picture), sync_);
   }
@@ -77,9 +87,9 @@ class ExrOutput final : public Output {
 }  // namespace
 
 OutputKind exr_output_kind() {
-  return output_kind<ExrSettings, ExrOutput>("exr", "deep EXR images", exr_section(),
-                                             {.picture = true, .spans = true, .field = true}, false,
-                                             true);
+  return output_kind<ExrSettings, ExrOutput>(
+      "exr", "deep EXR images", exr_section(),
+      {.picture = true, .spans = true, .field = true, .deep = true}, false, true);
 }
 
 }  // namespace voxspan

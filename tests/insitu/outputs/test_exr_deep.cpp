@@ -165,5 +165,68 @@ TEST(SliceExr, HoldsTheRawValuesAndThePixelToWorldMapping) {
   EXPECT_NEAR(value[std::size_t(i + 40 * j)], 1000 + 10 * x, 1e-3);
 }
 
+// A volume view with outputs.exr on and no background: the flat picture (premultiplied, alpha =
+// 1 - transmittance) and the deep image, one sample per run of fluid along each ray, which
+// flattens (over, front to back) into the picture. In one process and on 1 rank alike: the
+// MPI job's are in tests/mpi.
+TEST(VolumeExr, TheDeepImageFlattensIntoTheFlatPicture) {
+  test::TempFolder dir;
+  std::vector<double> xyz, p;
+  for (int k = 0; k < 10; ++k)
+    for (int j = 0; j < 10; ++j)
+      for (int i = 0; i < 20; ++i) {
+        for (int a : {i, j, k}) xyz.push_back((a + 0.5) * 0.05);
+        p.push_back(100.0 * i + 10.0 * k);
+      }
+  xyz.insert(xyz.end(), {0.5, 0.25, 1.2});  // a drop above the block: two runs on some rays
+  p.push_back(1000);
+  AdapterOptions o;
+  o.classify.particle_spacing = 0.05;
+  Adapter a = adapter_from_config_text(
+      "output_folder: " + dir.path().string() +
+          "\noutputs: {png: {enabled: false}, stats: {enabled: false},"
+          " exr: {enabled: true, trigger: {every_steps: 1}}}\n"
+          "writer: {fsync: false}\n"
+          "views:\n  - {name: v, kind: volume, width: 48, height: 40, quantity: p, mode: mixed,"
+          " iso: [{value: 900, opacity: 0.5}], background: none, legend: false,"
+          " camera: {direction: [0.2, 0.3, -1], up: [0, 1, 0]}}\n",
+      o);
+  ASSERT_TRUE(
+      a.execute(2, 0, ParticleView::aos(xyz.data(), p.size()).with_scalar("p", p.data())).ok());
+  a.finish();
+  const test::DeepExr deep = test::read_deep_exr(dir / "exr" / "v_00000002.exr");
+  ASSERT_TRUE(deep.has_z && deep.has_z_back && deep.has_rgba);
+  Imf::InputFile file((dir / "exr" / "v_color_00000002.exr").c_str());
+  std::vector<float> flat(4 * 48 * 40, -1.0f);
+  Imf::FrameBuffer frame;
+  const char* names[] = {"R", "G", "B", "A"};
+  for (int c = 0; c < 4; ++c)
+    frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(flat.data() + c),
+                                      4 * sizeof(float), 4 * sizeof(float) * 48));
+  file.setFrameBuffer(frame);
+  file.readPixels(0, 39);
+  double worst = 0;
+  std::size_t samples = 0, two_runs = 0;
+  for (std::size_t px = 0; px < deep.z.size(); ++px) {
+    float composite[4] = {0, 0, 0, 0};
+    for (std::size_t k = 0; k < deep.z[px].size(); ++k) {
+      EXPECT_LT(deep.z[px][k], deep.z_back[px][k]);
+      if (k > 0) {
+        EXPECT_GE(deep.z[px][k], deep.z_back[px][k - 1]);
+      }
+      const float sample[4] = {deep.r[px][k], deep.g[px][k], deep.b[px][k], deep.a[px][k]};
+      const float behind = 1 - composite[3];
+      for (int c = 0; c < 4; ++c) composite[c] += behind * sample[c];
+      ++samples;
+    }
+    two_runs += deep.z[px].size() > 1;
+    for (int c = 0; c < 4; ++c)
+      worst = std::max(worst, double(std::abs(composite[c] - flat[4 * px + std::size_t(c)])));
+  }
+  EXPECT_GT(samples, 400u);
+  EXPECT_GT(two_runs, 0u);
+  EXPECT_LT(worst, 1e-5);
+}
+
 }  // namespace
 }  // namespace voxspan

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "render/cpu/volume_caster.h"
+#include "render/cpu/volume_renderer.h"
 #include "render/volume_merge.h"
 #include "tests/support/volume_cloud.h"
 
@@ -172,6 +173,41 @@ TEST(VolumeParts, ARankWithNoParticlesChangesNothing) {
                                [](std::size_t, std::size_t, const VolumeParticle&) { return 1; });
   EXPECT_LT(largest_difference(m.frame.picture.rgba, one.picture.rgba), 1e-6);
   EXPECT_EQ(m.raws, 0);
+}
+
+TEST(VolumeParts, TheDeepImageFlattensToThePicture) {
+  const test::Cloud c = test::cloud(9, 14);
+  for (VolumeMode mode : {VolumeMode::dvr, VolumeMode::mixed}) {
+    VolumeOptions o = test::cloud_options(mode, c.spacing);
+    o.background = false;
+    const std::unique_ptr<VolumeRenderer> renderer = make_cpu_volume_renderer();
+    Recorder recorder;
+    VolumeFrame one, merged;
+    renderer->render(c.camera, c.particles, o, recorder, one);
+    render_with_deep(*renderer, c.camera, c.particles, o, recorder, merged);
+    EXPECT_LT(largest_difference(merged.picture.rgba, one.picture.rgba), 1e-5);
+    // Over, front to back, as OpenEXR flattens deep samples.
+    double worst = 0;
+    std::size_t samples = 0;
+    for (std::size_t p = 0; p < merged.depth.size(); ++p) {
+      glm::vec4 flat(0.0f);
+      float z = 0;
+      for (const DeepSample& s : merged.deep.of(p)) {
+        EXPECT_LT(s.z, s.z_back);
+        EXPECT_GE(s.z, z);
+        z = s.z_back;
+        flat += (1 - flat.a) * s.rgba;
+        ++samples;
+      }
+      for (int ch = 0; ch < 4; ++ch)
+        worst =
+            std::max(worst, double(std::abs(flat[ch] - one.picture.rgba[4 * p + std::size_t(ch)])));
+    }
+    std::printf("%s: %zu deep samples, flattened against the picture %.1e\n",
+                name_of(kVolumeModeNames, mode).data(), samples, worst);
+    EXPECT_GT(samples, merged.depth.size() / 4);
+    EXPECT_LT(worst, 1e-5);
+  }
 }
 
 }  // namespace
