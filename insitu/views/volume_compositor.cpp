@@ -1,8 +1,8 @@
 #include "insitu/views/volume_compositor.h"
 
-#include <cstring>
 #include <exception>
 
+#include "insitu/parallel/byte_packing.h"
 #include "insitu/parallel/span_merge.h"
 #include "insitu/views/view.h"
 #include "render/volume_merge.h"
@@ -13,40 +13,17 @@ namespace {
 
 using Bytes = std::vector<std::byte>;
 
-template <class T> void put(Bytes& out, const T& value) {
-  const auto* p = reinterpret_cast<const std::byte*>(&value);
-  out.insert(out.end(), p, p + sizeof(T));
-}
-template <class T> void put(Bytes& out, std::span<const T> values) {
-  const auto* p = reinterpret_cast<const std::byte*>(values.data());
-  out.insert(out.end(), p, p + values.size_bytes());
-}
-
-// Reads what put() wrote, copying into aligned values.
-class Reader {
- public:
-  explicit Reader(std::span<const std::byte> bytes) : bytes_(bytes) {}
-  bool done() const { return at_ == bytes_.size(); }
-  template <class T> T get() {
-    T value;
-    copy(&value, sizeof(T));
-    return value;
-  }
-  template <class T> void get(std::size_t n, std::vector<T>& out) {
-    const std::size_t first = out.size();
-    out.resize(first + n);
-    copy(out.data() + first, n * sizeof(T));
-  }
-
- private:
-  void copy(void* to, std::size_t bytes) {
-    if (bytes_.size() - at_ < bytes) throw make_error("volume composite: a message cut short");
-    std::memcpy(to, bytes_.data() + at_, bytes);
-    at_ += bytes;
-  }
-  std::span<const std::byte> bytes_;
-  std::size_t at_ = 0;
+// A message of the composite, read.
+struct Reader : Unpacker {
+  explicit Reader(std::span<const std::byte> bytes)
+      : Unpacker(bytes, "a volume composite message") {}
 };
+
+std::vector<Bytes> bytes_of(std::vector<Packer>& packed) {
+  std::vector<Bytes> out;
+  for (Packer& p : packed) out.push_back(std::move(p.bytes));
+  return out;
+}
 
 // Runs `step`; false with its message when it throws.
 template <class F> bool attempt(F&& step, std::string& failure) {
@@ -74,8 +51,8 @@ RankItems read_items(std::span<const std::byte> bytes) {
   while (!in.done()) {
     items.pixel.push_back(in.get<std::uint32_t>());
     const auto raws = in.get<std::uint32_t>(), segments = in.get<std::uint32_t>();
-    in.get(raws, items.raws);
-    in.get(segments, items.segments);
+    in.get_span(raws, items.raws);
+    in.get_span(segments, items.segments);
     items.raw_start.push_back(std::uint32_t(items.raws.size()));
     items.segment_start.push_back(std::uint32_t(items.segments.size()));
   }
@@ -83,19 +60,19 @@ RankItems read_items(std::span<const std::byte> bytes) {
 }
 
 Bytes encode_items(const VolumePart& part, RowBand band) {
-  Bytes out;
+  Packer out;
   const std::size_t width = std::size_t(part.width);
   for (std::size_t p = std::size_t(band.begin) * width; p < std::size_t(band.end) * width; ++p) {
     const std::span<const RawSample> raws = part.raws_of(p);
     const std::span<const PartSegment> segments = part.segments_of(p);
     if (raws.empty() && segments.empty()) continue;
-    put(out, std::uint32_t(p));
-    put(out, std::uint32_t(raws.size()));
-    put(out, std::uint32_t(segments.size()));
-    put(out, raws);
-    put(out, segments);
+    out.put(std::uint32_t(p));
+    out.put(std::uint32_t(raws.size()));
+    out.put(std::uint32_t(segments.size()));
+    out.put_span(raws);
+    out.put_span(segments);
   }
-  return out;
+  return std::move(out.bytes);
 }
 
 // Per rank, the samples of its hulls on `band` that other ranks' hulls hold too.
@@ -114,7 +91,7 @@ std::vector<Bytes> shared_replies(std::span<const Bytes> hulls, RowBand band, in
       holders[p] = std::uint8_t(std::min(2, holders[p] + 1));
     }
   }
-  std::vector<Bytes> replies(ranks);
+  std::vector<Packer> replies(ranks);
   std::vector<SampleRange> of_pixel(ranks);
   std::vector<std::vector<SampleRange>> cut(ranks);
   for (std::size_t p = 0; p < pixels; ++p) {
@@ -126,12 +103,12 @@ std::vector<Bytes> shared_replies(std::span<const Bytes> hulls, RowBand band, in
     shared_ranges(of_pixel, cut);
     for (std::size_t r = 0; r < ranks; ++r) {
       if (cut[r].empty()) continue;
-      put(replies[r], std::uint32_t(first + p));
-      put(replies[r], std::uint32_t(cut[r].size()));
-      put(replies[r], std::span<const SampleRange>(cut[r]));
+      replies[r].put(std::uint32_t(first + p));
+      replies[r].put(std::uint32_t(cut[r].size()));
+      replies[r].put_span<SampleRange>(cut[r]);
     }
   }
-  return replies;
+  return bytes_of(replies);
 }
 
 // The owners' replies (in rank order: bands in row order) as per-pixel ranges.
@@ -145,7 +122,7 @@ void read_shared(std::span<const Bytes> replies, std::size_t pixels, PixelRanges
       const std::size_t p = in.get<std::uint32_t>();
       const auto n = in.get<std::uint32_t>();
       for (; next <= p; ++next) out.start[next] = std::uint32_t(out.ranges.size());
-      in.get(n, out.ranges);
+      in.get_span(n, out.ranges);
     }
   }
   for (; next <= pixels; ++next) out.start[next] = std::uint32_t(out.ranges.size());
@@ -179,16 +156,16 @@ bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,
         failure);
   {
     auto t = recorder.host(pass::composite);
-    std::vector<Bytes> send(rank_count);
+    std::vector<Packer> send(rank_count);
     for (int r = 0; r < ranks; ++r) {
       const RowBand band = band_of(r, ranks, camera.height);
       for (std::size_t p = std::size_t(band.begin) * width; p < std::size_t(band.end) * width; ++p)
         if (!hulls_[p].empty()) {
-          put(send[std::size_t(r)], std::uint32_t(p));
-          put(send[std::size_t(r)], hulls_[p]);
+          send[std::size_t(r)].put(std::uint32_t(p));
+          send[std::size_t(r)].put(hulls_[p]);
         }
     }
-    const std::vector<Bytes> hulls = comm_.exchange(send);
+    const std::vector<Bytes> hulls = comm_.exchange(bytes_of(send));
     read_shared(comm_.exchange(shared_replies(hulls, mine, camera.width)), pixels, shared_);
   }
 
@@ -228,11 +205,11 @@ bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,
     std::vector<Bytes> asked;
     {
       auto t = recorder.host(pass::composite);
-      Bytes mine_asked;
-      put(mine_asked, std::span<const HitQuery>(queries));
-      asked = comm_.exchange(std::vector<Bytes>(rank_count, mine_asked));
+      Packer mine_asked;
+      mine_asked.put_span<HitQuery>(queries);
+      asked = comm_.exchange(std::vector<Bytes>(rank_count, mine_asked.bytes));
     }
-    std::vector<Bytes> answers(rank_count);
+    std::vector<Packer> answers(rank_count);
     agree(attempt(
               [&] {
                 std::vector<HitQuery> q;
@@ -240,19 +217,19 @@ bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,
                 for (std::size_t owner = 0; owner < asked.size(); ++owner) {
                   q.clear();
                   found.clear();
-                  Reader(asked[owner]).get(asked[owner].size() / sizeof(HitQuery), q);
+                  Reader(asked[owner]).get_span(asked[owner].size() / sizeof(HitQuery), q);
                   renderer.field_sums(q, recorder, found);
                   for (std::size_t k = 0; k < found.size(); ++k)
                     if (!zero(found[k])) {
-                      put(answers[owner], std::uint32_t(k));
-                      put(answers[owner], found[k]);
+                      answers[owner].put(std::uint32_t(k));
+                      answers[owner].put(found[k]);
                     }
                 }
               },
               failure),
           failure);
     auto t = recorder.host(pass::composite);
-    for (const Bytes& answer : comm_.exchange(answers)) {
+    for (const Bytes& answer : comm_.exchange(bytes_of(answers))) {
       Reader in(answer);
       while (!in.done()) {
         const std::size_t k = in.get<std::uint32_t>();
@@ -269,14 +246,14 @@ bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,
     std::vector<std::uint32_t> deep_counts;
     std::vector<DeepSample> deep_samples;
     merge.finish(sums, colors, depths, &deep_counts, &deep_samples);
-    Bytes band;
-    put(band, std::span<const glm::vec4>(colors));
-    put(band, std::span<const float>(depths));
+    Packer band;
+    band.put_span<glm::vec4>(colors);
+    band.put_span<float>(depths);
     if (deep) {
-      put(band, std::span<const std::uint32_t>(deep_counts));
-      put(band, std::span<const DeepSample>(deep_samples));
+      band.put_span<std::uint32_t>(deep_counts);
+      band.put_span<DeepSample>(deep_samples);
     }
-    bands = comm_.gather(band);
+    bands = comm_.gather(band.bytes);
   }
   counts += merge.counts();
   std::vector<std::int64_t> totals;
@@ -297,9 +274,9 @@ bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,
     std::vector<float> depths;
     std::vector<std::uint32_t> deep_counts;
     Reader in(bands[std::size_t(r)]);
-    in.get(n, colors);
-    in.get(n, depths);
-    if (deep) in.get(n, deep_counts);
+    in.get_span(n, colors);
+    in.get_span(n, depths);
+    if (deep) in.get_span(n, deep_counts);
     std::size_t samples = 0;
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t p = std::size_t(band.begin) * width + k;
@@ -309,7 +286,7 @@ bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,
       samples += deep_counts[k];
       image.start.push_back(image.start.back() + deep_counts[k]);
     }
-    if (deep) in.get(samples, image.samples);
+    if (deep) in.get_span(samples, image.samples);
   }
   if (!deep) image = {};
   return true;

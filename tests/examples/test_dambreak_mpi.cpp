@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "decomposition.h"
+#include "tests/support/mpi_tests.h"
 
 // The dam break's size (the sanitizer build, where the solver runs some ten times slower, asks
 // for a smaller one).
@@ -29,17 +30,8 @@ namespace {
 
 using Packed = Decomposition::Packed;
 
-int world_rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-
-int world_size() {
-  int n = 0;
-  MPI_Comm_size(MPI_COMM_WORLD, &n);
-  return n;
-}
+using voxspan::test::world_rank;
+using voxspan::test::world_size;
 
 // Rank r's slab is [r, r + 1) (rank 0's from -inf, the last rank's to +inf).
 std::vector<double> unit_slabs() {
@@ -328,10 +320,4 @@ TEST(DistributedDamBreak, ARankWithoutFluidTakesPart) {
 }  // namespace
 }  // namespace dambreak
 
-int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
-  testing::InitGoogleTest(&argc, argv);
-  const int failed = RUN_ALL_TESTS();
-  MPI_Finalize();
-  return failed;
-}
+int main(int argc, char** argv) { return voxspan::test::run_mpi_tests(argc, argv); }

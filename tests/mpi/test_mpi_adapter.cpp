@@ -13,22 +13,14 @@
 #include "output_files.h"
 #include "tests/support/log_capture.h"
 #include "voxspan/error.h"
+#include "tests/support/mpi_tests.h"
 #include "voxspan/mpi.h"
 
 namespace voxspan {
 namespace {
 
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-
-int ranks() {
-  int n = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &n);
-  return n;
-}
+int rank() { return test::world_rank(); }
+int ranks() { return test::world_size(); }
 
 // A folder every rank names alike, made new by rank 0.
 std::filesystem::path shared_folder(const std::string& name) {
@@ -176,15 +168,4 @@ TEST(MpiAdapter, StatsLineHasTheJobsCountsTheSlowestRankAndTheBytesEachSent) {
 }  // namespace
 }  // namespace voxspan
 
-int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  if (voxspan::rank() != 0)  // one report for the job
-    delete ::testing::UnitTest::GetInstance()->listeners().Release(
-        ::testing::UnitTest::GetInstance()->listeners().default_result_printer());
-  const int failed = RUN_ALL_TESTS();
-  int any = failed;
-  MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  MPI_Finalize();
-  return any;
-}
+int main(int argc, char** argv) { return voxspan::test::run_mpi_tests(argc, argv); }

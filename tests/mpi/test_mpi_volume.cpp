@@ -18,16 +18,14 @@
 #include "insitu/runtime/pipeline.h"
 #include "tests/support/deep_exr_reader.h"
 #include "voxspan/error.h"
+#include "tests/support/mpi_tests.h"
 #include "voxspan/mpi.h"
 
 namespace voxspan {
 namespace {
 
-int world_rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
+using test::world_rank;
+using test::world_size;
 
 constexpr double kSpacing = 0.05;
 
@@ -110,6 +108,15 @@ Frame frame_of(const Adapter& a) {
   return f;
 }
 
+// One process's frame of the whole cloud, on rank 0 (empty elsewhere).
+Frame one_process(const Cloud& cloud, const std::string& name, const std::string& keys) {
+  if (world_rank() != 0) return {};
+  const Share all(cloud, "slabs", 0, 1);
+  Adapter a = adapter_from_config_text(config(name, keys), options());
+  EXPECT_TRUE(a.execute(0, 0, all.view()).ok());
+  return frame_of(a);
+}
+
 // The first `ranks` ranks of the job, or MPI_COMM_NULL on the others.
 MPI_Comm first_ranks(int ranks) {
   MPI_Comm comm = MPI_COMM_NULL;
@@ -134,14 +141,7 @@ const char* const kModes[][2] = {
 TEST(MpiVolume, EverySplitGivesOneProcesssPicture) {
   const Cloud cloud;
   for (const auto& [mode, keys] : kModes) {
-    const std::string yaml = config(std::string("one-") + mode, keys);
-    Frame one;
-    if (world_rank() == 0) {
-      const Share all(cloud, "slabs", 0, 1);
-      Adapter a = adapter_from_config_text(yaml, options());
-      EXPECT_TRUE(a.execute(0, 0, all.view()).ok());
-      one = frame_of(a);
-    }
+    const Frame one = one_process(cloud, std::string("one-") + mode, keys);
     for (int ranks : {2, 3, 4})
       for (const char* split : {"slabs", "interleaved", "uneven"}) {
         MPI_Comm comm = first_ranks(ranks);
@@ -176,15 +176,8 @@ TEST(MpiVolume, EverySplitGivesOneProcesssPicture) {
 TEST(MpiVolume, WithEarlyTerminationThePictureIsWithinTheTermination) {
   const Cloud cloud;
   const std::string keys = "mode: dvr, termination: 0.01, opacity: [[0, 0.5], [1, 0.9]]";
-  Frame one;
-  if (world_rank() == 0) {
-    const Share all(cloud, "slabs", 0, 1);
-    Adapter a = adapter_from_config_text(config("terminated-one", keys), options());
-    EXPECT_TRUE(a.execute(0, 0, all.view()).ok());
-    one = frame_of(a);
-  }
-  int ranks = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  const Frame one = one_process(cloud, "terminated-one", keys);
+  const int ranks = world_size();
   const Share mine(cloud, "interleaved", world_rank(), ranks);
   Adapter a = adapter_from_config_text(config("terminated", keys), options(), MPI_COMM_WORLD);
   ASSERT_TRUE(a.execute(0, 0, mine.view()).ok());
@@ -199,15 +192,8 @@ TEST(MpiVolume, TheDeepImageOfTheJobFlattensIntoOneProcesssPicture) {
   const Cloud cloud;
   const std::string keys =
       "mode: mixed, iso: [{value: 6, opacity: 0.5}], termination: 0, background: none";
-  Frame one;
-  if (world_rank() == 0) {
-    const Share all(cloud, "slabs", 0, 1);
-    Adapter a = adapter_from_config_text(config("deep-one", keys), options());
-    EXPECT_TRUE(a.execute(0, 0, all.view()).ok());
-    one = frame_of(a);
-  }
-  int ranks = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  const Frame one = one_process(cloud, "deep-one", keys);
+  const int ranks = world_size();
   const Share mine(cloud, "slabs", world_rank(), ranks);
   const std::string yaml = config("deep", keys, "exr: {enabled: true, trigger: {every_steps: 1}}");
   Adapter a = adapter_from_config_text(yaml, options(), MPI_COMM_WORLD);
@@ -232,9 +218,7 @@ TEST(MpiVolume, TheDeepImageOfTheJobFlattensIntoOneProcesssPicture) {
 
 TEST(MpiVolume, ARankThatFailsFailsTheStepOnAllAndTheRunGoesOn) {
   const Cloud cloud;
-  int ranks = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-  const Share mine(cloud, "slabs", world_rank(), ranks);
+  const Share mine(cloud, "slabs", world_rank(), world_size());
   Adapter a = adapter_from_config_text(config("fails", "mode: dvr"), options(), MPI_COMM_WORLD);
   // Rank 1 passes no `p`: its step fails there, and so on every rank.
   const ParticleView without_p =
@@ -248,15 +232,4 @@ TEST(MpiVolume, ARankThatFailsFailsTheStepOnAllAndTheRunGoesOn) {
 }  // namespace
 }  // namespace voxspan
 
-int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  if (voxspan::world_rank() != 0)  // one report for the job
-    delete ::testing::UnitTest::GetInstance()->listeners().Release(
-        ::testing::UnitTest::GetInstance()->listeners().default_result_printer());
-  const int failed = RUN_ALL_TESTS();
-  int any = failed;
-  MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  MPI_Finalize();
-  return any;
-}
+int main(int argc, char** argv) { return voxspan::test::run_mpi_tests(argc, argv); }

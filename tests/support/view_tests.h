@@ -66,6 +66,16 @@ inline Status first_step(const std::string& config, const ParticleBlock& b) {
   return a.execute(0, 0, b.view());
 }
 
+// The first step of a run of `config` over `b` fails on `key` (with its config line: "<config>:5:5:
+// views[0].quantity"), whose value `asked` `b` does not pass, naming the attribute it passes.
+inline void expect_missing_attribute(const std::string& config, const ParticleBlock& b,
+                                     const std::string& key, const std::string& asked) {
+  const Status s = first_step(config, b);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message.find(key + " \"" + asked + "\""), std::string::npos) << s.message;
+  EXPECT_NE(s.message.find("(it passes: " + b.name + ")"), std::string::npos) << s.message;
+}
+
 // The picture of the first step of a run of `config` over `b` (a failed step fails the test).
 inline FloatImage first_picture(const std::string& config, const ParticleBlock& b) {
   Adapter a = adapter_from_config_text(config, spaced(b.spacing));

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "insitu/parallel/byte_packing.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
@@ -33,44 +34,6 @@ std::vector<AttributeSpan> SnapshotCopy::attribute_spans() const {
 }
 
 namespace {
-
-// A rank's copy as bytes, and back (the same machine's layout on every rank).
-class Packer {
- public:
-  template <class T> void put(const T& v) {
-    const auto* p = reinterpret_cast<const std::byte*>(&v);
-    bytes.insert(bytes.end(), p, p + sizeof v);
-  }
-  template <class T> void put_all(std::span<const T> v) {
-    put(std::uint64_t(v.size()));
-    const auto* p = reinterpret_cast<const std::byte*>(v.data());
-    bytes.insert(bytes.end(), p, p + v.size_bytes());
-  }
-  std::vector<std::byte> bytes;
-};
-
-class Unpacker {
- public:
-  explicit Unpacker(std::span<const std::byte> bytes) : bytes_(bytes) {}
-  template <class T> T get() {
-    T v;
-    take(&v, sizeof v);
-    return v;
-  }
-  template <class T> void get_all(std::vector<T>& out) {
-    out.resize(std::size_t(get<std::uint64_t>()));
-    take(out.data(), out.size() * sizeof(T));
-  }
-
- private:
-  void take(void* out, std::size_t n) {
-    if (bytes_.size() - at_ < n) throw make_error("a rank's snapshot copy is cut short");
-    std::memcpy(out, bytes_.data() + at_, n);
-    at_ += n;
-  }
-  std::span<const std::byte> bytes_;
-  std::size_t at_ = 0;
-};
 
 std::vector<std::byte> pack(const SnapshotCopy& c) {
   Packer p;
@@ -161,7 +124,7 @@ bool SnapshotCopy::gather(Communicator& comm) {
   for (Attribute& a : attributes_all) a.values.clear();
   std::vector<CellStates> cells_all(all.size());
   for (std::size_t r = 0; r < all.size(); ++r) {
-    Unpacker u(all[r]);
+    Unpacker u(all[r], "a rank's snapshot copy");
     std::vector<ParticleSphere> s;
     u.get_all(s);
     spheres_all.insert(spheres_all.end(), s.begin(), s.end());

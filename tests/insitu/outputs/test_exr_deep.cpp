@@ -22,6 +22,7 @@
 #include "insitu/runtime/pipeline.h"
 #include "tests/support/deep_exr_reader.h"
 #include "tests/support/temp_folder.h"
+#include "tests/support/view_tests.h"
 #include "voxspan/insitu.h"
 
 namespace voxspan {
@@ -54,6 +55,30 @@ void write(const std::filesystem::path& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
 }
 
+// A run with outputs.exr on every step into `folder`, and one view, `view` (its flow map's
+// inside).
+std::string exr_run(const std::filesystem::path& folder, const std::string& view) {
+  return "output_folder: " + folder.string() +
+         "\noutputs: {png: {enabled: false}, stats: {enabled: false},"
+         " exr: {enabled: true, trigger: {every_steps: 1}}}\n"
+         "writer: {fsync: false}\nviews:\n  - {" +
+         view + "}\n";
+}
+
+// A flat EXR file's R, G, B, A channels, interleaved per pixel (-1 where it has none).
+std::vector<float> read_rgba(const std::filesystem::path& path, int width, int height) {
+  Imf::InputFile file(path.c_str());
+  std::vector<float> rgba(4 * std::size_t(width) * std::size_t(height), -1.0f);
+  Imf::FrameBuffer frame;
+  const char* names[] = {"R", "G", "B", "A"};
+  for (int c = 0; c < 4; ++c)
+    frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(rgba.data() + c),
+                                      4 * sizeof(float), 4 * sizeof(float) * std::size_t(width)));
+  file.setFrameBuffer(frame);
+  file.readPixels(0, height - 1);
+  return rgba;
+}
+
 TEST(DeepExr, ReadBackGivesTheSpansAsDistancesAlongTheUnitRay) {
   test::TempFolder dir;
   const SpanImage spans = test_spans();
@@ -84,44 +109,20 @@ TEST(DeepExr, TheColourCompanionHoldsThePictureAsRgbaFloats) {
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 3; ++x) picture.set(x, y, {0.1f * x, 0.2f * y, 0.5f, 1.0f});
   write(dir / "color.exr", encode_exr_rgba(picture));
-  Imf::InputFile file((dir / "color.exr").c_str());
-  std::vector<float> rgba(4 * 6, -1.0f);
-  Imf::FrameBuffer frame;
-  const char* names[] = {"R", "G", "B", "A"};
-  for (int c = 0; c < 4; ++c)
-    frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(rgba.data() + c),
-                                      4 * sizeof(float), 4 * sizeof(float) * 3));
-  file.setFrameBuffer(frame);
-  file.readPixels(0, 1);
-  EXPECT_EQ(rgba, picture.rgba);
+  EXPECT_EQ(read_rgba(dir / "color.exr", 3, 2), picture.rgba);
 }
 
 // A slice view with outputs.exr on: its raw values as float channels and the plane's
 // pixel-to-world mapping in the header, as the runtime wrote them.
 TEST(SliceExr, HoldsTheRawValuesAndThePixelToWorldMapping) {
   test::TempFolder dir;
-  std::vector<double> xyz, density;
-  for (int k = 0; k < 10; ++k)
-    for (int j = 0; j < 10; ++j)
-      for (int i = 0; i < 20; ++i) {
-        for (int a : {i, j, k}) xyz.push_back((a + 0.5) * 0.05);
-        density.push_back(1000 + 10 * xyz[xyz.size() - 3]);
-      }
-  AdapterOptions o;
-  o.classify.particle_spacing = 0.05;
+  const test::ParticleBlock block(0.05, "density", [](int, double x) { return 1000 + 10 * x; });
   Adapter a = adapter_from_config_text(
-      "output_folder: " + dir.path().string() +
-          "\noutputs: {png: {enabled: false}, stats: {enabled: false},"
-          " exr: {enabled: true, trigger: {every_steps: 1}}}\n"
-          "writer: {fsync: false}\n"
-          "views:\n  - {name: s, kind: slice, width: 40, height: 20, quantity: density,"
-          " shepard: true, plane: {normal: [0, -1, 0]}}\n",
-      o);
-  ASSERT_TRUE(
-      a.execute(
-           3, 0,
-           ParticleView::aos(xyz.data(), density.size()).with_scalar("density", density.data()))
-          .ok());
+      exr_run(dir.path(),
+              "name: s, kind: slice, width: 40, height: 20, quantity: density,"
+              " shepard: true, plane: {normal: [0, -1, 0]}"),
+      test::spaced(block.spacing));
+  ASSERT_TRUE(a.execute(3, 0, block.view()).ok());
   const auto& pipeline = dynamic_cast<const InsituPipeline&>(*a.pipeline());
   ASSERT_NE(pipeline.latest_views()[0].field, nullptr);
   const FieldImage field = *pipeline.latest_views()[0].field;
@@ -171,40 +172,20 @@ TEST(SliceExr, HoldsTheRawValuesAndThePixelToWorldMapping) {
 // MPI job's are in tests/mpi.
 TEST(VolumeExr, TheDeepImageFlattensIntoTheFlatPicture) {
   test::TempFolder dir;
-  std::vector<double> xyz, p;
-  for (int k = 0; k < 10; ++k)
-    for (int j = 0; j < 10; ++j)
-      for (int i = 0; i < 20; ++i) {
-        for (int a : {i, j, k}) xyz.push_back((a + 0.5) * 0.05);
-        p.push_back(100.0 * i + 10.0 * k);
-      }
-  xyz.insert(xyz.end(), {0.5, 0.25, 1.2});  // a drop above the block: two runs on some rays
-  p.push_back(1000);
-  AdapterOptions o;
-  o.classify.particle_spacing = 0.05;
+  test::ParticleBlock block(0.05, "p", [](int i, double) { return 100.0 * i; });
+  block.xyz.insert(block.xyz.end(), {0.5, 0.25, 1.2});  // a drop above: two runs on some rays
+  block.values.push_back(1000);
   Adapter a = adapter_from_config_text(
-      "output_folder: " + dir.path().string() +
-          "\noutputs: {png: {enabled: false}, stats: {enabled: false},"
-          " exr: {enabled: true, trigger: {every_steps: 1}}}\n"
-          "writer: {fsync: false}\n"
-          "views:\n  - {name: v, kind: volume, width: 48, height: 40, quantity: p, mode: mixed,"
-          " iso: [{value: 900, opacity: 0.5}], background: none, legend: false,"
-          " camera: {direction: [0.2, 0.3, -1], up: [0, 1, 0]}}\n",
-      o);
-  ASSERT_TRUE(
-      a.execute(2, 0, ParticleView::aos(xyz.data(), p.size()).with_scalar("p", p.data())).ok());
+      exr_run(dir.path(),
+              "name: v, kind: volume, width: 48, height: 40, quantity: p,"
+              " mode: mixed, iso: [{value: 900, opacity: 0.5}], background: none,"
+              " legend: false, camera: {direction: [0.2, 0.3, -1], up: [0, 1, 0]}"),
+      test::spaced(block.spacing));
+  ASSERT_TRUE(a.execute(2, 0, block.view()).ok());
   a.finish();
   const test::DeepExr deep = test::read_deep_exr(dir / "exr" / "v_00000002.exr");
   ASSERT_TRUE(deep.has_z && deep.has_z_back && deep.has_rgba);
-  Imf::InputFile file((dir / "exr" / "v_color_00000002.exr").c_str());
-  std::vector<float> flat(4 * 48 * 40, -1.0f);
-  Imf::FrameBuffer frame;
-  const char* names[] = {"R", "G", "B", "A"};
-  for (int c = 0; c < 4; ++c)
-    frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(flat.data() + c),
-                                      4 * sizeof(float), 4 * sizeof(float) * 48));
-  file.setFrameBuffer(frame);
-  file.readPixels(0, 39);
+  const std::vector<float> flat = read_rgba(dir / "exr" / "v_color_00000002.exr", 48, 40);
   double worst = 0;
   std::size_t samples = 0, two_runs = 0;
   for (std::size_t px = 0; px < deep.z.size(); ++px) {

@@ -115,12 +115,8 @@ TEST(ParticlesView, ASlicePlaneCompositesByDepthAndCutsTheGlyphsInFront) {
 }
 
 TEST(ParticlesView, AMissingColourAttributeFailsTheStepByName) {
-  const test::ParticleBlock b = block();
-  const Status s = test::first_step(config("color_by: pressure"), b);
-  EXPECT_FALSE(s.ok());
-  EXPECT_NE(s.message.find("<config>:5:5: views[0].color_by \"pressure\""), std::string::npos)
-      << s.message;
-  EXPECT_NE(s.message.find("(it passes: speed)"), std::string::npos) << s.message;
+  test::expect_missing_attribute(config("color_by: pressure"), block(),
+                                 "<config>:5:5: views[0].color_by", "pressure");
 }
 
 }  // namespace

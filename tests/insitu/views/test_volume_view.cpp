@@ -60,11 +60,8 @@ TEST(VolumeView, BadTransferFunctionsAndIsoSurfacesAreRefusedWithTheirLine) {
 }
 
 TEST(VolumeView, AMissingQuantityFailsTheStepByName) {
-  const test::ParticleBlock b = block();
-  const Status s = test::first_step(config("quantity: temperature"), b);
-  EXPECT_FALSE(s.ok());
-  EXPECT_NE(s.message.find("views[0].quantity \"temperature\""), std::string::npos) << s.message;
-  EXPECT_NE(s.message.find("(it passes: pressure)"), std::string::npos) << s.message;
+  test::expect_missing_attribute(config("quantity: temperature"), block(),
+                                 "<config>:5:5: views[0].quantity", "temperature");
 }
 
 // The centre pixel (over the block) and a corner (the sky) of the view of a block at `spacing`.
