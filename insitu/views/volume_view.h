@@ -46,7 +46,7 @@ struct VolumeSettings : CloneAs<VolumeSettings, ViewSettings> {
   std::optional<std::array<double, 2>> range;  // nullopt = the particles' values' min and max
   // The transfer function's opacity: (t, alpha) points, t in [0, 1] across the range, alpha the
   // opacity of `opacity_length` particle spacings of fluid at that value; linear between them.
-  std::vector<std::array<double, 2>> opacity{{0.0, 0.0}, {1.0, 0.25}};
+  std::vector<std::array<double, 2>> opacity{{0.0, 0.08}, {1.0, 0.4}};
   double opacity_length = 1;  // particle spacings
   std::vector<VolumeIsoSettings> iso;
   double sampling = 1;  // samples per pixel spacing along each ray
