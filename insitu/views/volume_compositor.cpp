@@ -43,15 +43,33 @@ struct RankItems {
   std::vector<PartSegment> segments;
 };
 
+// On the wire a pixel's shared sums go as runs of consecutive samples, each its first index and
+// count, then the sums as float pairs (a third of the bytes of an index and two doubles per
+// sample; the owner adds them in double: the merge's picture moves by rounding, 1e-7).
+struct RawRun {
+  std::int32_t first;
+  std::uint32_t count;
+};
+struct RawSums {
+  float s, w;
+};
+
 RankItems read_items(std::span<const std::byte> bytes) {
   RankItems items;
   items.raw_start.push_back(0);
   items.segment_start.push_back(0);
   Reader in(bytes);
+  std::vector<RawSums> sums;
   while (!in.done()) {
     items.pixel.push_back(in.get<std::uint32_t>());
-    const auto raws = in.get<std::uint32_t>(), segments = in.get<std::uint32_t>();
-    in.get_span(raws, items.raws);
+    const auto runs = in.get<std::uint32_t>(), segments = in.get<std::uint32_t>();
+    for (std::uint32_t k = 0; k < runs; ++k) {
+      const RawRun run = in.get<RawRun>();
+      sums.clear();
+      in.get_span(run.count, sums);
+      for (std::uint32_t i = 0; i < run.count; ++i)
+        items.raws.push_back({run.first + std::int32_t(i), sums[i].s, sums[i].w});
+    }
     in.get_span(segments, items.segments);
     items.raw_start.push_back(std::uint32_t(items.raws.size()));
     items.segment_start.push_back(std::uint32_t(items.segments.size()));
@@ -62,14 +80,25 @@ RankItems read_items(std::span<const std::byte> bytes) {
 Bytes encode_items(const VolumePart& part, RowBand band) {
   Packer out;
   const std::size_t width = std::size_t(part.width);
+  std::vector<RawRun> runs;
   for (std::size_t p = std::size_t(band.begin) * width; p < std::size_t(band.end) * width; ++p) {
     const std::span<const RawSample> raws = part.raws_of(p);
     const std::span<const PartSegment> segments = part.segments_of(p);
     if (raws.empty() && segments.empty()) continue;
+    runs.clear();
+    for (std::size_t k = 0; k < raws.size(); ++k)
+      if (!runs.empty() && raws[k].index == runs.back().first + std::int32_t(runs.back().count))
+        ++runs.back().count;
+      else runs.push_back({raws[k].index, 1});
     out.put(std::uint32_t(p));
-    out.put(std::uint32_t(raws.size()));
+    out.put(std::uint32_t(runs.size()));
     out.put(std::uint32_t(segments.size()));
-    out.put_span(raws);
+    std::size_t k = 0;
+    for (const RawRun& run : runs) {
+      out.put(run);
+      for (std::uint32_t i = 0; i < run.count; ++i, ++k)
+        out.put(RawSums{float(raws[k].s), float(raws[k].w)});
+    }
     out.put_span(segments);
   }
   return std::move(out.bytes);
@@ -256,11 +285,7 @@ bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,
     bands = comm_.gather(band.bytes);
   }
   counts += merge.counts();
-  std::vector<std::int64_t> totals;
-  for (const VolumeCountName& c : kVolumeCountNames) totals.push_back(counts.*c.member);
-  comm_.sum(totals);
-  for (std::size_t k = 0; k < totals.size(); ++k) counts.*kVolumeCountNames[k].member = totals[k];
-  record(counts, recorder);
+  record(counts, recorder);  // this rank's: the stats line sums them over the ranks
   recorder.count(counter::composite_bytes_sent, comm_.bytes_sent() - bytes_before);
   if (!comm_.root()) return false;
 

@@ -12,7 +12,7 @@
 // A rank that fails in any of its steps fails the step on every rank (Communicator::agree),
 // before the next exchange: no rank waits for one that threw.
 // Times: pass::volume (this rank's rendering), pass::composite (the exchanges and the merge);
-// counts: composite.bytes_sent, and the frame's volume.* summed over the ranks on the root.
+// counts: composite.bytes_sent and this rank's volume.* (the stats line sums them over the ranks).
 #pragma once
 
 #include <span>

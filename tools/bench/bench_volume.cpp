@@ -7,8 +7,8 @@
 // The scene is bench_renderers': the WCSPH dam break at Martin & Moyce's T (--time), about
 // --particles fluid particles, state cached in --state (or --ritter, the Ritter-profile scene).
 // The field: the volume fraction (--quantity fraction, the view's default) or the height above
-// the floor (--quantity height), h = 1.3 spacings, the view's default transfer function (viridis,
-// opacity 0 to 0.25 per spacing), iso surfaces at 0.5 (fraction) or the middle of the range.
+// the floor (--quantity height), h = 1.3 spacings, the view's default transfer function (viridis
+// and its default opacity points), iso surfaces at 0.5 (fraction) or the middle of the range.
 // Milliseconds are medians over --frames frames after one warm-up.
 //
 //   bench_volume [--particles N] [--time T] [--state FILE] [--ritter] [--size WxH] [--frames F]
@@ -85,7 +85,7 @@ VolumeOptions options_for(const tools::DamBreakState& s, const std::vector<Volum
     for (const VolumeParticle& q : p)
       lo = std::min(lo, double(q.value)), hi = std::max(hi, double(q.value));
   }
-  o.transfer = transfer_table(ColorMap::viridis, {{0.0, 0.0}, {1.0, 0.25}}, lo, hi);
+  o.transfer = transfer_table(ColorMap::viridis, VolumeSettings{}.opacity, lo, hi);
   o.opacity_length = s.spacing;
   if (mode != VolumeMode::dvr) o.isos = {IsoSurface{0.5 * (lo + hi), {0.8, 0.85, 0.95}, 0.6}};
   o.sampling = sampling;
