@@ -95,7 +95,10 @@ void VolumeMerge::merge(std::uint32_t pixel, std::span<const std::span<const Raw
   m.run_begin = m.run_end = std::uint32_t(runs_.size());
   host_.record_into(&m.hits);
   const std::size_t ranks = raws.size();
-  std::vector<std::size_t> next_raw(ranks, 0), next_segment(ranks, 0);
+  std::vector<std::size_t>& next_raw = next_raw_;
+  std::vector<std::size_t>& next_segment = next_segment_;
+  next_raw.assign(ranks, 0);
+  next_segment.assign(ranks, 0);
   constexpr std::int64_t kNone = std::numeric_limits<std::int64_t>::max();
   std::int64_t previous = std::numeric_limits<std::int64_t>::min();
   for (;;) {
@@ -188,6 +191,39 @@ void VolumeMerge::finish(std::span<const FieldSums> sums, std::vector<glm::vec4>
   runs_.clear();
 }
 
+void ParallelVolumeMerge::finish(std::span<const FieldSums> sums, std::vector<glm::vec4>& colors,
+                                 std::vector<float>& depths,
+                                 std::vector<std::uint32_t>* deep_counts,
+                                 std::vector<DeepSample>* deep) {
+  struct Out {
+    std::vector<glm::vec4> colors;
+    std::vector<float> depths;
+    std::vector<std::uint32_t> deep_counts;
+    std::vector<DeepSample> deep;
+  };
+  std::vector<Out> out(chunks_.size());
+  tbb::parallel_for(std::size_t(0), chunks_.size(), [&](std::size_t c) {
+    Out& o = out[c];
+    chunks_[c]->finish(sums.subspan(query_start_[c], query_start_[c + 1] - query_start_[c]),
+                       o.colors, o.depths, &o.deep_counts, &o.deep);
+  });
+  colors.clear();
+  depths.clear();
+  for (const Out& o : out) {
+    colors.insert(colors.end(), o.colors.begin(), o.colors.end());
+    depths.insert(depths.end(), o.depths.begin(), o.depths.end());
+    if (deep_counts != nullptr)
+      deep_counts->insert(deep_counts->end(), o.deep_counts.begin(), o.deep_counts.end());
+    if (deep != nullptr) deep->insert(deep->end(), o.deep.begin(), o.deep.end());
+  }
+}
+
+VolumeCounts ParallelVolumeMerge::counts() const {
+  VolumeCounts total;
+  for (const auto& c : chunks_) total += c->counts();
+  return total;
+}
+
 VolumeCounts render_with_deep(VolumeRenderer& renderer, const Camera& camera,
                               std::span<const VolumeParticle> particles,
                               const VolumeOptions& options, Recorder& recorder, VolumeFrame& out) {
@@ -198,20 +234,18 @@ VolumeCounts render_with_deep(VolumeRenderer& renderer, const Camera& camera,
   none.start.assign(pixels + 1, 0);
   VolumePart part;
   counts += renderer.render_part(none, recorder, part);
-  VolumeMerge merge(camera, options, true);
-  std::vector<HitQuery> queries;
+  ParallelVolumeMerge merge(camera, options, true);
   std::vector<FieldSums> sums;
   std::vector<glm::vec4> colors;
   std::vector<std::uint32_t> deep_counts;
   {
     auto t = recorder.host(pass::volume);
-    for (std::size_t p = 0; p < pixels; ++p) {
-      const std::span<const RawSample> raws[] = {part.raws_of(p)};
-      const std::span<const PartSegment> segments[] = {part.segments_of(p)};
-      merge.merge(std::uint32_t(p), raws, segments, queries);
-    }
+    merge.merge(0, pixels, 1, [&](std::size_t p, auto& raws, auto& segments) {
+      raws[0] = part.raws_of(p);
+      segments[0] = part.segments_of(p);
+    });
   }
-  renderer.field_sums(queries, recorder, sums);
+  renderer.field_sums(merge.queries(), recorder, sums);
   auto t = recorder.host(pass::volume);
   out.reset(camera.width, camera.height);
   DeepImage& deep = out.deep;

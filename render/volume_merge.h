@@ -7,9 +7,13 @@
 #pragma once
 
 #include <array>
+#include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
+
+#include <tbb/parallel_for.h>
 
 #include "render/camera.h"
 #include "render/model/volume_host.h"
@@ -77,6 +81,60 @@ class VolumeMerge {
   bool deep_ = false;
   std::vector<Run> runs_;
   VolumeCounts counts_;
+  std::vector<std::size_t> next_raw_, next_segment_;  // merge()'s cursors, per rank
+};
+
+// VolumeMerge over pixels [first, first + count) in parallel: the pixels in chunks, a merge each;
+// the queries, colours, depths and deep samples come in pixel order whatever the threads.
+class ParallelVolumeMerge {
+ public:
+  ParallelVolumeMerge(const Camera& camera, const VolumeOptions& options, bool deep = false)
+      : camera_(camera), options_(options), deep_(deep) {}
+
+  // items(pixel, raws, segments) fills raws[r] and segments[r] (each `ranks` long) with every
+  // rank's items on the pixel.
+  template <class Items>
+  void merge(std::size_t first, std::size_t count, std::size_t ranks, Items&& items) {
+    const std::size_t chunks = (count + kChunk - 1) / kChunk;
+    chunks_.clear();
+    for (std::size_t c = 0; c < chunks; ++c)
+      chunks_.push_back(std::make_unique<VolumeMerge>(camera_, options_, deep_));
+    std::vector<std::vector<HitQuery>> queries(chunks);
+    tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+      std::vector<std::span<const RawSample>> raws(ranks);
+      std::vector<std::span<const PartSegment>> segments(ranks);
+      for (std::size_t p = first + c * kChunk;
+           p < std::min(first + count, first + (c + 1) * kChunk); ++p) {
+        items(p, raws, segments);
+        chunks_[c]->merge(std::uint32_t(p), raws, segments, queries[c]);
+      }
+    });
+    queries_.clear();
+    query_start_.assign(1, 0);
+    for (const std::vector<HitQuery>& q : queries) {
+      queries_.insert(queries_.end(), q.begin(), q.end());
+      query_start_.push_back(queries_.size());
+    }
+  }
+
+  // Where the merge wants every rank's field sums (the queries of all pixels, in order).
+  const std::vector<HitQuery>& queries() const { return queries_; }
+
+  // VolumeMerge::finish over all the pixels, `sums` one per query.
+  void finish(std::span<const FieldSums> sums, std::vector<glm::vec4>& colors,
+              std::vector<float>& depths, std::vector<std::uint32_t>* deep_counts = nullptr,
+              std::vector<DeepSample>* deep = nullptr);
+
+  VolumeCounts counts() const;
+
+ private:
+  static constexpr std::size_t kChunk = 4096;  // pixels
+  Camera camera_;
+  VolumeOptions options_;
+  bool deep_;
+  std::vector<std::unique_ptr<VolumeMerge>> chunks_;
+  std::vector<HitQuery> queries_;
+  std::vector<std::size_t> query_start_;  // per chunk, its first query; then the total
 };
 
 // One process's frame through the merge (the renderer's part with nothing shared, merged): the

@@ -2,6 +2,8 @@
 
 #include <exception>
 
+#include <tbb/parallel_for.h>
+
 #include "insitu/parallel/byte_packing.h"
 #include "insitu/parallel/span_merge.h"
 #include "insitu/views/view.h"
@@ -38,7 +40,8 @@ template <class F> bool attempt(F&& step, std::string& failure) {
 
 // One rank's items on the pixels of a band, as the merge reads them.
 struct RankItems {
-  std::vector<std::uint32_t> pixel, raw_start, segment_start;  // per listed pixel (+1 for starts)
+  std::vector<std::int32_t> slot;  // per pixel of the band: its place in the lists; -1: none
+  std::vector<std::uint32_t> raw_start, segment_start;  // per listed pixel, then the total
   std::vector<RawSample> raws;
   std::vector<PartSegment> segments;
 };
@@ -54,14 +57,17 @@ struct RawSums {
   float s, w;
 };
 
-RankItems read_items(std::span<const std::byte> bytes) {
+RankItems read_items(std::span<const std::byte> bytes, std::size_t band_first,
+                     std::size_t band_pixels) {
   RankItems items;
+  items.slot.assign(band_pixels, -1);
   items.raw_start.push_back(0);
   items.segment_start.push_back(0);
   Reader in(bytes);
   std::vector<RawSums> sums;
+  items.raws.reserve(bytes.size() / sizeof(RawSums));  // at most: the bytes are mostly sums
   while (!in.done()) {
-    items.pixel.push_back(in.get<std::uint32_t>());
+    items.slot.at(in.get<std::uint32_t>() - band_first) = std::int32_t(items.raw_start.size() - 1);
     const auto runs = in.get<std::uint32_t>(), segments = in.get<std::uint32_t>();
     for (std::uint32_t k = 0; k < runs; ++k) {
       const RawRun run = in.get<RawRun>();
@@ -80,8 +86,12 @@ RankItems read_items(std::span<const std::byte> bytes) {
 Bytes encode_items(const VolumePart& part, RowBand band) {
   Packer out;
   const std::size_t width = std::size_t(part.width);
+  const std::size_t first = std::size_t(band.begin) * width, end = std::size_t(band.end) * width;
+  out.bytes.reserve((part.raw_start[end] - part.raw_start[first]) * sizeof(RawSums) +
+                    (part.segment_start[end] - part.segment_start[first]) * sizeof(PartSegment));
   std::vector<RawRun> runs;
-  for (std::size_t p = std::size_t(band.begin) * width; p < std::size_t(band.end) * width; ++p) {
+  std::vector<RawSums> sums;
+  for (std::size_t p = first; p < end; ++p) {
     const std::span<const RawSample> raws = part.raws_of(p);
     const std::span<const PartSegment> segments = part.segments_of(p);
     if (raws.empty() && segments.empty()) continue;
@@ -96,8 +106,10 @@ Bytes encode_items(const VolumePart& part, RowBand band) {
     std::size_t k = 0;
     for (const RawRun& run : runs) {
       out.put(run);
+      sums.clear();
       for (std::uint32_t i = 0; i < run.count; ++i, ++k)
-        out.put(RawSums{float(raws[k].s), float(raws[k].w)});
+        sums.push_back({float(raws[k].s), float(raws[k].w)});
+      out.put_span<RawSums>(sums);
     }
     out.put_span(segments);
   }
@@ -200,34 +212,34 @@ bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,
 
   agree(attempt([&] { counts += renderer.render_part(shared_, recorder, part_); }, failure),
         failure);
-  VolumeMerge merge(camera, options, deep);
-  std::vector<HitQuery> queries;
+  ParallelVolumeMerge merge(camera, options, deep);
   {
     auto t = recorder.host(pass::composite);
     std::vector<Bytes> send(rank_count);
     for (int r = 0; r < ranks; ++r)
       send[std::size_t(r)] = encode_items(part_, band_of(r, ranks, camera.height));
     const std::vector<Bytes> received = comm_.exchange(send);
-    std::vector<RankItems> items;
-    for (const Bytes& b : received) items.push_back(read_items(b));
-    std::vector<std::size_t> next(items.size(), 0);
-    std::vector<std::span<const RawSample>> raws(items.size());
-    std::vector<std::span<const PartSegment>> segments(items.size());
-    for (std::size_t p = band_first; p < std::size_t(mine.end) * width; ++p) {
-      for (std::size_t r = 0; r < items.size(); ++r) {
-        const RankItems& it = items[r];
-        raws[r] = {};
-        segments[r] = {};
-        if (next[r] < it.pixel.size() && it.pixel[next[r]] == p) {
-          const std::size_t k = next[r]++;
-          raws[r] = {it.raws.data() + it.raw_start[k], it.raw_start[k + 1] - it.raw_start[k]};
-          segments[r] = {it.segments.data() + it.segment_start[k],
-                         it.segment_start[k + 1] - it.segment_start[k]};
-        }
-      }
-      merge.merge(std::uint32_t(p), raws, segments, queries);
-    }
+    const std::size_t band_pixels = std::size_t(mine.end) * width - band_first;
+    std::vector<RankItems> items(received.size());
+    tbb::parallel_for(std::size_t(0), received.size(), [&](std::size_t r) {
+      items[r] = read_items(received[r], band_first, band_pixels);
+    });
+    merge.merge(
+        band_first, band_pixels, items.size(), [&](std::size_t p, auto& raws, auto& segments) {
+          for (std::size_t r = 0; r < items.size(); ++r) {
+            const RankItems& it = items[r];
+            const std::int32_t k = it.slot[p - band_first];
+            raws[r] = {};
+            segments[r] = {};
+            if (k < 0) continue;
+            const std::size_t i = std::size_t(k);
+            raws[r] = {it.raws.data() + it.raw_start[i], it.raw_start[i + 1] - it.raw_start[i]};
+            segments[r] = {it.segments.data() + it.segment_start[i],
+                           it.segment_start[i + 1] - it.segment_start[i]};
+          }
+        });
   }
+  const std::vector<HitQuery>& queries = merge.queries();
 
   std::vector<FieldSums> sums(queries.size());
   if (options.mode != VolumeMode::dvr) {

@@ -62,17 +62,14 @@ Merged split_frame(const Camera& camera, const std::vector<VolumeParticle>& part
     out.raws += std::int64_t(parts[r].raws.size());
     out.segments += std::int64_t(parts[r].segments.size());
   }
-  VolumeMerge merge(camera, o);
-  std::vector<HitQuery> queries;
-  std::vector<std::span<const RawSample>> raws(ranks);
-  std::vector<std::span<const PartSegment>> segments(ranks);
-  for (std::size_t p = 0; p < pixels; ++p) {
+  ParallelVolumeMerge merge(camera, o);
+  merge.merge(0, pixels, ranks, [&](std::size_t p, auto& raws, auto& segments) {
     for (std::size_t r = 0; r < ranks; ++r) {
       raws[r] = parts[r].raws_of(p);
       segments[r] = parts[r].segments_of(p);
     }
-    merge.merge(std::uint32_t(p), raws, segments, queries);
-  }
+  });
+  const std::vector<HitQuery>& queries = merge.queries();
   std::vector<FieldSums> sums(queries.size());
   for (std::size_t r = 0; r < ranks; ++r) {
     std::vector<FieldSums> mine;
