@@ -1,8 +1,9 @@
 // bench_volume: the volume views' renderer on the CPU (render/cpu/volume_caster.h) on the dam
 // break, per phase, with what it did (samples, kernel evaluations, rays stopped early, iso hits),
 // and with --convergence its error against the converged integral (render/reference/
-// volume_reference.h: the sampling doubled until the picture changes under 1e-4) per sampling
-// setting beside its time.
+// volume_reference.h: the sampling doubled until the picture changes under 1e-4, or 8 times)
+// per sampling setting beside its time; --csv writes the rows for
+// tools/plots/plot_volume_accuracy.py.
 //
 // The scene is bench_renderers': the WCSPH dam break at Martin & Moyce's T (--time), about
 // --particles fluid particles, state cached in --state (or --ritter, the Ritter-profile scene).
@@ -13,7 +14,7 @@
 //
 //   bench_volume [--particles N] [--time T] [--state FILE] [--ritter] [--size WxH] [--frames F]
 //                [--modes dvr,iso,mixed] [--sampling S,...] [--quantity fraction|height]
-//                [--convergence] [--check]
+//                [--convergence] [--check] [--csv FILE]
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -38,12 +39,13 @@ struct Args : tools::BenchArgs, tools::StateFlags {
   std::vector<double> samplings = {1};
   bool height_field = false;  // the field: height above the floor, else the volume fraction
   bool convergence = false, check = false;
+  std::string csv;  // each row also as CSV (tools/plots/plot_volume_accuracy.py charts it)
 };
 
 constexpr char kUsage[] =
     "usage: bench_volume [--particles N] [--time T] [--state FILE] [--ritter] [--size WxH]\n"
     "         [--frames F] [--modes dvr,iso,mixed] [--sampling S,...]\n"
-    "         [--quantity fraction|height] [--convergence] [--check]\n";
+    "         [--quantity fraction|height] [--convergence] [--check] [--csv FILE]\n";
 
 bool read_flag(tools::Arg& arg, Args& a) {
   if (const char* v = arg.value("--modes")) return tools::read_names(v, kVolumeModeNames, a.modes);
@@ -57,8 +59,9 @@ bool read_flag(tools::Arg& arg, Args& a) {
     a.height_field = std::string(v) == "height";
     return a.height_field || std::string(v) == "fraction";
   }
-  return tools::read_state_flag(arg, a) || arg.flag("--convergence", a.convergence) ||
-         arg.flag("--check", a.check) || tools::read_bench_flag(arg, a);
+  return tools::read_state_flag(arg, a) || arg.value("--csv", a.csv) ||
+         arg.flag("--convergence", a.convergence) || arg.flag("--check", a.check) ||
+         tools::read_bench_flag(arg, a);
 }
 
 bool parse(int argc, char** argv, Args& a) { return tools::read_args(argc, argv, a, read_flag); }
@@ -116,8 +119,21 @@ int run(const Args& a) {
   if (a.convergence) std::printf(" | %9s %9s %5s", "max err", "p99 err", "dbl");
   if (a.check) std::printf(" | %9s", "vs ref");
   std::printf("\n");
+  std::FILE* csv = a.csv.empty() ? nullptr : std::fopen(a.csv.c_str(), "w");
+  if (!a.csv.empty() && csv == nullptr) throw make_error("cannot write ", a.csv);
+  if (csv != nullptr)
+    std::fprintf(csv, "scene,particles,width,height,mode,sampling,ms,samples,max_err,p99_err\n");
   VolumeCaster caster;
-  for (VolumeMode mode : a.modes)
+  for (VolumeMode mode : a.modes) {
+    // The converged integral, once per mode: the sampling doubled from 1 until the picture
+    // changes under 1e-4 (or 8 doublings).
+    VolumeFrame converged;
+    int doublings = 0;
+    if (a.convergence) {
+      VolumeOptions exact = options_for(s, particles, a.height_field, mode, 1);
+      exact.termination = 0;
+      converged = converged_volume(s.camera, particles, exact, 1e-4, 8, &doublings);
+    }
     for (double sampling : a.samplings) {
       const VolumeOptions o = options_for(s, particles, a.height_field, mode, sampling);
       std::array<std::vector<double>, kVolumeCastPhaseNames.size() + 1> ms;
@@ -138,13 +154,9 @@ int run(const Args& a) {
                   static_cast<long long>(counts.kernel_evaluations),
                   static_cast<long long>(counts.rays_stopped),
                   static_cast<long long>(counts.iso_hits));
+      std::array<double, 2> e{0, 0};
       if (a.convergence) {
-        VolumeOptions exact = o;
-        exact.termination = 0;
-        int doublings = 0;
-        const VolumeFrame converged =
-            converged_volume(s.camera, particles, exact, 1e-4, 8, &doublings);
-        const std::array<double, 2> e = errors(frame.picture, converged.picture);
+        e = errors(frame.picture, converged.picture);
         std::printf(" | %9.2e %9.2e %5d", e[0], e[1], doublings);
       }
       if (a.check) {
@@ -153,7 +165,14 @@ int run(const Args& a) {
         std::printf(" | %9.2e", errors(frame.picture, reference.picture)[0]);
       }
       std::printf("\n");
+      if (csv != nullptr)
+        std::fprintf(csv, "%s,%zu,%d,%d,%s,%g,%.2f,%lld,%.4g,%.4g\n",
+                     a.ritter ? "ritter" : "solver", particles.size(), a.width, a.height,
+                     name_of(kVolumeModeNames, mode).data(), sampling, tools::median(ms.back()),
+                     static_cast<long long>(counts.samples), e[0], e[1]);
     }
+  }
+  if (csv != nullptr) std::fclose(csv);
   return 0;
 }
 

@@ -5,8 +5,8 @@
 //   - one particle's iso surface of its plain sum is the sphere of the radius where the kernel
 //     takes the iso value;
 //   - a Shepard-normalised block of particles is flat inside;
-//   - the picture does not depend on the number of threads, NaN particles are skipped and
-//     counted, no particle gives the background.
+//   - the picture does not depend on the number of threads.
+// Broken input (NaN particles, no particle, every scale): tests/stability/test_volume.cpp.
 #include <gtest/gtest.h>
 
 #include <tbb/global_control.h>
@@ -208,30 +208,6 @@ TEST(VolumeCaster, ThePictureDoesNotDependOnTheThreads) {
     if (first.empty()) first = frame.picture.rgba;
     else EXPECT_EQ(frame.picture.rgba, first) << threads << " threads";
   }
-}
-
-TEST(VolumeCaster, BadParticlesAreSkippedAndCountedAndNoParticleGivesTheBackground) {
-  const test::Cloud c = test::cloud(6, 5);
-  const VolumeOptions o = test::cloud_options(VolumeMode::mixed, c.spacing);
-  std::vector<VolumeParticle> dirty = c.particles;
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  dirty.push_back({nan, 0, 0, 0.1f, 0.001f, 1});
-  dirty.push_back({0, 0, 0, 0.1f, 0.001f, std::numeric_limits<float>::infinity()});
-  dirty.push_back({0, 0, 0, 0.0f, 0.001f, 1});
-  dirty.push_back({0, 0, 0, 0.1f, -1.0f, 1});
-  VolumeCaster caster;
-  VolumeFrame clean, with;
-  caster.run(c.camera, c.particles, o, clean);
-  const VolumeCounts counts = caster.run(c.camera, dirty, o, with);
-  EXPECT_EQ(counts.particles_invalid, 4);
-  EXPECT_EQ(with.picture.rgba, clean.picture.rgba);
-
-  VolumeFrame none, reference;
-  const VolumeCounts empty = caster.run(c.camera, {}, o, none);
-  volume_reference(c.camera, {}, o, reference);
-  EXPECT_EQ(empty.samples, 0);
-  EXPECT_EQ(none.picture.rgba, reference.picture.rgba);
-  for (float v : none.picture.rgba) ASSERT_TRUE(std::isfinite(v));
 }
 
 TEST(VolumeCaster, TheConvergedIntegralIsCloseAtTheDefaultSampling) {
