@@ -21,6 +21,8 @@
 #                      settings, one render every 10 steps (when the bundle carries it);
 #   views_*.txt        bench_views: the particles and slice views (CPU code with either
 #                      renderer) on the machine's cores, Table 1 and 10^5-10^6 particles;
+#   volume_*.txt       bench_volume: the volume views' CPU renderer on the machine's cores (the
+#                      GL pass is not built yet), the dam-break goals' sizes and Fraedrich's;
 #   composite.txt      bench_composite on 2 ranks sharing the GPU at 1920x1080, when the machine
 #                      has Open MPI's mpiexec (the bundle carries libmpi, not the launcher).
 # Each step writes OUT/<step>.txt; a failing step is reported and the others still run.
@@ -81,6 +83,7 @@ if ((quick)); then
     step insitu "$bin/bench_insitu" --particles 5000 --start 0.1 --steps 20 --render-every 10 \
       --vdb-every 20
   step views_small "$bin/bench_views" --table-particles 2e4 --counts 2e4 --frames 1
+  step volume_small "$bin/bench_volume" --ritter --particles 2e4 --size 320x180 --frames 1
 else
   step pictures "$bin/render_pictures" --ritter --out "$out/pictures"
   step voxelize_llvmpipe_rows "$bin/bench_voxelize" --frames 5 --budget-mib 1024 --budget-mib 16 \
@@ -100,6 +103,11 @@ else
   [[ -x $bin/bench_insitu ]] &&
     step insitu "$bin/bench_insitu" --steps 300 --render-every 10 --vdb-every 100
   step views_1e6 "$bin/bench_views" --table-particles 1e6 --counts 1e5,1e6 --frames 3
+  step volume_1e5 "$bin/bench_volume" --ritter --particles 1e5 --size 640x360 --frames 5
+  step volume_1e6_1080p "$bin/bench_volume" --ritter --particles 1e6 --size 1920x1080 --frames 3 \
+    --modes dvr,iso
+  step volume_1e6_1024 "$bin/bench_volume" --ritter --particles 1e6 --size 1024x1024 --frames 3 \
+    --modes dvr,iso
 fi
 
 # composite_step ARGS...: bench_composite on 2 ranks, where this machine can start them (Open
