@@ -7,6 +7,7 @@
 #include "render/gl/gpu_recorder.h"
 #include "render/gl/info.h"
 #include "render/gl/surface_renderer.h"
+#include "render/gl/volume_renderer.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
@@ -67,7 +68,9 @@ std::unique_ptr<SurfaceRenderer> make_surface_renderer(RenderBackend backend,
   return make_gl_surface_renderer(shaders, voxelize);
 }
 
-std::unique_ptr<VolumeRenderer> make_volume_renderer(RenderBackend /*backend*/) {
+std::unique_ptr<VolumeRenderer> make_volume_renderer(RenderBackend backend,
+                                                     const gl::ShaderLibrary& shaders) {
+  if (backend == RenderBackend::gl) return make_gl_volume_renderer(shaders);
   return make_cpu_volume_renderer();
 }
 

@@ -45,7 +45,8 @@ std::unique_ptr<SurfaceRenderer> make_surface_renderer(RenderBackend backend,
                                                        const gl::ShaderLibrary& shaders,
                                                        std::size_t gpu_memory_budget);
 
-// The volume renderer of `backend` (both draw with the CPU one until the GL pass is built).
-std::unique_ptr<VolumeRenderer> make_volume_renderer(RenderBackend backend);
+// The volume renderer of `backend` (`shaders`: the GL renderer's; a GL context must be current).
+std::unique_ptr<VolumeRenderer> make_volume_renderer(RenderBackend backend,
+                                                     const gl::ShaderLibrary& shaders);
 
 }  // namespace voxspan

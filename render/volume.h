@@ -189,6 +189,9 @@ struct VolumeCounts {
   std::int64_t rays_stopped = 0;  // transmittance under `termination` before the last sample
   std::int64_t iso_hits = 0;
   std::int64_t iso_hits_unlit = 0;  // past kMaxIsoHits on their ray: ambient light only
+  // GL renderer on llvmpipe: frames drawn by the CPU caster because a bundle's march ran past
+  // the loop iterations llvmpipe allows an invocation
+  std::int64_t gl_frames_on_cpu = 0;
 };
 
 // Each count with the name a stats record gives it.
@@ -204,7 +207,8 @@ inline constexpr VolumeCountName kVolumeCountNames[] = {
     {"volume.kernel_evaluations", &VolumeCounts::kernel_evaluations},
     {"volume.rays_stopped", &VolumeCounts::rays_stopped},
     {"volume.iso_hits", &VolumeCounts::iso_hits},
-    {"volume.iso_hits_unlit", &VolumeCounts::iso_hits_unlit}};
+    {"volume.iso_hits_unlit", &VolumeCounts::iso_hits_unlit},
+    {"volume.gl_frames_on_cpu", &VolumeCounts::gl_frames_on_cpu}};
 
 inline VolumeCounts& operator+=(VolumeCounts& a, const VolumeCounts& b) {
   for (const VolumeCountName& c : kVolumeCountNames) a.*c.member += b.*c.member;

@@ -1,7 +1,7 @@
 // render/volume_renderer.h - what a volume view asks of a renderer (render/volume.h says what a
 // frame is), whichever one the process uses: made once by make_volume_renderer
-// (render/backend.h). Implementation: render/cpu/volume_renderer.h (exact sums in double). The
-// GL renderer's own pass is not built yet: the GL backend draws volume views with the CPU one.
+// (render/backend.h). Implementations: render/cpu/volume_renderer.h (exact sums in double) and
+// render/gl/volume_renderer.h (the march on the GPU, float sums).
 #pragma once
 
 #include <span>

@@ -143,7 +143,7 @@ class VolumeView final : public View {
   VolumeView(const VolumeSettings& s, const ViewContext& c)
       : settings_(s),
         spacing_(c.particle_spacing),
-        renderer_(make_volume_renderer(c.backend)),
+        renderer_(make_volume_renderer(c.backend, c.shaders)),
         comm_(c.comm != nullptr && c.comm->size() > 1 ? c.comm : nullptr) {
     if (comm_ != nullptr) compositor_.emplace(*comm_);
     if (!(spacing_ > 0) || !std::isfinite(spacing_))

@@ -778,4 +778,43 @@ void VolumeCaster::field_sums(std::span<const HitQuery> queries,
   });
 }
 
+VolumeCounts VolumeCaster::setup(const Camera& camera, std::span<const VolumeParticle> particles,
+                                 const VolumeOptions& options, VolumeSetup& out) {
+  VolumeCounts counts = start_frame(camera, particles, options, [](VolumeCastPhase) {});
+  const Work& w = *work_;
+  // The supports in view in their sorted order, and the tiles' lists in those positions.
+  std::vector<std::uint32_t> position(w.supports.size(), 0);
+  out.supports.resize(w.sorted.size());
+  for (std::size_t k = 0; k < w.sorted.size(); ++k) {
+    const Support& s = w.supports[w.sorted[k]];
+    position[w.sorted[k]] = std::uint32_t(k);
+    out.supports[k] = {s.c.x,
+                       s.c.y,
+                       s.c.z,
+                       s.radius,
+                       float(s.inv_h),
+                       float(s.v),
+                       float(s.vq),
+                       0.0f,
+                       std::int32_t(s.first - w.samples.base),
+                       std::int32_t(s.last - w.samples.base),
+                       s.rect.x0,
+                       s.rect.y0,
+                       s.rect.x1,
+                       s.rect.y1,
+                       0,
+                       0};
+  }
+  out.tile_start = w.tile_bins.start;
+  out.tile_lists.resize(w.tile_lists.size());
+  for (std::size_t k = 0; k < w.tile_lists.size(); ++k)
+    out.tile_lists[k] = position[w.tile_lists[k]];
+  out.tiles_x = Tiles(camera.width, camera.height, kTile).nx;
+  out.base = w.samples.base;
+  out.depths = w.samples.depths;
+  out.near = w.samples.near;
+  out.lattice = w.samples.lattice;
+  return counts;
+}
+
 }  // namespace voxspan

@@ -35,6 +35,30 @@ enum class VolumeCastPhase { project, sort, bin, march };
 inline constexpr std::array<const char*, 4> kVolumeCastPhaseNames{"project", "sort", "bin",
                                                                   "march"};
 
+// A frame's project, sort and bin as another march reads them (the GL pass,
+// render/gl/passes/volume_march.h): the supports in view, nearest first sample first, each as
+// std430 lays it out; per screen tile of kTile^2 pixels the positions of its supports in that
+// order; the sample depths from `base`.
+struct GpuSupport {
+  double cx, cy, cz, radius;    // view-space centre, support radius R = kernel support * h
+  float inv_h, v, vq, pad0;     // 1 / h, the weight and the weight times the value
+  std::int32_t first, last;     // its first and last samples, relative to `base`
+  std::int32_t x0, y0, x1, y1;  // its pixel rectangle
+  std::int32_t pad1, pad2;
+};
+static_assert(sizeof(GpuSupport) == 80);
+
+struct VolumeSetup {
+  std::vector<GpuSupport> supports;
+  std::vector<std::uint32_t> tile_start;  // per tile its first entry in tile_lists, then the total
+  std::vector<std::uint32_t> tile_lists;
+  int tiles_x = 0;  // tiles per row
+  std::int64_t base = 0;
+  std::vector<double> depths;  // depth of sample base + k
+  double near = 0;
+  VolumeLattice lattice;
+};
+
 // Holds its scratch (supports, bins, per-thread rings) from frame to frame.
 class VolumeCaster {
  public:
@@ -60,6 +84,10 @@ class VolumeCaster {
                      const VolumeOptions& options, std::vector<SampleRange>& hulls);
   VolumeCounts run_part(const PixelRanges& shared, VolumePart& out);
   void field_sums(std::span<const HitQuery> queries, std::vector<FieldSums>& out) const;
+
+  // The frame run() would march, for another march (`out`'s storage reused).
+  VolumeCounts setup(const Camera& camera, std::span<const VolumeParticle> particles,
+                     const VolumeOptions& options, VolumeSetup& out);
 
  private:
   struct Work;

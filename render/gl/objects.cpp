@@ -203,6 +203,9 @@ GLint Program::uniform(const char* name) const {
   return loc;
 }
 
+void Program::set(const char* n, glm::dvec2 v) const {
+  glProgramUniform2dv(id(), uniform(n), 1, glm::value_ptr(v));
+}
 void Program::set(const char* n, glm::vec2 v) const {
   glProgramUniform2fv(id(), uniform(n), 1, glm::value_ptr(v));
 }

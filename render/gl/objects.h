@@ -169,6 +169,8 @@ class Program {
   void set(const char* name, int v) const { glProgramUniform1i(id(), uniform(name), v); }
   void set(const char* name, unsigned v) const { glProgramUniform1ui(id(), uniform(name), v); }
   void set(const char* name, float v) const { glProgramUniform1f(id(), uniform(name), v); }
+  void set(const char* name, double v) const { glProgramUniform1d(id(), uniform(name), v); }
+  void set(const char* name, glm::dvec2 v) const;
   void set(const char* name, glm::vec2 v) const;
   void set(const char* name, glm::vec3 v) const;
   void set(const char* name, glm::vec4 v) const;

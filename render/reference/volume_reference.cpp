@@ -109,10 +109,11 @@ VolumeCounts volume_reference(const Camera& camera, std::span<const VolumePartic
           const double root = std::sqrt(disc);
           const double d0 = std::max((b - root) / a, near_clip), d1 = (b + root) / a;
           if (d1 < d0) continue;
+          // A chord between two samples adds to none, but to an iso hit's gradient between them.
+          crossings.push_back({i, d0, d1});
           const std::int64_t i0 = lattice.first_at_or_after(d0);
           const std::int64_t i1 = lattice.last_at_or_before(d1);
           if (i1 < i0) continue;
-          crossings.push_back({i, d0, d1});
           first = std::min(first, i0);
           last = std::max(last, i1);
         }

@@ -2,11 +2,15 @@
 // (the volume renderers' tests, tests only).
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <string>
 #include <vector>
 
+#include "render/sph_kernel.h"
 #include "render/volume.h"
 #include "tools/scenes/scenes.h"
 
@@ -52,6 +56,27 @@ inline VolumeOptions cloud_options(VolumeMode mode, double spacing) {
   o.transfer = t;
   if (mode != VolumeMode::dvr) o.isos = {{0.6, {0.9, 0.8, 0.3}, 0.7}, {1.2, {0.3, 0.9, 0.4}, 1}};
   return o;
+}
+
+// fn(options) for every mode, with and without Shepard normalisation, under a trace naming them.
+template <class F> void each_mode(double spacing, F fn) {
+  for (VolumeMode mode : {VolumeMode::dvr, VolumeMode::iso, VolumeMode::mixed})
+    for (bool shepard : {true, false}) {
+      SCOPED_TRACE(std::string(name_of(kVolumeModeNames, mode)) + (shepard ? " shepard" : ""));
+      VolumeOptions o = cloud_options(mode, spacing);
+      o.shepard = shepard;
+      fn(o);
+    }
+}
+
+// fn(options, name) in mixed mode for every SPH kernel, under a trace naming it.
+template <class F> void each_kernel(double spacing, F fn) {
+  for (const auto& [name, kernel] : kSphKernelNames) {
+    SCOPED_TRACE(name);
+    VolumeOptions o = cloud_options(VolumeMode::mixed, spacing);
+    o.kernel = kernel;
+    fn(o, name);
+  }
 }
 
 }  // namespace voxspan::test

@@ -3,7 +3,9 @@
 // and with --convergence its error against the converged integral (render/reference/
 // volume_reference.h: the sampling doubled until the picture changes under 1e-4, or 8 times)
 // per sampling setting beside its time; --csv writes the rows for
-// tools/plots/plot_volume_accuracy.py.
+// tools/plots/plot_volume_accuracy.py; --gl also times the GL renderer's march (its whole frame:
+// the CPU's project, sort and bin, the upload, the march, the read-back) and its largest channel
+// difference from the CPU picture.
 //
 // The scene is bench_renderers': the WCSPH dam break at Martin & Moyce's T (--time), about
 // --particles fluid particles, state cached in --state (or --ritter, the Ritter-profile scene).
@@ -14,16 +16,19 @@
 //
 //   bench_volume [--particles N] [--time T] [--state FILE] [--ritter] [--size WxH] [--frames F]
 //                [--modes dvr,iso,mixed] [--sampling S,...] [--quantity fraction|height]
-//                [--convergence] [--check] [--csv FILE]
+//                [--convergence] [--check] [--csv FILE] [--gl [--platform P]]
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "insitu/views/volume_view.h"
 #include "render/cpu/volume_caster.h"
+#include "render/gl/volume_renderer.h"
 #include "render/reference/volume_reference.h"
 #include "tools/common/dambreak_state.h"
 #include "tools/common/tool_args.h"
@@ -39,13 +44,15 @@ struct Args : tools::BenchArgs, tools::StateFlags {
   std::vector<double> samplings = {1};
   bool height_field = false;  // the field: height above the floor, else the volume fraction
   bool convergence = false, check = false;
+  bool gl = false;  // also the GL renderer's march (render/gl/volume_renderer.h)
   std::string csv;  // each row also as CSV (tools/plots/plot_volume_accuracy.py charts it)
 };
 
 constexpr char kUsage[] =
     "usage: bench_volume [--particles N] [--time T] [--state FILE] [--ritter] [--size WxH]\n"
     "         [--frames F] [--modes dvr,iso,mixed] [--sampling S,...]\n"
-    "         [--quantity fraction|height] [--convergence] [--check] [--csv FILE]\n";
+    "         [--quantity fraction|height] [--convergence] [--check] [--csv FILE]\n"
+    "         [--gl [--platform auto|nvidia|device|surfaceless]]\n";
 
 bool read_flag(tools::Arg& arg, Args& a) {
   if (const char* v = arg.value("--modes")) return tools::read_names(v, kVolumeModeNames, a.modes);
@@ -60,8 +67,8 @@ bool read_flag(tools::Arg& arg, Args& a) {
     return a.height_field || std::string(v) == "fraction";
   }
   return tools::read_state_flag(arg, a) || arg.value("--csv", a.csv) ||
-         arg.flag("--convergence", a.convergence) || arg.flag("--check", a.check) ||
-         tools::read_bench_flag(arg, a);
+         arg.flag("--convergence", a.convergence) || arg.flag("--gl", a.gl) ||
+         arg.flag("--check", a.check) || tools::read_bench_flag(arg, a);
 }
 
 bool parse(int argc, char** argv, Args& a) { return tools::read_args(argc, argv, a, read_flag); }
@@ -118,12 +125,22 @@ int run(const Args& a) {
               "sort", "bin", "march", "total", "samples", "evaluations", "stopped", "iso hits");
   if (a.convergence) std::printf(" | %9s %9s %5s", "max err", "p99 err", "dbl");
   if (a.check) std::printf(" | %9s", "vs ref");
+  if (a.gl) std::printf(" | %8s %9s", "GL ms", "GL vs CPU");
   std::printf("\n");
   std::FILE* csv = a.csv.empty() ? nullptr : std::fopen(a.csv.c_str(), "w");
   if (!a.csv.empty() && csv == nullptr) throw make_error("cannot write ", a.csv);
   if (csv != nullptr)
     std::fprintf(csv, "scene,particles,width,height,mode,sampling,ms,samples,max_err,p99_err\n");
   VolumeCaster caster;
+  std::optional<gl::Context> context;
+  std::optional<gl::ShaderLibrary> shaders;
+  std::unique_ptr<VolumeRenderer> gl_renderer;
+  if (a.gl) {
+    context.emplace(a.context);
+    tools::print_renderer(*context);
+    shaders.emplace();
+    gl_renderer = make_gl_volume_renderer(*shaders);
+  }
   for (VolumeMode mode : a.modes) {
     // The converged integral, once per mode: the sampling doubled from 1 until the picture
     // changes under 1e-4 (or 8 doublings).
@@ -163,6 +180,20 @@ int run(const Args& a) {
         VolumeFrame reference;
         volume_reference(s.camera, particles, o, reference);
         std::printf(" | %9.2e", errors(frame.picture, reference.picture)[0]);
+      }
+      if (gl_renderer) {
+        std::vector<double> gl_ms;
+        VolumeFrame on_gl;
+        Recorder recorder;
+        std::int64_t on_cpu = 0;
+        for (int f = -1; f < a.frames; ++f) {
+          const Stopwatch watch;
+          on_cpu += gl_renderer->render(s.camera, particles, o, recorder, on_gl).gl_frames_on_cpu;
+          if (f >= 0) gl_ms.push_back(watch.ms());
+        }
+        // A frame past a software renderer's loop budget is the CPU caster's (docs/design.md).
+        std::printf(" | %8.1f %9.2e%s", tools::median(gl_ms),
+                    errors(on_gl.picture, frame.picture)[0], on_cpu > 0 ? " on CPU" : "");
       }
       std::printf("\n");
       if (csv != nullptr)

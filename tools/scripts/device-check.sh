@@ -21,8 +21,9 @@
 #                      settings, one render every 10 steps (when the bundle carries it);
 #   views_*.txt        bench_views: the particles and slice views (CPU code with either
 #                      renderer) on the machine's cores, Table 1 and 10^5-10^6 particles;
-#   volume_*.txt       bench_volume: the volume views' CPU renderer on the machine's cores (the
-#                      GL pass is not built yet), the dam-break goals' sizes and Fraedrich's;
+#   volume_*.txt       bench_volume: the volume views' CPU renderer on the machine's cores and
+#                      the GL march on the GPU (--gl: its time, its difference from the CPU
+#                      frame), the dam-break goals' sizes and Fraedrich's;
 #   composite.txt      bench_composite on 2 ranks sharing the GPU at 1920x1080, when the machine
 #                      has Open MPI's mpiexec (the bundle carries libmpi, not the launcher).
 # Each step writes OUT/<step>.txt; a failing step is reported and the others still run.
@@ -103,11 +104,11 @@ else
   [[ -x $bin/bench_insitu ]] &&
     step insitu "$bin/bench_insitu" --steps 300 --render-every 10 --vdb-every 100
   step views_1e6 "$bin/bench_views" --table-particles 1e6 --counts 1e5,1e6 --frames 3
-  step volume_1e5 "$bin/bench_volume" --ritter --particles 1e5 --size 640x360 --frames 5
+  step volume_1e5 "$bin/bench_volume" --ritter --particles 1e5 --size 640x360 --frames 5 --gl
   step volume_1e6_1080p "$bin/bench_volume" --ritter --particles 1e6 --size 1920x1080 --frames 3 \
-    --modes dvr,iso
+    --modes dvr,iso --gl
   step volume_1e6_1024 "$bin/bench_volume" --ritter --particles 1e6 --size 1024x1024 --frames 3 \
-    --modes dvr,iso
+    --modes dvr,iso --gl
 fi
 
 # composite_step ARGS...: bench_composite on 2 ranks, where this machine can start them (Open

@@ -109,5 +109,20 @@ TEST(VolumeView, TheDepthOutputIsTheFirstIsoHit) {
   EXPECT_EQ(r.first_hit_depth->at(1, 1).r, 0.0f);  // no fluid in the corner
 }
 
+// The GL backend's march (llvmpipe here) draws the CPU renderer's picture, to float sums.
+TEST(VolumeView, TheGlBackendDrawsTheCpuPicture) {
+  const test::ParticleBlock b = block();
+  const std::string keys = "quantity: pressure, mode: mixed, iso: [{value: 900, opacity: 0.5}]";
+  FloatImage pictures[2];
+  for (int k = 0; k < 2; ++k)
+    pictures[k] = test::first_picture(
+        config(keys) + "renderer: {backend: " + (k == 0 ? "cpu" : "gl") + "}\n", b);
+  ASSERT_EQ(pictures[0].rgba.size(), pictures[1].rgba.size());
+  double d = 0;
+  for (std::size_t i = 0; i < pictures[0].rgba.size(); ++i)
+    d = std::max(d, double(std::abs(pictures[0].rgba[i] - pictures[1].rgba[i])));
+  EXPECT_LT(d, 1e-4);
+}
+
 }  // namespace
 }  // namespace voxspan
