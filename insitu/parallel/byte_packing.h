@@ -22,6 +22,7 @@ class Packer {
   }
   // The values as they are; the reader must know how many.
   template <class T> void put_span(std::span<const T> v) {
+    if (v.empty()) return;  // data() may be null, and no offset may be added to null
     const auto* p = reinterpret_cast<const std::byte*>(v.data());
     bytes.insert(bytes.end(), p, p + v.size_bytes());
   }
@@ -59,6 +60,7 @@ class Unpacker {
  private:
   void take(void* out, std::size_t n) {
     if (bytes_.size() - at_ < n) throw make_error(what_, " is cut short");
+    if (n == 0) return;  // `out` may be an empty vector's null data(), which memcpy may not take
     std::memcpy(out, bytes_.data() + at_, n);
     at_ += n;
   }
