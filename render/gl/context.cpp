@@ -9,6 +9,8 @@
 #include <optional>
 #include <vector>
 
+#include "render/gl/info.h"
+#include "render/gl/objects.h"
 #include "voxspan/error.h"
 #include "voxspan/log.h"
 
@@ -146,12 +148,9 @@ bool debug_requested(bool configured) {
 }
 
 void GLAPIENTRY debug_message(GLenum /*source*/, GLenum type, GLuint id, GLenum severity,
-                              GLsizei length, const GLchar* message, const void* /*user*/) {
-  LogLevel level = LogLevel::debug;
-  if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) level = LogLevel::error;
-  else if (severity == GL_DEBUG_SEVERITY_MEDIUM) level = LogLevel::warning;
+                              GLsizei length, const GLchar* message, const void* user) {
   std::string_view text(message, length < 0 ? std::strlen(message) : std::size_t(length));
-  log(level, "GL [", id, "] ", text);
+  static_cast<Context*>(const_cast<void*>(user))->driver_message(type, id, severity, text);
 }
 
 // Tries the newest core version first: Mesa 22.3 refuses 4.6 with EGL_BAD_MATCH (GPU-NOTES).
@@ -205,6 +204,7 @@ bool parse_platform(std::string_view text, Platform& platform) {
 Context::Context(const ContextOptions& options) {
   const Platform requested = requested_platform(options.platform);
   const bool debug = debug_requested(options.debug);
+  debug_ = debug;
 
   DisplayAttempt attempt;
   switch (requested) {
@@ -252,8 +252,10 @@ Context::Context(const ContextOptions& options) {
   // llvmpipe's timer queries read ~1 ns (GPU-NOTES): time with glFinish and a wall clock there.
   has_gpu_timers_ = renderer != nullptr && std::strstr(renderer, "llvmpipe") == nullptr &&
                     std::strstr(renderer, "softpipe") == nullptr;
+  staging_ = std::make_unique<ReadbackStaging>(!software_renderer());
+  set_current_staging(staging_.get());
   if (epoxy_has_gl_extension("GL_KHR_debug") || version >= 43) {
-    glDebugMessageCallback(debug_message, nullptr);
+    glDebugMessageCallback(debug_message, this);
     glEnable(GL_DEBUG_OUTPUT);
     if (debug) glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
   }
@@ -261,8 +263,28 @@ Context::Context(const ContextOptions& options) {
            reinterpret_cast<const char*>(glGetString(GL_VERSION)));
 }
 
+void Context::driver_message(unsigned type, unsigned id, unsigned severity, std::string_view text) {
+  LogLevel level = LogLevel::debug;
+  if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) {
+    level = LogLevel::error;
+  } else if (!debug_ && (type == GL_DEBUG_TYPE_PERFORMANCE || type == GL_DEBUG_TYPE_OTHER)) {
+    ++quiet_notes_;  // advice about the driver's own choices, not a fault of the run's
+  } else if (severity == GL_DEBUG_SEVERITY_MEDIUM) {
+    level = LogLevel::warning;
+  }
+  log(level, "GL [", id, "] ", text);
+}
+
 Context::~Context() {
   if (context_ == nullptr) return;
+  if (const std::uint64_t n = quiet_notes_.load(); n > 0)
+    log_info("GL: ", n,
+             " driver notes on performance left at the debug level (VOXSPAN_GL_DEBUG=1 "
+             "shows them as warnings)");
+  if (current_staging() == staging_.get()) set_current_staging(nullptr);
+  // Its GL buffer goes with the context; deleted by hand only where the context is current.
+  if (eglGetCurrentContext() != context_) staging_->forget();
+  staging_.reset();
   eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(display_, context_);
   // No eglTerminate: an EGL display is a process-wide singleton per platform and device,
@@ -273,6 +295,7 @@ Context::~Context() {
 void Context::make_current() const {
   if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
     throw make_error("eglMakeCurrent failed on ", description_, " (", last_egl_error(), ")");
+  set_current_staging(staging_.get());
 }
 
 }  // namespace voxspan::gl

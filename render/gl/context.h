@@ -10,12 +10,17 @@
 // which platform was tried, what failed and what to install.
 #pragma once
 
+#include <atomic>
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 
 #include "render/enum_names.h"
 
 namespace voxspan::gl {
+
+class ReadbackStaging;
 
 enum class Platform { automatic, nvidia, device, surfaceless };
 inline constexpr EnumName<Platform> kPlatformNames[] = {{"auto", Platform::automatic},
@@ -32,7 +37,8 @@ Platform requested_platform(Platform configured);
 
 struct ContextOptions {
   Platform platform = Platform::automatic;
-  // A debug context: GL checks every call and reports through the logger synchronously.
+  // A debug context: GL checks every call and reports through the logger synchronously, the
+  // driver's performance notes as warnings (else at the debug level, counted).
   // Also switched on by VOXSPAN_GL_DEBUG=1.
   bool debug = false;
   // The EGL device to try first (device platforms), modulo the devices there are; -1: the
@@ -56,12 +62,23 @@ class Context {
   // GPU timer queries give real durations (false on llvmpipe, where they read ~1 ns).
   bool has_gpu_timers() const { return has_gpu_timers_; }
 
+  // The buffer the host's reads go through (render/gl/objects.h), current with the context.
+  ReadbackStaging& staging() { return *staging_; }
+
+  // A message of the driver's (GL_KHR_debug), to the logger at its level; from any thread.
+  void driver_message(unsigned type, unsigned id, unsigned severity, std::string_view text);
+
  private:
   void* display_ = nullptr;
   void* context_ = nullptr;
   Platform platform_ = Platform::automatic;
   std::string description_;
   bool has_gpu_timers_ = false;
+  bool debug_ = false;
+  std::unique_ptr<ReadbackStaging> staging_;
+  // Driver notes of type performance or other left at the debug level (NVIDIA sends one per
+  // buffer it moves): summed, said once when the context goes.
+  std::atomic<std::uint64_t> quiet_notes_{0};
 };
 
 }  // namespace voxspan::gl

@@ -1,6 +1,8 @@
 #include "render/gl/objects.h"
 
+#include <algorithm>
 #include <atomic>
+#include <cstring>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -126,7 +128,11 @@ void Buffer::download(void* out, std::size_t bytes, std::size_t offset) const {
   if (offset + bytes > size_)
     throw make_error("Buffer::download: ", bytes, " bytes at ", offset, " exceed the buffer's ",
                      size_);
-  glGetNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), out);
+  if (ReadbackStaging* staging = current_staging(); staging != nullptr && staging->in_use())
+    staging->read(id(), offset, bytes, out);
+  else
+    glGetNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
+                            out);
 }
 
 void Buffer::clear(std::size_t offset, std::size_t bytes) {
@@ -157,6 +163,52 @@ void Buffer::bind_range(GLenum target, GLuint index, std::size_t offset, std::si
 
 void bind_storage(std::initializer_list<StorageBinding> bindings) {
   for (const StorageBinding& b : bindings) b.buffer.bind(GL_SHADER_STORAGE_BUFFER, b.index);
+}
+
+// --- ReadbackStaging --------------------------------------------------------------------------
+
+namespace {
+thread_local ReadbackStaging* t_staging = nullptr;
+}  // namespace
+
+void set_current_staging(ReadbackStaging* staging) { t_staging = staging; }
+ReadbackStaging* current_staging() { return t_staging; }
+
+ReadbackStaging::ReadbackStaging(bool use) : use_(use) {}
+
+ReadbackStaging::~ReadbackStaging() {
+  if (id_ == 0) return;
+  glUnmapNamedBuffer(id_);
+  glDeleteBuffers(1, &id_);
+}
+
+void ReadbackStaging::read(GLuint from, std::size_t offset, std::size_t bytes, void* out) {
+  constexpr GLbitfield kMap = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+  if (bytes > size_) {
+    if (id_ != 0) {
+      glUnmapNamedBuffer(id_);
+      glDeleteBuffers(1, &id_);
+    }
+    const std::size_t grown = std::max(bytes, size_ + size_ / 2);
+    glCreateBuffers(1, &id_);
+    glNamedBufferStorage(id_, static_cast<GLsizeiptr>(grown), nullptr,
+                         kMap | GL_CLIENT_STORAGE_BIT);
+    mapped_ = glMapNamedBufferRange(id_, 0, static_cast<GLsizeiptr>(grown), kMap);
+    check_error("a read-back buffer of " + std::to_string(grown) + " bytes");
+    if (mapped_ == nullptr) throw make_error("cannot map a read-back buffer of ", grown, " bytes");
+    size_ = grown;
+    ticket_ = MemoryTicket(static_cast<std::int64_t>(grown));
+  }
+  glCopyNamedBufferSubData(from, id_, static_cast<GLintptr>(offset), 0,
+                           static_cast<GLsizeiptr>(bytes));
+  // Coherent mapping: the copy is visible to the host once a fence after it has signalled.
+  GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  GLenum waited = GL_TIMEOUT_EXPIRED;
+  while (waited == GL_TIMEOUT_EXPIRED)
+    waited = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000);
+  glDeleteSync(fence);
+  if (waited == GL_WAIT_FAILED) throw make_error("waiting for a GPU read-back failed");
+  std::memcpy(out, mapped_, bytes);
 }
 
 // --- Program ----------------------------------------------------------------------------------

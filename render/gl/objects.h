@@ -141,6 +141,38 @@ class Buffer {
   MemoryTicket ticket_;
 };
 
+// Where the host reads the GPU's buffers on a GPU: a persistently mapped buffer in host memory
+// that only copies write, read after a fence. Reading a pass's own buffer instead
+// (glGetNamedBufferSubData) made NVIDIA move it to host memory, and say so, 2 425 times in a
+// 49 s run. One per context (render/gl/context.h makes it current with its context); a
+// software renderer reads directly (its buffers are host memory already: a copy would only
+// cost), unless `through_staging` asks otherwise (the tests, to run this path there).
+class ReadbackStaging {
+ public:
+  explicit ReadbackStaging(bool use);
+  ~ReadbackStaging();
+  ReadbackStaging(const ReadbackStaging&) = delete;
+  ReadbackStaging& operator=(const ReadbackStaging&) = delete;
+
+  bool in_use() const { return use_; }
+  void set_in_use(bool use) { use_ = use; }
+  // `bytes` of `from` at `offset` into `out`, once the GPU has written them.
+  void read(GLuint from, std::size_t offset, std::size_t bytes, void* out);
+  // Its GL buffer is gone with its context: the destructor makes no GL call.
+  void forget() { id_ = 0; }
+
+ private:
+  bool use_;
+  GLuint id_ = 0;
+  std::size_t size_ = 0;
+  void* mapped_ = nullptr;
+  MemoryTicket ticket_{0};
+};
+
+// The calling thread's current context's staging (null: read directly).
+void set_current_staging(ReadbackStaging* staging);
+ReadbackStaging* current_staging();
+
 // One buffer bound whole to a shader-storage binding, for bind_storage().
 struct StorageBinding {
   const Buffer& buffer;

@@ -1,6 +1,6 @@
 // The building blocks of the voxelization on the GPU: the prefix sum, the binning of spheres
 // into tiles (every tile gets exactly the spheres that touch it, large spheres their own list),
-// the GL recorder and the GPU memory tally.
+// the GL recorder, the GPU memory tally and the read-back through a staging buffer.
 #include <algorithm>
 #include <numeric>
 #include <random>
@@ -126,6 +126,27 @@ TEST(GpuMemory, BuffersAndTexturesAreTallied) {
   }
   EXPECT_EQ(gl::memory_usage().current_bytes, before.current_bytes);
   EXPECT_GE(gl::memory_usage().peak_bytes, before.current_bytes + (8 << 20) + 64 * 32 * 16);
+}
+
+// A GPU reads back through its own mapped buffer (render/gl/objects.h); llvmpipe directly. Both
+// give the same values, whatever the size (the staging grows) and offset, after a shader wrote
+// them.
+TEST(Readback, ThroughStagingAsDirect) {
+  gl::ReadbackStaging& staging = test::context().staging();
+  const bool was = staging.in_use();
+  PrefixSumPass scan(test::shaders());
+  for (std::size_t n : {std::size_t(5), std::size_t(70001), std::size_t(300000)}) {
+    std::vector<std::uint32_t> values(n + 1, 3);
+    gl::Buffer buffer(values.size() * 4, values.data());
+    scan.run(buffer, n);
+    staging.set_in_use(false);
+    const std::vector<std::uint32_t> direct = buffer.read<std::uint32_t>(n, 1);
+    staging.set_in_use(true);
+    const std::vector<std::uint32_t> staged = buffer.read<std::uint32_t>(n, 1);
+    EXPECT_EQ(staged, direct) << n;
+    EXPECT_EQ(staged.back(), 3 * n);
+  }
+  staging.set_in_use(was);
 }
 
 }  // namespace
