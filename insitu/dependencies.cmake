@@ -4,6 +4,8 @@
 set(CMAKE_FIND_PACKAGE_TARGETS_GLOBAL ON)
 find_package(yaml-cpp REQUIRED)
 find_package(PNG REQUIRED)
+# libdeflate: the PNG frames' compression (libpng decodes them); Debian ships only its .pc file.
+pkg_check_modules(LIBDEFLATE REQUIRED IMPORTED_TARGET GLOBAL libdeflate)
 find_package(VTK 9.1 REQUIRED COMPONENTS CommonCore CommonDataModel IOXML IOXMLParser
              IOParallelXML)
 find_package(HDF5 REQUIRED COMPONENTS C)

@@ -5,9 +5,6 @@
 // builds VDB grids, which allocate as libpng and OpenVDB do).
 #include <gtest/gtest.h>
 
-#include <string>
-#include <vector>
-
 #include "dambreak_run.h"
 #include "tests/support/allocation_counter.h"
 #include "tests/support/temp_folder.h"
@@ -51,22 +48,16 @@ writer: {queue_size: 64, fsync: false}
     ASSERT_TRUE(execute(step).ok());
     adapter.finish();
   }
-  // Windows of 8 steps (2 with snapshots) until one allocates nothing, at most 3. An allocation
-  // made on every step shows in every window; under the sanitizers a one-off allocation has
-  // been seen in the first window past the warm-up (2 runs in 4; source not found yet).
-  std::vector<long> windows;
-  for (std::int64_t first = 17; windows.empty() || (windows.back() != 0 && windows.size() < 3);
-       first += 8) {
-    const long before = test::thread_allocations();
-    for (std::int64_t step = first; step < first + 8; ++step) {
-      ASSERT_TRUE(execute(step).ok());
-      adapter.finish();
-    }
-    windows.push_back(test::thread_allocations() - before);
+  // One window of 8 steps (2 with snapshots); where one allocates, its backtrace says where.
+  test::trace_thread_allocations(4);
+  const long before = test::thread_allocations();
+  for (std::int64_t step = 17; step < 25; ++step) {
+    ASSERT_TRUE(execute(step).ok());
+    adapter.finish();
   }
-  std::string counts;
-  for (long w : windows) counts.append(" ").append(std::to_string(w));
-  EXPECT_EQ(windows.back(), 0) << "allocations in each window of 8 render steps:" << counts;
+  const long allocated = test::thread_allocations() - before;
+  test::trace_thread_allocations(0);
+  EXPECT_EQ(allocated, 0) << "allocations in 8 render steps (their backtraces above)";
 }
 
 }  // namespace

@@ -1,6 +1,10 @@
 #include "tests/support/allocation_counter.h"
 
+#include <execinfo.h>
+#include <unistd.h>
+
 #include <atomic>
+#include <cstdio>
 #include <cstdlib>
 #include <new>
 
@@ -17,9 +21,24 @@ thread_local long t_allocations = 0;
 // that each block is freed by the allocator that made it (AddressSanitizer checks: a nothrow
 // new left to the runtime and freed here is an alloc-dealloc mismatch).
 namespace {
+thread_local int t_traces_left = 0;
+thread_local bool t_tracing = false;
+
+// Where the calling thread allocated, to stderr (backtrace() itself may allocate once).
+void trace(std::size_t size) noexcept {
+  if (t_tracing) return;
+  t_tracing = true;
+  --t_traces_left;
+  std::fprintf(stderr, "allocation of %zu bytes on the traced thread, from:\n", size);
+  void* frames[32];
+  backtrace_symbols_fd(frames, backtrace(frames, 32), STDERR_FILENO);
+  t_tracing = false;
+}
+
 void* counted_malloc(std::size_t size) noexcept {
   ++g_allocations;
   ++t_allocations;
+  if (t_traces_left > 0) trace(size);
   return std::malloc(size ? size : 1);
 }
 }  // namespace
@@ -45,4 +64,5 @@ void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); 
 namespace voxspan::test {
 long allocations() { return g_allocations.load(); }
 long thread_allocations() { return t_allocations; }
+void trace_thread_allocations(int most) { t_traces_left = most; }
 }  // namespace voxspan::test

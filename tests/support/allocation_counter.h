@@ -7,5 +7,7 @@ namespace voxspan::test {
 
 long allocations();         // all threads
 long thread_allocations();  // the calling thread
+// The calling thread's next `most` allocations print their backtraces to stderr (0: none).
+void trace_thread_allocations(int most);
 
 }  // namespace voxspan::test

@@ -8,6 +8,7 @@ packages=(
   libegl-dev libgl-dev libepoxy-dev                  # EGL + GL through libglvnd, epoxy loader
   libegl-mesa0 libgl1-mesa-dri                       # Mesa: llvmpipe when there is no GPU
   libglm-dev libtbb-dev libyaml-cpp-dev libpng-dev   # math, threads, config, images
+  libdeflate-dev                                     # the PNG frames' compression
   libopenvdb-dev libboost-iostreams-dev              # snapshots (OpenVDB's CMake needs boost-iostreams)
   libvtk9-dev                                        # .vtp/.vtu/.vti/.pvd files
   libopenexr-dev                                     # depth (and deep) images

@@ -44,6 +44,11 @@ class StatsOutput final : public Output {
     jobs_.submit("stats line", [&](Line& l) {
       l.text.clear();
       append_json_line(*step.record, l.text);
+      // The numbers change length from step to step (a pass of 9.87 ms, then 10.02): room to
+      // spare, so that a slightly longer line later needs no new memory. (Without it, a slot
+      // grew now and then once sizes were stable: the one-off allocation StepAllocations saw.)
+      if (l.text.capacity() < l.text.size() + l.text.size() / 4)
+        l.text.reserve(l.text.size() + l.text.size() / 2);
     });
   }
 

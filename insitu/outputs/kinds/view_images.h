@@ -2,7 +2,8 @@
 // pictures, EXR depth images): each view's image copied into a pooled slot on the solver's
 // thread (no allocation once the slots have held the largest view), written as
 // <folder>/<view>_<step>.<extension> on the writer's. Such a kind is its settings, its schema
-// section and a ViewImageFormat (png_output.cpp, depth_output.cpp).
+// section and a ViewImageFormat (depth_output.cpp), or its own Output on ViewImageJobs
+// (png_output.cpp, whose encoder takes a setting).
 #pragma once
 
 #include <algorithm>
