@@ -30,6 +30,13 @@ bool parallel(const Vec3d& a, const Vec3d& b) {
   return length(c) <= 1e-6 * length(a) * length(b);
 }
 
+bool valid_bounds(const std::vector<std::array<double, 2>>& bounds) {
+  if (bounds.size() != 3) return false;
+  for (const std::array<double, 2>& axis : bounds)
+    if (!std::isfinite(axis[0]) || !std::isfinite(axis[1]) || !(axis[0] < axis[1])) return false;
+  return true;
+}
+
 void check_camera(MapReader& r, CameraConfig& c) {
   const bool manual_keys = r.has("eye") || r.has("target");
   if (!r.has("auto")) c.automatic = !manual_keys;
@@ -42,13 +49,16 @@ void check_camera(MapReader& r, CameraConfig& c) {
                "automatic framing (auto: true) chooses the eye and target itself; remove it or "
                "set auto: false");
     }
+    if (!c.bounds.empty() && !valid_bounds(c.bounds))
+      ch.error(r.find("bounds"), r.path("bounds"),
+               "must be three [low, high] pairs of finite numbers, low < high (x, y, z)");
     if (length(c.direction) == 0)
       ch.error(r.find("direction"), r.path("direction"), "must not be zero");
     else if (length(c.up) > 0 && parallel(c.direction, c.up))
       ch.error(r.find("direction"), r.path("direction"), "must not be parallel to camera.up");
     return;
   }
-  for (const char* key : {"direction", "margin", "framing"})
+  for (const char* key : {"direction", "margin", "framing", "bounds"})
     if (r.has(key))
       ch.error(r.find(key), r.path(key),
                "is for automatic framing; a camera with eye and target looks at the target");
@@ -313,7 +323,12 @@ const Section<CameraConfig>& camera_section() {
        schema::choice("framing", &C::framing, kFramingNames,
                       "automatic only: the box is the union over all render steps so far (the "
                       "camera only backs away: a steady video), each step's own, or the first "
-                      "step's")
+                      "step's; particles far from the fluid's bulk (under 1 % of the surface "
+                      "shell, 8 diameters or more away) are left out of it, with a warning")
+           .only_when(automatic),
+       schema::pairs("bounds", &C::bounds,
+                     "automatic only: [[x0, x1], [y0, y1], [z0, z1]], a box to frame instead of "
+                     "the fluid's (a domain you know), every step")
            .only_when(automatic)},
       check_camera};
   return s;

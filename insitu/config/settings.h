@@ -118,6 +118,8 @@ struct CameraConfig {
   Vec3d direction{-1, 2, -0.8};
   double margin = 1.05;
   Framing framing = Framing::grow;
+  // Automatic framing of this box instead of the fluid's: [[x0, x1], [y0, y1], [z0, z1]].
+  std::vector<std::array<double, 2>> bounds;
   bool operator==(const CameraConfig&) const = default;
 };
 const schema::Section<CameraConfig>& camera_section();

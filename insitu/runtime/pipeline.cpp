@@ -62,7 +62,14 @@ struct ViewState {
   std::unique_ptr<View> view;
   ViewFraming framing;
   ViewProducts products;
+  bool jump_told = false;  // the framing's jump is said once
 };
+
+std::string point(const std::array<double, 3>& p) {
+  std::ostringstream s;
+  s << "(" << p[0] << ", " << p[1] << ", " << p[2] << ")";
+  return s.str();
+}
 
 struct OutputState {
   const OutputKind* kind;
@@ -182,6 +189,12 @@ struct InsituPipeline::Impl {
       recorder->record_into(stats);
       try {
         const Camera camera = v.framing.update(step_box);
+        if (v.framing.jumped() && !v.jump_told && reports_here()) {
+          v.jump_told = true;
+          log_warning("view ", v.name, ": the automatic framing jumped (the fluid's box now ",
+                      point(v.framing.box().lo), " to ", point(v.framing.box().hi),
+                      ", over 4 times its size before); said once");
+        }
         const bool shown =
             v.view->render({data, camera, v.framing.box(), needs}, *recorder, v.products);
         recorder->collect();
@@ -239,14 +252,50 @@ struct InsituPipeline::Impl {
     combine_rank_records(*comm, sent, record);
   }
 
-  // This step's box of the boundary spheres, over every rank.
+  bool reports_here() const { return comm == nullptr || comm->root(); }
+
+  // This step's box of the boundary spheres over every rank, without those far from the bulk
+  // (BulkBox), which are said.
   Bounds global_box(std::span<const ParticleSphere> boundary) {
-    Bounds box = Bounds::of_spheres(boundary);
-    if (comm == nullptr) return box;
-    comm->min(box.lo);
-    comm->max(box.hi);
-    return box;
+    BulkBox::Range range = BulkBox::range(boundary);
+    if (comm != nullptr) {
+      comm->min(range.centres.lo);
+      comm->max(range.centres.hi);
+      comm->sum(range.count_and_radii);
+    }
+    BulkBox::histogram(boundary, range, bulk_scratch, bulk_bins);
+    if (comm != nullptr) comm->sum(bulk_bins);
+    BulkBox::Split split = BulkBox::split(boundary, BulkBox::kept(range, bulk_bins));
+    if (comm != nullptr) {
+      comm->min(split.box.lo);
+      comm->max(split.box.hi);
+      comm->min(split.left_out_box.lo);
+      comm->max(split.left_out_box.hi);
+      comm->sum(std::span(&split.left_out, 1));
+    }
+    tell_strays(split);
+    return split.box;
   }
+
+  // A warning when particles are first left out of the automatic framing, and again when
+  // their number has doubled since (escaping particles must not flood the log).
+  void tell_strays(const BulkBox::Split& split) {
+    if (split.left_out == 0) {
+      strays_told = 0;
+      return;
+    }
+    if (strays_told > 0 && split.left_out < 2 * strays_told) return;
+    strays_told = split.left_out;
+    if (!reports_here()) return;
+    log_warning("automatic framing leaves out ", split.left_out,
+                split.left_out == 1 ? " particle" : " particles",
+                " far from the fluid (centres from ", point(split.left_out_box.lo), " to ",
+                point(split.left_out_box.hi), "); it frames ", point(split.box.lo), " to ",
+                point(split.box.hi), " (camera.bounds frames a box of your own)");
+  }
+
+  std::vector<std::int64_t> bulk_scratch, bulk_bins;
+  std::int64_t strays_told = 0;
 };
 
 const OutputTally& PipelineTotals::output(std::string_view kind) const {

@@ -1,7 +1,8 @@
 #include "insitu/views/view_framing.h"
 
-#include <tbb/parallel_reduce.h>
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
@@ -47,6 +48,148 @@ Bounds Bounds::of_spheres(std::span<const ParticleSphere> spheres) {
       });
 }
 
+namespace {
+
+bool valid(const ParticleSphere& s) {
+  return std::isfinite(s.x) && std::isfinite(s.y) && std::isfinite(s.z) &&
+         std::isfinite(s.radius) && s.radius > 0;
+}
+
+// The bin of coordinate c on an axis of `bins` bins from lo, each `width` wide (0: one bin).
+std::size_t bin_of(double c, double lo, double width, int bins) {
+  if (!(width > 0)) return 0;
+  const double t = std::floor((c - lo) / width);
+  return std::size_t(std::clamp(t, 0.0, double(bins - 1)));
+}
+
+}  // namespace
+
+BulkBox::Range BulkBox::range(std::span<const ParticleSphere> spheres) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, spheres.size(), 16384), Range{},
+      [&](const tbb::blocked_range<std::size_t>& r, Range out) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          const ParticleSphere& s = spheres[i];
+          if (!valid(s)) continue;
+          const double c[3] = {s.x, s.y, s.z};
+          for (std::size_t a = 0; a < 3; ++a) {
+            out.centres.lo[a] = std::min(out.centres.lo[a], c[a]);
+            out.centres.hi[a] = std::max(out.centres.hi[a], c[a]);
+          }
+          out.count_and_radii[0] += 1;
+          out.count_and_radii[1] += s.radius;
+        }
+        return out;
+      },
+      [](Range a, const Range& b) {
+        a.centres.add(b.centres);
+        a.count_and_radii[0] += b.count_and_radii[0];
+        a.count_and_radii[1] += b.count_and_radii[1];
+        return a;
+      });
+}
+
+void BulkBox::histogram(std::span<const ParticleSphere> spheres, const Range& range,
+                        std::vector<std::int64_t>& scratch, std::vector<std::int64_t>& bins) {
+  constexpr std::size_t kAxisBins = std::size_t(kBulkBins), kAll = 3 * kAxisBins;
+  scratch.assign(kBulkChunks * kAll, 0);
+  bins.assign(kAll, 0);
+  if (range.centres.empty()) return;
+  double width[3];
+  for (std::size_t a = 0; a < 3; ++a)
+    width[a] = (range.centres.hi[a] - range.centres.lo[a]) / kBulkBins;
+  const std::size_t per_chunk = (spheres.size() + kBulkChunks - 1) / kBulkChunks;
+  tbb::parallel_for(std::size_t(0), kBulkChunks, [&](std::size_t chunk) {
+    std::int64_t* own = scratch.data() + chunk * kAll;
+    const std::size_t end = std::min(spheres.size(), (chunk + 1) * per_chunk);
+    for (std::size_t i = chunk * per_chunk; i < end; ++i) {
+      const ParticleSphere& s = spheres[i];
+      if (!valid(s)) continue;
+      const double c[3] = {s.x, s.y, s.z};
+      for (std::size_t a = 0; a < 3; ++a)
+        ++own[a * kAxisBins + bin_of(c[a], range.centres.lo[a], width[a], kBulkBins)];
+    }
+  });
+  for (std::size_t chunk = 0; chunk < kBulkChunks; ++chunk)
+    for (std::size_t k = 0; k < kAll; ++k) bins[k] += scratch[chunk * kAll + k];
+}
+
+Bounds BulkBox::kept(const Range& range, std::span<const std::int64_t> bins) {
+  Bounds out = range.centres;
+  const double count = range.count_and_radii[0];
+  if (range.centres.empty() || count <= 0) return out;
+  const double diameter = 2 * range.count_and_radii[1] / count;
+  const double least = kStrayShare * count;  // a body with fewer spheres is strays
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double lo = range.centres.lo[a], width = (range.centres.hi[a] - lo) / kBulkBins;
+    if (!(width > 0)) continue;
+    const double gap_bins = std::ceil(kBulkGapDiameters * diameter / width);
+    const std::int64_t gap = gap_bins > kBulkBins ? kBulkBins + 1 : std::int64_t(gap_bins);
+    const std::span<const std::int64_t> axis = bins.subspan(a * kBulkBins, kBulkBins);
+    // Walk the bodies (runs of nonempty bins with gaps under `gap`); keep from the first one
+    // that is not strays to the last.
+    int first_kept = -1, last_kept = -1, start = -1, last = -1;
+    std::int64_t held = 0;
+    auto close = [&] {
+      if (start >= 0 && double(held) >= least) {
+        if (first_kept < 0) first_kept = start;
+        last_kept = last;
+      }
+    };
+    for (int k = 0; k < kBulkBins; ++k) {
+      if (axis[std::size_t(k)] == 0) continue;
+      if (start < 0 || k - last > gap) {
+        close();
+        start = k;
+        held = 0;
+      }
+      held += axis[std::size_t(k)];
+      last = k;
+    }
+    close();
+    if (first_kept < 0) continue;  // no body holds enough: keep everything
+    if (first_kept > 0) out.lo[a] = lo + first_kept * width;
+    if (last_kept < kBulkBins - 1) out.hi[a] = lo + (last_kept + 1) * width;
+  }
+  return out;
+}
+
+BulkBox::Split BulkBox::split(std::span<const ParticleSphere> spheres, const Bounds& kept) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, spheres.size(), 16384), Split{},
+      [&](const tbb::blocked_range<std::size_t>& r, Split out) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          const ParticleSphere& s = spheres[i];
+          if (!valid(s)) continue;
+          const double c[3] = {s.x, s.y, s.z};
+          bool inside = true;
+          for (std::size_t a = 0; a < 3; ++a)
+            inside = inside && c[a] >= kept.lo[a] && c[a] <= kept.hi[a];
+          Bounds& to = inside ? out.box : out.left_out_box;
+          const double r_add = inside ? double(s.radius) : 0.0;
+          for (std::size_t a = 0; a < 3; ++a) {
+            to.lo[a] = std::min(to.lo[a], c[a] - r_add);
+            to.hi[a] = std::max(to.hi[a], c[a] + r_add);
+          }
+          out.left_out += inside ? 0 : 1;
+        }
+        return out;
+      },
+      [](Split a, const Split& b) {
+        a.box.add(b.box);
+        a.left_out_box.add(b.left_out_box);
+        a.left_out += b.left_out;
+        return a;
+      });
+}
+
+BulkBox::Split bulk_box(std::span<const ParticleSphere> spheres) {
+  const BulkBox::Range range = BulkBox::range(spheres);
+  std::vector<std::int64_t> scratch, bins;
+  BulkBox::histogram(spheres, range, scratch, bins);
+  return BulkBox::split(spheres, BulkBox::kept(range, bins));
+}
+
 Camera frame_camera(const ViewSettings& view, const Bounds& box) {
   return frame_camera(view.camera, view.width, view.height, box);
 }
@@ -85,8 +228,9 @@ Camera frame_camera(const CameraConfig& c, int width, int height, const Bounds& 
     dist = std::max(dist, std::abs(glm::dot(p, right)) / tan_x - depth_offset);
     dist = std::max(dist, std::abs(glm::dot(p, up)) / tan_y - depth_offset);
   }
-  // A box of zero size (one particle of radius 0 never gets here) still needs a distance.
-  dist = std::max(dist, 1e-6 * std::max(1.0, glm::length(centre)));
+  // A box of zero size (one particle of radius 0 never gets here) still needs a distance; no
+  // floor otherwise, in world units or relative to the origin: a 2e-9 m block was a dot.
+  if (!(dist > 0)) dist = 1e-6 * std::max(1.0, glm::length(centre));
   camera.target = centre;
   camera.eye = centre - dist * forward;
   return camera;
@@ -96,13 +240,27 @@ Camera ViewFraming::update(std::span<const ParticleSphere> boundary) {
   return update(Bounds::of_spheres(boundary));
 }
 
+namespace {
+
+double largest_side(const Bounds& b) {
+  return b.empty() ? 0 : std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
+}
+
+}  // namespace
+
 Camera ViewFraming::update(const Bounds& now) {
-  // A manual camera keeps the box too: the environment's ground lies under it.
-  const Framing framing = camera_.framing;
-  if (framing != Framing::first || box_.empty()) {
-    if (framing == Framing::grow) box_.add(now);
+  const double before = largest_side(box_);
+  if (!camera_.bounds.empty()) {  // the user's box, whatever the fluid does
+    for (std::size_t a = 0; a < 3; ++a) {
+      box_.lo[a] = camera_.bounds[a][0];
+      box_.hi[a] = camera_.bounds[a][1];
+    }
+  } else if (camera_.framing != Framing::first || box_.empty()) {
+    // A manual camera keeps the box too: the environment's ground lies under it.
+    if (camera_.framing == Framing::grow) box_.add(now);
     else if (!now.empty()) box_ = now;
   }
+  jumped_ = camera_.automatic && before > 0 && largest_side(box_) > 4 * before;
   return frame_camera(camera_, width_, height_, box_);
 }
 

@@ -3,7 +3,8 @@
 //
 // Automatic framing looks along the configured direction at the box of the boundary
 // particles' spheres (they enclose the fluid: every cell next to air or a surface is a
-// boundary cell), from the nearest distance at which all eight corners of the box, moved out
+// boundary cell) without those far from the bulk (BulkBox), or at the configured `bounds`,
+// from the nearest distance at which all eight corners of the box, moved out
 // from its centre by `margin`, lie inside the view pyramid. Which box follows the fluid is the
 // view's `framing`: grown over every render step so far (default; the camera only backs away,
 // so a video of the run does not jitter), refitted on each step, or kept from the first step.
@@ -11,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -31,6 +33,45 @@ struct Bounds {
   // The box of the spheres (centre +- radius); NaN/inf positions and radii <= 0 are skipped.
   static Bounds of_spheres(std::span<const ParticleSphere> spheres);
 };
+
+// The box automatic framing looks at: the fluid's bulk, without the spheres far from it (a
+// solver's escaped particles: one at 2 m from a 0.2 m block made every frame a dot). Per axis,
+// the spheres' centres are binned over their range (kBulkBins bins); nonempty bins closer than
+// kBulkGapDiameters mean diameters are one body of fluid; bodies at either end that hold under
+// kStrayShare of the spheres are left out and counted, all the others framed. Four phases, so
+// that an MPI job reduces between them (insitu/runtime/pipeline.cpp): the ranks' ranges
+// (min/max), their histograms (sum), then the box (min/max) and what it left out (sum).
+struct BulkBox {
+  static constexpr int kBulkBins = 4096;
+  static constexpr double kBulkGapDiameters = 8;
+  static constexpr double kStrayShare = 0.01;
+
+  // 1. The centres' range (lo/hi: reduce by min/max), how many spheres and their radii's sum
+  // (reduce by sum).
+  struct Range {
+    Bounds centres;
+    std::array<double, 2> count_and_radii{0, 0};
+  };
+  static Range range(std::span<const ParticleSphere> spheres);
+  // 2. Per axis kBulkBins counts of centres over the range (reduce by sum), axis-major; each
+  // of kBulkChunks chunks of the spheres counts into its own part of `scratch` (kept by the
+  // caller: nothing allocated once sized).
+  static constexpr std::size_t kBulkChunks = 16;
+  static void histogram(std::span<const ParticleSphere> spheres, const Range& range,
+                        std::vector<std::int64_t>& scratch, std::vector<std::int64_t>& bins);
+  // 3. The centres kept, per axis, from the summed histogram.
+  static Bounds kept(const Range& range, std::span<const std::int64_t> bins);
+  // 4. The box of the kept spheres (centre +- radius; reduce by min/max), and the centres of
+  // those left out: their box (min/max) and count (sum).
+  struct Split {
+    Bounds box, left_out_box;
+    std::int64_t left_out = 0;
+  };
+  static Split split(std::span<const ParticleSphere> spheres, const Bounds& kept);
+};
+
+// The four phases on one process.
+BulkBox::Split bulk_box(std::span<const ParticleSphere> spheres);
 
 // The camera that frames `box` as the view says (automatic framing), or the manual camera.
 // An empty box (no particle yet) gives a camera that looks at the origin from 1 unit away.
@@ -57,11 +98,15 @@ class ViewFraming {
   // The fluid's box as the framing follows it (the grown box under `grow`), kept for manual
   // cameras too (the ground plane of the environment goes under it).
   const Bounds& box() const { return box_; }
+  // Whether the last update grew the box's largest side over 4 times (a far particle joined
+  // the fluid's bulk, or the fluid really spread): the views say so.
+  bool jumped() const { return jumped_; }
 
  private:
   CameraConfig camera_;
   int width_, height_;
   Bounds box_;
+  bool jumped_ = false;
 };
 
 }  // namespace voxspan

@@ -1,5 +1,6 @@
 #include "render/gl/cell_state_texture.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -24,11 +25,21 @@ void CellStateTexture::upload(const CellStatesView& cells) {
   GLint max_side = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max_side);
   const glm::ivec3 dims(cells.dims[0], cells.dims[1], cells.dims[2]);
-  for (int a = 0; a < 3; ++a)
-    if (dims[a] < 1 || dims[a] > max_side)
-      throw make_error("cell states: grid of ", dims.x, "x", dims.y, "x", dims.z,
-                       " cells has a side outside 1..", max_side,
-                       " (the GL's 3D texture limit); coarsen the grid passed to the renderer");
+  for (int a = 0; a < 3; ++a) {
+    if (dims[a] >= 1 && dims[a] <= max_side) continue;
+    // Without an inner full cell, every particle was voxelized and the states only skip
+    // empty space: the grid an adapter builds over a far stray particle (1e6 x 1 x 1 cells).
+    const std::size_t count = std::size_t(std::max(dims.x, 0)) * std::size_t(std::max(dims.y, 0)) *
+                              std::size_t(std::max(dims.z, 0));
+    if (std::none_of(cells.states, cells.states + count,
+                     [](std::uint8_t c) { return c == cell::kInnerFull; })) {
+      on_ = false;
+      return;
+    }
+    throw make_error("cell states: grid of ", dims.x, "x", dims.y, "x", dims.z,
+                     " cells has a side outside 1..", max_side,
+                     " (the GL's 3D texture limit); coarsen the grid passed to the renderer");
+  }
   if (texture_.id() == 0 || texture_.size() != dims) texture_ = gl::Texture3D(GL_R8UI, dims);
   texture_.upload(GL_RED_INTEGER, GL_UNSIGNED_BYTE, cells.states);
   gl::check_error("uploading cell states");

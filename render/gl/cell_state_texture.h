@@ -13,7 +13,9 @@ class CellStateTexture {
  public:
   CellStateTexture();
   // Uploads the states (throws voxspan::Error naming the limit when a side exceeds the GL's
-  // 3D texture size); an empty view switches the cells off.
+  // 3D texture size and a cell is inner and full; with none, the cells go off: they would
+  // skip only empty space);
+  // an empty view switches the cells off.
   void upload(const CellStatesView& cells);
   bool on() const { return on_; }
   // Binds the texture to its unit (render/gl/bindings.h) and sets u_cells_*.

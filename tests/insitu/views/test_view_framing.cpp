@@ -1,5 +1,6 @@
 // Automatic framing: the fluid's box just fits the view (every corner inside the pyramid, one
-// on its edge), and the box follows the fluid as the view's `framing` says.
+// on its edge), the box follows the fluid as the view's `framing` says, leaves out far strays
+// (BulkBox), or is the user's `bounds`.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -99,6 +100,51 @@ TEST(ViewFraming, ManualCameraIsAsGivenAndStillTracksTheBox) {
   EXPECT_EQ(c.fov_y_degrees, 30);
   EXPECT_EQ(c.width, 320);
   EXPECT_NEAR(framing.box().lo[2], -0.01, 1e-6);  // the ground goes under the fluid
+}
+
+// The bulk's box leaves out a body of under 1 % of the spheres 8 diameters or more away, at
+// either end and on any axis; keeps two large bodies far apart (a splash that landed), and a
+// small one that is close (a droplet just off the surface).
+TEST(BulkBox, LeavesOutOnlySmallFarBodies) {
+  const std::vector<ParticleSphere> main = block(0, 1, 0.5);  // 21 x 6 x 11 spheres
+  const auto with = [&](std::vector<ParticleSphere> extra) {
+    std::vector<ParticleSphere> all = main;
+    all.insert(all.end(), extra.begin(), extra.end());
+    return bulk_box(all);
+  };
+  const BulkBox::Split alone = bulk_box(main);
+  EXPECT_EQ(alone.left_out, 0);
+  for (const ParticleSphere far :
+       {ParticleSphere{5, 0.1f, 0.1f, 0.01f}, ParticleSphere{0.5f, 0.1f, -3, 0.01f},
+        ParticleSphere{0.5f, 1e20f, 0.2f, 0.01f}}) {
+    const BulkBox::Split s = with({far, far});
+    EXPECT_EQ(s.left_out, 2);
+    EXPECT_EQ(s.box.lo, alone.box.lo);
+    EXPECT_EQ(s.box.hi, alone.box.hi);
+    EXPECT_EQ(s.left_out_box.lo[0], double(far.x));
+  }
+  // A second block as large, 3 m away: both framed.
+  std::vector<ParticleSphere> second = block(4, 5, 0.5);
+  const BulkBox::Split both = with(second);
+  EXPECT_EQ(both.left_out, 0);
+  EXPECT_NEAR(both.box.hi[0], 5.01, 1e-6);
+  // A droplet 3 diameters off the top: part of the fluid.
+  const BulkBox::Split droplet = with({{0.5f, 0.1f, 0.56f, 0.01f}});
+  EXPECT_EQ(droplet.left_out, 0);
+  EXPECT_NEAR(droplet.box.hi[2], 0.57, 1e-6);
+}
+
+// camera.bounds frames the user's box whatever the fluid does.
+TEST(ViewFraming, FixedBoundsAreFramedWhateverTheFluid) {
+  SurfaceSettings v = view_looking({-1, 2, -0.8});
+  v.camera.bounds = {{{0, 3}}, {{0, 1}}, {{0, 0.5}}};
+  ViewFraming framing(v);
+  const Camera a = framing.update(block(0, 0.2, 0.2));
+  const Camera b = framing.update(block(0, 1, 0.5));
+  EXPECT_EQ(a.eye, b.eye);
+  EXPECT_EQ(framing.box().hi[0], 3);
+  EXPECT_NEAR(fill(a, framing.box(), v.camera.margin), 1.0, 1e-9);
+  EXPECT_FALSE(framing.jumped());
 }
 
 }  // namespace
