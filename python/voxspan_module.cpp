@@ -63,6 +63,9 @@ ScalarType float_type(const py::array& a, const std::string& argument) {
 std::size_t viewable_stride(const py::array& a, py::ssize_t stride, py::ssize_t length,
                             const std::string& argument) {
   const auto item = std::size_t(a.itemsize());
+  // An empty array is never read through its strides, and numpy gives it zero strides on every
+  // axis (zeros((0, 3)) has strides (0, 0)): a rank with no particles is zero rows, not an error.
+  if (a.size() == 0) return item;
   if (length > 1 && stride <= 0)
     throw py::value_error(argument +
                           " has a negative or zero stride, which cannot be viewed; pass "

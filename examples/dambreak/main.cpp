@@ -231,7 +231,7 @@ int run(const Options& o) {
       if (root)
         std::printf(
             "step %6ld  t %.4f s  T %.3f  dt %.3g s  front x/a %.3f  max|drho|/rho0 %.2f%%  "
-            "%.3g particles/s  boundary %zu of %zu%s  in situ %.1f s (%lld render steps)\n",
+            "%.3g particles/s  surface shell %zu of %zu%s  in situ %.1f s (%lld render steps)\n",
             step, sim.time(), sim.nondimensional_time(), sim.dt(), d.front / o.config.column_width,
             100 * d.max_density_error, double(d.fluid) * double(step - last_step) / wall,
             st.counts.boundary, st.counts.particles, domain ? " on rank 0" : "", adapter_seconds,

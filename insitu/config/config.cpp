@@ -93,7 +93,10 @@ const Section<RendererConfig>& renderer_section() {
                                "node-local rank's, modulo the devices (the first alone)"),
        schema::choice("composite", &R::composite, kCompositeSchemeNames,
                       "in an MPI job, how the ranks merge their span images: bands merged by "
-                      "every rank (`direct_send`) or all on rank 0 (`root`); docs/design.md")}};
+                      "every rank (`direct_send`) or all on rank 0 (`root`); docs/design.md"),
+       schema::number_or_auto("host_memory_mib", &R::host_memory_mib, schema::above(0),
+                              "host memory the views may take, checked at start-up from their "
+                              "sizes (about 96 bytes a pixel); `auto` = half of this machine's")}};
   return s;
 }
 
@@ -193,7 +196,10 @@ void read_output(MapReader& outs, const OutputConfigKind& kind, const TriggerSpe
   const YAML::Node node = outs.find(name);
   if (out.follows_render_trigger) out.trigger = render_trigger;
   kind.read(outs.checker(), node, outs.path(name), out);
-  if (out.enabled && out.trigger.never_fires()) {
+  // An output on the render trigger that never fires is the top-level trigger's fault: said
+  // there, once (read_outputs), not here for every output that follows it.
+  const bool own_trigger = node.IsMap() && node["trigger"];
+  if (out.enabled && out.trigger.never_fires() && (own_trigger || !out.follows_render_trigger)) {
     const YAML::Node trigger = node.IsMap() && node["trigger"] ? node["trigger"] : node;
     outs.checker().error(trigger, outs.path(name) + ".trigger",
                          "never fires while the output is enabled: set every_steps, "
@@ -209,6 +215,13 @@ void read_outputs(MapReader& top, Config& c, const std::vector<OutputConfigKind>
   MapReader outs(top.checker(), top.find("outputs"), "outputs", names);
   for (std::size_t i = 0; i < kinds.size(); ++i)
     read_output(outs, kinds[i], c.trigger, *c.outputs[i].settings);
+  // The render trigger's own mistake (an unknown key, a bad value) is its error already.
+  if (!c.trigger.never_fires() || !top.has("trigger")) return;
+  for (const std::string& e : top.checker().errors())
+    if (e.find(": trigger.") != std::string::npos || e.find(": trigger:") != std::string::npos)
+      return;
+  top.checker().error(top.find("trigger"), "trigger",
+                      "never fires: set every_steps, every_time, first or last");
 }
 
 // ---- the top level

@@ -42,6 +42,9 @@ struct RendererConfig {
   // The GPU (EGL device) of this process; nullopt: the node-local MPI rank's, modulo devices.
   std::optional<std::int64_t> gpu_device;
   CompositeScheme composite = CompositeScheme::direct_send;
+  // Host memory the views may take, checked at start-up by estimate; nullopt: half of the
+  // machine's.
+  std::optional<double> host_memory_mib;
   bool operator==(const RendererConfig&) const = default;
 };
 

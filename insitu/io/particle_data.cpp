@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <system_error>
 
 #include "voxspan/error.h"
 
@@ -35,6 +36,16 @@ bool is_radius_name(std::string_view name) {
   return lower == "radius" || lower == "radii" || lower == "r";
 }
 
+void require_particle_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  const std::filesystem::file_status s = std::filesystem::status(path, ec);
+  if (s.type() == std::filesystem::file_type::not_found)
+    throw make_error("cannot read particles from ", path.string(), ": no such file");
+  if (ec) throw make_error("cannot read particles from ", path.string(), ": ", ec.message());
+  if (s.type() == std::filesystem::file_type::directory)
+    throw make_error("cannot read particles from ", path.string(), ": a directory, not a file");
+}
+
 void adopt_radius_attribute(ParticleData& data) {
   auto it = std::find_if(data.attributes.begin(), data.attributes.end(),
                          [](const auto& a) { return a.components == 1 && is_radius_name(a.name); });
@@ -47,12 +58,22 @@ ParticleData read_particles(const std::filesystem::path& path, const ParticleRea
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext == ".vtp" || ext == ".vtu") return read_vtk_particles(path);
-  if (ext == ".csv") return read_csv_particles(path);
-  if (ext == ".xyz") return read_xyz_particles(path);
   if (ext == ".hdf5" || ext == ".h5") return read_pysph_hdf5(path, options);
-  throw make_error("cannot read particles from ", path.string(), ": unknown extension \"", ext,
-                   "\" (known: .vtp .vtu .csv .xyz .hdf5 .h5)");
+  const bool vtk = ext == ".vtp" || ext == ".vtu";
+  if (!vtk && ext != ".csv" && ext != ".xyz")
+    throw make_error("cannot read particles from ", path.string(), ": unknown extension \"", ext,
+                     "\" (known: .vtp .vtu .csv .xyz .hdf5 .h5)");
+  // Named arrays would otherwise read as the whole file, silently; `all` is what it holds.
+  const bool all = options.arrays.size() == 1 && options.arrays[0] == "all";
+  if (!options.arrays.empty() && !all) {
+    std::string names;
+    for (const std::string& n : options.arrays) names += (names.empty() ? "" : ", ") + n;
+    throw make_error("cannot read particles from ", path.string(), ": particle arrays were named (",
+                     names, "), but only PySPH files (.hdf5 .h5) have named arrays; a ", ext,
+                     " file is one set of particles");
+  }
+  if (vtk) return read_vtk_particles(path);
+  return ext == ".csv" ? read_csv_particles(path) : read_xyz_particles(path);
 }
 
 }  // namespace voxspan

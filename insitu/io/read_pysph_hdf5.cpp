@@ -58,6 +58,20 @@ class QuietHdf5 {
   void* data_ = nullptr;
 };
 
+// The message of the innermost HDF5 error on this thread's stack: what went wrong, not the
+// calls that passed it up ("truncated file: eof = 1024, ... stored_eof = 6144").
+std::string innermost_hdf5_error() {
+  std::string message = "HDF5 gives no reason";
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned n, const H5E_error2_t* e, void* out) -> herr_t {
+        if (n == 0 && e->desc && *e->desc) *static_cast<std::string*>(out) = e->desc;
+        return 0;
+      },
+      &message);
+  return message;
+}
+
 std::vector<std::string> member_names(hid_t group) {
   H5G_info_t info{};
   std::vector<std::string> names;
@@ -211,10 +225,15 @@ ParticleData read_pysph_hdf5(const std::filesystem::path& path,
                              const ParticleReadOptions& options) {
   QuietHdf5 quiet;
   const std::string file = path.string();
+  require_particle_file(path);
   if (H5Fis_hdf5(path.c_str()) <= 0)
     throw make_error("cannot read particles from ", file, ": not an HDF5 file");
   Handle h5(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  if (!h5.valid()) throw make_error("cannot open ", file);
+  // The signature is there but HDF5 cannot open the file: most often a dump cut short (the
+  // solver killed while writing, a copy not finished), which HDF5 calls a "truncated file".
+  if (!h5.valid())
+    throw make_error("cannot read particles from ", file,
+                     ": the HDF5 file is truncated or corrupt (", innermost_hdf5_error(), ")");
   Handle particles(H5Gopen2(h5.get(), "particles", H5P_DEFAULT), H5Gclose);
   if (!particles.valid()) throw make_error(file, ": no /particles group (not a PySPH output file)");
 

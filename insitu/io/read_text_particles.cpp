@@ -111,6 +111,7 @@ struct Column {
 };
 
 std::ifstream open_text(const std::filesystem::path& path) {
+  require_particle_file(path);
   std::ifstream in(path);
   if (!in) throw make_error("cannot read particles from ", path.string(), ": cannot open the file");
   return in;

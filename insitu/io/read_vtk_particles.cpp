@@ -11,8 +11,6 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
-#include <system_error>
-
 #include "insitu/io/particle_data.h"
 #include "voxspan/error.h"
 
@@ -35,9 +33,7 @@ vtkSmartPointer<vtkPointSet> read_point_set(const std::filesystem::path& path) {
 }  // namespace
 
 ParticleData read_vtk_particles(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw make_error("cannot read particles from ", path.string(), ": no such file");
+  require_particle_file(path);
   vtkSmartPointer<vtkPointSet> set = path.extension() == ".vtu"
                                          ? read_point_set<vtkXMLUnstructuredGridReader>(path)
                                          : read_point_set<vtkXMLPolyDataReader>(path);

@@ -7,7 +7,7 @@ namespace voxspan {
 
 struct HostMemory {
   std::uint64_t rss_bytes = 0;   // resident now (/proc/self/statm)
-  std::uint64_t peak_bytes = 0;  // high-water mark (getrusage ru_maxrss)
+  std::uint64_t peak_bytes = 0;  // high-water mark (getrusage ru_maxrss), >= rss_bytes
 };
 
 HostMemory host_memory();

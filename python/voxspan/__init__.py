@@ -35,11 +35,13 @@ def render(x, y=None, z=None, *, config=None, output="voxspan-output", spacing=N
     float32 linear RGBA). Positions as one (n, 3) array x or as x, y, z. spacing: the rest
     spacing (default: estimated, the median nearest-neighbour distance); radius: the sphere
     radius (default: the spacing); config: a YAML file (default: every key at its default).
-    Raises voxspan.Error when the particles cannot be rendered."""
+    No particles (zero rows) give the empty pictures. Raises voxspan.Error when the particles
+    cannot be rendered."""
     if spacing is None:
         import numpy
         positions = x if y is None else numpy.stack([x, y, z], axis=1)
-        spacing = estimate_spacing(positions)
+        # With no particles nothing is drawn, so any spacing gives the same empty pictures.
+        spacing = estimate_spacing(positions) if len(positions) else 1.0
         if not spacing > 0:
             raise Error("cannot estimate the particle spacing (fewer than two distinct "
                         "particles); pass spacing=")

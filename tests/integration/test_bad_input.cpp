@@ -93,6 +93,22 @@ TEST(StartUp, UnusableGlPlatformFailsBeforeStepOne) {
   EXPECT_NE(e.find("cannot create an OpenGL context (platform nvidia"), std::string::npos) << e;
 }
 
+// A view too large for the host's memory is refused at start-up with its estimate (it used to
+// pass and die of std::bad_alloc 34 s later); the limit is a key.
+TEST(StartUp, ViewsLargerThanTheHostMemoryAreRefusedBeforeStepOne) {
+  test::TempFolder dir;
+  const std::string views = "output_folder: " + dir.path().string() +
+                            "\nviews: [{name: huge, width: 16384, height: 16384}]\n";
+  std::string e = start_error(views + "renderer: {host_memory_mib: 8192}\n");
+  EXPECT_NE(e.find("the views need about 24576 MiB of host memory (huge 16384x16384 24576 MiB"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("over the 8192 MiB they may take (renderer.host_memory_mib)"), std::string::npos)
+      << e;
+  e = start_error(views + "renderer: {host_memory_mib: 30000}\n");
+  EXPECT_EQ(e.find("host memory"), std::string::npos) << e;
+}
+
 // --- a disk that fills mid-run ----------------------------------------------------------
 
 std::map<std::string, std::string> parse_report(const std::string& text) {

@@ -130,5 +130,52 @@ TEST(RenderParticles, MissingFileAndBadOptionAreOneLineErrors) {
   EXPECT_NE(r.err.find("--spacing expects a positive number"), std::string::npos) << r.err;
 }
 
+// A missing PySPH file says so (not "not an HDF5 file"), and --arrays on a file that has no
+// arrays is an error, not a run that renders the whole file as if asked to.
+TEST(RenderParticles, ReaderErrorsSayWhichFileAndWhy) {
+  test::TempFolder dir;
+  const std::string missing = (dir / "dam_break_100.hdf5").string();
+  ToolRun r = run_tool(dir.path(), "--output " + (dir / "out").string() + " " + missing);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "render_particles: error: cannot read particles from " + missing + ": no such file\n");
+  write_block_csv(dir / "a.csv");
+  r = run_tool(dir.path(), "--arrays fluid --output " + (dir / "out").string() + " " +
+                               (dir / "a.csv").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find((dir / "a.csv").string() +
+                       ": particle arrays were named (fluid), but only PySPH files"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+// A file with no particles (an inlet's fluid before it flows in) is a step like the others: its
+// pictures are written and the run succeeds, with a warning naming the file. Leading empty
+// files leave the spacing to the first file with particles.
+TEST(RenderParticles, AFileWithNoParticlesIsRenderedWithAWarning) {
+  test::TempFolder dir;
+  std::ofstream(dir / "empty.csv") << "x,y,z\n";
+  write_block_csv(dir / "a.csv");
+  const std::filesystem::path out = dir / "out";
+  ToolRun r = run_tool(dir.path(), "--output " + out.string() + " " + (dir / "empty.csv").string() +
+                                       " " + (dir / "a.csv").string());
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_EQ(r.err, "render_particles: warning: " + (dir / "empty.csv").string() +
+                       " holds no particles; its pictures show none\n");
+  EXPECT_NE(r.out.find("particle spacing 0.01 (estimated from " + (dir / "a.csv").string()),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(test::files_in(out / "frames"),
+            (std::vector<std::string>{"main_00000000.png", "main_00000001.png"}));
+
+  // Alone, with no spacing anywhere: nothing is drawn, so the spacing does not matter.
+  std::filesystem::remove_all(out);
+  r = run_tool(dir.path(), "--output " + out.string() + " " + (dir / "empty.csv").string());
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.err.find("empty.csv holds no particles"), std::string::npos) << r.err;
+  EXPECT_EQ(test::files_in(out / "frames"), (std::vector<std::string>{"main_00000000.png"}));
+}
+
 }  // namespace
 }  // namespace voxspan

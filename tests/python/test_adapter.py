@@ -54,6 +54,21 @@ def test_the_library_reads_the_callers_buffer(block):
     assert axes == [(base + 8 * k, 24) for k in range(3)]
 
 
+def test_a_rank_with_no_particles_passes_zero_rows(config_file):
+    """An MPI rank with no particles passes empty arrays, however numpy strides them (zeros((0,
+    3)) has strides (0, 0)): a step like any other, with nothing drawn."""
+    empty = numpy.zeros((0, 3))
+    with make(config_file) as adapter:
+        assert adapter.execute(0, 0.0, empty).ok
+        assert adapter.execute(1, 0.1, numpy.empty((0, 3), numpy.float32)).ok
+        assert adapter.execute(2, 0.2, numpy.zeros(0), numpy.zeros(0), numpy.zeros(0)).ok
+        status = adapter.execute_last(3, 0.3, empty, scalars={"density": numpy.zeros(0)},
+                                      vectors={"velocity": numpy.zeros((0, 3))})
+        assert status.ok, status.message
+        assert adapter.last_stats["counts"]["particles"] == 0
+        assert adapter.steps_seen == 4
+
+
 def test_a_changed_element_changes_the_next_picture(config_file, block):
     adapter = make(config_file)
     assert adapter.execute(1, 0.1, block).ok

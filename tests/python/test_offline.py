@@ -1,4 +1,5 @@
 """Offline use: the readers and render() for arrays a notebook already has."""
+import json
 import subprocess
 
 import numpy
@@ -23,6 +24,15 @@ def test_render_estimates_the_spacing(tmp_path, block):
     given = voxspan.render(block, spacing=SPACING, output=str(tmp_path / "a"))
     estimated = voxspan.render(block[:, 0], block[:, 1], block[:, 2], output=str(tmp_path / "b"))
     assert numpy.array_equal(given["main"], estimated["main"])
+
+
+def test_no_particles_render_the_empty_pictures(tmp_path, block):
+    """Zero rows are zero particles: no spacing to estimate, a picture with no fluid in it."""
+    empty = voxspan.render(numpy.zeros((0, 3)), output=str(tmp_path / "empty"))["main"]
+    water = voxspan.render(block, output=str(tmp_path / "water"))["main"]
+    assert empty.shape == water.shape
+    stats = json.loads((tmp_path / "empty" / "stats.jsonl").read_text().splitlines()[0])
+    assert stats["counters"]["particles"] == 0
 
 
 def test_read_particles_round_trip(tmp_path, block):

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "sph.h"
+#include "tools/common/usage.h"
 #include "voxspan/classify.h"
 
 namespace {
@@ -86,6 +87,10 @@ void print_phases(const char* layout, const Timing& t) {
   std::printf(" ms\n");
 }
 
+constexpr char kUsage[] =
+    "usage: bench_classify [--particles N[,N...]] [--steps S] [--repeats R] [--threads P] "
+    "[--until T]\n";
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -95,17 +100,13 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const char* v = i + 1 < argc ? argv[i + 1] : nullptr;
+    if (a == "--help" || a == "-h") return voxspan::tools::print_usage(stdout, kUsage);
     if (a == "--particles" && v) sizes = parse_sizes(argv[++i]);
     else if (a == "--steps" && v) steps = std::max(1, std::atoi(argv[++i]));
     else if (a == "--repeats" && v) repeats = std::max(1, std::atoi(argv[++i]));
     else if (a == "--threads" && v) threads = std::max(1, std::atoi(argv[++i]));
     else if (a == "--until" && v) until = std::atof(argv[++i]);
-    else {
-      std::fprintf(stderr,
-                   "usage: bench_classify [--particles N[,N...]] [--steps S] "
-                   "[--repeats R] [--threads P] [--until T]\n");
-      return 2;
-    }
+    else return voxspan::tools::print_usage(stderr, kUsage);
   }
   std::unique_ptr<tbb::global_control> limit;
   if (threads > 0)

@@ -32,6 +32,7 @@
 #include "insitu/runtime/pipeline.h"
 #include "insitu/views/surface_view.h"
 #include "sph.h"
+#include "tools/common/usage.h"
 #include "voxspan/adapter.h"
 #include "voxspan/error.h"
 
@@ -171,6 +172,11 @@ void report(const char* name, const RunFigures& f, const RunFigures& alone, long
   (void)steps;
 }
 
+constexpr char kUsage[] =
+    "usage: bench_insitu [--config FILE] [--particles N] [--tank-length L] [--start T]\n"
+    "                    [--steps S] [--render-every K] [--vdb-every V] [--non-render-steps M]\n"
+    "                    [--skip-runs] [--size WxH] [--view NAME]...\n";
+
 bool parse(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -181,7 +187,8 @@ bool parse(int argc, char** argv, Options& o) {
       }
       return argv[++i];
     };
-    if (a == "--config") o.config = value();
+    if (a == "--help" || a == "-h") std::exit(voxspan::tools::print_usage(stdout, kUsage));
+    else if (a == "--config") o.config = value();
     else if (a == "--particles") o.particles = std::size_t(std::atof(value()));
     else if (a == "--steps") o.steps = std::atol(value());
     else if (a == "--tank-length") o.tank_length = std::atof(value());
@@ -208,7 +215,7 @@ bool parse(int argc, char** argv, Options& o) {
 
 int main(int argc, char** argv) {
   Options o;
-  if (!parse(argc, argv, o)) return 2;
+  if (!parse(argc, argv, o)) return voxspan::tools::print_usage(stderr, kUsage);
   try {
     voxspan::Config config = voxspan::load_config_file(o.config);
     config.log_level = "warning";

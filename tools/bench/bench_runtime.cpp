@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <atomic>
-#include <iostream>
 #include <random>
 #include <string>
 #include <thread>
@@ -24,6 +23,7 @@
 #include "insitu/outputs/writer/background_writer.h"
 #include "insitu/runtime/config_file.h"
 #include "insitu/runtime/schedule.h"
+#include "tools/common/usage.h"
 #include "tools/scenes/lattice.h"
 
 namespace {
@@ -156,16 +156,17 @@ int main(int argc, char** argv) {
   bool keep = false;  // 46^3 = 97 336 particles, about the main job's count
   std::filesystem::path folder =
       std::filesystem::temp_directory_path() / numbered("voxspan-bench-", int(::getpid()), "");
-  for (int i = 1; i + 1 < argc; i += 2) {
+  constexpr char kUsage[] =
+      "usage: bench_runtime [--steps N] [--folder DIR] [--block N] [--keep 1]\n";
+  for (int i = 1; i < argc; i += 2) {
     std::string a = argv[i];
+    if (a == "--help" || a == "-h") return voxspan::tools::print_usage(stdout, kUsage);
+    if (i + 1 >= argc) return voxspan::tools::print_usage(stderr, kUsage);  // a flag alone
     if (a == "--steps") steps = std::stoll(argv[i + 1]);
     else if (a == "--folder") folder = argv[i + 1];
     else if (a == "--block") block = std::stoi(argv[i + 1]);
     else if (a == "--keep") keep = std::stoi(argv[i + 1]) != 0;
-    else {
-      std::cerr << "usage: bench_runtime [--steps N] [--folder DIR] [--block N] [--keep 1]\n";
-      return 1;
-    }
+    else return voxspan::tools::print_usage(stderr, kUsage);
   }
   std::filesystem::create_directories(folder);
   bench_schedule(steps);

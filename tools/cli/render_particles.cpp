@@ -14,12 +14,13 @@
 // the particles near its part as ghosts; the ranks' span images are composited exactly and
 // rank 0 writes the same pictures one process would.
 // --spacing: the particles' rest spacing (else the config's classification.particle_spacing,
-// else the first file's own: PySPH's mass and density, else estimated from its positions: the
-// median nearest-neighbour distance). --radius: the sphere radius where a file has none
-// (default: the spacing). --arrays: PySPH particle arrays to read, or `all` (default: the
-// fluid's, picked by name or motion and printed: insitu/io/read_pysph_hdf5.cpp). Exit status 0 when
-// every file was read and rendered, 1 otherwise, 2 on bad arguments; each failure is one line on
-// stderr naming the file.
+// else that of the first file with particles: PySPH's mass and density, else estimated from its
+// positions: the median nearest-neighbour distance). --radius: the sphere radius where a file
+// has none (default: the spacing). --arrays: PySPH particle arrays to read, or `all` (default:
+// the fluid's, picked by name or motion and printed: insitu/io/read_pysph_hdf5.cpp); an error
+// on the other formats, which have no arrays. Exit status 0 when every file was read and
+// rendered, 1 otherwise, 2 on bad arguments; each failure is one line on stderr naming the
+// file. A file with no particles is rendered (no fluid in its pictures) with a warning.
 #include <mpi.h>
 
 #include <cstdio>
@@ -154,6 +155,46 @@ voxspan::ParticleData part_of(const voxspan::ParticleData& d, const Options& o, 
   return p;
 }
 
+// The particles' rest spacing: --spacing, else the config's, else from the first file that
+// holds particles (PySPH's mass and density, else estimated from the positions). The files
+// before it hold none, and where no file holds any nothing is drawn: any spacing will do.
+double spacing_of(const Options& o, const voxspan::Config& config,
+                  const voxspan::ParticleData& first, bool talk) {
+  if (o.spacing > 0) return o.spacing;
+  if (config.classification.particle_spacing.value_or(0) > 0)
+    return *config.classification.particle_spacing;
+  const voxspan::ParticleData* data = &first;
+  std::size_t file = 0;
+  voxspan::ParticleData later;
+  while (data->size() == 0 && file + 1 < o.files.size()) {
+    try {
+      later = voxspan::read_particles(o.files[++file], o.read);
+      data = &later;
+    } catch (const voxspan::Error&) {
+      // said when the file's step comes
+    }
+  }
+  if (data->size() == 0) return 1;
+  const std::string name = o.files[file].string();
+  if (data->spacing) {
+    if (talk)
+      std::printf(
+          "particle spacing %.6g (from the particles' mass and density in %s; --spacing sets "
+          "it)\n",
+          *data->spacing, name.c_str());
+    return *data->spacing;
+  }
+  const double spacing = voxspan::estimate_particle_spacing(data->positions);
+  if (!(spacing > 0))
+    throw voxspan::make_error(name,
+                              ": cannot estimate the particle spacing (fewer than two "
+                              "particles); pass --spacing");
+  if (talk)
+    std::printf("particle spacing %.6g (estimated from %s; --spacing sets it)\n", spacing,
+                name.c_str());
+  return spacing;
+}
+
 int render(const Options& o, const Ranks& ranks) {
   const bool talk = ranks.rank == 0;
   try {
@@ -161,25 +202,7 @@ int render(const Options& o, const Ranks& ranks) {
     // The first file is read before the runtime starts: it may give the spacing.
     voxspan::ParticleData first = voxspan::read_particles(o.files[0], o.read);
     if (talk && !first.chosen.empty()) std::printf("reading %s\n", first.chosen.c_str());
-    double spacing = o.spacing > 0 ? o.spacing : config.classification.particle_spacing.value_or(0);
-    if (!(spacing > 0) && first.spacing) {
-      spacing = *first.spacing;
-      if (talk)
-        std::printf(
-            "particle spacing %.6g (from the particles' mass and density; --spacing "
-            "sets it)\n",
-            spacing);
-    }
-    if (!(spacing > 0)) {
-      spacing = voxspan::estimate_particle_spacing(first.positions);
-      if (!(spacing > 0))
-        throw voxspan::make_error(o.files[0].string(),
-                                  ": cannot estimate the particle spacing "
-                                  "(fewer than two particles); pass --spacing");
-      if (talk)
-        std::printf("particle spacing %.6g (estimated from %s; --spacing sets it)\n", spacing,
-                    o.files[0].string().c_str());
-    }
+    const double spacing = spacing_of(o, config, first, talk);
     voxspan::AdapterOptions options;
     options.classify.particle_spacing = spacing;
     options.classify.radius = o.radius;
@@ -199,6 +222,12 @@ int render(const Options& o, const Ranks& ranks) {
         ++failures;
         continue;  // every rank reads the same files: they all skip it
       }
+      // Not an error (an inlet's fluid before it flows in), but a picture without fluid that
+      // looks like a bug unless said.
+      if (data.size() == 0 && talk)
+        std::fprintf(stderr,
+                     "render_particles: warning: %s holds no particles; its pictures show none\n",
+                     o.files[i].string().c_str());
       std::size_t owned = data.size();
       if (ranks.size > 1) data = part_of(data, o, ranks, spacing, owned);
       // Steps count the files: triggers need them in order, and the frames sort by them.
@@ -217,7 +246,8 @@ int render(const Options& o, const Ranks& ranks) {
       }
       if (talk)
         std::printf(
-            "%s: step %lld, %zu particles, %zu boundary, %zu left out (NaN/inf), %.2f s%s\n",
+            "%s: step %lld, %zu particles, %zu in the surface shell, %zu left out (NaN/inf), %.2f "
+            "s%s\n",
             o.files[i].string().c_str(), static_cast<long long>(step), st.counts.particles,
             st.counts.boundary, st.counts.dropped_nonfinite, st.seconds_total,
             ranks.size > 1 ? " (rank 0's part)" : "");

@@ -114,8 +114,8 @@ int run(const Args& a) {
 
   tools::DamBreakState s = tools::dam_break_state(a, a);
   const Classification& c = s.classification;
-  std::printf("%s: %zu boundary particles of %zu, %zu inner-full cells\n", s.description.c_str(),
-              c.boundary.size(), s.x.size(), c.counts.cells_inner_full);
+  std::printf("%s: %zu surface-shell particles of %zu, %zu inner-full cells\n",
+              s.description.c_str(), c.boundary.size(), s.x.size(), c.counts.cells_inner_full);
   s.camera.width = a.width;
   s.camera.height = a.height;
   RenderOptions options = picture_options(s, a.alpha);

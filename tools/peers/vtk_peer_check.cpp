@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/common/usage.h"
 #include "tools/peers/vtk_sph_surface.h"
 
 namespace {
@@ -29,9 +30,14 @@ struct Args {
   int width = 800, height = 600, runs = 5;
 };
 
+constexpr char kUsage[] =
+    "usage: vtk_peer_check [--h H] [--voxel V] [--quintic] [--iso I] [--size WxH] [--runs N]\n";
+
 bool parse(int argc, char** argv, Args& a) {
   for (int i = 1; i < argc; ++i) {
     const char* flag = argv[i];
+    if (std::strcmp(flag, "--help") == 0 || std::strcmp(flag, "-h") == 0)
+      std::exit(voxspan::tools::print_usage(stdout, kUsage));
     const char* value = i + 1 < argc ? argv[i + 1] : nullptr;
     if (std::strcmp(flag, "--quintic") == 0) {
       a.quintic = true;
@@ -160,12 +166,7 @@ int run(const Args& a) {
 
 int main(int argc, char** argv) {
   Args a;
-  if (!parse(argc, argv, a)) {
-    std::fprintf(stderr,
-                 "usage: vtk_peer_check [--h H] [--voxel V] [--quintic] [--iso I] [--size WxH] "
-                 "[--runs N]\n");
-    return 2;
-  }
+  if (!parse(argc, argv, a)) return voxspan::tools::print_usage(stderr, kUsage);
   try {
     return run(a);
   } catch (const std::exception& e) {

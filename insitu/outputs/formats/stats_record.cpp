@@ -125,6 +125,7 @@ void StatsRecord::clear() {
   totals.clear();
   for (auto& [name, section] : views) section.clear();
   memory_mib.clear();
+  error.clear();
 }
 
 void StatsRecord::zero() {
@@ -133,6 +134,7 @@ void StatsRecord::zero() {
   totals.zero();
   for (auto& entry : views) entry.second.zero();
   for (auto& entry : memory_mib) entry.second = 0;
+  error.clear();
 }
 
 std::string to_json_line(const StatsRecord& r) {
@@ -163,6 +165,10 @@ void append_json_line(const StatsRecord& r, std::string& out) {
   }
   out += '}';
   if (r.ranks.count > 1) append_ranks(out, r.ranks);
+  if (!r.error.empty()) {
+    out += ",\"error\":";
+    append_string(out, r.error);
+  }
   out += "}\n";
 }
 

@@ -26,6 +26,8 @@ struct StatsRecord {
   FrameStats totals;
   std::vector<std::pair<std::string, FrameStats>> views;
   std::vector<std::pair<std::string, double>> memory_mib;  // "host_rss", "host_peak", "gpu"...
+  // Why the step failed (a view, an output), written as "error" when not empty.
+  std::string error;
   // In an MPI job (count > 1), the root's record: the totals' and the views' timings are the
   // slowest rank's and their counters the sum over the ranks; the means and what every rank
   // sent are here. Written as "ranks":{"count":N,"bytes_sent":[...],"timings_ms_mean":{...},

@@ -26,10 +26,11 @@ const schema::Section<VtkSettings>& vtk_section() {
   using V = VtkSettings;
   static const schema::Section<V> s{
       "outputs.vtk",
-      output_keys<V>({schema::flag("particles", &V::particles, ".vtp of the boundary particles"),
-                      schema::flag("cells", &V::cells, ".vti of the cell states"),
-                      schema::names("attributes", &V::attributes,
-                                    "particle attributes written as point data")}),
+      output_keys<V>(
+          {schema::flag("particles", &V::particles, ".vtp of the surface-shell particles"),
+           schema::flag("cells", &V::cells, ".vti of the cell states"),
+           schema::names("attributes", &V::attributes,
+                         "particle attributes written as point data")}),
       check_vtk};
   return s;
 }

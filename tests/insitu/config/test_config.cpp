@@ -174,6 +174,22 @@ TEST(Config, UnknownKeyNamesThePathTheLineAndTheNearestKey) {
   EXPECT_NE(e.find("test.yaml:1:1: render_every: unknown key"), std::string::npos) << e;
 }
 
+// A mistake in the top-level trigger is one error, on its line: not also one for every output
+// that follows the render trigger (they were, without a line).
+TEST(Config, ATriggerMistakeIsOneErrorWithItsLine) {
+  std::string e = error_of("trigger:\n  evry_steps: 10\n");
+  EXPECT_NE(e.find("invalid configuration: test.yaml:2:3: trigger.evry_steps: unknown key (did "
+                   "you mean 'every_steps'?)"),
+            std::string::npos)
+      << e;
+  EXPECT_EQ(e.find("never fires"), std::string::npos) << e;
+  e = error_of("views: []\ntrigger: {first: false, last: false, every_steps: 0}\n");
+  EXPECT_NE(e.find("invalid configuration: test.yaml:2:10: trigger: never fires"),
+            std::string::npos)
+      << e;
+  EXPECT_EQ(e.find("outputs."), std::string::npos) << e;
+}
+
 TEST(Config, WrongTypesAndBadValuesNameKeyAndLine) {
   struct Case {
     const char* yaml;

@@ -64,8 +64,23 @@ TEST(CsvParticles, ErrorsNameFileAndLine) {
             std::string::npos);
   std::ofstream(dir / "d.csv") << "a,b\n1,2\n";
   EXPECT_NE(error_of(dir / "d.csv").find("no position columns"), std::string::npos);
-  EXPECT_NE(error_of(dir / "none.csv").find("cannot open"), std::string::npos);
+  EXPECT_NE(error_of(dir / "none.csv").find("none.csv: no such file"), std::string::npos);
   EXPECT_NE(error_of(dir / "x.obj").find("unknown extension \".obj\""), std::string::npos);
+}
+
+// PySPH's arrays (--arrays fluid) name parts of a PySPH file; the other formats have none, and
+// reading the whole file instead would render the walls the caller meant to leave out.
+TEST(CsvParticles, NamedArraysAreAnErrorOutsidePySphFiles) {
+  test::TempFolder dir;
+  std::ofstream(dir / "p.csv") << "x,y,z\n0,0,0\n";
+  std::ofstream(dir / "p.xyz") << "0 0 0\n";
+  EXPECT_EQ(error_of(dir / "p.csv", {{"fluid"}}),
+            "cannot read particles from " + (dir / "p.csv").string() +
+                ": particle arrays were named (fluid), but only PySPH files (.hdf5 .h5) have "
+                "named arrays; a .csv file is one set of particles");
+  EXPECT_NE(error_of(dir / "p.xyz", {{"fluid", "wall"}}).find("named (fluid, wall)"),
+            std::string::npos);
+  EXPECT_EQ(read_particles(dir / "p.csv", {{"all"}}).size(), 1u);  // all of it: what it holds
 }
 
 TEST(XyzParticles, PlainAndExtended) {
@@ -200,6 +215,25 @@ TEST(PySphParticles, SelectsArraysByName) {
       << e;
   std::ofstream(dir / "fake.h5") << "not hdf5";
   EXPECT_NE(error_of(dir / "fake.h5").find("not an HDF5 file"), std::string::npos);
+}
+
+// A missing file is not "not an HDF5 file", and a dump cut short (a solver killed while
+// writing) is not merely "cannot open": each says which file and what is wrong with it.
+TEST(PySphParticles, MissingAndTruncatedFilesSaySo) {
+  test::TempFolder dir;
+  EXPECT_EQ(error_of(dir / "missing.hdf5"),
+            "cannot read particles from " + (dir / "missing.hdf5").string() + ": no such file");
+  write_pysph_file(dir / "whole.hdf5");
+  const auto size = std::filesystem::file_size(dir / "whole.hdf5");
+  std::filesystem::copy_file(dir / "whole.hdf5", dir / "cut.hdf5");
+  std::filesystem::resize_file(dir / "cut.hdf5", size / 2);
+  const std::string e = error_of(dir / "cut.hdf5");
+  EXPECT_EQ(e.rfind("cannot read particles from " + (dir / "cut.hdf5").string() +
+                        ": the HDF5 file is truncated or corrupt (",
+                    0),
+            0u)
+      << e;
+  EXPECT_NE(e.find("truncated file"), std::string::npos) << e;  // HDF5's own reason
 }
 
 TEST(PySphParticles, WithoutNamesTheFluidIsReadAndTheSpacingComesFromMassAndDensity) {
