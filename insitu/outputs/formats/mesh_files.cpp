@@ -1,0 +1,465 @@
+// The fluid's surface mesh (see mesh_files.h): the snapshot's level set, volumeToMesh, normals
+// from the gradient, attributes from the nearest particle, PLY or OBJ. Like vdb_snapshot.cpp,
+// one translation unit holds the OpenVDB templates (they compile slowly).
+#include "insitu/outputs/formats/mesh_files.h"
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/ChangeBackground.h>
+#include <openvdb/tools/FastSweeping.h>
+#include <openvdb/tools/Interpolation.h>
+#include <openvdb/tools/ParticlesToLevelSet.h>
+#include <openvdb/tools/Prune.h>
+#include <openvdb/tools/VolumeToMesh.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include "insitu/outputs/writer/atomic_file.h"
+#include "voxspan/error.h"
+#include "voxspan/stopwatch.h"
+#include "voxspan/version.h"
+
+namespace voxspan {
+
+void ensure_openvdb_initialized();  // vdb_snapshot.cpp
+
+namespace {
+
+namespace vdb = openvdb;
+
+// Times consecutive stages into `stats`: next() ends the running stage and starts another.
+class Stages {
+ public:
+  explicit Stages(FrameStats& stats) : stats_(stats) {}
+  ~Stages() { stop(); }
+  Stages(const Stages&) = delete;
+  Stages& operator=(const Stages&) = delete;
+  void next(std::string_view name) {
+    stop();
+    name_ = name;
+    watch_.restart();
+  }
+  void stop() {
+    if (!name_.empty()) stats_.add_time(name_, watch_.ms());
+    name_ = {};
+  }
+
+ private:
+  FrameStats& stats_;
+  std::string_view name_;
+  Stopwatch watch_;
+};
+
+// ---- the level set: the one of vdb_snapshot.cpp, step by step (its comments say why)
+
+using IndexGrid = vdb::FloatGrid::ValueConverter<vdb::Index32>::Type;
+
+// ParticlesToLevelSet's particle list over the valid spheres, grown by the closing distance;
+// the attribute is the particle's index (the closest particle of every voxel).
+struct SphereList {
+  using PosType = vdb::Vec3R;
+  std::span<const ParticleSphere> spheres;
+  std::vector<vdb::Index32> valid;
+  double grow = 0;
+
+  std::size_t size() const { return valid.size(); }
+  void getPos(std::size_t n, vdb::Vec3R& xyz) const {
+    const ParticleSphere& s = spheres[valid[n]];
+    xyz = vdb::Vec3R(s.x, s.y, s.z);
+  }
+  void getPosRad(std::size_t n, vdb::Vec3R& xyz, vdb::Real& radius) const {
+    getPos(n, xyz);
+    radius = spheres[valid[n]].radius + grow;
+  }
+  void getAtt(std::size_t n, vdb::Index32& index) const { index = valid[n]; }
+};
+
+bool is_valid(const ParticleSphere& s) {
+  return std::isfinite(s.x) && std::isfinite(s.y) && std::isfinite(s.z) &&
+         std::isfinite(s.radius) && s.radius > 0;
+}
+
+// Voxels whose centres lie in inner-full cells become deep inside, runs along x as one box.
+std::size_t fill_inner_full(const CellStatesView& cells, vdb::FloatGrid& sdf) {
+  const double voxel = sdf.voxelSize()[0];
+  const float inside = -sdf.background();
+  std::size_t count = 0;
+  const auto& d = cells.dims;
+  auto first_voxel = [&](double world) { return int(std::ceil(world / voxel)); };
+  for (int k = 0; k < d[2]; ++k)
+    for (int j = 0; j < d[1]; ++j)
+      for (int i = 0; i < d[0];) {
+        const std::size_t at =
+            std::size_t(i) + std::size_t(d[0]) * (std::size_t(j) + std::size_t(d[1]) * k);
+        if (cells.states[at] != cell::kInnerFull) {
+          ++i;
+          continue;
+        }
+        int end = i;
+        while (end < d[0] && cells.states[at + std::size_t(end - i)] == cell::kInnerFull) ++end;
+        count += std::size_t(end - i);
+        const double cs = cells.cell_size;
+        const vdb::Coord lo(first_voxel(cells.origin[0] + i * cs),
+                            first_voxel(cells.origin[1] + j * cs),
+                            first_voxel(cells.origin[2] + k * cs));
+        const vdb::Coord hi(first_voxel(cells.origin[0] + end * cs) - 1,
+                            first_voxel(cells.origin[1] + (j + 1) * cs) - 1,
+                            first_voxel(cells.origin[2] + (k + 1) * cs) - 1);
+        if (lo.x() <= hi.x() && lo.y() <= hi.y() && lo.z() <= hi.z())
+          sdf.tree().fill(vdb::CoordBBox(lo, hi), inside, /*active=*/false);
+        i = end;
+      }
+  return count;
+}
+
+void erode_and_narrow(vdb::FloatGrid& sdf, float distance, float band) {
+  for (auto it = sdf.tree().beginValueOn(); it; ++it) {
+    const float v = *it + distance;
+    it.setValue(std::clamp(v, -band, band));
+    if (v > band || v < -band) it.setValueOff();
+  }
+  vdb::tools::changeLevelSetBackground(sdf.tree(), band);
+  vdb::tools::pruneLevelSet(sdf.tree());
+}
+
+struct LevelSet {
+  vdb::FloatGrid::Ptr sdf;
+  IndexGrid::Ptr closest;  // null without particles
+};
+
+// The snapshot's "fluid" grid with its band of vdb_snapshot.h's default (3 voxels: the mesher
+// and the gradient look one voxel about the surface).
+LevelSet fluid_level_set(const FluidMeshInput& input, const FluidMeshSettings& settings,
+                         FluidMeshReport& report, Stages& stage) {
+  constexpr int kHalfWidth = 3;
+  SphereList list{input.particles, {}, 0};
+  list.valid.reserve(input.particles.size());
+  float r_min = std::numeric_limits<float>::max(), r_max = 0;
+  for (std::size_t i = 0; i < input.particles.size(); ++i) {
+    if (!is_valid(input.particles[i])) {
+      ++report.particles_invalid;
+      continue;
+    }
+    list.valid.push_back(vdb::Index32(i));
+    r_min = std::min(r_min, input.particles[i].radius);
+    r_max = std::max(r_max, input.particles[i].radius);
+  }
+  const bool have_cells = !input.cells.empty() && input.cells.cell_size > 0;
+  const double voxel = settings.voxel_size.value_or(!list.valid.empty() ? r_min
+                                                    : have_cells ? 0.25 * input.cells.cell_size
+                                                                 : 1.0);
+  if (!(voxel > 0) || !std::isfinite(voxel))
+    throw make_error("fluid mesh: voxel size ", voxel, " is not a positive number");
+  list.grow = settings.closing.value_or(list.valid.empty() ? 0.0 : double(r_max));
+  report.voxel_size = voxel;
+  report.closing = list.grow;
+
+  LevelSet ls;
+  stage.next("mesh_rasterize");
+  const int grow_voxels = int(std::ceil(list.grow / voxel));
+  ls.sdf = vdb::createLevelSet<vdb::FloatGrid>(voxel, kHalfWidth + grow_voxels);
+  if (!list.valid.empty()) {
+    vdb::tools::ParticlesToLevelSet<vdb::FloatGrid, vdb::Index32> raster(*ls.sdf);
+    raster.rasterizeSpheres(list);
+    raster.finalize(/*prune=*/true);
+    ls.closest = raster.attributeGrid();
+    report.particles_too_small = raster.getMinCount() + raster.getMaxCount();
+    report.particles = list.valid.size() - report.particles_too_small;
+  }
+  stage.next("mesh_fill");
+  if (settings.fill_inner && have_cells)
+    report.inner_full_cells = fill_inner_full(input.cells, *ls.sdf);
+  stage.next("mesh_close");
+  if (list.grow > 0 && !ls.sdf->tree().empty()) {
+    ls.sdf = vdb::tools::sdfToSdf(*ls.sdf, 0.f);
+    erode_and_narrow(*ls.sdf, float(list.grow), float(kHalfWidth * voxel));
+  }
+  return ls;
+}
+
+// ---- the mesh
+
+using Vec3 = std::array<float, 3>;
+
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+bool normalize(Vec3& v) {
+  const float length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (!(length > 1e-20f) || !std::isfinite(length)) return false;
+  for (float& c : v) c /= length;
+  return true;
+}
+
+// Each point's normal: the gradient of the trilinear level set, central differences one voxel
+// apart (index space; the voxels are cubes). Points where it vanishes (or falls outside the
+// band) take the area-weighted normal of their faces.
+void compute_normals(const vdb::FloatGrid& sdf, FluidMesh& mesh, FluidMeshReport& report) {
+  mesh.normals.assign(mesh.points.size(), Vec3{0, 0, 0});
+  std::vector<std::uint8_t> from_gradient(mesh.points.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.points.size(), 4096), [&](auto r) {
+    auto acc = sdf.getConstAccessor();
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const vdb::Vec3d p = sdf.transform().worldToIndex(
+          vdb::Vec3d(mesh.points[i][0], mesh.points[i][1], mesh.points[i][2]));
+      auto at = [&](double dx, double dy, double dz) {
+        return vdb::tools::BoxSampler::sample(acc, p + vdb::Vec3d(dx, dy, dz));
+      };
+      Vec3 g{at(1, 0, 0) - at(-1, 0, 0), at(0, 1, 0) - at(0, -1, 0), at(0, 0, 1) - at(0, 0, -1)};
+      if (normalize(g)) mesh.normals[i] = g, from_gradient[i] = 1;
+    }
+  });
+  report.normals_from_faces =
+      mesh.points.size() - std::size_t(std::count(from_gradient.begin(), from_gradient.end(), 1));
+  if (report.normals_from_faces == 0) return;
+  // Twice the area times the unit normal of each triangle (a quad as two), summed per point.
+  std::vector<Vec3> sum(mesh.points.size(), Vec3{0, 0, 0});
+  auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    const Vec3 n = cross(sub(mesh.points[b], mesh.points[a]), sub(mesh.points[c], mesh.points[a]));
+    for (std::uint32_t v : {a, b, c})
+      for (int k = 0; k < 3; ++k) sum[v][std::size_t(k)] += n[std::size_t(k)];
+  };
+  for (const auto& t : mesh.triangles) add(t[0], t[1], t[2]);
+  for (const auto& q : mesh.quads) add(q[0], q[1], q[2]), add(q[0], q[2], q[3]);
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    if (!from_gradient[i] && normalize(sum[i])) mesh.normals[i] = sum[i];
+}
+
+// Each point's attributes from its nearest particle among the closest particles of the eight
+// voxels around it (the voxels the snapshot's attribute grids would interpolate between).
+void sample_attributes(const IndexGrid* closest, std::span<const ParticleSphere> particles,
+                       std::span<const AttributeSpan> attributes, FluidMesh& mesh,
+                       FluidMeshReport& report) {
+  mesh.attributes.resize(attributes.size());
+  for (std::size_t a = 0; a < attributes.size(); ++a) {
+    mesh.attributes[a].name = std::string(attributes[a].name);
+    mesh.attributes[a].components = attributes[a].components;
+    mesh.attributes[a].values.assign(mesh.points.size() * std::size_t(attributes[a].components),
+                                     0.f);
+  }
+  if (attributes.empty()) return;
+  constexpr vdb::Index32 kNone = std::numeric_limits<vdb::Index32>::max();
+  std::vector<vdb::Index32> nearest(mesh.points.size(), kNone);
+  if (closest != nullptr)
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.points.size(), 4096), [&](auto r) {
+      auto acc = closest->getConstAccessor();
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        const Vec3& p = mesh.points[i];
+        const vdb::Vec3d x = closest->transform().worldToIndex(vdb::Vec3d(p[0], p[1], p[2]));
+        const vdb::Coord base = vdb::Coord::floor(x);
+        float best = std::numeric_limits<float>::max();
+        for (int c = 0; c < 8; ++c) {
+          vdb::Index32 index;
+          if (!acc.probeValue(base.offsetBy(c & 1, (c >> 1) & 1, c >> 2), index)) continue;
+          const ParticleSphere& s = particles[index];
+          const float d2 = (s.x - p[0]) * (s.x - p[0]) + (s.y - p[1]) * (s.y - p[1]) +
+                           (s.z - p[2]) * (s.z - p[2]);
+          if (d2 < best) best = d2, nearest[i] = index;
+        }
+      }
+    });
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    if (nearest[i] == kNone) {
+      ++report.points_without_particle;
+      continue;
+    }
+    for (std::size_t a = 0; a < attributes.size(); ++a) {
+      const std::size_t n = std::size_t(attributes[a].components);
+      std::copy_n(attributes[a].values.begin() + std::ptrdiff_t(n * nearest[i]), n,
+                  mesh.attributes[a].values.begin() + std::ptrdiff_t(n * i));
+    }
+  }
+}
+
+// ---- the files
+
+// Bytes gathered in memory and handed to the file a megabyte at a time.
+class Buffered {
+ public:
+  explicit Buffered(AtomicFile& file) : file_(file) { bytes_.reserve(kChunk + 256); }
+  void put(const void* data, std::size_t n) {
+    const char* c = static_cast<const char*>(data);
+    bytes_.insert(bytes_.end(), c, c + n);
+    if (bytes_.size() >= kChunk) flush();
+  }
+  void put(std::string_view text) { put(text.data(), text.size()); }
+  template <class T> void put_value(T v) { put(&v, sizeof v); }
+  void put_number(float v) {
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, v).ptr;
+    put(text, std::size_t(end - text));
+  }
+  void put_number(std::uint64_t v) {
+    char text[24];
+    const auto end = std::to_chars(text, text + sizeof text, v).ptr;
+    put(text, std::size_t(end - text));
+  }
+  void flush() {
+    file_.write(bytes_.data(), bytes_.size());
+    bytes_.clear();
+  }
+
+ private:
+  static constexpr std::size_t kChunk = 1 << 20;
+  AtomicFile& file_;
+  std::vector<char> bytes_;
+};
+
+// A comment on one line: a line break would end it and break the header.
+std::string one_line(std::string_view text) {
+  std::string s(text);
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  std::replace(s.begin(), s.end(), '\r', ' ');
+  return s;
+}
+
+// A property name is one word of the header (the config refuses other names; a caller of
+// write_mesh_file may not have checked).
+std::string one_word(std::string_view name) {
+  std::string s(name);
+  for (char& c : s)
+    if (std::isspace(static_cast<unsigned char>(c))) c = '_';
+  return s;
+}
+
+void write_ply(Buffered& out, const FluidMesh& mesh, std::string_view comment) {
+  // The machine's own byte order, said in the header: every reader swaps when it must.
+  const char* format =
+      std::endian::native == std::endian::little ? "binary_little_endian" : "binary_big_endian";
+  std::string header = "ply\nformat " + std::string(format) + " 1.0\ncomment " + one_line(comment) +
+                       "\nelement vertex " + std::to_string(mesh.points.size()) +
+                       "\nproperty float x\nproperty float y\nproperty float z\n"
+                       "property float nx\nproperty float ny\nproperty float nz\n";
+  for (const Attribute& a : mesh.attributes) {
+    if (a.components == 1) {
+      header += "property float " + one_word(a.name) + "\n";
+      continue;
+    }
+    for (const char* axis : {"_x", "_y", "_z"})
+      header += "property float " + one_word(a.name) + axis + "\n";
+  }
+  header += "element face " + std::to_string(mesh.triangles.size() + mesh.quads.size()) +
+            "\nproperty list uchar int vertex_indices\nend_header\n";
+  out.put(header);
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    out.put(mesh.points[i].data(), sizeof(Vec3));
+    out.put(mesh.normals[i].data(), sizeof(Vec3));
+    for (const Attribute& a : mesh.attributes)
+      out.put(a.values.data() + std::size_t(a.components) * i,
+              std::size_t(a.components) * sizeof(float));
+  }
+  for (const auto& t : mesh.triangles) {
+    out.put_value(std::uint8_t(3));
+    for (std::uint32_t v : t) out.put_value(std::int32_t(v));
+  }
+  for (const auto& q : mesh.quads) {
+    out.put_value(std::uint8_t(4));
+    for (std::uint32_t v : q) out.put_value(std::int32_t(v));
+  }
+}
+
+void write_obj(Buffered& out, const FluidMesh& mesh, std::string_view comment) {
+  out.put("# ");
+  out.put(one_line(comment));
+  out.put("\n");
+  auto put_vector = [&](const char* tag, const Vec3& v) {
+    out.put(tag);
+    for (float c : v) {
+      out.put(" ");
+      out.put_number(c);
+    }
+    out.put("\n");
+  };
+  for (const Vec3& p : mesh.points) put_vector("v", p);
+  for (const Vec3& n : mesh.normals) put_vector("vn", n);
+  auto put_face = [&](std::span<const std::uint32_t> face) {
+    out.put("f");
+    for (std::uint32_t v : face) {
+      const std::uint64_t one_based = std::uint64_t(v) + 1;
+      out.put(" ");
+      out.put_number(one_based);
+      out.put("//");
+      out.put_number(one_based);
+    }
+    out.put("\n");
+  };
+  for (const auto& t : mesh.triangles) put_face(t);
+  for (const auto& q : mesh.quads) put_face(q);
+}
+
+}  // namespace
+
+FluidMesh mesh_fluid(const FluidMeshInput& input, const FluidMeshSettings& settings,
+                     FluidMeshReport* report_out) {
+  ensure_openvdb_initialized();
+  check_attributes(input.attributes, input.particles.size());
+  if (!(settings.adaptivity >= 0 && settings.adaptivity <= 1))
+    throw make_error("fluid mesh: adaptivity ", settings.adaptivity, " is not in [0, 1]");
+  FluidMeshReport local;
+  FluidMeshReport& report = report_out != nullptr ? *report_out : local;
+  Stages stage(report.timings);
+  const LevelSet ls = fluid_level_set(input, settings, report, stage);
+
+  stage.next("mesh_extract");
+  FluidMesh mesh;
+  std::vector<vdb::Vec3s> points;
+  std::vector<vdb::Vec3I> triangles;
+  std::vector<vdb::Vec4I> quads;
+  vdb::tools::volumeToMesh(*ls.sdf, points, triangles, quads, /*isovalue=*/0.0,
+                           settings.adaptivity);
+  if (points.size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
+    throw make_error("fluid mesh: ", points.size(), " points exceed the PLY's int indices");
+  mesh.points.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    mesh.points[i] = {points[i].x(), points[i].y(), points[i].z()};
+  // volumeToMesh winds its faces clockwise seen from outside a level set (negative inside);
+  // reversed here, so that right-hand face normals point out of the fluid.
+  mesh.triangles.resize(triangles.size());
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+    mesh.triangles[i] = {triangles[i][2], triangles[i][1], triangles[i][0]};
+  mesh.quads.resize(quads.size());
+  for (std::size_t i = 0; i < quads.size(); ++i)
+    mesh.quads[i] = {quads[i][3], quads[i][2], quads[i][1], quads[i][0]};
+
+  stage.next("mesh_normals");
+  compute_normals(*ls.sdf, mesh, report);
+  stage.next("mesh_attributes");
+  sample_attributes(ls.closest.get(), input.particles, input.attributes, mesh, report);
+  return mesh;
+}
+
+std::uint64_t write_mesh_file(const std::filesystem::path& path, const FluidMesh& mesh,
+                              MeshFormat format, std::string_view comment, bool sync) {
+  AtomicFile file(path);
+  Buffered out(file);
+  if (format == MeshFormat::ply) write_ply(out, mesh, comment);
+  else write_obj(out, mesh, comment);
+  out.flush();
+  file.commit(sync);
+  return file.bytes_written();
+}
+
+FluidMeshReport write_fluid_mesh(const std::filesystem::path& path, const FluidMeshInput& input,
+                                 const FluidMeshSettings& settings, MeshFormat format, bool sync) {
+  FluidMeshReport report;
+  const FluidMesh mesh = mesh_fluid(input, settings, &report);
+  const Stopwatch watch;
+  char time[32];
+  *std::to_chars(time, time + sizeof time - 1, input.time).ptr = '\0';
+  const std::string comment = std::string("voxspan ") + version() + ", step " +
+                              std::to_string(input.step) + ", time " + time;
+  report.bytes = write_mesh_file(path, mesh, format, comment, sync);
+  report.timings.add_time("mesh_write", watch.ms());
+  return report;
+}
+
+}  // namespace voxspan
