@@ -176,7 +176,8 @@ int run(const Options& o) {
                                       : std::make_unique<voxspan::Adapter>(
                                             voxspan::adapter_from_config_file(o.insitu_config, ao));
   } catch (const voxspan::Error& e) {
-    std::fprintf(stderr, "dambreak: %s\n", e.what());
+    // Every rank failed alike (the runtime agrees on a failure at start-up): said once.
+    if (root) std::fprintf(stderr, "dambreak: %s\n", e.what());
     return 1;
   }
 

@@ -32,6 +32,12 @@ struct ParticleData {
   std::vector<AttributeSpan> attribute_views() const;
   // Packed spheres for the renderer; default_radius where the file has none.
   std::vector<ParticleSphere> spheres(float default_radius) const;
+  // The step an offline run gives this file after one at `previous` (-1 before the first): the
+  // file's own (PySPH's iteration count) when it says one past `previous`, else previous + 1,
+  // so that steps rise as triggers and frame names need.
+  std::int64_t step_after(std::int64_t previous) const {
+    return step && *step > previous ? *step : previous + 1;
+  }
 };
 
 struct ParticleReadOptions {

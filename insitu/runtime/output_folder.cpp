@@ -11,12 +11,17 @@
 
 namespace voxspan {
 
-void prepare_output_folder(const std::filesystem::path& folder, std::string_view what) {
+std::vector<std::filesystem::path> prepare_output_folder(const std::filesystem::path& folder,
+                                                         std::string_view what) {
   auto fail = [&](const std::string& why) -> Error {
     return make_error("cannot use ", what, " folder ", folder.string(), ": ", why);
   };
   if (folder.empty()) throw fail("the folder name is empty");
   std::error_code ec;
+  std::vector<std::filesystem::path> made;
+  for (std::filesystem::path p = std::filesystem::absolute(folder, ec);
+       !ec && p.has_relative_path() && !std::filesystem::exists(p, ec); p = p.parent_path())
+    made.push_back(p);
   std::filesystem::create_directories(folder, ec);
   if (ec) throw fail(ec.message());
   if (!std::filesystem::is_directory(folder, ec)) throw fail("it exists but is not a folder");
@@ -26,17 +31,25 @@ void prepare_output_folder(const std::filesystem::path& folder, std::string_view
   if (fd < 0) throw fail(std::string("cannot create a file in it (") + std::strerror(errno) + ")");
   ::close(fd);
   ::unlink(probe.c_str());
+  return made;
 }
 
 std::vector<std::filesystem::path> prepare_output_folders(const Config& config) {
-  std::vector<std::filesystem::path> folders;
+  std::vector<std::filesystem::path> made;
   for (const ConfiguredOutput& o : config.outputs) {
     if (!o.settings->enabled) continue;
-    std::filesystem::path folder = config.folder_of(*o.settings);
-    prepare_output_folder(folder, "outputs." + o.kind);
-    folders.push_back(folder);
+    const std::vector<std::filesystem::path> now =
+        prepare_output_folder(config.folder_of(*o.settings), "outputs." + o.kind);
+    made.insert(made.end(), now.begin(), now.end());
   }
-  return folders;
+  return made;
+}
+
+void remove_empty_folders(const std::vector<std::filesystem::path>& made) {
+  for (const std::filesystem::path& folder : made) {
+    std::error_code ec;
+    if (std::filesystem::is_empty(folder, ec) && !ec) std::filesystem::remove(folder, ec);
+  }
 }
 
 }  // namespace voxspan

@@ -13,9 +13,16 @@ namespace voxspan {
 
 // Creates folder (and its parents) when missing, then proves it writable by creating and
 // removing a probe file. Throws voxspan::Error "cannot use <what> folder <path>: <why>".
-void prepare_output_folder(const std::filesystem::path& folder, std::string_view what);
+// Returns the folders it made, deepest first.
+std::vector<std::filesystem::path> prepare_output_folder(const std::filesystem::path& folder,
+                                                         std::string_view what);
 
-// prepare_output_folder for the folder of every enabled output; returns them.
+// prepare_output_folder for the folder of every enabled output; returns the folders made,
+// each before its parents.
 std::vector<std::filesystem::path> prepare_output_folders(const Config& config);
+
+// Removes those of `made` that are empty (a run that failed before writing a file leaves
+// nothing behind; one that wrote keeps its folders).
+void remove_empty_folders(const std::vector<std::filesystem::path>& made);
 
 }  // namespace voxspan

@@ -39,8 +39,9 @@ Config with_log_level(const Config& config) {
 
 // Folders first: a bad folder is reported before the (slower) GL start-up. Ranks on one node
 // take its GPUs in turn unless the config names one.
-gl::ContextOptions prepared(const Config& config, const Communicator* comm) {
-  prepare_output_folders(config);
+gl::ContextOptions prepared(const Config& config, const Communicator* comm,
+                            std::vector<std::filesystem::path>& made) {
+  made = prepare_output_folders(config);
   const int device = config.renderer.gpu_device ? int(*config.renderer.gpu_device)
                      : comm != nullptr          ? comm->node_rank()
                                                 : -1;
@@ -124,6 +125,8 @@ struct InsituPipeline::Impl {
   double planned_time = 0;
   std::int64_t last_step = std::numeric_limits<std::int64_t>::min();
 
+  std::vector<std::filesystem::path> made_folders;  // removed at the end if no step ran
+  bool processed_any = false;
   BackendChoice backend;  // its GL context, when the GL renderer draws
   std::thread::id gl_thread = std::this_thread::get_id();
   gl::ShaderLibrary shaders;
@@ -142,7 +145,8 @@ struct InsituPipeline::Impl {
         comm(communicator),
         schedule(config),
         plan(schedule.blank()),
-        backend(choose_backend(config.renderer.backend, prepared(config, communicator))),
+        backend(
+            choose_backend(config.renderer.backend, prepared(config, communicator, made_folders))),
         recorder(make_recorder(backend)),
         writer(config.writer) {
     for (const ConfiguredView& v : config.views) view_names.push_back(v.settings->name);
@@ -164,6 +168,10 @@ struct InsituPipeline::Impl {
     writer.drain();
     for (OutputState& o : outputs)
       if (o.output) o.output->close();
+    outputs.clear();  // their files closed (an unused stats file removed) before the folders
+    // Only where no step ran: under MPI another rank may still be writing into a folder
+    // that is empty here.
+    if (!processed_any) remove_empty_folders(made_folders);
   }
 
   // With ranks: the views fit one grid, and their span images meet in a compositor.
@@ -443,6 +451,7 @@ void InsituPipeline::mark_last_step(std::int64_t step) {
 
 Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
   Impl& m = *impl_;
+  m.processed_any = true;
   const Stopwatch process;
   const std::int64_t bytes_before = m.comm != nullptr ? m.comm->bytes_sent() : 0;
   if (data.step != m.planned_step) wants_step(data.step, data.time);

@@ -1,6 +1,7 @@
 #include "render/cpu/span_caster.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -484,6 +485,26 @@ void tile_spans(TileLists& l, const PixelRect& tile, std::uint32_t max_spans,
     }
 }
 
+// Per pixel slot of a tile, the largest capacity any thread's list has had. Which thread
+// casts which tile changes from frame to frame, so a thread's lists grew whenever it first met
+// a busier tile, long after the sizes were stable (the one-off allocations StepAllocations saw
+// on the solver's thread): each thread grows its own lists to these before casting, where a
+// reservation is its own.
+using SlotCapacities = std::array<std::size_t, std::size_t(kTile* kTile)>;
+
+SlotCapacities largest_capacities(const tbb::enumerable_thread_specific<TileLists>& lists) {
+  SlotCapacities most{};
+  for (const TileLists& l : lists)
+    for (std::size_t p = 0; p < most.size(); ++p)
+      most[p] = std::max(most[p], l.before[p].capacity());
+  return most;
+}
+
+void grow_to(TileLists& l, const SlotCapacities& most) {
+  for (std::size_t p = 0; p < most.size(); ++p)
+    if (l.before[p].capacity() < most[p]) l.before[p].reserve(most[p]);
+}
+
 // Cast tiles: per tile, in parallel, each pixel's union of the chords of the tile's spheres and
 // boxes, and from the unions the tile's spans; every pixel of `pixels` written, its offset into
 // its tile's spans. Memory: one union per pixel of the tiles in flight.
@@ -494,12 +515,14 @@ TileTallies cast_tiles(const PerspectiveGrid& grid, const CastSettings& settings
                        std::vector<PixelSpans>& pixels) {
   pixels.assign(std::size_t(screen.width) * std::size_t(screen.height), PixelSpans{});
   tile_spans_out.resize(screen.count());
+  const SlotCapacities most = largest_capacities(lists);
   for (TileLists& l : lists) l.chord_tests = l.spans_found = l.capped_pixels = 0;
   const ViewFrame& view = grid.view();
   const DepthRule rule{grid.near(), grid.grid_far(), settings.gap_bridging};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, screen.count()),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       TileLists& l = lists.local();
+                      grow_to(l, most);
                       for (std::size_t t = range.begin(); t != range.end(); ++t) {
                         const PixelRect tile = screen.rect(t);
                         start_tile(l, tile, view);

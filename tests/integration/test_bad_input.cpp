@@ -109,6 +109,23 @@ TEST(StartUp, ViewsLargerThanTheHostMemoryAreRefusedBeforeStepOne) {
   EXPECT_EQ(e.find("host memory"), std::string::npos) << e;
 }
 
+// A run that ends before writing anything (a solver, or a Python call, that raised first)
+// leaves no empty stats file or folders behind; one that wrote keeps them.
+TEST(StartUp, ARunThatWroteNothingLeavesNothing) {
+  test::TempFolder dir;
+  const std::filesystem::path out = dir / "run" / "out";
+  const std::string yaml = "output_folder: " + out.string() + "\n";
+  dambreak::DamBreak sim(test::small_dambreak());
+  { Adapter unused = adapter_from_config_text(yaml, test::solver_options(sim), "run.yaml"); }
+  EXPECT_FALSE(std::filesystem::exists(dir / "run")) << "left behind: " << out;
+  {
+    Adapter used = adapter_from_config_text(yaml, test::solver_options(sim), "run.yaml");
+    EXPECT_EQ(test::run_dambreak(sim, used, 1).failed, 0);
+  }
+  EXPECT_TRUE(std::filesystem::exists(out / "stats.jsonl"));
+  EXPECT_FALSE(test::files_in(out / "frames").empty());
+}
+
 // --- a disk that fills mid-run ----------------------------------------------------------
 
 std::map<std::string, std::string> parse_report(const std::string& text) {

@@ -4,6 +4,7 @@ render_particles on the HDF5 files PySPH wrote at the rendered steps, with the s
 spacing. Every picture must equal the offline one to 1/255. Exit status 77 without PySPH."""
 import pathlib
 import re
+import shutil
 import subprocess
 import sys
 
@@ -22,6 +23,7 @@ root = pathlib.Path(__file__).resolve().parents[2]
 example = root / "examples" / "pysph" / "dambreak_insitu.py"
 config = root / "examples" / "pysph" / "insitu.yaml"
 every = 20
+shutil.rmtree(work, ignore_errors=True)  # frames of an earlier run would count here
 run = subprocess.run(
     [sys.executable, str(example), "--dx", "0.1", "--tf", "0.1", "--pfreq", str(every),
      "--no-openmp", "-d", str(work / "pysph"), "--voxspan-output", str(work / "insitu")],

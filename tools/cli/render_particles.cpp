@@ -213,12 +213,13 @@ int render(const Options& o, const Ranks& ranks) {
     voxspan::Adapter adapter = voxspan::make_insitu_adapter(config, options);
 
     int failures = 0;
+    std::int64_t previous_step = -1;
     for (std::size_t i = 0; i < o.files.size(); ++i) {
       voxspan::ParticleData data;
       try {
         data = i == 0 ? std::move(first) : voxspan::read_particles(o.files[i], o.read);
       } catch (const voxspan::Error& e) {
-        std::fprintf(stderr, "render_particles: %s\n", e.what());
+        if (talk) std::fprintf(stderr, "render_particles: %s\n", e.what());  // once, not per rank
         ++failures;
         continue;  // every rank reads the same files: they all skip it
       }
@@ -230,8 +231,10 @@ int render(const Options& o, const Ranks& ranks) {
                      o.files[i].string().c_str());
       std::size_t owned = data.size();
       if (ranks.size > 1) data = part_of(data, o, ranks, spacing, owned);
-      // Steps count the files: triggers need them in order, and the frames sort by them.
-      const auto step = static_cast<std::int64_t>(i);
+      // The file's own step where it gives one (PySPH's iteration), else the next: triggers
+      // need them in order, and the frames sort by them.
+      const std::int64_t step = data.step_after(previous_step);
+      previous_step = step;
       const double time = data.time.value_or(double(i));
       const voxspan::ParticleView view = view_of(data).with_owned(owned);
       const voxspan::Status s = i + 1 == o.files.size() ? adapter.execute_last(step, time, view)

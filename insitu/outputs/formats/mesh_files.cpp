@@ -1,14 +1,11 @@
-// The fluid's surface mesh (see mesh_files.h): the snapshot's level set, volumeToMesh, normals
-// from the gradient, attributes from the nearest particle, PLY or OBJ. Like vdb_snapshot.cpp,
-// one translation unit holds the OpenVDB templates (they compile slowly).
+// The fluid's surface mesh (see mesh_files.h): the snapshot's level set (fluid_level_set.h),
+// volumeToMesh, normals from the gradient, attributes from the nearest particle, PLY or OBJ. Like
+// vdb_snapshot.cpp, one translation unit holds the mesher's OpenVDB templates (they compile
+// slowly).
 #include "insitu/outputs/formats/mesh_files.h"
 
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/ChangeBackground.h>
-#include <openvdb/tools/FastSweeping.h>
 #include <openvdb/tools/Interpolation.h>
-#include <openvdb/tools/ParticlesToLevelSet.h>
-#include <openvdb/tools/Prune.h>
 #include <openvdb/tools/VolumeToMesh.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -22,6 +19,7 @@
 #include <limits>
 #include <string>
 
+#include "insitu/outputs/formats/fluid_level_set.h"
 #include "insitu/outputs/writer/atomic_file.h"
 #include "voxspan/error.h"
 #include "voxspan/stopwatch.h"
@@ -29,161 +27,9 @@
 
 namespace voxspan {
 
-void ensure_openvdb_initialized();  // vdb_snapshot.cpp
-
 namespace {
 
 namespace vdb = openvdb;
-
-// Times consecutive stages into `stats`: next() ends the running stage and starts another.
-class Stages {
- public:
-  explicit Stages(FrameStats& stats) : stats_(stats) {}
-  ~Stages() { stop(); }
-  Stages(const Stages&) = delete;
-  Stages& operator=(const Stages&) = delete;
-  void next(std::string_view name) {
-    stop();
-    name_ = name;
-    watch_.restart();
-  }
-  void stop() {
-    if (!name_.empty()) stats_.add_time(name_, watch_.ms());
-    name_ = {};
-  }
-
- private:
-  FrameStats& stats_;
-  std::string_view name_;
-  Stopwatch watch_;
-};
-
-// ---- the level set: the one of vdb_snapshot.cpp, step by step (its comments say why)
-
-using IndexGrid = vdb::FloatGrid::ValueConverter<vdb::Index32>::Type;
-
-// ParticlesToLevelSet's particle list over the valid spheres, grown by the closing distance;
-// the attribute is the particle's index (the closest particle of every voxel).
-struct SphereList {
-  using PosType = vdb::Vec3R;
-  std::span<const ParticleSphere> spheres;
-  std::vector<vdb::Index32> valid;
-  double grow = 0;
-
-  std::size_t size() const { return valid.size(); }
-  void getPos(std::size_t n, vdb::Vec3R& xyz) const {
-    const ParticleSphere& s = spheres[valid[n]];
-    xyz = vdb::Vec3R(s.x, s.y, s.z);
-  }
-  void getPosRad(std::size_t n, vdb::Vec3R& xyz, vdb::Real& radius) const {
-    getPos(n, xyz);
-    radius = spheres[valid[n]].radius + grow;
-  }
-  void getAtt(std::size_t n, vdb::Index32& index) const { index = valid[n]; }
-};
-
-bool is_valid(const ParticleSphere& s) {
-  return std::isfinite(s.x) && std::isfinite(s.y) && std::isfinite(s.z) &&
-         std::isfinite(s.radius) && s.radius > 0;
-}
-
-// Voxels whose centres lie in inner-full cells become deep inside, runs along x as one box.
-std::size_t fill_inner_full(const CellStatesView& cells, vdb::FloatGrid& sdf) {
-  const double voxel = sdf.voxelSize()[0];
-  const float inside = -sdf.background();
-  std::size_t count = 0;
-  const auto& d = cells.dims;
-  auto first_voxel = [&](double world) { return int(std::ceil(world / voxel)); };
-  for (int k = 0; k < d[2]; ++k)
-    for (int j = 0; j < d[1]; ++j)
-      for (int i = 0; i < d[0];) {
-        const std::size_t at =
-            std::size_t(i) + std::size_t(d[0]) * (std::size_t(j) + std::size_t(d[1]) * k);
-        if (cells.states[at] != cell::kInnerFull) {
-          ++i;
-          continue;
-        }
-        int end = i;
-        while (end < d[0] && cells.states[at + std::size_t(end - i)] == cell::kInnerFull) ++end;
-        count += std::size_t(end - i);
-        const double cs = cells.cell_size;
-        const vdb::Coord lo(first_voxel(cells.origin[0] + i * cs),
-                            first_voxel(cells.origin[1] + j * cs),
-                            first_voxel(cells.origin[2] + k * cs));
-        const vdb::Coord hi(first_voxel(cells.origin[0] + end * cs) - 1,
-                            first_voxel(cells.origin[1] + (j + 1) * cs) - 1,
-                            first_voxel(cells.origin[2] + (k + 1) * cs) - 1);
-        if (lo.x() <= hi.x() && lo.y() <= hi.y() && lo.z() <= hi.z())
-          sdf.tree().fill(vdb::CoordBBox(lo, hi), inside, /*active=*/false);
-        i = end;
-      }
-  return count;
-}
-
-void erode_and_narrow(vdb::FloatGrid& sdf, float distance, float band) {
-  for (auto it = sdf.tree().beginValueOn(); it; ++it) {
-    const float v = *it + distance;
-    it.setValue(std::clamp(v, -band, band));
-    if (v > band || v < -band) it.setValueOff();
-  }
-  vdb::tools::changeLevelSetBackground(sdf.tree(), band);
-  vdb::tools::pruneLevelSet(sdf.tree());
-}
-
-struct LevelSet {
-  vdb::FloatGrid::Ptr sdf;
-  IndexGrid::Ptr closest;  // null without particles
-};
-
-// The snapshot's "fluid" grid with its band of vdb_snapshot.h's default (3 voxels: the mesher
-// and the gradient look one voxel about the surface).
-LevelSet fluid_level_set(const FluidMeshInput& input, const FluidMeshSettings& settings,
-                         FluidMeshReport& report, Stages& stage) {
-  constexpr int kHalfWidth = 3;
-  SphereList list{input.particles, {}, 0};
-  list.valid.reserve(input.particles.size());
-  float r_min = std::numeric_limits<float>::max(), r_max = 0;
-  for (std::size_t i = 0; i < input.particles.size(); ++i) {
-    if (!is_valid(input.particles[i])) {
-      ++report.particles_invalid;
-      continue;
-    }
-    list.valid.push_back(vdb::Index32(i));
-    r_min = std::min(r_min, input.particles[i].radius);
-    r_max = std::max(r_max, input.particles[i].radius);
-  }
-  const bool have_cells = !input.cells.empty() && input.cells.cell_size > 0;
-  const double voxel = settings.voxel_size.value_or(!list.valid.empty() ? r_min
-                                                    : have_cells ? 0.25 * input.cells.cell_size
-                                                                 : 1.0);
-  if (!(voxel > 0) || !std::isfinite(voxel))
-    throw make_error("fluid mesh: voxel size ", voxel, " is not a positive number");
-  list.grow = settings.closing.value_or(list.valid.empty() ? 0.0 : double(r_max));
-  report.voxel_size = voxel;
-  report.closing = list.grow;
-
-  LevelSet ls;
-  stage.next("mesh_rasterize");
-  const int grow_voxels = int(std::ceil(list.grow / voxel));
-  ls.sdf = vdb::createLevelSet<vdb::FloatGrid>(voxel, kHalfWidth + grow_voxels);
-  if (!list.valid.empty()) {
-    vdb::tools::ParticlesToLevelSet<vdb::FloatGrid, vdb::Index32> raster(*ls.sdf);
-    raster.rasterizeSpheres(list);
-    raster.finalize(/*prune=*/true);
-    ls.closest = raster.attributeGrid();
-    report.particles_too_small = raster.getMinCount() + raster.getMaxCount();
-    report.particles = list.valid.size() - report.particles_too_small;
-  }
-  stage.next("mesh_fill");
-  if (settings.fill_inner && have_cells)
-    report.inner_full_cells = fill_inner_full(input.cells, *ls.sdf);
-  stage.next("mesh_close");
-  if (list.grow > 0 && !ls.sdf->tree().empty()) {
-    ls.sdf = vdb::tools::sdfToSdf(*ls.sdf, 0.f);
-    erode_and_narrow(*ls.sdf, float(list.grow), float(kHalfWidth * voxel));
-  }
-  return ls;
-}
 
 // ---- the mesh
 
@@ -236,7 +82,8 @@ void compute_normals(const vdb::FloatGrid& sdf, FluidMesh& mesh, FluidMeshReport
 
 // Each point's attributes from its nearest particle among the closest particles of the eight
 // voxels around it (the voxels the snapshot's attribute grids would interpolate between).
-void sample_attributes(const IndexGrid* closest, std::span<const ParticleSphere> particles,
+void sample_attributes(const ClosestParticleGrid* closest,
+                       std::span<const ParticleSphere> particles,
                        std::span<const AttributeSpan> attributes, FluidMesh& mesh,
                        FluidMeshReport& report) {
   mesh.attributes.resize(attributes.size());
@@ -406,10 +253,11 @@ FluidMesh mesh_fluid(const FluidMeshInput& input, const FluidMeshSettings& setti
     throw make_error("fluid mesh: adaptivity ", settings.adaptivity, " is not in [0, 1]");
   FluidMeshReport local;
   FluidMeshReport& report = report_out != nullptr ? *report_out : local;
-  Stages stage(report.timings);
-  const LevelSet ls = fluid_level_set(input, settings, report, stage);
+  Stages stage(report.timings, "mesh_");
+  const FluidLevelSet ls =
+      build_fluid_level_set(input.particles, input.cells, settings, "fluid mesh", report, stage);
 
-  stage.next("mesh_extract");
+  stage.next("extract");
   FluidMesh mesh;
   std::vector<vdb::Vec3s> points;
   std::vector<vdb::Vec3I> triangles;
@@ -430,9 +278,9 @@ FluidMesh mesh_fluid(const FluidMeshInput& input, const FluidMeshSettings& setti
   for (std::size_t i = 0; i < quads.size(); ++i)
     mesh.quads[i] = {quads[i][3], quads[i][2], quads[i][1], quads[i][0]};
 
-  stage.next("mesh_normals");
+  stage.next("normals");
   compute_normals(*ls.sdf, mesh, report);
-  stage.next("mesh_attributes");
+  stage.next("attributes");
   sample_attributes(ls.closest.get(), input.particles, input.attributes, mesh, report);
   return mesh;
 }

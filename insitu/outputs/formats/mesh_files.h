@@ -21,7 +21,8 @@
 // exact union of the spheres: docs/benchmarks.md, "Mesh output".
 //
 // Cost: the level set as the snapshot's (linear in the narrow band's voxels), then linear in
-// the surface's voxels; everything OpenVDB stays inside mesh_files.cpp.
+// the surface's voxels; everything OpenVDB stays inside mesh_files.cpp (and
+// fluid_level_set.cpp, which builds the snapshot's level set for it).
 #pragma once
 
 #include <array>
@@ -43,11 +44,11 @@ enum class MeshFormat { ply, obj };
 inline constexpr EnumName<MeshFormat> kMeshFormatNames[] = {{"ply", MeshFormat::ply},
                                                             {"obj", MeshFormat::obj}};
 
-struct FluidMeshSettings {
-  std::optional<double> voxel_size;  // nullopt: the smallest particle radius
-  std::optional<double> closing;     // nullopt: the largest particle radius; 0: no closing
-  bool fill_inner = true;            // inner-full cells filled (else only the shell's spheres)
-  double adaptivity = 0;             // volumeToMesh's: 0 every voxel's quad, up to 1 merged
+// The level set's settings are the snapshot's; its band (half_width, not a key of outputs.mesh)
+// needs no more than its default 3 voxels: the mesher and the gradient look one voxel about the
+// surface.
+struct FluidMeshSettings : FluidLevelSetSettings {
+  double adaptivity = 0;  // volumeToMesh's: 0 every voxel's quad, up to 1 merged
   bool operator==(const FluidMeshSettings&) const = default;
 };
 
@@ -63,13 +64,7 @@ struct FluidMesh {
   std::vector<Attribute> attributes;  // one tuple per point, the input's names and components
 };
 
-struct FluidMeshReport {
-  double voxel_size = 0;
-  double closing = 0;
-  std::size_t particles = 0;            // rasterized
-  std::size_t particles_too_small = 0;  // radius + closing under 1.5 voxels: left out
-  std::size_t particles_invalid = 0;    // NaN/inf position or non-positive radius: left out
-  std::size_t inner_full_cells = 0;     // filled
+struct FluidMeshReport : FluidLevelSetReport {
   // Points whose normal is the faces' for want of a gradient, and points no particle's voxel
   // reached (their attributes are 0); both are 0 on every scene we tested.
   std::size_t normals_from_faces = 0;

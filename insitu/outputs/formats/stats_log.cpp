@@ -47,4 +47,10 @@ void StatsLog::sync() {
   if (::fdatasync(fd_) != 0) throw_write_error("cannot sync", path_, errno);
 }
 
+void StatsLog::remove_if_empty() {
+  if (lines_ != 0 || size_ != 0) return;
+  std::error_code ec;
+  if (std::filesystem::file_size(path_, ec) == 0 && !ec) std::filesystem::remove(path_, ec);
+}
+
 }  // namespace voxspan

@@ -22,6 +22,8 @@ class StatsLog {
 
   void append(std::string_view line);  // one complete line, '\n' included
   void sync();                         // fdatasync: durable up to the last line
+  // Removes the file when no line was ever appended to it (and it is empty).
+  void remove_if_empty();
   const std::filesystem::path& path() const { return path_; }
   std::uint64_t lines() const { return lines_; }
 

@@ -16,7 +16,8 @@
 //                 as space outside the grid is), active where the state is anything else.
 // File metadata: step, time, voxspan version, particle and cell counts.
 // Cost: linear in the boundary particles' narrow-band voxels; the fill is one mask fill per
-// inner-full cell. Everything OpenVDB stays inside vdb_snapshot.cpp.
+// inner-full cell. Everything OpenVDB stays inside vdb_snapshot.cpp (and fluid_level_set.cpp,
+// which builds "fluid" for it and for the mesh).
 #pragma once
 
 #include <cstdint>
@@ -30,11 +31,26 @@
 
 namespace voxspan {
 
-struct VdbSnapshotSettings {
+// The "fluid" level set's settings and what building it found: the snapshot's and the mesh's
+// (mesh_files.h), which is the zero level set of the same grid.
+struct FluidLevelSetSettings {
   std::optional<double> voxel_size;  // nullopt: the smallest particle radius
   int half_width = 3;
   std::optional<double> closing;  // nullopt: the largest particle radius; 0: no closing
   bool fill_inner = true;
+  bool operator==(const FluidLevelSetSettings&) const = default;
+};
+
+struct FluidLevelSetReport {
+  double voxel_size = 0;
+  double closing = 0;
+  std::size_t particles = 0;            // rasterized
+  std::size_t particles_too_small = 0;  // radius + closing under 1.5 voxels: left out
+  std::size_t particles_invalid = 0;    // NaN/inf position or non-positive radius: left out
+  std::size_t inner_full_cells = 0;     // filled
+};
+
+struct VdbSnapshotSettings : FluidLevelSetSettings {
   bool cell_states = true;
   bool operator==(const VdbSnapshotSettings&) const = default;
 };
@@ -47,15 +63,9 @@ struct VdbSnapshotInput {
   double time = 0;
 };
 
-struct VdbSnapshotReport {
-  double voxel_size = 0;
-  double closing = 0;
-  std::size_t particles = 0;            // rasterized
-  std::size_t particles_too_small = 0;  // radius + closing under 1.5 voxels: left out
-  std::size_t particles_invalid = 0;    // NaN/inf position or non-positive radius: left out
-  std::size_t inner_full_cells = 0;     // filled
-  std::uint64_t level_set_voxels = 0;   // active voxels of "fluid"
-  std::uint64_t bytes = 0;              // file size
+struct VdbSnapshotReport : FluidLevelSetReport {
+  std::uint64_t level_set_voxels = 0;  // active voxels of "fluid"
+  std::uint64_t bytes = 0;             // file size
   // Wall time per stage: "vdb_rasterize", "vdb_fill", "vdb_close", "vdb_attributes",
   // "vdb_write" (for the per-step stats).
   FrameStats timings;

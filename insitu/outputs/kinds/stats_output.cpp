@@ -57,6 +57,8 @@ class StatsOutput final : public Output {
   void close() override {
     try {
       log_.sync();
+      // No line ever written (a run that failed before its first report): no empty file left.
+      if (jobs_.tally().submitted == 0) log_.remove_if_empty();
     } catch (const std::exception& e) {
       log_warning("stats file: ", e.what());
     }

@@ -181,6 +181,20 @@ void write_pysph_file(const std::filesystem::path& path) {
   H5Fclose(f);
 }
 
+// Offline frames are numbered by the file's own step (PySPH's iteration count), still rising
+// where files say none or go back.
+TEST(PySphParticles, OfflineStepsAreTheFilesOwn) {
+  test::TempFolder dir;
+  write_pysph_file(dir / "dam_break_1500.hdf5");
+  const ParticleData pysph = read_particles(dir / "dam_break_1500.hdf5");
+  EXPECT_EQ(pysph.step_after(-1), 1500);
+  EXPECT_EQ(pysph.step_after(1499), 1500);
+  EXPECT_EQ(pysph.step_after(1500), 1501);  // not back, nor twice
+  const ParticleData none;
+  EXPECT_EQ(none.step_after(-1), 0);
+  EXPECT_EQ(none.step_after(1500), 1501);
+}
+
 TEST(PySphParticles, ReadsEveryArrayWithTimeStepAndCommonProperties) {
   test::TempFolder dir;
   write_pysph_file(dir / "dam_break_1500.hdf5");

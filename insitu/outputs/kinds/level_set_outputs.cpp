@@ -1,0 +1,43 @@
+#include "insitu/outputs/kinds/level_set_outputs.h"
+
+#include <utility>
+
+namespace voxspan {
+
+std::vector<schema::Key<FluidLevelSetSettings>> fluid_level_set_keys() {
+  using L = FluidLevelSetSettings;
+  return {schema::number_or_auto("voxel_size", &L::voxel_size, schema::above(0),
+                                 "world units; `auto` = the radius"),
+          schema::number_or_auto("closing", &L::closing, schema::at_least(0),
+                                 "gap closing distance (dilate, then erode by it); `auto` = the "
+                                 "radius; 0: none"),
+          schema::flag("fill_inner", &L::fill_inner,
+                       "inner-full cells filled: the file holds the whole fluid")};
+}
+
+LevelSetOutput::LevelSetOutput(const OutputContext& context, std::optional<double> radius,
+                               std::span<const std::string> attributes, const char* label,
+                               WriteFile write_file)
+    : label_(label),
+      attributes_(attributes.begin(), attributes.end()),
+      radius_(radius.value_or(context.particle_spacing > 0 ? 0.5 * context.particle_spacing : 0.0)),
+      comm_(context.comm),
+      jobs_(context.writer, context.slots, [write_file = std::move(write_file)](SnapshotCopy& s) {
+        const std::vector<AttributeSpan> spans = s.attribute_spans();
+        write_file({s.spheres, s.cells.view(), spans, s.step, s.time});
+      }) {}
+
+void LevelSetOutput::write(const OutputStep& step) {
+  const StepData& data = step.data;
+  if (comm_ == nullptr || comm_->size() == 1) {
+    jobs_.submit(label_, [&](SnapshotCopy& copy) { copy.fill(data, attributes_, radius_); });
+    return;
+  }
+  // Every rank's part, gathered on the root before any slot is taken: a rank without a free
+  // slot still takes part.
+  gathered_.fill(data, attributes_, radius_);
+  if (!gathered_.gather(*comm_)) return;
+  jobs_.submit(label_, [&](SnapshotCopy& copy) { std::swap(copy, gathered_); });
+}
+
+}  // namespace voxspan
