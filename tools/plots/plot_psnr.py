@@ -19,6 +19,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+import figures  # noqa: E402 (tools/plots/figures.py)
+
 MODES = ["opaque", "translucent", "refractive"]
 BOUNDS = {"opaque": 32, "translucent": 32, "refractive": 26}
 
@@ -60,12 +62,9 @@ def main(argv):
         ax.grid(alpha=0.3)
     axes[0].set_ylabel("PSNR (dB) against the exact reference")
     axes[0].legend(fontsize=8, loc="upper left")
-    fig.suptitle("GPU picture against the exact CPU reference, 160x120, filter off: "
-                 "solid = same (Sobel) normals, dashed = exact sphere normals, dotted = test bound")
-    fig.tight_layout()
-    fig.savefig(argv[2], dpi=90)
-    print("wrote", argv[2])
-    return 0
+    return figures.save(fig, "GPU picture against the exact CPU reference, 160x120, filter off: "
+                        "solid = same (Sobel) normals, dashed = exact sphere normals, dotted = "
+                        "test bound", argv[2])
 
 
 if __name__ == "__main__":

@@ -22,6 +22,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+import figures  # noqa: E402 (tools/plots/figures.py)
+
 
 def read(path):
     """{mode: [(sampling, ms, max_err, p99_err)]} and a title from the first row."""
@@ -63,11 +65,9 @@ def main(argv):
         ax.grid(alpha=0.3)
     axes[0][0].set_ylabel("channel error against the converged integral")
     axes[0][0].legend(fontsize=8)
-    fig.suptitle("Volume views, %s: error against time per sampling (the default ringed)" % title)
-    fig.tight_layout()
-    fig.savefig(argv[2], dpi=90)
-    print("wrote", argv[2])
-    return 0
+    return figures.save(
+        fig, "Volume views, %s: error against time per sampling (the default ringed)" % title,
+        argv[2])
 
 
 if __name__ == "__main__":

@@ -19,6 +19,7 @@
 #include "insitu/runtime/config_file.h"
 #include "insitu/runtime/registry.h"
 #include "tests/support/error_message.h"
+#include "tests/support/lattice_block_test.h"
 #include "tests/support/temp_folder.h"
 #include "tools/common/dambreak_state.h"
 #include "tools/scenes/lattice.h"
@@ -186,15 +187,7 @@ PlyFile read_ply(const std::filesystem::path& path) {
   return ply;
 }
 
-// 24^3 particles on a lattice of spacing dx, radius dx/2 (the runtime's `auto`), the interior
-// left out as the classifier leaves it (tools/scenes/lattice.h).
-class MeshOutputTest : public ::testing::Test {
- protected:
-  static constexpr int kSide = 24;
-  static constexpr double kDx = 0.01;
-  test::LatticeScene scene = test::make_lattice_block(kSide, kDx, float(kDx / 2));
-  test::TempFolder dir;
-};
+class MeshOutputTest : public test::LatticeBlockTest {};
 
 TEST_F(MeshOutputTest, BlockMeshesToOneClosedSurfaceOnTheSphereUnion) {
   FluidMeshReport report;

@@ -10,6 +10,7 @@
 
 #include "insitu/io/vdb_inspect.h"
 #include "insitu/outputs/formats/vdb_snapshot.h"
+#include "tests/support/lattice_block_test.h"
 #include "tests/support/temp_folder.h"
 #include "tools/scenes/lattice.h"
 #include "voxspan/error.h"
@@ -34,12 +35,8 @@ typename GridT::Ptr grid_named(const openvdb::GridPtrVec& grids, const std::stri
 }
 
 // A 24^3 block of touching spheres (radius dx/2): its particle volume is (24 dx)^3.
-class VdbSnapshot : public ::testing::Test {
+class VdbSnapshot : public test::LatticeBlockTest {
  protected:
-  static constexpr int kSide = 24;
-  static constexpr double kDx = 0.01;
-  test::LatticeScene scene = test::make_lattice_block(kSide, kDx, float(kDx / 2));
-  test::TempFolder dir;
   double particle_volume() const { return std::pow(kSide * kDx, 3); }
 };
 
