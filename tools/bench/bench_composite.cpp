@@ -60,6 +60,7 @@
 #include "tools/common/dambreak_state.h"
 #include "tools/common/rank_split.h"
 #include "tools/common/tool_args.h"
+#include "tools/common/usage.h"
 #include "voxspan/classify.h"
 #include "voxspan/error.h"
 #include "voxspan/stopwatch.h"
@@ -626,6 +627,7 @@ int run(const Args& a, Communicator& comm) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (tools::asks_for_help(argc, argv)) return tools::print_usage(stdout, kUsage);
   MPI_Init(&argc, &argv);
   int status = 0;
   {
