@@ -99,6 +99,10 @@ struct ViewState {
   std::unique_ptr<View> view;
   ViewFraming framing;
   ViewProducts products;
+  // The rendered pictures, traded out of `products` after each render (no copy), `latest`
+  // held until the next: the outputs' jobs keep their own references.
+  std::unique_ptr<PicturePool> pictures;
+  SharedPicture latest;
   bool jump_told = false;  // the framing's jump is said once
 };
 
@@ -157,6 +161,9 @@ struct InsituPipeline::Impl {
       views.push_back({v.settings->name,
                        registered_view_kind(v.kind).make(*v.settings, view_context),
                        ViewFraming(*v.settings),
+                       {},
+                       // The writer's queue, the job it runs, the latest picture.
+                       std::make_unique<PicturePool>(std::size_t(config.writer.queue_size) + 2),
                        {}});
     record.views.reserve(views.size());
     for (const ViewState& v : views) record.view(v.name);  // made once: their addresses stay
@@ -247,7 +254,10 @@ struct InsituPipeline::Impl {
           totals.passes.add_time(pass.name, pass.ms);
         if (!shown) continue;  // an MPI rank that only voxelized: the root shows the view
         ++totals.frames;
-        results[i].picture = &v.products.picture;
+        v.latest.reset();  // its buffer, unless a job holds it, is the one traded in
+        v.latest = v.pictures->take(v.products.picture);
+        results[i].picture = v.latest.get();
+        results[i].shared_picture = &v.latest;
         if (needs.first_hit_depth) results[i].first_hit_depth = &v.products.first_hit_depth;
         if (needs.spans) results[i].spans = v.products.shaded_spans;
         if (needs.field) results[i].field = v.products.shaded_field;

@@ -12,6 +12,7 @@
 #include "render/frame_stats.h"
 #include "render/span_image.h"
 #include "render/volume.h"
+#include "insitu/views/shared_picture.h"
 
 namespace voxspan {
 
@@ -49,11 +50,37 @@ struct FieldImage {
 struct ViewResult {
   std::string_view name;
   const FloatImage* picture = nullptr;
+  // The same picture for an output that keeps it past the step (its copy of the reference
+  // keeps the pixels as they are: no copy of them; insitu/views/shared_picture.h).
+  const SharedPicture* shared_picture = nullptr;
   const FloatImage* first_hit_depth = nullptr;  // one channel (r) per pixel, 0: no fluid
   const SpanImage* spans = nullptr;
   const FieldImage* field = nullptr;
   const DeepImage* deep = nullptr;
   const FrameStats* stats = nullptr;  // the view's passes and counts on this process
+};
+
+// An image an output keeps past the step: a view's picture by reference when it comes with one
+// (`shared` refers to the same pixels), any other image as a copy whose storage stays for the
+// next (no allocation once it has held `reserve_floats`, the largest it will hold).
+struct KeptImage {
+  SharedPicture shared;
+  FloatImage copy;
+
+  void keep(const FloatImage& image, const SharedPicture* same, std::size_t reserve_floats = 0) {
+    if (same != nullptr && same->get() == &image) {
+      shared = *same;
+      return;
+    }
+    shared.reset();
+    copy.rgba.reserve(reserve_floats);
+    copy.width = image.width;
+    copy.height = image.height;
+    copy.rgba.assign(image.rgba.begin(), image.rgba.end());
+  }
+  const FloatImage& image() const { return shared ? *shared : copy; }
+  // Gives a referenced picture back to its view (once written).
+  void release() { shared.reset(); }
 };
 
 // A view's products of one step, kept from step to step (their storage is reused).

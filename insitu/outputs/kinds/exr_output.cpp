@@ -3,7 +3,7 @@
 // one deep sample per span, Z its entry and ZBack its exit, as distances from the eye along
 // the unit ray through the pixel's centre (docs/runtime.md, "Depth images"), and
 // <folder>/<view>_color_<step>.exr the shaded picture, R G B A as linear 32-bit floats. The
-// span image and the picture are copied into a pooled slot on the solver's thread; the
+// span image is copied into a pooled slot on the solver's thread, the picture referenced; the
 // encoding and the writing (each file atomically) run on the writer's. A slice view has no
 // spans: its file is <folder>/<view>_<step>.exr with its raw values as 32-bit floats (channels
 // `value` and `weight`) and the plane's pixel-to-world mapping in the header. A volume view's
@@ -49,7 +49,7 @@ class ExrOutput final : public Output {
         if (s.kind == Kind::field) s.field = *r.field;
         else if (s.kind == Kind::deep) s.deep = *r.deep;
         else s.spans = *r.spans;
-        s.picture = *r.picture;
+        s.picture.keep(*r.picture, r.shared_picture);
       });
     }
   }
@@ -62,12 +62,12 @@ class ExrOutput final : public Output {
     FieldImage field;
     DeepImage deep;
     Kind kind = Kind::spans;
-    FloatImage picture;
+    KeptImage picture;
     std::size_t view = 0;
     std::int64_t step = 0;
   };
 
-  void run(const Slot& s) const {
+  void run(Slot& s) const {
     const std::string& name = view_names_[s.view];
     write_file_atomically(folder_ / step_file_name(name, s.step, "exr"),
                           s.kind == Kind::field  ? encode_exr_field(s.field)
@@ -75,7 +75,8 @@ class ExrOutput final : public Output {
                                                  : encode_deep_exr(s.spans),
                           sync_);
     write_file_atomically(folder_ / step_file_name(name + "_color", s.step, "exr"),
-                          encode_exr_rgba(s.picture), sync_);
+                          encode_exr_rgba(s.picture.image()), sync_);
+    s.picture.release();
   }
 
   std::filesystem::path folder_;

@@ -1,6 +1,7 @@
-// outputs.png: every rendered view as an 8-bit sRGB PNG, <folder>/<view>_<step>.png. The
-// picture is copied on the solver's thread; the sRGB conversion and the encoding, at the
-// `compression_level` chosen, run on the writer's (insitu/outputs/formats/png_image.h).
+// outputs.png: every rendered view as an 8-bit sRGB PNG, <folder>/<view>_<step>.png. The job
+// holds the view's picture by reference (no copy on the solver's thread); the sRGB conversion
+// and the encoding, at the `compression_level` chosen, run on the writer's
+// (insitu/outputs/formats/png_image.h).
 #include "insitu/outputs/kinds/png_output.h"
 
 #include "insitu/outputs/kinds/view_images.h"

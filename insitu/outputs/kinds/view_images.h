@@ -1,6 +1,7 @@
 // insitu/outputs/kinds/view_images.h - the outputs that write one image per view and step (PNG
-// pictures, EXR depth images): each view's image copied into a pooled slot on the solver's
-// thread (no allocation once the slots have held the largest view), written as
+// pictures, EXR depth images): each view's picture referenced (insitu/views/shared_picture.h),
+// another image copied, into a pooled slot on the solver's thread (no allocation once the slots
+// have held the largest view), written as
 // <folder>/<view>_<step>.<extension> on the writer's. Such a kind is its settings, its schema
 // section and a ViewImageFormat (depth_output.cpp), or its own Output on ViewImageJobs
 // (png_output.cpp, whose encoder takes a setting).
@@ -39,10 +40,8 @@ class ViewImageJobs {
       jobs_.submit(label_, [&](Slot& s) {
         s.view = v;
         s.step = step.data.step;
-        s.image.width = image->width;
-        s.image.height = image->height;
-        s.image.rgba.reserve(largest_);  // a pooled slot serves every view
-        s.image.rgba.assign(image->rgba.begin(), image->rgba.end());
+        // a pooled slot serves every view
+        s.image.keep(*image, step.views[v].shared_picture, largest_);
       });
     }
   }
@@ -51,7 +50,7 @@ class ViewImageJobs {
 
  private:
   struct Slot {
-    FloatImage image;
+    KeptImage image;
     std::size_t view = 0;
     std::int64_t step = 0;
   };
@@ -63,8 +62,9 @@ class ViewImageJobs {
     return most;
   }
 
-  void run(const Slot& s) const {
-    write_(folder_ / step_file_name(view_names_[s.view], s.step, extension_), s.image);
+  void run(Slot& s) const {
+    write_(folder_ / step_file_name(view_names_[s.view], s.step, extension_), s.image.image());
+    s.image.release();  // the picture's buffer back to its view as soon as it is written
   }
 
   std::filesystem::path folder_;
