@@ -162,6 +162,9 @@ std::optional<ConfiguredView> read_view(Checker& checker, const YAML::Node& node
     checker.error(
         node.IsMap() && node["name"] ? node["name"] : node, path + ".name",
         "must be letters, digits, '_', '-' or '.' (it names files); got \"" + v.name + "\"");
+  if (const std::string problem = caption_problem(v.caption); !problem.empty())
+    checker.error(node.IsMap() && node["caption"] ? node["caption"] : node, path + ".caption",
+                  problem);
   return view;
 }
 

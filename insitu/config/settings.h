@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "insitu/config/caption.h"
 #include "insitu/config/schema.h"
 #include "insitu/config/trigger.h"
 
@@ -136,6 +137,7 @@ struct ViewSettings {
   int width = 960;
   int height = 540;
   CameraConfig camera;
+  std::string caption = "step {step}, t = {time}";  // drawn at the top left (config/caption.h)
   // Where the config gave the view, so that a key found wrong only when the solver's data
   // arrives (an attribute it does not pass) is named with its line.
   ConfigSource source;
@@ -176,7 +178,10 @@ std::vector<schema::Key<S>> view_keys(std::string_view kind, std::vector<schema:
       schema::integer<S, int>("width", &ViewSettings::width, 1, 16384, "pixels"),
       schema::integer<S, int>("height", &ViewSettings::height, 1, 16384, "pixels"),
       schema::map<S, CameraConfig>("camera", &ViewSettings::camera, camera_section(),
-                                   "automatic framing unless `eye` and `target` are given")};
+                                   "automatic framing unless `eye` and `target` are given"),
+      schema::text<S>("caption", &ViewSettings::caption,
+                      "text drawn at the picture's top left, in which " +
+                          std::string(kCaptionFields) + " are filled in each step; empty: none")};
   return schema::joined(std::move(keys), std::move(own));
 }
 

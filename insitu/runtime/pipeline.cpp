@@ -18,6 +18,7 @@
 #include "insitu/runtime/registry.h"
 #include "insitu/runtime/schedule.h"
 #include "insitu/runtime/step_record.h"
+#include "insitu/views/legend.h"
 #include "insitu/views/span_compositor.h"
 #include "insitu/views/view.h"
 #include "insitu/views/view_framing.h"
@@ -103,6 +104,7 @@ struct ViewState {
   // held until the next: the outputs' jobs keep their own references.
   std::unique_ptr<PicturePool> pictures;
   SharedPicture latest;
+  std::string caption;     // this step's, its storage kept
   bool jump_told = false;  // the framing's jump is said once
 };
 
@@ -164,6 +166,7 @@ struct InsituPipeline::Impl {
                        {},
                        // The writer's queue, the job it runs, the latest picture.
                        std::make_unique<PicturePool>(std::size_t(config.writer.queue_size) + 2),
+                       {},
                        {}});
     record.views.reserve(views.size());
     for (const ViewState& v : views) record.view(v.name);  // made once: their addresses stay
@@ -254,6 +257,7 @@ struct InsituPipeline::Impl {
           totals.passes.add_time(pass.name, pass.ms);
         if (!shown) continue;  // an MPI rank that only voxelized: the root shows the view
         ++totals.frames;
+        draw_caption(i, data);
         v.latest.reset();  // its buffer, unless a job holds it, is the one traded in
         v.latest = v.pictures->take(v.products.picture);
         results[i].picture = v.latest.get();
@@ -269,6 +273,15 @@ struct InsituPipeline::Impl {
       }
     }
     return failure;
+  }
+
+  // The view's caption, its fields filled from the step, on its picture.
+  void draw_caption(std::size_t view, const StepData& data) {
+    const std::string& pattern = config.views[view].settings->caption;
+    if (pattern.empty()) return;
+    ViewState& v = views[view];
+    expand_caption(pattern, {data.step, data.time, v.name}, v.caption);
+    voxspan::draw_caption(v.products.picture, v.caption);
   }
 
   // Hands the step to every output due whose `reports_step` is as asked.

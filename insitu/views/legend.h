@@ -1,7 +1,7 @@
 // insitu/views/legend.h - what a colour-mapped view writes into its picture so that colours and
-// places can be read: the colour bar with its values and a 2D view's axes, in a 5x7 pixel font
-// (digits, the signs and a few letters, enough for numbers and axis names) drawn light on a
-// dark outline. Standard library and glm only; no font files.
+// places can be read: the colour bar with its title and values, a 2D view's axes, a view's
+// caption, in a 5x7 pixel font (printable ASCII) drawn light on a dark outline. Standard library
+// and glm only; no font files.
 #pragma once
 
 #include <cstdint>
@@ -23,12 +23,15 @@ int text_width(std::string_view text, int scale);
 // the font show as blanks.
 void draw_text(FloatImage& picture, int x, int y, std::string_view text, int scale,
                glm::vec3 colour = glm::vec3(0.9f));
+// A view's caption (insitu/config/caption.h) at the picture's top left.
+void draw_caption(FloatImage& picture, std::string_view text);
 // A value as the legend prints it: three significant digits ("0.125", "-3.5e+04").
 std::string legend_number(double value);
 enum class BarSide : std::uint8_t { right, left };
 // The colour bar at the right (or left) edge, the map from `hi` at its top to `lo` at its
-// bottom, with the two values and the middle one beside it.
-void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi,
+// bottom, with the two values and the middle one beside it and `title` (what the colours are,
+// view_keys.h: color_bar_title) above it.
+void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi, std::string_view title,
                     BarSide side = BarSide::right);
 
 // An axis along an edge of a 2D picture: the world coordinate at its two ends (left to right,

@@ -176,7 +176,7 @@ class ParticlesView final : public View {
       recorder.count(kTrails, std::int64_t(trails_.count()));
     }
     if (settings_.legend && shading.by_value)
-      draw_color_bar(out.picture, settings_.color_map, lo, hi);
+      draw_color_bar(out.picture, settings_.color_map, lo, hi, bar_title_);
     // The glyphs' or the slice's distance per pixel, as the depth output writes it.
     if (step.needs.first_hit_depth)
       distances_from_view_depth(step.camera, depth_, out.first_hit_depth);
@@ -275,6 +275,7 @@ class ParticlesView final : public View {
 
   const ParticlesSettings settings_;
   const std::string color_by_key_ = settings_.key_path("color_by");
+  const std::string bar_title_ = color_bar_title(settings_.color_by, settings_.units);
   const std::string cull_by_key_ = settings_.key_path("cull_by");
   const std::string trail_id_key_ = settings_.key_path("trails.id");
   const double spacing_;

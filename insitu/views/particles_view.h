@@ -50,6 +50,7 @@ struct TrailSettings {
 struct ParticlesSettings : CloneAs<ParticlesSettings, ViewSettings> {
   std::string color_by;  // empty: one colour
   ColorMap color_map = ColorMap::viridis;
+  std::string units;                           // after the colour bar's title; empty: none
   std::optional<std::array<double, 2>> range;  // nullopt = the selected particles' min and max
   std::string cull_by;                         // empty: color_by
   std::optional<std::array<double, 2>> cull_range;

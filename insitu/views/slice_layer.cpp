@@ -91,6 +91,7 @@ void check_slice_field(yaml::MapReader& r, const SliceField& f) {
 SliceLayer::SliceLayer(const SliceField& field, std::string view_name, std::string key,
                        double spacing, Communicator* comm)
     : field_(field),
+      bar_title_(color_bar_title(field.quantity, field.units)),
       view_name_(std::move(view_name)),
       quantity_key_(key.empty() ? "quantity" : key + ".quantity"),
       spacing_(spacing),
@@ -182,7 +183,7 @@ void SliceLayer::draw_image(FloatImage& picture) const {
                   values_.weight[k] > 0 ? glm::vec4(colour(k, lo, scale), 1.0f)
                                         : glm::vec4(0.02f, 0.02f, 0.025f, 1.0f));
     }
-  draw_color_bar(picture, field_.color_map, lo, hi);
+  draw_color_bar(picture, field_.color_map, lo, hi, bar_title_);
   draw_axes(picture, axis_along(plane_.origin, plane_.u, plane_.width, "u"),
             axis_along(plane_.origin, plane_.v, plane_.height, "v"));
 }
@@ -213,7 +214,7 @@ void SliceLayer::draw_in_view(const Camera& camera, std::span<float> view_depth,
       picture.set(x, y, glm::vec4(colour(k, lo, scale) * lit, 1.0f));
       view_depth[px] = float(z);
     }
-  draw_color_bar(picture, field_.color_map, lo, hi, bar_side);
+  draw_color_bar(picture, field_.color_map, lo, hi, bar_title_, bar_side);
 }
 
 void SliceLayer::fill_field(FieldImage& f) const {

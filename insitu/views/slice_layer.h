@@ -52,6 +52,7 @@ struct SliceField {
   SlicePlaneConfig plane;
   std::optional<double> extent;  // the plane's width, world units; nullopt = fit the fluid
   ColorMap color_map = ColorMap::viridis;
+  std::string units;                           // after the colour bar's title; empty: none
   std::optional<std::array<double, 2>> range;  // nullopt = the step's min and max
   int isolines = 8;
   bool operator==(const SliceField&) const = default;
@@ -104,6 +105,7 @@ class SliceLayer {
   void sum_ranks(const ParticleView& particles, const SliceQuantity& q, int width, int height);
 
   const SliceField field_;
+  const std::string bar_title_;
   const std::string view_name_;
   const std::string quantity_key_;
   const double spacing_;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "insitu/config/schema.h"
@@ -29,14 +30,24 @@ std::vector<schema::Key<S>> sph_sum_keys(std::string quantity_help, std::string 
       schema::text("density", &S::density, "the density attribute")};
 }
 
-// `color_map` and `range`, for any settings with these members; `range_auto` says what `auto`
-// takes.
+// `color_map`, `range` and `units`, for any settings with these members; `range_auto` says what
+// `auto` takes.
 template <class S>
 std::vector<schema::Key<S>> color_map_keys(std::string map_help, std::string range_auto) {
   return {schema::choice("color_map", &S::color_map, kColorMapNames, std::move(map_help)),
           schema::interval_or_auto(
               "range", &S::range,
-              "the values at the colour map's ends; `auto` = " + std::move(range_auto))};
+              "the values at the colour map's ends; `auto` = " + std::move(range_auto)),
+          schema::text("units", &S::units,
+                       "the values' units, shown after the colour bar's title (the quantity's "
+                       "name): `m/s` gives \"speed [m/s]\"; empty: the name alone")};
+}
+
+// The colour bar's title: the quantity's name, with its units when given.
+inline std::string color_bar_title(std::string_view quantity, std::string_view units) {
+  std::string title(quantity);
+  if (!units.empty()) title += " [" + std::string(units) + "]";
+  return title;
 }
 
 }  // namespace voxspan

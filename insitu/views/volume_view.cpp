@@ -169,7 +169,7 @@ class VolumeView final : public View {
     out.shaded_deep = deep ? &frame_.deep : nullptr;
     std::swap(out.picture, frame_.picture);
     if (settings_.legend && settings_.mode != VolumeMode::iso)
-      draw_color_bar(out.picture, settings_.color_map, range[0], range[1]);
+      draw_color_bar(out.picture, settings_.color_map, range[0], range[1], bar_title_);
     if (step.needs.first_hit_depth) {
       FloatImage& d = out.first_hit_depth;
       if (d.width != settings_.width || d.height != settings_.height)
@@ -290,6 +290,8 @@ class VolumeView final : public View {
   }
 
   const VolumeSettings settings_;
+  const std::string bar_title_ = color_bar_title(
+      settings_.quantity.empty() ? "volume fraction" : settings_.quantity, settings_.units);
   const double spacing_;
   std::unique_ptr<VolumeRenderer> renderer_;
   Communicator* const comm_;                    // null in one process

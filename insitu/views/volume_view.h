@@ -43,6 +43,7 @@ struct VolumeSettings : CloneAs<VolumeSettings, ViewSettings> {
   std::string mass = "mass", density = "density";
   VolumeMode mode = VolumeMode::dvr;
   ColorMap color_map = ColorMap::viridis;
+  std::string units;                           // after the colour bar's title; empty: none
   std::optional<std::array<double, 2>> range;  // nullopt = the particles' values' min and max
   // The transfer function's opacity: (t, alpha) points, t in [0, 1] across the range, alpha the
   // opacity of `opacity_length` particle spacings of fluid at that value; linear between them.

@@ -77,7 +77,8 @@ std::string config(const std::string& name, const std::string& keys,
          "\noutputs: {png: {enabled: false}, stats: {enabled: false}, " + output +
          "}\n"
          "trigger: {every_steps: 1}\nwriter: {fsync: false}\n"
-         "views:\n  - {name: v, kind: volume, width: 72, height: 54, quantity: p, legend: false,"
+         "views:\n  - {name: v, kind: volume, width: 72, height: 54, quantity: p, legend: false, "
+         "caption: '',"
          " camera: {direction: [0.3, -1, -0.6], up: [0, 0, 1]}, " +
          keys + "}\n";
 }

@@ -179,7 +179,7 @@ TEST(VolumeExr, TheDeepImageFlattensIntoTheFlatPicture) {
       exr_run(dir.path(),
               "name: v, kind: volume, width: 48, height: 40, quantity: p,"
               " mode: mixed, iso: [{value: 900, opacity: 0.5}], background: none,"
-              " legend: false, camera: {direction: [0.2, 0.3, -1], up: [0, 1, 0]}"),
+              " legend: false, caption: '', camera: {direction: [0.2, 0.3, -1], up: [0, 1, 0]}"),
       test::spaced(block.spacing));
   ASSERT_TRUE(a.execute(2, 0, block.view()).ok());
   a.finish();

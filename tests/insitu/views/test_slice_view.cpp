@@ -21,7 +21,9 @@ test::ParticleBlock block() {
 }
 
 std::string config(const std::string& slice, const std::string& size = "width: 64, height: 32") {
-  return test::one_view_config("slice_view", "name: s, kind: slice, " + size + ", " + slice);
+  // No caption: the tests read the picture's corners.
+  return test::one_view_config("slice_view",
+                               "name: s, kind: slice, caption: '', " + size + ", " + slice);
 }
 
 const FloatImage& picture_of(const Adapter& a) { return *test::latest_view(a).picture; }
