@@ -6,6 +6,8 @@ find_package(yaml-cpp REQUIRED)
 find_package(PNG REQUIRED)
 # libdeflate: the PNG frames' compression (libpng decodes them); Debian ships only its .pc file.
 pkg_check_modules(LIBDEFLATE REQUIRED IMPORTED_TARGET GLOBAL libdeflate)
+# muparser: the triggers' conditions (insitu/config/condition.h); found by its .pc file.
+pkg_check_modules(MUPARSER REQUIRED IMPORTED_TARGET GLOBAL muparser)
 find_package(VTK 9.1 REQUIRED COMPONENTS CommonCore CommonDataModel IOXML IOXMLParser
              IOParallelXML)
 find_package(HDF5 REQUIRED COMPONENTS C)

@@ -74,6 +74,8 @@ struct Adapter::Impl {
                                  const GridView& grid);
   // The step's status on every rank of the pipeline (its own when alone).
   void agree();
+  // Whether the pipeline's triggers that look at the particles want the step.
+  bool confirm(std::int64_t step, double time, const ParticleView& particles) noexcept;
   void process(std::int64_t step, double time, const Classification& c,
                const ParticleView& particles, const GridView& grid);
 };
@@ -101,6 +103,20 @@ void Adapter::Impl::agree() {
   } catch (const std::exception& e) {
     fail(stats.status, StatusCode::internal_error, e.what());
   }
+}
+
+bool Adapter::Impl::confirm(std::int64_t step, double time,
+                            const ParticleView& particles) noexcept {
+  if (!pipeline) return true;
+  try {
+    return pipeline->confirm_step(step, time, particles);
+  } catch (const std::exception& e) {
+    log_quietly(LogLevel::error, "step ", step, ": the pipeline's trigger failed (", e.what(),
+                "); step skipped");
+  } catch (...) {
+    log_quietly(LogLevel::error, "step ", step, ": the pipeline's trigger threw; step skipped");
+  }
+  return false;
 }
 
 void Adapter::Impl::process(std::int64_t step, double time, const Classification& c,
@@ -149,8 +165,12 @@ Status Adapter::execute(std::int64_t step, double time, const ParticleView& part
   Impl& m = *impl_;
   ++m.steps_seen;
   if (!is_render_step(step, time)) return {};
-
   const Stopwatch t0;
+  if (!m.confirm(step, time, particles)) {
+    m.seconds_in_situ += t0.seconds();
+    return {};
+  }
+
   ++m.render_steps;
   StepStats& s = m.stats;
   s.step = step;

@@ -206,7 +206,7 @@ void read_output(MapReader& outs, const OutputConfigKind& kind, const TriggerSpe
     const YAML::Node trigger = node.IsMap() && node["trigger"] ? node["trigger"] : node;
     outs.checker().error(trigger, outs.path(name) + ".trigger",
                          "never fires while the output is enabled: set every_steps, "
-                         "every_time, first or last, or enabled: false");
+                         "every_time, first, last or when, or enabled: false");
   }
   if (out.folder.empty())
     outs.checker().error(node, outs.path(name) + ".folder", "must not be empty");
@@ -224,7 +224,108 @@ void read_outputs(MapReader& top, Config& c, const std::vector<OutputConfigKind>
     if (e.find(": trigger.") != std::string::npos || e.find(": trigger:") != std::string::npos)
       return;
   top.checker().error(top.find("trigger"), "trigger",
-                      "never fires: set every_steps, every_time, first or last");
+                      "never fires: set every_steps, every_time, first, last or when");
+}
+
+// ---- the conditions' constants and boxes, and the conditions themselves
+
+// Each entry of the map `key` of the top level, its name checked, handed to `read`.
+void read_named(MapReader& top, const char* key,
+                const std::function<void(const YAML::Node&, const std::string&)>& read) {
+  if (!top.has(key)) return;
+  const YAML::Node node = top.find(key);
+  if (node.IsNull()) return;
+  if (!node.IsMap()) {
+    top.checker().error(node, key, "expected a map of names; got " + yaml::describe(node));
+    return;
+  }
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    const std::string name = it->first.Scalar(), path = std::string(key) + "." + name;
+    if (const std::string problem = name_problem(name); !problem.empty())
+      top.checker().error(it->first, path, problem);
+    else read(it->second, path);
+  }
+}
+
+void read_constants(MapReader& top, Config& c) {
+  c.constants.clear();
+  read_named(top, "constants", [&](const YAML::Node& value, const std::string& path) {
+    double v = 0;
+    if (value.IsScalar() && YAML::convert<double>::decode(value, v) && std::isfinite(v))
+      c.constants[path.substr(path.find('.') + 1)] = v;
+    else top.checker().error(value, path, "expected a finite number; got " + yaml::describe(value));
+  });
+}
+
+bool read_corner(const YAML::Node& node, std::array<double, 3>& p) {
+  if (!node.IsSequence() || node.size() != 3) return false;
+  for (std::size_t a = 0; a < 3; ++a)
+    if (!node[a].IsScalar() || !YAML::convert<double>::decode(node[a], p[a]) || std::isnan(p[a]))
+      return false;
+  return true;
+}
+
+// YAML's own infinities, which read back.
+void emit_corner(YAML::Emitter& e, const std::array<double, 3>& p) {
+  e << YAML::BeginSeq;
+  for (double v : p)
+    if (std::isinf(v)) e << (v > 0 ? ".inf" : "-.inf");
+    else schema::emit_value(e, v);
+  e << YAML::EndSeq;
+}
+
+void read_boxes(MapReader& top, Config& c) {
+  c.boxes.clear();
+  read_named(top, "boxes", [&](const YAML::Node& value, const std::string& path) {
+    ConditionBox b;
+    bool ok = value.IsSequence() && value.size() == 2 && read_corner(value[0], b.lo) &&
+              read_corner(value[1], b.hi);
+    for (std::size_t a = 0; ok && a < 3; ++a) ok = b.lo[a] < b.hi[a];
+    if (ok) c.boxes[path.substr(path.find('.') + 1)] = b;
+    else
+      top.checker().error(value, path,
+                          "expected [[x0, y0, z0], [x1, y1, z1]] with x0 < x1, y0 < y1, z0 < z1");
+  });
+}
+
+// A condition's mistake at its character, where `when` is one line (a block scalar's lines
+// would need their indentation: there the line of `when` is said).
+void check_condition(Checker& checker, const YAML::Node& when, const std::string& path,
+                     const Config& c) {
+  try {
+    Condition(when.Scalar(), c.constants, c.boxes);
+  } catch (const ConditionError& e) {
+    YAML::Mark mark = when.Mark();
+    const bool one_line = when.Scalar().find('\n') == std::string::npos;
+    if (one_line) mark.column += int(e.position) + (when.Tag() == "!" ? 1 : 0);
+    std::string message = e.what() + std::string(" in \"") + when.Scalar() + "\"";
+    const std::string& text = when.Scalar();
+    // A comma inside {...} ends a plain scalar: "max(velocity, outlet)" is cut there.
+    if (when.Tag() != "!" &&
+        std::count(text.begin(), text.end(), '(') > std::count(text.begin(), text.end(), ')'))
+      message += " (in a {...} map, quote an expression that has commas)";
+    checker.error(mark, path, message);
+  }
+}
+
+// The map entry `key` of `node`, or an undefined node (yaml-cpp throws on the entries of one).
+YAML::Node entry(const YAML::Node& node, const std::string& key) {
+  if (!node || !node.IsMap() || !node[key]) return YAML::Node(YAML::NodeType::Undefined);
+  return node[key];
+}
+
+// Every trigger's condition that the file gives, compiled with the constants and boxes: an
+// output that follows the render trigger has its condition checked there.
+void check_conditions(MapReader& top, const Config& c) {
+  const YAML::Node when = entry(top.find("trigger"), "when");
+  if (when && when.IsScalar() && !c.trigger.when.empty())
+    check_condition(top.checker(), when, "trigger.when", c);
+  const YAML::Node outputs = top.find("outputs");
+  for (const ConfiguredOutput& o : c.outputs) {
+    const YAML::Node own = entry(entry(entry(outputs, o.kind), "trigger"), "when");
+    if (own && own.IsScalar() && !o.settings->trigger.when.empty())
+      check_condition(top.checker(), own, "outputs." + o.kind + ".trigger.when", c);
+  }
 }
 
 // ---- the top level
@@ -253,6 +354,30 @@ std::vector<Key<Config>> top_keys(const ConfigKinds& kinds) {
   keys.push_back(
       schema::map("trigger", &Config::trigger, trigger_section(), "the render steps", true));
   keys.back().shown_default = "`{every_steps: 10, first: true, last: true}`";
+  keys.push_back(custom_key("constants", "map of name: number",
+                            "numbers the triggers' conditions name (`tank_length: 1.6`)", "`{}`",
+                            read_constants, [](YAML::Emitter& e, const Config& c) {
+                              e << YAML::BeginMap;
+                              for (const auto& [name, value] : c.constants) {
+                                e << YAML::Key << name << YAML::Value;
+                                schema::emit_value(e, value);
+                              }
+                              e << YAML::EndMap;
+                            }));
+  keys.push_back(custom_key(
+      "boxes", "map of name: [[x0, y0, z0], [x1, y1, z1]]",
+      "boxes the conditions' reductions may be over (`max(velocity, outlet)`); the bounds are "
+      "inclusive, `.inf` and `-.inf` allowed",
+      "`{}`", read_boxes, [](YAML::Emitter& e, const Config& c) {
+        e << YAML::BeginMap;
+        for (const auto& [name, box] : c.boxes) {
+          e << YAML::Key << name << YAML::Value << YAML::Flow << YAML::BeginSeq;
+          emit_corner(e, box.lo);
+          emit_corner(e, box.hi);
+          e << YAML::EndSeq;
+        }
+        e << YAML::EndMap;
+      }));
   keys.push_back(custom_key(
       "views", "list of views",
       "the views rendered on each render step (`views[i]` of each kind below); `[]` renders "
@@ -295,10 +420,25 @@ void check_top(MapReader& top, Config& c) {
   if (top.has("log_level") && !parse_log_level(c.log_level, level))
     checker.error(top.find("log_level"), "log_level",
                   "expected one of error, warning, info, debug; got \"" + c.log_level + "\"");
+  check_conditions(top, c);
 }
 
 Section<Config> top_section(const ConfigKinds& kinds) {
   return Section<Config>("", top_keys(kinds), check_top);
+}
+
+bool has_condition(const TriggerSpec& t) { return !t.when.empty(); }
+
+// A condition's own keys need the condition; its place is kept for the steps' messages.
+void check_trigger(MapReader& r, TriggerSpec& t) {
+  if (r.has("when")) {
+    if (t.when.empty()) r.checker().error(r.find("when"), r.path("when"), "must not be empty");
+    t.source.where = r.checker().where(r.find("when").Mark(), r.path("when"));
+    return;
+  }
+  for (const char* key : {"once", "cooldown_steps", "cooldown_time"})
+    if (r.has(key))
+      r.checker().error(r.find(key), r.path(key), "is for a condition: set `when` or remove it");
 }
 
 }  // namespace
@@ -314,7 +454,23 @@ const Section<TriggerSpec>& trigger_section() {
                       "(variable time steps: never misses a multiple, never fires twice for "
                       "one; 1e-9 T of slack for sums of dt); 0: off"),
        schema::flag("first", &T::first, "the first step the runtime sees"),
-       schema::flag("last", &T::last, "the step the solver marks as its last")}};
+       schema::flag("last", &T::last, "the step the solver marks as its last"),
+       schema::text("when", &T::when,
+                    "a condition on the particles (`max(velocity) > 2.5 and time > 0.3`): "
+                    "fires when it becomes true; checked on every step, at the cost of a pass "
+                    "over the particles (docs/runtime.md, \"Triggers on conditions\")")
+           .default_shown_as("none")
+           .only_when(has_condition),
+       schema::flag("once", &T::once, "with `when`: the condition fires the first time only")
+           .only_when(has_condition),
+       schema::integer("cooldown_steps", &T::cooldown_steps, std::int64_t{0}, kNoLimit,
+                       "with `when`: steps after the condition fired during which it cannot "
+                       "fire (a rising edge there is lost)")
+           .only_when(has_condition),
+       schema::number("cooldown_time", &T::cooldown_time, schema::at_least(0),
+                      "with `when`: the same in simulated time")
+           .only_when(has_condition)},
+      check_trigger};
   return s;
 }
 

@@ -13,11 +13,13 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "insitu/config/condition.h"
 #include "insitu/config/settings.h"
 #include "insitu/config/trigger.h"
 #include "render/gl/context.h"
@@ -73,9 +75,11 @@ using ConfiguredOutput = Configured<OutputSettings>;
 
 struct Config {
   std::string output_folder = "voxspan-output";
-  std::string log_level;                   // empty: keep the logger's level (VOXSPAN_LOG_LEVEL)
-  TriggerSpec trigger{10, 0, true, true};  // render steps
-  std::vector<ConfiguredView> views;       // default_config(): one view "main" of the first kind
+  std::string log_level;                      // empty: keep the logger's level (VOXSPAN_LOG_LEVEL)
+  TriggerSpec trigger{10, 0, true, true};     // render steps
+  std::map<std::string, double> constants;    // names the triggers' conditions may use
+  std::map<std::string, ConditionBox> boxes;  // boxes their reductions may be over
+  std::vector<ConfiguredView> views;          // default_config(): one view "main" of the first kind
   RendererConfig renderer;
   ClassificationConfig classification;
   std::vector<ConfiguredOutput> outputs;  // every output kind, in the kinds' order

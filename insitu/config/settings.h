@@ -125,13 +125,6 @@ struct CameraConfig {
 };
 const schema::Section<CameraConfig>& camera_section();
 
-// Where the config gave a section ("run.yaml:12:5: views[2]"; empty for a default one), kept
-// for messages. Not a setting: settings that differ only here are equal.
-struct ConfigSource {
-  std::string where;
-  bool operator==(const ConfigSource&) const { return true; }
-};
-
 struct ViewSettings {
   std::string name;  // default "view<i>"; names the PNG files and the stats section
   int width = 960;

@@ -32,4 +32,22 @@ void Trigger::advance_time(double time) {
   next_time_ = (k + 1) * spec_.every_time;
 }
 
+// A rising edge inside the cool-down is lost, not put off: the condition must fall and rise
+// again. A time the solver has not made finite yet does not end a cool-down in time.
+bool Trigger::condition_fires(std::int64_t step, double time, bool holds) {
+  const bool rising = holds && !held_;
+  held_ = holds;
+  if (!rising || !checks_condition()) return false;
+  if (fired_) {
+    if (step < fired_step_ + spec_.cooldown_steps) return false;
+    if (spec_.cooldown_time > 0 && std::isfinite(fired_time_) &&
+        !(time >= fired_time_ + spec_.cooldown_time - 1e-9 * spec_.cooldown_time))
+      return false;
+  }
+  fired_ = true;
+  fired_step_ = step;
+  fired_time_ = time;
+  return true;
+}
+
 }  // namespace voxspan

@@ -26,6 +26,8 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
+}  // namespace
+
 std::string closest(std::string_view key, std::span<const std::string_view> allowed) {
   std::string best;
   std::size_t best_distance = 3;  // suggest only near misses
@@ -35,8 +37,6 @@ std::string closest(std::string_view key, std::span<const std::string_view> allo
   }
   return best;
 }
-
-}  // namespace
 
 std::string Checker::where(const YAML::Mark& mark, const std::string& path) const {
   std::ostringstream s;

@@ -149,7 +149,7 @@ struct InsituPipeline::Impl {
       : config(with_log_level(c)),
         spacing(particle_spacing),
         comm(communicator),
-        schedule(config),
+        schedule(config, communicator),
         plan(schedule.blank()),
         backend(
             choose_backend(config.renderer.backend, prepared(config, communicator, made_folders))),
@@ -456,20 +456,30 @@ bool InsituPipeline::wants_step(std::int64_t step, double time) {
   Impl& m = *impl_;
   // Idempotent per step: is_render_step() and execute() may both ask.
   if (step != m.planned_step || time != m.planned_time) {
-    std::fill(m.plan.outputs.begin(), m.plan.outputs.end(), false);
-    m.plan.render = false;
+    m.plan.clear();
     m.schedule.plan(step, time, step == m.last_step, m.plan);
     m.planned_step = step;
     m.planned_time = time;
   }
+  return m.plan.any() || m.plan.conditions;
+}
+
+bool InsituPipeline::confirm_step(std::int64_t step, double time, const ParticleView& particles) {
+  Impl& m = *impl_;
+  wants_step(step, time);
+  m.schedule.decide(step, time, particles, m.plan);  // once a step: it clears plan.conditions
   return m.plan.any();
 }
 
 void InsituPipeline::mark_last_step(std::int64_t step) {
   Impl& m = *impl_;
   m.last_step = step;
-  // Already planned without knowing it was the last: add the `last` conditions.
-  if (step == m.planned_step) m.schedule.plan(step, m.planned_time, true, m.plan);
+  // Already planned without knowing it was the last: add the `last` conditions (the
+  // particles' conditions stay as they were: decided or still waiting).
+  if (step != m.planned_step) return;
+  const bool conditions = m.plan.conditions;
+  m.schedule.plan(step, m.planned_time, true, m.plan);
+  m.plan.conditions = conditions;
 }
 
 Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
@@ -478,6 +488,9 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
   const Stopwatch process;
   const std::int64_t bytes_before = m.comm != nullptr ? m.comm->bytes_sent() : 0;
   if (data.step != m.planned_step) wants_step(data.step, data.time);
+  // Called without the adapter's confirm_step (a tool driving the pipeline itself).
+  if (m.plan.conditions && data.particles != nullptr)
+    m.schedule.decide(data.step, data.time, *data.particles, m.plan);
   const StepPlan& p = m.plan;
   m.make_current();
 

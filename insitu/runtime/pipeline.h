@@ -67,6 +67,7 @@ class InsituPipeline final : public Pipeline {
   ~InsituPipeline() override;
 
   bool wants_step(std::int64_t step, double time) override;
+  bool confirm_step(std::int64_t step, double time, const ParticleView& particles) override;
   Status agree(const Status& local) override;
   bool reports_failures() const override;
   void mark_last_step(std::int64_t step) override;

@@ -17,7 +17,8 @@
 //   adapter.finish();                                               // waits for the files
 //
 // execute() never throws into the solver and costs nothing on a step that is not a render
-// step (no allocation, no pass over the particles). On a render step it classifies the cells,
+// step (no allocation, no pass over the particles; but a trigger on a condition reads the
+// attributes it names on every step, in one pass). On a render step it classifies the cells,
 // compacts the boundary particles (voxspan/classify.h) and hands them, with the cell states
 // and the step's stats, to the Pipeline plugged in behind it (the renderer and outputs).
 // Standard library only; no GL, VTK or OpenVDB.
@@ -84,8 +85,17 @@ class Pipeline {
  public:
   virtual ~Pipeline() = default;
   // Called on every step that passes the adapter's render_every filter, before any work:
-  // must be cheap and must not allocate. Lets the runtime's own triggers decide.
+  // must be cheap and must not allocate. Lets the runtime's own triggers decide; true also
+  // where they must look at the step's particles to decide (confirm_step).
   virtual bool wants_step(std::int64_t /*step*/, double /*time*/) { return true; }
+  // Called after wants_step() said yes, with the step's particles, before the classification:
+  // false when the triggers that look at the particles (conditions on their attributes) leave
+  // the step with nothing to do. Must not allocate; in an MPI job every rank calls it on the
+  // same steps.
+  virtual bool confirm_step(std::int64_t /*step*/, double /*time*/,
+                            const ParticleView& /*particles*/) {
+    return true;
+  }
   // Called on every step the pipeline wants, after the classification and again after
   // process(), with the status here (ok, or why it failed). A pipeline spread over MPI ranks
   // returns the step's status on all of them (a failure on any rank, naming it), so that
@@ -132,10 +142,13 @@ class Adapter {
   // The pipeline's summary line (empty without a pipeline).
   std::string summary() const;
   std::shared_ptr<Pipeline> pipeline() const;
-  // Wall time of all render steps (classification, compaction and the pipeline), seconds.
+  // Wall time of all render steps (classification, compaction and the pipeline) and of the
+  // steps whose conditions were checked, seconds.
   double seconds_in_situ() const;
 
-  // Whether execute(step, time, ...) would do any work.
+  // Whether execute(step, time, ...) would do any work: a render step, or a step whose
+  // triggers look at the particles first (conditions, docs/runtime.md), which may render.
+  // On such a step the solver passes every attribute the conditions name.
   bool is_render_step(std::int64_t step, double time) const noexcept;
 
   // The stats of the latest render step (step == -1 before the first).

@@ -60,5 +60,46 @@ writer: {queue_size: 64, fsync: false}
   EXPECT_EQ(allocated, 0) << "allocations in 8 render steps (their backtraces above)";
 }
 
+// Conditions checked on every step, rendering on some and not on others: the reductions, the
+// expressions and the edges allocate nothing either.
+TEST(StepAllocations, StepsWithConditionsAllocateNothingOnceStable) {
+  test::TempFolder dir;
+  dambreak::DamBreak sim(test::small_dambreak(3000));
+  const std::string yaml = "output_folder: " + dir.path().string() + R"(
+constants: {fast: 1e9}
+boxes: {low: [[-.inf, -.inf, -.inf], [.inf, .inf, 0.1]]}
+trigger: {every_steps: 2, when: "max(velocity) > fast or count(low) < 0"}
+views: [{name: a, width: 64, height: 48}]
+outputs:
+  stats: {trigger: {when: "mean(density, low) > 0 and sin(step) > 0", cooldown_steps: 2}}
+writer: {queue_size: 64, fsync: false}
+)";
+  Adapter adapter = adapter_from_config_text(yaml, test::solver_options(sim), "alloc.yaml");
+  const dambreak::Fluid& f = sim.fluid();
+  auto execute = [&](std::int64_t step) {
+    const auto particles = ParticleView::soa(f.x.data(), f.y.data(), f.z.data(), f.size())
+                               .with_vector("velocity", f.vx.data(), f.vy.data(), f.vz.data())
+                               .with_scalar("density", f.rho.data());
+    return adapter.execute(step, 1e-4 * double(step), particles);
+  };
+  for (std::int64_t step = 1; step <= 16; ++step) {
+    ASSERT_TRUE(execute(step).ok());
+    adapter.finish();
+  }
+  const std::int64_t renders_before = adapter.render_steps();
+  test::trace_thread_allocations(4);
+  const long before = test::thread_allocations();
+  for (std::int64_t step = 17; step < 33; ++step) {
+    ASSERT_TRUE(execute(step).ok());
+    adapter.finish();
+  }
+  const long allocated = test::thread_allocations() - before;
+  test::trace_thread_allocations(0);
+  EXPECT_EQ(allocated, 0) << "allocations in 16 steps with conditions (their backtraces above)";
+  // Every other step renders, and the stats' condition rises at 19, 26 and 32 (sin(step) > 0
+  // again): one more step with work.
+  EXPECT_EQ(adapter.render_steps() - renders_before, 9);
+}
+
 }  // namespace
 }  // namespace voxspan

@@ -1,13 +1,15 @@
 // bench_runtime: what the runtime costs the solver. Figures go to docs/benchmarks.md
 // ("Runtime"), with the command that produced them.
 //   1. the per-step check (Schedule::plan) on steps where nothing is due: the cost of a
-//      non-render step;
+//      non-render step; and with triggers on conditions (Schedule::decide), which reduce the
+//      particles on every step;
 //   2. the writer: submit cost with a full queue (policy drop), throughput of 1 MiB files
 //      with and without fsync, PNG frames (encode + write), and an OpenVDB snapshot of a
 //      lattice block from its boundary particles.
 //
-//   bench_runtime [--steps N] [--folder DIR] [--block N] [--keep 1]
+//   bench_runtime [--steps N] [--folder DIR] [--block N] [--keep 1] [--particles N]
 // (--keep 1 leaves the files in the folder, e.g. snap.vdb for inspect_snapshot.)
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +17,7 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <vector>
 #include <unistd.h>
 
 #include "insitu/outputs/formats/png_image.h"
@@ -60,6 +63,42 @@ outputs:
   double s = seconds_since(t0);
   std::printf("schedule.plan, nothing due    %.2f ns per step (%lld steps, %lld due)\n",
               1e9 * s / double(steps), static_cast<long long>(steps), static_cast<long long>(due));
+}
+
+// A step whose conditions are checked and nothing fires: plan and decide, over `n` particles
+// of float positions, velocity and pressure (a solver's arrays), on every core.
+void bench_conditions(std::size_t n) {
+  std::vector<float> x(n), y(n), z(n), v(3 * n), p(n);
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<float> unit(0.f, 1.f);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = unit(rng), y[i] = unit(rng), z[i] = unit(rng), p[i] = 1000 * unit(rng);
+    for (int a = 0; a < 3; ++a) v[3 * i + std::size_t(a)] = unit(rng) - 0.5f;
+  }
+  const auto particles = voxspan::ParticleView::soa(x.data(), y.data(), z.data(), n)
+                             .with_vector("velocity", v.data())
+                             .with_scalar("pressure", p.data());
+  for (const char* when :
+       {"max(velocity) > 1e9", "max(velocity) > 1e9 and time > 0.3",
+        "max(velocity) > 1e9 or mean(pressure, low) > 1e9 or max(x) > 1e9 or count(low) < 0"}) {
+    voxspan::Schedule schedule(voxspan::load_config_string(
+        std::string("boxes: {low: [[0, 0, 0], [1, 1, 0.5]]}\ntrigger: {when: \"") + when +
+        "\"}\n"));
+    voxspan::StepPlan plan = schedule.blank();
+    // The median and the fastest step: the machine is shared, the fastest is the pass's own.
+    std::vector<double> ms;
+    for (int step = -3; step < 100; ++step) {  // 3 to warm up
+      auto t0 = Clock::now();
+      plan.clear();
+      schedule.plan(step, 0.01 * step, false, plan);
+      schedule.decide(step, 0.01 * step, particles, plan);
+      if (step >= 0) ms.push_back(1e3 * seconds_since(t0));
+    }
+    std::sort(ms.begin(), ms.end());
+    std::printf(
+        "conditions, nothing fires     %.3f ms per step (fastest %.3f), %zu particles: %s\n",
+        ms[ms.size() / 2], ms.front(), n, when);
+  }
 }
 
 void bench_submit_when_full() {
@@ -153,11 +192,12 @@ void bench_vdb(const std::filesystem::path& folder, int side) {
 int main(int argc, char** argv) {
   std::int64_t steps = 100000000;
   int block = 46;
-  bool keep = false;  // 46^3 = 97 336 particles, about the main job's count
+  bool keep = false;                // 46^3 = 97 336 particles, about the main job's count
+  std::size_t particles = 1000000;  // for the conditions
   std::filesystem::path folder =
       std::filesystem::temp_directory_path() / numbered("voxspan-bench-", int(::getpid()), "");
   constexpr char kUsage[] =
-      "usage: bench_runtime [--steps N] [--folder DIR] [--block N] [--keep 1]\n";
+      "usage: bench_runtime [--steps N] [--folder DIR] [--block N] [--keep 1] [--particles N]\n";
   for (int i = 1; i < argc; i += 2) {
     std::string a = argv[i];
     if (a == "--help" || a == "-h") return voxspan::tools::print_usage(stdout, kUsage);
@@ -166,10 +206,12 @@ int main(int argc, char** argv) {
     else if (a == "--folder") folder = argv[i + 1];
     else if (a == "--block") block = std::stoi(argv[i + 1]);
     else if (a == "--keep") keep = std::stoi(argv[i + 1]) != 0;
+    else if (a == "--particles") particles = std::size_t(std::stod(argv[i + 1]));
     else return voxspan::tools::print_usage(stderr, kUsage);
   }
   std::filesystem::create_directories(folder);
   bench_schedule(steps);
+  bench_conditions(particles);
   bench_submit_when_full();
   bench_files(folder, false);
   bench_files(folder, true);

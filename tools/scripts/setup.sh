@@ -13,6 +13,7 @@ packages=(
   libvtk9-dev                                        # .vtp/.vtu/.vti/.pvd files
   libopenexr-dev                                     # depth (and deep) images
   libhdf5-dev                                        # PySPH's HDF5 particle files (offline tools)
+  libmuparser-dev                                    # the expressions of the triggers' conditions
   libopenmpi-dev openmpi-bin                         # many ranks
   libembree-dev                                      # Embree against the CPU caster (tools/bench_embree)
   libgtest-dev gfortran clang-format                 # tests (gfortran: the Fortran bindings)
