@@ -1,5 +1,6 @@
 #include "render/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "voxspan/error.h"
@@ -37,6 +38,31 @@ ViewFrame::ViewFrame(const Camera& c) : eye(c.eye), width(c.width), height(c.hei
   tan_half_x = tan_half_y * c.width / c.height;
   side_scale_x = 1 / std::sqrt(1 + tan_half_x * tan_half_x);
   side_scale_y = 1 / std::sqrt(1 + tan_half_y * tan_half_y);
+}
+
+Camera orbited(const Camera& camera, double phi_degrees, double theta_degrees) {
+  if (phi_degrees == 0 && theta_degrees == 0) return camera;
+  const glm::dvec3 up = glm::normalize(camera.up);
+  const glm::dvec3 d = camera.eye - camera.target;
+  const double distance = glm::length(d);
+  const double phi = glm::radians(phi_degrees);
+  // Rodrigues' rotation of d about up.
+  const glm::dvec3 turned = d * std::cos(phi) + glm::cross(up, d) * std::sin(phi) +
+                            up * glm::dot(up, d) * (1 - std::cos(phi));
+  glm::dvec3 level = turned - up * glm::dot(up, turned);
+  if (glm::length(level) < 1e-12 * distance) {  // looking along up: any level direction
+    const glm::dvec3 any = std::abs(up.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    level = any - up * glm::dot(up, any);
+  }
+  level = glm::normalize(level);
+  const double limit = glm::radians(89.0);
+  const double elevation =
+      std::clamp(std::asin(std::clamp(glm::dot(up, turned) / distance, -1.0, 1.0)) +
+                     glm::radians(theta_degrees),
+                 -limit, limit);
+  Camera out = camera;
+  out.eye = camera.target + distance * (std::cos(elevation) * level + std::sin(elevation) * up);
+  return out;
 }
 
 }  // namespace voxspan

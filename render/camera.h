@@ -18,6 +18,11 @@ struct Camera {
   int height = 540;
 };
 
+// The camera turned about its target: by `phi_degrees` about its `up`, then raised by
+// `theta_degrees` towards it, at the same distance (0, 0: the camera itself). The elevation
+// stops 1 degree short of `up` (and of its opposite), where the camera would have no frame.
+Camera orbited(const Camera& camera, double phi_degrees, double theta_degrees);
+
 // Throws voxspan::Error naming the field when the camera cannot form an image (non-finite
 // vectors, eye on target, up along the view direction, fov outside (0, 180), size < 1 or above
 // 16384).

@@ -28,10 +28,26 @@
 
 namespace voxspan {
 
+// Views seen from cameras turned about their target, rendered on a step where an output that
+// asks for them is due, besides the views' own pictures (outputs.cinema). Angles in degrees:
+// `phi` turns the view's own camera about its `up`, `theta` raises it (0, 0: the view's own).
+struct OrbitRequest {
+  std::vector<std::string> views;  // names; empty: every view
+  std::vector<std::int64_t> phi, theta;
+  bool depth = false;  // the first-hit distances too
+};
+struct OrbitPicture {
+  std::size_t view = 0;
+  std::int64_t phi = 0, theta = 0;
+  SharedPicture picture;
+  SharedPicture depth;  // null unless asked
+};
+
 struct OutputStep {
   const StepData& data;
   std::span<const ViewResult> views;
-  const StatsRecord* record = nullptr;  // the step's stats, for outputs that report it
+  const StatsRecord* record = nullptr;        // the step's stats, for outputs that report it
+  std::span<const OrbitPicture> orbits = {};  // on a step where an output asking for them is due
 };
 
 // Files (or sets of files) handed over and written so far, for the summary.
@@ -77,6 +93,8 @@ struct OutputKind {
   // others write their own part (snapshots gather to the root themselves).
   bool root_only = false;
   std::function<std::unique_ptr<Output>(const OutputSettings&, const OutputContext&)> make;
+  // The orbits its settings ask for (null: none), rendered on every rank.
+  std::function<OrbitRequest(const OutputSettings&)> orbits = {};
 };
 
 // The kind of output O, whose settings type S is read by `section`.

@@ -104,9 +104,20 @@ struct ViewState {
   // held until the next: the outputs' jobs keep their own references.
   std::unique_ptr<PicturePool> pictures;
   SharedPicture latest;
-  std::string caption;     // this step's, its storage kept
+  std::string caption;  // this step's, its storage kept
+  Camera camera;        // this step's
+  // The orbits' (outputs.cinema): their products, their depth images' pool, their passes.
+  ViewProducts orbit_products;
+  std::unique_ptr<PicturePool> depths;
+  FrameStats orbit_stats;
   bool jump_told = false;  // the framing's jump is said once
 };
+
+std::string listed(std::span<const std::string> names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
 
 std::string point(const std::array<double, 3>& p) {
   std::ostringstream s;
@@ -117,6 +128,9 @@ std::string point(const std::array<double, 3>& p) {
 struct OutputState {
   const OutputKind* kind;
   std::unique_ptr<Output> output;  // null when the output is disabled
+  // The orbits it asks for (kind->orbits), on every rank: views by index, empty when none.
+  OrbitRequest orbits;
+  std::vector<std::size_t> orbit_views;
 };
 
 }  // namespace
@@ -141,8 +155,9 @@ struct InsituPipeline::Impl {
   std::vector<std::string> view_names;
   std::vector<ViewState> views;
   std::vector<OutputState> outputs;
-  StatsRecord record;               // the views' sections are where their passes report
-  std::vector<ViewResult> results;  // per view, this step's products for the outputs
+  StatsRecord record;                        // the views' sections are where their passes report
+  std::vector<ViewResult> results;           // per view, this step's products for the outputs
+  std::vector<OrbitPicture> orbit_pictures;  // this step's, for the outputs that asked
   PipelineTotals totals;
 
   Impl(const Config& c, double particle_spacing, Communicator* communicator)
@@ -167,6 +182,10 @@ struct InsituPipeline::Impl {
                        // The writer's queue, the job it runs, the latest picture.
                        std::make_unique<PicturePool>(std::size_t(config.writer.queue_size) + 2),
                        {},
+                       {},
+                       {},
+                       {},
+                       std::make_unique<PicturePool>(0),
                        {}});
     record.views.reserve(views.size());
     for (const ViewState& v : views) record.view(v.name);  // made once: their addresses stay
@@ -202,8 +221,16 @@ struct InsituPipeline::Impl {
     const OutputKind& kind = registered_output_kind(o.kind);
     const bool here = !kind.root_only || comm == nullptr || comm->root();
     totals.outputs.push_back({o.kind, kind.noun, o.settings->enabled && here, {}});
+    OutputState state{&kind, nullptr, {}, {}};
+    if (o.settings->enabled && kind.orbits) {
+      state.orbits = kind.orbits(*o.settings);
+      state.orbit_views = orbit_views(o.kind, state.orbits.views);
+      orbit_pictures.reserve(orbit_pictures.capacity() + state.orbit_views.size() *
+                                                             state.orbits.phi.size() *
+                                                             state.orbits.theta.size());
+    }
     if (!o.settings->enabled || !here) {
-      outputs.push_back({&kind, nullptr});
+      outputs.push_back(std::move(state));
       return;
     }
     // Slots per pool: the queue's jobs, one running, one being filled.
@@ -215,7 +242,63 @@ struct InsituPipeline::Impl {
                           std::size_t(config.writer.queue_size) + 2,
                           config.writer.fsync,
                           comm};
-    outputs.push_back({&kind, kind.make(*o.settings, c)});
+    state.output = kind.make(*o.settings, c);
+    outputs.push_back(std::move(state));
+  }
+
+  // The views an output's orbits name, by index (every view when it names none).
+  std::vector<std::size_t> orbit_views(std::string_view kind, std::span<const std::string> names) {
+    std::vector<std::size_t> chosen;
+    if (names.empty())
+      for (std::size_t i = 0; i < views.size(); ++i) chosen.push_back(i);
+    for (const std::string& name : names) {
+      const auto it = std::find(view_names.begin(), view_names.end(), name);
+      if (it == view_names.end())
+        throw make_error("outputs.", kind, ".views: there is no view \"", name,
+                         "\" (the views: ", listed(view_names), ")");
+      chosen.push_back(std::size_t(it - view_names.begin()));
+    }
+    return chosen;
+  }
+
+  // The orbits of every output due on this step, into orbit_pictures; the first failure's
+  // message comes back (empty when all went well). Every rank renders them alike.
+  std::string render_orbits(const StepData& data, const StepPlan& p) {
+    orbit_pictures.clear();
+    std::string failure;
+    for (std::size_t o = 0; o < outputs.size(); ++o) {
+      const OutputState& out = outputs[o];
+      if (!p.outputs[o] || out.orbit_views.empty()) continue;
+      const ViewNeeds needs{.picture = true, .first_hit_depth = out.orbits.depth};
+      for (const std::size_t i : out.orbit_views) {
+        ViewState& v = views[i];
+        for (const std::int64_t phi : out.orbits.phi)
+          for (const std::int64_t theta : out.orbits.theta) {
+            v.orbit_stats.zero();
+            recorder->record_into(v.orbit_stats);
+            try {
+              const Camera camera = orbited(v.camera, double(phi), double(theta));
+              const bool shown = v.view->render({data, camera, v.framing.box(), needs, true},
+                                                *recorder, v.orbit_products);
+              recorder->collect();
+              if (!shown) continue;
+              draw_caption(i, data, v.orbit_products.picture);
+              OrbitPicture& picture = orbit_pictures.emplace_back();
+              picture.view = i, picture.phi = phi, picture.theta = theta;
+              picture.picture = v.pictures->take(v.orbit_products.picture);
+              if (needs.first_hit_depth)
+                picture.depth = v.depths->take(v.orbit_products.first_hit_depth);
+            } catch (const std::exception& e) {
+              recorder->collect();
+              if (failure.empty())
+                failure = "outputs." + std::string(out.kind->config.name) + ": view " + v.name +
+                          " at phi " + std::to_string(phi) + ", theta " + std::to_string(theta) +
+                          ": " + e.what();
+            }
+          }
+      }
+    }
+    return failure;
   }
 
   void make_current() {
@@ -244,6 +327,7 @@ struct InsituPipeline::Impl {
       recorder->record_into(stats);
       try {
         const Camera camera = v.framing.update(step_box);
+        v.camera = camera;
         if (v.framing.jumped() && !v.jump_told && reports_here()) {
           v.jump_told = true;
           log_warning("view ", v.name, ": the automatic framing jumped (the fluid's box now ",
@@ -257,7 +341,7 @@ struct InsituPipeline::Impl {
           totals.passes.add_time(pass.name, pass.ms);
         if (!shown) continue;  // an MPI rank that only voxelized: the root shows the view
         ++totals.frames;
-        draw_caption(i, data);
+        draw_caption(i, data, v.products.picture);
         v.latest.reset();  // its buffer, unless a job holds it, is the one traded in
         v.latest = v.pictures->take(v.products.picture);
         results[i].picture = v.latest.get();
@@ -275,13 +359,13 @@ struct InsituPipeline::Impl {
     return failure;
   }
 
-  // The view's caption, its fields filled from the step, on its picture.
-  void draw_caption(std::size_t view, const StepData& data) {
+  // The view's caption, its fields filled from the step, on a picture of it.
+  void draw_caption(std::size_t view, const StepData& data, FloatImage& picture) {
     const std::string& pattern = config.views[view].settings->caption;
     if (pattern.empty()) return;
     ViewState& v = views[view];
     expand_caption(pattern, {data.step, data.time, v.name}, v.caption);
-    voxspan::draw_caption(v.products.picture, v.caption);
+    voxspan::draw_caption(picture, v.caption);
   }
 
   // Hands the step to every output due whose `reports_step` is as asked.
@@ -496,16 +580,19 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
 
   std::string failure;
   double render_ms = 0;
+  m.orbit_pictures.clear();  // the last step's references go
   if (p.render) {
     const Stopwatch render;
     failure = m.render_views(data, m.needs(p));
+    const std::string orbits = m.render_orbits(data, p);
+    if (failure.empty()) failure = orbits;
     ++m.totals.render_steps;
     render_ms = render.ms();
   } else {
     for (std::size_t i = 0; i < m.results.size(); ++i) m.results[i] = {m.views[i].name};
   }
   const Stopwatch outputs;
-  OutputStep step{data, m.results, nullptr};
+  OutputStep step{data, m.results, nullptr, m.orbit_pictures};
   m.write_outputs(step, p, false, failure);
   const double outputs_ms = outputs.ms();
   if (m.any_reports_step(p)) {

@@ -152,7 +152,7 @@ class ParticlesView final : public View {
     } else if (!failure.empty()) {
       throw Error(failure);
     }
-    if (trail_choice().any()) trails_.add_step(trail_points_);
+    if (trail_choice().any() && !step.again) trails_.add_step(trail_points_);
     report(recorder);
     auto t = recorder.host(pass::glyph_shade);
     GlyphShading shading;

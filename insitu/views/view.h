@@ -74,6 +74,9 @@ struct ViewStep {
   const Camera& camera;
   const Bounds& fluid_box;  // the box the framing follows (the ground lies under it)
   ViewNeeds needs;          // what the due outputs want beyond the picture
+  // The same step again from another camera (an orbit of outputs.cinema): what follows the
+  // steps (trails) does not advance.
+  bool again = false;
 };
 
 class View {

@@ -1,5 +1,6 @@
 // compare_outputs REFERENCE OTHER [--png-tolerance N] [--depth-layers L]: the pictures and
-// depth images of a run (OTHER: frames/*.png, depth/*.exr) against those of another
+// depth images of a run (OTHER: frames/*.png, depth/*.exr, the Cinema database's
+// cinema.cdb/<step>/*.png and *.exr, its data.csv byte for byte) against those of another
 // (REFERENCE): every PNG within N/255 per channel (default 1), every depth image with the same
 // pixels hit and each distance within L depth layers (default 1; a layer is `--layer F` of the
 // distance, default 0.0025). Prints one line per file; exit status 1 when any is outside.
@@ -8,6 +9,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -61,6 +64,11 @@ bool compare_depth(const fs::path& a, const fs::path& b, double layers, double l
   return ok;
 }
 
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -81,10 +89,11 @@ int main(int argc, char** argv) {
   const fs::path ref = argv[1], other = argv[2];
   bool ok = true;
   int files = 0;
-  for (const char* sub : {"frames", "depth"}) {
+  for (const char* sub : {"frames", "depth", "cinema.cdb"}) {
     if (!fs::is_directory(ref / sub)) continue;
-    for (const auto& e : fs::directory_iterator(ref / sub)) {
-      const fs::path b = other / sub / e.path().filename();
+    for (const auto& e : fs::recursive_directory_iterator(ref / sub)) {
+      if (!e.is_regular_file()) continue;
+      const fs::path b = other / fs::relative(e.path(), ref);
       ++files;
       if (!fs::exists(b)) {
         std::printf("FAIL %s: missing\n", b.c_str());
@@ -93,6 +102,11 @@ int main(int argc, char** argv) {
         ok = compare_png(e.path(), b, tolerance) && ok;
       } else if (e.path().extension() == ".exr") {
         ok = compare_depth(e.path(), b, layers, layer) && ok;
+      } else if (e.path().extension() == ".csv") {
+        const bool same = read_text(e.path()) == read_text(b);
+        std::printf("%s %s: %s\n", same ? "ok  " : "FAIL", b.c_str(),
+                    same ? "the same rows" : "rows differ");
+        ok = same && ok;
       }
     }
   }
