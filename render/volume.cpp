@@ -43,6 +43,11 @@ void validate(const VolumeOptions& o) {
     throw make_error("volume weight_floor = ", o.weight_floor, " must be >= 0");
   if (!(o.ambient >= 0 && o.ambient <= 1))
     throw make_error("volume ambient = ", o.ambient, " must be in [0, 1]");
+  const AdaptiveOptions& a = o.adaptive;
+  if (!(a.error_tolerance >= 0 && a.error_tolerance <= 1))
+    throw make_error("volume adaptive error_tolerance = ", a.error_tolerance, " must be in [0, 1]");
+  if (!(a.relax >= 0 && a.relax <= 1))
+    throw make_error("volume adaptive relax = ", a.relax, " must be in [0, 1]");
   ShadeOptions shade;
   shade.environment = o.environment;
   validate(shade);

@@ -68,6 +68,19 @@ struct IsoSurface {
   bool operator==(const IsoSurface&) const = default;
 };
 
+// Adaptive sampling under an error tolerance ([HOK16] sec. 4-5; render/cpu/volume_adaptive.h):
+// error_tolerance 0 samples every ray at the lattice's full rate. Above 0, in DVR with Shepard,
+// cells of rays sample more sparsely, or not at all (one light and transmittance for the whole
+// cell), where interval bounds of the field prove that no channel of any pixel moves by more
+// than error_tolerance from the full-rate picture. relax in (0, 1] subtracts that share of each
+// cell's full-rate bound width from its coarser ones ([HOK16]'s E_relax, sec. 5.1): faster, no
+// longer a guarantee.
+struct AdaptiveOptions {
+  double error_tolerance = 0;  // in [0, 1]: largest change of a pixel's channel
+  double relax = 0;            // in [0, 1]
+  bool operator==(const AdaptiveOptions&) const = default;
+};
+
 struct VolumeOptions {
   VolumeMode mode = VolumeMode::dvr;
   SphKernel kernel = SphKernel::cubic_spline;
@@ -84,6 +97,7 @@ struct VolumeOptions {
   bool background = true;
   Environment environment;
   double ambient = 0.3;  // iso surfaces' light from everywhere
+  AdaptiveOptions adaptive;
 };
 
 // Throws voxspan::Error naming the option that is out of range.
@@ -192,6 +206,13 @@ struct VolumeCounts {
   // GL renderer on llvmpipe: frames drawn by the CPU caster because a bundle's march ran past
   // the loop iterations llvmpipe allows an invocation
   std::int64_t gl_frames_on_cpu = 0;
+  // Adaptive sampling (VolumeOptions::adaptive): samples a full-rate march would composite that
+  // this one skipped, and cells (a ray bundle by a run of samples) sampled sparsely, drawn as
+  // one super-pixel, or held at full rate for lying at the free surface.
+  std::int64_t samples_skipped = 0;
+  std::int64_t cells_coarse = 0;
+  std::int64_t cells_super_pixel = 0;
+  std::int64_t cells_surface = 0;
 };
 
 // Each count with the name a stats record gives it.
@@ -208,7 +229,11 @@ inline constexpr VolumeCountName kVolumeCountNames[] = {
     {"volume.rays_stopped", &VolumeCounts::rays_stopped},
     {"volume.iso_hits", &VolumeCounts::iso_hits},
     {"volume.iso_hits_unlit", &VolumeCounts::iso_hits_unlit},
-    {"volume.gl_frames_on_cpu", &VolumeCounts::gl_frames_on_cpu}};
+    {"volume.gl_frames_on_cpu", &VolumeCounts::gl_frames_on_cpu},
+    {"volume.samples_skipped", &VolumeCounts::samples_skipped},
+    {"volume.cells_coarse", &VolumeCounts::cells_coarse},
+    {"volume.cells_super_pixel", &VolumeCounts::cells_super_pixel},
+    {"volume.cells_surface", &VolumeCounts::cells_surface}};
 
 inline VolumeCounts& operator+=(VolumeCounts& a, const VolumeCounts& b) {
   for (const VolumeCountName& c : kVolumeCountNames) a.*c.member += b.*c.member;

@@ -62,6 +62,20 @@ const schema::Section<VolumeIsoSettings>& iso_section() {
   return s;
 }
 
+const schema::Section<VolumeAdaptiveSettings>& adaptive_section() {
+  using A = VolumeAdaptiveSettings;
+  static const schema::Section<A> s{
+      "views[i].adaptive",
+      {schema::number("error_tolerance", &A::error_tolerance, schema::between(0, 1),
+                      "the most any channel of any pixel may move from the full-rate picture "
+                      "([HOK16]'s E_I; DVR of a Shepard-normalised `quantity`, CPU renderer); "
+                      "0: every sample"),
+       schema::number("relax", &A::relax, schema::between(0, 1),
+                      "the share of each cell's full-rate bound width left out of its coarser "
+                      "ones ([HOK16]'s E_relax): faster; 0 keeps the tolerance a guarantee")}};
+  return s;
+}
+
 void check_volume(yaml::MapReader& r, VolumeSettings& v) {
   const auto& points = v.opacity;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -128,6 +142,8 @@ std::vector<schema::Key<VolumeSettings>> volume_keys() {
           schema::choice("background", &S::background, kVolumeBackgroundNames,
                          "`sky`: the surface views' sky and ground behind the fluid; `none`: "
                          "transparent, alpha = 1 - transmittance (premultiplied)"),
+          schema::map("adaptive", &S::adaptive, adaptive_section(),
+                      "adaptive sampling under an error tolerance ([HOK16])"),
           schema::flag("legend", &S::legend, "the colour bar with the range's values")});
 }
 
@@ -280,6 +296,7 @@ class VolumeView final : public View {
     o.termination = s.termination;
     o.background = s.background == VolumeBackground::sky;
     o.ambient = s.ambient;
+    o.adaptive = {s.adaptive.error_tolerance, s.adaptive.relax};
     Environment& e = o.environment;
     e.up = step.camera.up;
     e.sun_direction = sun_direction(e.up);
@@ -303,8 +320,10 @@ class VolumeView final : public View {
 }  // namespace
 
 ViewKind volume_view_kind() {
-  return view_kind<VolumeSettings, VolumeView>(
-      "volume", volume_section(), [] { return part_reference("iso[k]", "volume", iso_section()); });
+  return view_kind<VolumeSettings, VolumeView>("volume", volume_section(), [] {
+    return part_reference("iso[k]", "volume", iso_section()) +
+           part_reference("adaptive", "volume", adaptive_section());
+  });
 }
 
 }  // namespace voxspan

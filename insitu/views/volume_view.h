@@ -30,6 +30,13 @@ struct VolumeIsoSettings {
   bool operator==(const VolumeIsoSettings&) const = default;
 };
 
+// Adaptive sampling under an error tolerance ([HOK16]; render/volume.h's AdaptiveOptions).
+struct VolumeAdaptiveSettings {
+  double error_tolerance = 0;  // 0: every sample
+  double relax = 0;            // 0: the tolerance is a guarantee
+  bool operator==(const VolumeAdaptiveSettings&) const = default;
+};
+
 enum class VolumeBackground : std::uint8_t { sky, none };
 inline constexpr EnumName<VolumeBackground> kVolumeBackgroundNames[] = {
     {"sky", VolumeBackground::sky}, {"none", VolumeBackground::none}};
@@ -55,6 +62,7 @@ struct VolumeSettings : CloneAs<VolumeSettings, ViewSettings> {
   double weight_floor = 0.05;
   double ambient = 0.3;
   VolumeBackground background = VolumeBackground::sky;
+  VolumeAdaptiveSettings adaptive;
   bool legend = true;
   bool operator==(const VolumeSettings&) const = default;
 };

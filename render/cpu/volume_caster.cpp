@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
@@ -13,6 +14,7 @@
 #include <tbb/parallel_sort.h>
 
 #include "render/cpu/screen_bins.h"
+#include "render/cpu/volume_adaptive.h"
 #include "render/model/volume_host.h"
 #include "render/perspective_grid.h"
 #include "voxspan/error.h"
@@ -59,6 +61,7 @@ struct RayState {
   float first_depth = 0;      // VolumeFrame::depth
   bool first_is_hit = false;  // first_depth is the first iso hit's
   bool done = false;
+  std::int64_t super_cell = std::numeric_limits<std::int64_t>::min();  // its last super-pixel's
   model::RayHits hits;
   // A rank's part (run_part): the next of the pixel's shared ranges, and the segment being
   // composited (its index among the pixel's; -1: none), with the ray's unlit light and hit
@@ -94,6 +97,7 @@ struct TileScratch {
   // A rank's part: per pixel its shared samples' sums and its segments.
   std::vector<std::vector<RawSample>> raws;
   std::vector<std::vector<LocalSegment>> segments;
+  TilePlanner planner;  // adaptive sampling: the tile's cells' plans
 };
 
 }  // namespace
@@ -106,6 +110,7 @@ struct VolumeCaster::Work {
   std::vector<std::uint32_t> tile_lists;  // per tile its supports, in order
   Samples samples;
   tbb::enumerable_thread_specific<TileScratch> scratch;
+  std::optional<TransferBounds> transfer_bounds;  // adaptive sampling's, of the frame
   // The frame the last start_frame() began, for run_part() and field_sums().
   Camera camera;
   VolumeOptions options;
@@ -147,6 +152,7 @@ void project(const PerspectiveGrid& view_grid, const Samples& s,
                         const double lo = std::max(o.c.z - o.radius, s.near);
                         const double hi = o.c.z + o.radius;
                         if (o.rect.empty() || !(hi > lo)) {
+                          o.rect = {};  // not binned
                           ++t[1];
                           continue;
                         }
@@ -228,9 +234,11 @@ template <SphKernel K> void add_field_sums(glm::dvec3 x, const Support& s, Field
 // rank's part of it, given `shared` (per pixel, the samples other ranks reach too).
 template <SphKernel K, bool kPart> class TileMarch {
  public:
+  // `tf`: adaptive sampling's transfer bounds (null: every sample, as always).
   TileMarch(const Samples& s, const VolumeOptions& o, const ViewFrame& f, model::VolumeHost& host,
-            TileScratch& scratch, VolumeCounts& tallies, const PixelRanges* shared = nullptr)
-      : s_(s), o_(o), f_(f), host_(host), w_(scratch), t_(tallies), shared_(shared) {}
+            TileScratch& scratch, VolumeCounts& tallies, const PixelRanges* shared,
+            const TransferBounds* tf)
+      : s_(s), o_(o), f_(f), host_(host), w_(scratch), t_(tallies), shared_(shared), tf_(tf) {}
 
   void run(const PixelRect& tile, std::span<const std::uint32_t> list,
            const std::vector<Support>& supports, VolumeFrame& out) {
@@ -269,6 +277,8 @@ template <SphKernel K, bool kPart> class TileMarch {
   void march(const PixelRect& tile, std::span<const std::uint32_t> list,
              const std::vector<Support>& supports) {
     start(tile, list, supports);
+    plan_ = nullptr;
+    if (tf_ != nullptr && !list.empty()) plan(list, supports);
     for (std::uint32_t k : list) {
       add(supports[k]);
       if (done_ == pixels_) break;  // every ray opaque: the supports behind are not read
@@ -278,6 +288,24 @@ template <SphKernel K, bool kPart> class TileMarch {
       if constexpr (kPart) close(p);
     }
     if (has_hits_) light(list, supports);
+  }
+
+  // Adaptive sampling: the tile's cells' plans from its supports (render/cpu/volume_adaptive.h).
+  void plan(std::span<const std::uint32_t> list, const std::vector<Support>& supports) {
+    std::int64_t hi = supports[list.front()].last;  // the list starts at its first sample
+    for (std::uint32_t k : list) hi = std::max(hi, supports[k].last);
+    if (hi < supports[list.front()].first) return;
+    TilePlanner& planner = w_.planner;
+    planner.start(tile_, supports[list.front()].first, hi, f_, s_.lattice, o_.weight_floor);
+    for (std::uint32_t k : list) {
+      const Support& s = supports[k];
+      planner.add<K>(s.c, s.inv_h, s.v, s.vq / s.v, s.first, s.last, s.rect);
+    }
+    const auto behind = [&](int x, int y) {
+      return glm::dvec3(host_.pixel_color(host_.vx_ray_start(), model::vec3(0.0f), true, f_, x, y));
+    };
+    planner.plan(o_, *tf_, behind, t_);
+    plan_ = &planner;
   }
 
   void start(const PixelRect& tile, std::span<const std::uint32_t> list,
@@ -345,8 +373,7 @@ template <SphKernel K, bool kPart> class TileMarch {
       if (r.done) return;
       const std::int64_t i0 = first_sample(sp, d0), i1 = last_sample(sp, d1);
       if (i1 < i0) return;
-      accumulate(p, sp, w_.a[std::size_t(p)], zc, m2, i0, i1);
-      t_.kernel_evaluations += i1 - i0 + 1;
+      t_.kernel_evaluations += accumulate(p, sp, w_.a[std::size_t(p)], zc, m2, i0, i1);
       r.last = std::max(r.last, i1);
     });
   }
@@ -390,10 +417,36 @@ template <SphKernel K, bool kPart> class TileMarch {
     return lo;
   }
 
+  // The support's kernel at samples i0..i1 of pixel p's ray, those its cells' plans take, into
+  // its pending sums; how many.
+  std::int64_t accumulate(int p, const Support& s, double a, double zc, double m2, std::int64_t i0,
+                          std::int64_t i1) {
+    if (plan_ == nullptr) {
+      add_run(p, s, a, zc, m2, i0, i1);
+      return i1 - i0 + 1;
+    }
+    const int bundle = plan_->bundle_of(p);
+    std::int64_t n = 0;
+    for (std::int64_t i = i0; i <= i1;) {
+      const std::int64_t end = std::min(i1, (i | (kCellSamples - 1)));
+      const std::uint8_t level = plan_->cell(bundle, i).level;
+      if (level == 0) {
+        add_run(p, s, a, zc, m2, i, end);
+        n += end - i + 1;
+      } else if (level != kSuperPixel) {
+        const std::int64_t step = std::int64_t(1) << level;
+        for (std::int64_t j = (i + step - 1) & ~(step - 1); j <= end; j += step, ++n)
+          add_run(p, s, a, zc, m2, j, j);
+      }
+      i = end + 1;
+    }
+    return n;
+  }
+
   // The support's kernel at samples i0..i1 of pixel p's ray into its pending sums: the ring's
   // slots in at most two runs.
-  void accumulate(int p, const Support& s, double a, double zc, double m2, std::int64_t i0,
-                  std::int64_t i1) {
+  void add_run(int p, const Support& s, double a, double zc, double m2, std::int64_t i0,
+               std::int64_t i1) {
     double* sum = &w_.sum[std::size_t(p) * std::size_t(window_)];
     double* weight = &w_.weight[std::size_t(p) * std::size_t(window_)];
     const double* z = &s_.depths[std::size_t(i0 - s_.base)];
@@ -436,7 +489,21 @@ template <SphKernel K, bool kPart> class TileMarch {
         if (!(w > 0)) continue;
         open(p, r.front);
       }
-      composite(p, r, r.front, s, w);
+      std::int64_t span = 1;
+      if (plan_ != nullptr) {
+        const CellPlan& cell = plan_->cell(plan_->bundle_of(p), r.front);
+        if (cell.level == kSuperPixel) {
+          super_pixel(r, cell);
+          if (r.done) return;
+          continue;
+        }
+        span = std::int64_t(1) << cell.level;
+        if ((r.front & (span - 1)) != 0) {
+          ++t_.samples_skipped;  // its run's first sample stood for it
+          continue;
+        }
+      }
+      composite(p, r, r.front, s, w, span);
       if (r.done) return;
     }
   }
@@ -474,12 +541,15 @@ template <SphKernel K, bool kPart> class TileMarch {
     r.open = -1;
   }
 
-  void composite(int p, RayState& r, std::int64_t i, double s, double w) {
+  // Sample i of ray r (with adaptive sampling: standing for `span` samples from i).
+  void composite(int p, RayState& r, std::int64_t i, double s, double w, std::int64_t span = 1) {
     const bool defined = w > 0 && (!o_.shepard || w >= o_.weight_floor);
     const double q = !defined ? 0.0 : o_.shepard ? s / w : s;
     t_.samples += defined ? 1 : 0;
     const double z = s_.depth(i);
-    const float length = float(s_.lattice.extent(z) * r.scale);
+    double extent = s_.lattice.extent(z);
+    for (std::int64_t j = 1; j < span; ++j) extent += s_.lattice.extent(s_.depth(i + j));
+    const float length = float(extent * r.scale);
     const float before = r.ray.transmittance;
     const int hits = r.hits.count + r.hits.unlit_count;
     r.ray = host_.vx_sample(r.ray, float(q), defined ? 1u : 0u, float(z), length);
@@ -508,6 +578,25 @@ template <SphKernel K, bool kPart> class TileMarch {
       ++done_;
       ++t_.rays_stopped;
       if constexpr (kPart) close(p);
+    }
+  }
+
+  // Ray r enters a super-pixel cell: its light and transmittance, once.
+  void super_pixel(RayState& r, const CellPlan& cell) {
+    ++t_.samples_skipped;
+    const std::int64_t at = r.front >> kCellShift;
+    if (r.super_cell == at) return;
+    r.super_cell = at;
+    const float before = r.ray.transmittance;
+    r.ray.color += before * model::vec3(cell.light[0], cell.light[1], cell.light[2]);
+    r.ray.transmittance *= cell.transmittance;
+    r.ray.defined = 1u;
+    if (r.first_depth == 0 && before >= 0.5f && r.ray.transmittance < 0.5f)
+      r.first_depth = float(s_.lattice.depth((at << kCellShift) + kCellSamples / 2) * r.scale);
+    if (r.ray.transmittance < o_.termination) {
+      r.done = true;
+      ++done_;
+      ++t_.rays_stopped;
     }
   }
 
@@ -584,6 +673,8 @@ template <SphKernel K, bool kPart> class TileMarch {
   TileScratch& w_;
   VolumeCounts& t_;
   const PixelRanges* shared_;
+  const TransferBounds* tf_;
+  const TilePlanner* plan_ = nullptr;
   PixelRect tile_;
   int pixels_ = 0, done_ = 0;
   std::int64_t window_ = 1, mask_ = 0;
@@ -646,7 +737,7 @@ template <bool kPart, class F>
 void each_tile(const Samples& s, const VolumeOptions& options, const ViewFrame& frame,
                const Bins& bins, const std::vector<std::uint32_t>& lists,
                tbb::enumerable_thread_specific<TileScratch>& scratch, VolumeCounts& counts,
-               const PixelRanges* shared, F&& f) {
+               const PixelRanges* shared, const TransferBounds* tf, F&& f) {
   const Tiles screen(frame.width, frame.height, kTile);
   tbb::enumerable_thread_specific<model::VolumeHost> hosts(options);
   tbb::combinable<VolumeCounts> tallies;
@@ -654,7 +745,7 @@ void each_tile(const Samples& s, const VolumeOptions& options, const ViewFrame& 
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, screen.count(), 1),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         TileMarch<K, kPart> march(s, options, frame, hosts.local(), scratch.local(),
-                                                  tallies.local(), shared);
+                                                  tallies.local(), shared, tf);
                         for (std::size_t t = range.begin(); t != range.end(); ++t) {
                           const std::span<const std::uint32_t> list(
                               lists.data() + bins.start[t], lists.data() + bins.start[t + 1]);
@@ -678,8 +769,14 @@ VolumeCounts VolumeCaster::run(const Camera& camera, std::span<const VolumeParti
   VolumeCounts counts = start_frame(camera, particles, options, lap);
   Work& w = *work_;
   out.reset(camera.width, camera.height);
+  // Adaptive sampling's bounds hold for DVR of a Shepard-normalised field (a convex combination of
+  // the particles' values); otherwise every sample, as at tolerance 0.
+  const bool adaptive =
+      options.adaptive.error_tolerance > 0 && options.mode == VolumeMode::dvr && options.shepard;
+  if (adaptive) w.transfer_bounds.emplace(options);
   each_tile<false>(w.samples, w.options, w.frame, w.tile_bins, w.tile_lists, w.scratch, counts,
-                   nullptr, [&](auto& march, const PixelRect& rect, std::size_t, auto list) {
+                   nullptr, adaptive ? &*w.transfer_bounds : nullptr,
+                   [&](auto& march, const PixelRect& rect, std::size_t, auto list) {
                      march.run(rect, list, w.supports, out);
                    });
   lap(VolumeCastPhase::march);
@@ -698,7 +795,8 @@ VolumeCounts VolumeCaster::cover(const Camera& camera, std::span<const VolumePar
   hulls.assign(std::size_t(camera.width) * std::size_t(camera.height), SampleRange{});
   VolumeCounts unused;
   each_tile<false>(w.samples, w.options, w.frame, w.tile_bins, w.tile_lists, w.scratch, unused,
-                   nullptr, [&](auto& march, const PixelRect& rect, std::size_t, auto list) {
+                   nullptr, nullptr,
+                   [&](auto& march, const PixelRect& rect, std::size_t, auto list) {
                      march.cover(rect, list, w.supports, hulls);
                    });
   return counts;
@@ -710,7 +808,8 @@ VolumeCounts VolumeCaster::run_part(const PixelRanges& shared, VolumePart& out) 
   w.tile_parts.resize(screen.count());
   VolumeCounts counts;
   each_tile<true>(w.samples, w.options, w.frame, w.tile_bins, w.tile_lists, w.scratch, counts,
-                  &shared, [&](auto& march, const PixelRect& rect, std::size_t t, auto list) {
+                  &shared, nullptr,
+                  [&](auto& march, const PixelRect& rect, std::size_t t, auto list) {
                     march.run_part(rect, list, w.supports, w.tile_parts[t]);
                   });
   // The tiles' items into per-pixel order.

@@ -164,5 +164,37 @@ TEST(StabilityVolume, ASupportTooLongForTheMarchIsRefusedNamingWhy) {
   }
 }
 
+// Adaptive sampling (DVR, Shepard) on the broken and degenerate inputs above: finite, bad
+// particles counted, and with relax 0 within the tolerance of the full-rate frame.
+TEST(StabilityVolume, AdaptiveSamplingHoldsOnBadAndDegenerateInput) {
+  const test::Cloud c = test::cloud(6, 5);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::vector<VolumeParticle> dirty = c.particles;
+  dirty.insert(dirty.begin() + 3, {nan, 0, 0, 0.1f, 0.5f, 1});
+  dirty.push_back({0, 0, 0, 0.1f, 0.5f, nan});
+  std::vector<VolumeParticle> one_point(c.particles.size(), c.particles.front());
+  const glm::dvec3 mid(0.25, 0.25, 0.25);
+  const std::vector<std::pair<std::vector<VolumeParticle>, Camera>> inputs = {
+      {dirty, c.camera},
+      {{}, c.camera},
+      {{c.particles.front()}, c.camera},
+      {one_point, c.camera},
+      {c.particles, test::look_at(mid, mid + glm::dvec3(0, 0, -1), 40, 30, 60)}};
+  for (const auto& [particles, camera] : inputs)
+    for (double relax : {0.0, 1.0}) {
+      VolumeOptions o = test::cloud_options(VolumeMode::dvr, c.spacing);
+      VolumeCaster caster;
+      VolumeFrame exact, adaptive;
+      caster.run(camera, particles, o, exact);
+      o.adaptive = {0.004, relax};
+      const VolumeCounts counts = caster.run(camera, particles, o, adaptive);
+      expect_finite(adaptive);
+      EXPECT_EQ(counts.particles_invalid, &particles == &inputs.front().first ? 2 : 0);
+      if (relax > 0) continue;
+      for (std::size_t i = 0; i < exact.picture.rgba.size(); ++i)
+        ASSERT_NEAR(adaptive.picture.rgba[i], exact.picture.rgba[i], 0.004 + 1e-6);
+    }
+}
+
 }  // namespace
 }  // namespace voxspan

@@ -5,7 +5,10 @@
 // per sampling setting beside its time; --csv writes the rows for
 // tools/plots/plot_volume_accuracy.py; --gl also times the GL renderer's march (its whole frame:
 // the CPU's project, sort and bin, the upload, the march, the read-back) and its largest channel
-// difference from the CPU picture.
+// difference from the CPU picture. --tolerances adds, per DVR row, adaptive sampling at each
+// tolerance (VolumeOptions::adaptive, --relax): its time and speed-up over the full-rate frame,
+// its largest change from it and the share of channels past the tolerance, the share of samples
+// skipped (and with --convergence its error against the converged integral).
 //
 // The scene is bench_renderers': the WCSPH dam break at Martin & Moyce's T (--time), about
 // --particles fluid particles, state cached in --state (or --ritter, the Ritter-profile scene).
@@ -17,6 +20,7 @@
 //   bench_volume [--particles N] [--time T] [--state FILE] [--ritter] [--size WxH] [--frames F]
 //                [--modes dvr,iso,mixed] [--sampling S,...] [--quantity fraction|height]
 //                [--convergence] [--check] [--csv FILE] [--gl [--platform P]]
+//                [--tolerances E,... [--relax R]]
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -46,13 +50,16 @@ struct Args : tools::BenchArgs, tools::StateFlags {
   bool convergence = false, check = false;
   bool gl = false;  // also the GL renderer's march (render/gl/volume_renderer.h)
   std::string csv;  // each row also as CSV (tools/plots/plot_volume_accuracy.py charts it)
+  std::vector<double> tolerances;  // adaptive sampling's, DVR rows
+  double relax = 0;
 };
 
 constexpr char kUsage[] =
     "usage: bench_volume [--particles N] [--time T] [--state FILE] [--ritter] [--size WxH]\n"
     "         [--frames F] [--modes dvr,iso,mixed] [--sampling S,...]\n"
     "         [--quantity fraction|height] [--convergence] [--check] [--csv FILE]\n"
-    "         [--gl [--platform auto|nvidia|device|surfaceless]]\n";
+    "         [--gl [--platform auto|nvidia|device|surfaceless]]\n"
+    "         [--tolerances E,... [--relax R]]\n";
 
 bool read_flag(tools::Arg& arg, Args& a) {
   if (const char* v = arg.value("--modes")) return tools::read_names(v, kVolumeModeNames, a.modes);
@@ -61,6 +68,15 @@ bool read_flag(tools::Arg& arg, Args& a) {
     for (const std::string& s : tools::comma_list(v)) a.samplings.push_back(std::atof(s.c_str()));
     return !a.samplings.empty() &&
            std::all_of(a.samplings.begin(), a.samplings.end(), [](double s) { return s > 0; });
+  }
+  if (const char* v = arg.value("--tolerances")) {
+    for (const std::string& e : tools::comma_list(v)) a.tolerances.push_back(std::atof(e.c_str()));
+    return std::all_of(a.tolerances.begin(), a.tolerances.end(),
+                       [](double e) { return e > 0 && e <= 1; });
+  }
+  if (const char* v = arg.value("--relax")) {
+    a.relax = std::atof(v);
+    return a.relax >= 0 && a.relax <= 1;
   }
   if (const char* v = arg.value("--quantity")) {
     a.height_field = std::string(v) == "height";
@@ -112,6 +128,46 @@ std::array<double, 2> errors(const FloatImage& a, const FloatImage& b) {
   for (std::size_t i = 0; i < e.size(); ++i) e[i] = std::abs(double(a.rgba[i]) - b.rgba[i]);
   std::sort(e.begin(), e.end());
   return {e.empty() ? 0 : e.back(), e.empty() ? 0 : e[e.size() * 99 / 100]};
+}
+
+// Per tolerance: adaptive sampling's frame against the full-rate one (`exact`, `exact_ms`).
+void adaptive_rows(const Args& a, const Camera& camera,
+                   const std::vector<VolumeParticle>& particles, VolumeOptions o,
+                   const VolumeFrame& exact, double exact_ms, const VolumeFrame* converged,
+                   VolumeCaster& caster) {
+  for (double tolerance : a.tolerances) {
+    o.adaptive = {tolerance, a.relax};
+    std::vector<double> ms;
+    VolumeFrame frame;
+    VolumeCounts c;
+    for (int f = -1; f < a.frames; ++f) {
+      const Stopwatch watch;
+      c = caster.run(camera, particles, o, frame);
+      if (f >= 0) ms.push_back(watch.ms());
+    }
+    std::size_t over = 0;
+    double largest = 0;
+    for (std::size_t i = 0; i < frame.picture.rgba.size(); ++i) {
+      const double d = std::abs(double(frame.picture.rgba[i]) - exact.picture.rgba[i]);
+      largest = std::max(largest, d);
+      over += d > tolerance + 1e-6 ? 1 : 0;
+    }
+    const double t = tools::median(ms);
+    std::printf(
+        "  tolerance %-6g relax %g: %8.1f ms, speed-up %5.2f | vs full rate: largest %.2e, "
+        "%.4f %% of channels past | skipped %5.1f %% of samples, %lld coarse and %lld "
+        "super-pixel cells, %lld at the surface",
+        tolerance, a.relax, t, exact_ms / t, largest,
+        100.0 * double(over) / double(frame.picture.rgba.size()),
+        100.0 * double(c.samples_skipped) / double(c.samples + c.samples_skipped),
+        static_cast<long long>(c.cells_coarse), static_cast<long long>(c.cells_super_pixel),
+        static_cast<long long>(c.cells_surface));
+    if (converged != nullptr) {
+      const std::array<double, 2> e = errors(frame.picture, converged->picture);
+      std::printf(" | vs converged: max %.2e p99 %.2e", e[0], e[1]);
+    }
+    std::printf("\n");
+  }
 }
 
 int run(const Args& a) {
@@ -196,6 +252,9 @@ int run(const Args& a) {
                     errors(on_gl.picture, frame.picture)[0], on_cpu > 0 ? " on CPU" : "");
       }
       std::printf("\n");
+      if (mode == VolumeMode::dvr)
+        adaptive_rows(a, s.camera, particles, o, frame, tools::median(ms.back()),
+                      a.convergence ? &converged : nullptr, caster);
       if (csv != nullptr)
         std::fprintf(csv, "%s,%zu,%d,%d,%s,%g,%.2f,%lld,%.4g,%.4g\n",
                      a.ritter ? "ritter" : "solver", particles.size(), a.width, a.height,

@@ -1,0 +1,221 @@
+// render/cpu/volume_adaptive.h - adaptive sampling under an error tolerance ([HOK16] sec. 4-5)
+// for the CPU caster's DVR march (render/cpu/volume_caster.h): per cell of a tile's rays, how
+// sparsely its samples may be taken so that no channel of any pixel moves from the full-rate
+// picture by more than VolumeOptions::adaptive.error_tolerance.
+//
+// Reads a tile's supports (their values, weights, spheres, first and last samples); writes a
+// CellPlan per cell. A cell is a ray bundle of kBundle^2 pixels by kCellSamples lattice samples,
+// numbered i >> kCellShift from the lattice index i: cells stay put from frame to frame as the
+// samples do. Cost: per support and bundle one lower bound of the weight per sample (4 corner
+// distances and a kernel), per cell 31 transfer-function range look-ups; no allocation once the
+// sizes are stable.
+//
+// The bounds ([HOK16] sec. 4.1-4.2). At sample k of a bundle, the Shepard value S / w is a convex
+// combination of the values q_j of the particles reaching it, so it lies in [min q_j, max q_j]
+// over the supports whose sphere and pixel rectangle reach the sample (a superset). A run of
+// samples whose values lie in [qlo, qhi], of total length L, has transmittance in
+// [1 - a(alpha_hi, L), 1 - a(alpha_lo, L)] and light in [c_lo a(alpha_lo, L), c_hi a(alpha_hi, L)]
+// (a the opacity over a length; alpha and c the transfer function's ranges over [qlo, qhi]; the
+// light of the run is c-weighted 1 - prod (1 - a_k)); so does one sample of the run's value
+// standing for the whole length, which is what a coarse cell draws. Level l of a cell takes the
+// first sample of each 2^l (one for level kCellShift); its bounds composite the runs'.
+//
+// The error ([HOK16] sec. 4.3 bounds the spread of a whole bundle; we bound the change). Exchanging
+// one cell's exact (I, T) for its adaptive one, with everything in front already exchanged,
+// moves a pixel by T_front (dI + dT R_back): at most T_front^hi (w(I) + w(T) R_back^hi) with
+// both pairs in the cell's bounds (the super-pixel, the middle of the full-rate bounds: half
+// that). Summed over the cells in any order this bounds the whole change; full-rate cells add
+// nothing (their samples are the exact picture's). The greedy step ([HOK16] sec. 4.4) walks each
+// bundle back to front and gives each cell the cheapest choice (super-pixel, then one sample in
+// 16, 8, 4, 2) whose term keeps the sum within the tolerance, less a reserve for the float
+// compositing's rounding and, where a ray may stop early, 2 termination x the brightest light
+// (the full-rate and the adaptive ray may stop at different samples).
+//
+// Surface rule ([HOK16] sec. 4.2): a cell where some sample is reached by a support but not
+// proven to hold a weight of at least weight_floor at every pixel (a lower bound from each
+// support's farthest bundle corner) may be empty at some pixels: it stays at full rate.
+//
+// relax r in (0, 1] subtracts r times the full-rate bound widths from the coarse levels' ([HOK16]
+// sec. 5.1: the full-rate width is the bundle's lateral spread, not a sampling error); super-pixels
+// are never relaxed (sec. 5.2: their error is the lateral spread). r = 0: the guarantee.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "render/camera.h"
+#include "render/perspective_grid.h"
+#include "render/sph_kernel.h"
+#include "render/volume.h"
+
+namespace voxspan {
+
+inline constexpr int kBundle = 8;
+// The weight's lower bound is taken over blocks this wide: over a whole bundle (2 to 3 particle
+// spacings at common sizes) the farthest corner lies past most supports and proves nothing.
+inline constexpr int kProofBlock = 4;
+inline constexpr int kCellShift = 4;
+inline constexpr int kCellSamples = 1 << kCellShift;
+inline constexpr std::uint8_t kSuperPixel = kCellShift + 1;
+
+// The share of the tolerance kept for the float compositing's rounding, which the bounds (in
+// double) do not see: both pictures round over hundreds of samples.
+inline constexpr double kRoundingReserve = 1e-5;
+
+// How a bundle's rays sample one cell.
+struct CellPlan {
+  // 0: every sample; l in 1..kCellShift: the first of each 2^l, standing for all 2^l;
+  // kSuperPixel: none, the cell's light and transmittance below for every ray.
+  std::uint8_t level = 0;
+  float light[3] = {0, 0, 0};  // premultiplied
+  float transmittance = 1;
+};
+
+// The transfer function's ranges over value ranges, as the compositing (float) reads the table.
+class TransferBounds {
+ public:
+  struct Range {
+    double c_lo[3], c_hi[3];  // colour per channel
+    double alpha_lo, alpha_hi;
+  };
+  explicit TransferBounds(const VolumeOptions& o);
+  Range over(double q_lo, double q_hi) const;
+  double brightest(int channel) const { return brightest_[std::size_t(channel)]; }
+  // a(alpha, length): the opacity of `length` world units (volume.glsl's vx_length_opacity).
+  double opacity(double alpha, double length) const;
+
+ private:
+  static constexpr int kLevels = 9;  // 2^8 = kTransferEntries
+  double lo_, scale_, inv_length_;
+  // Per level j and entry k: the lowest and highest of entries k .. k + 2^j - 1, per channel
+  // (r, g, b, alpha).
+  std::array<std::array<std::array<double, 8>, kTransferEntries>, kLevels> table_{};
+  std::array<glm::dvec4, kTransferEntries> rgba_{};  // the table as the compositing reads it
+  std::array<double, 3> brightest_{};
+  glm::dvec4 at(double x) const;  // interpolated at table position x in [0, entries - 1]
+};
+
+// One tile's bounds and plans; one per thread, kept from tile to tile.
+class TilePlanner {
+ public:
+  // Begins a tile of `tile`'s pixels whose supports reach samples [lo, hi] of `lattice`.
+  void start(const PixelRect& tile, std::int64_t lo, std::int64_t hi, const ViewFrame& f,
+             const VolumeLattice& lattice, double weight_floor);
+
+  // One support: centre c (view space), 1 / h, weight v, value q, samples [first, last], pixels.
+  template <SphKernel K>
+  void add(const glm::dvec3& c, double inv_h, double v, double q, std::int64_t first,
+           std::int64_t last, const PixelRect& rect);
+
+  // Every bundle's cells planned; background(x, y): pixel (x, y)'s light behind the fluid, per
+  // channel (none: zeros). Counts the cells' choices.
+  template <class Background>
+  void plan(const VolumeOptions& o, const TransferBounds& tf, Background&& background,
+            VolumeCounts& counts) {
+    plans_.assign(std::size_t(bundles_) * std::size_t(cells_), CellPlan{});
+    for (int b = 0; b < bundles_; ++b) {
+      const PixelRect r = bundle_rect(b);
+      std::array<double, 3> behind{0, 0, 0};
+      if (o.background)
+        for (int y = r.y0; y <= r.y1; ++y)
+          for (int x = r.x0; x <= r.x1; ++x) {
+            const glm::dvec3 c = background(x, y);
+            for (int ch = 0; ch < 3; ++ch)
+              behind[std::size_t(ch)] = std::max(behind[std::size_t(ch)], c[ch]);
+          }
+      plan_bundle(b, o, tf, behind, counts);
+    }
+  }
+
+  int bundle_of(int p) const {  // p: the pixel's index in the tile, row-major
+    const int x = p % width_, y = p / width_;
+    return x / kBundle + (y / kBundle) * bundles_x_;
+  }
+  const CellPlan& cell(int bundle, std::int64_t i) const {  // i: a lattice sample index
+    return plans_[std::size_t(bundle) * std::size_t(cells_) + std::size_t((i >> kCellShift) - c0_)];
+  }
+
+ private:
+  struct Bounds {  // of (I, T) of one cell, light per channel
+    double i_lo[3], i_hi[3], t_lo, t_hi;
+  };
+  PixelRect bundle_rect(int b) const;
+  std::size_t sample(int b, std::int64_t i) const {
+    return std::size_t(b) * std::size_t(cells_ * kCellSamples) +
+           std::size_t(i - (c0_ << kCellShift));
+  }
+  Bounds level_bounds(int b, std::int64_t cell, int level, const TransferBounds& tf,
+                      double scale_lo, double scale_hi) const;
+  void plan_bundle(int b, const VolumeOptions& o, const TransferBounds& tf,
+                   const std::array<double, 3>& behind, VolumeCounts& counts);
+
+  PixelRect tile_;
+  int width_ = 0, bundles_x_ = 0, bundles_ = 0, blocks_x_ = 0, blocks_ = 0;
+  double floor_ = 0;  // a sample is defined where w is at least this (render/volume.h)
+  std::int64_t c0_ = 0, cells_ = 0;
+  const ViewFrame* frame_ = nullptr;
+  // Per sample of the tile's cells: its depth, and its length per unit of ray scale.
+  std::vector<double> depth_, extent_;
+  // Per bundle and sample: the lowest and highest value; per proof block and sample a lower
+  // bound of the weight; per sample of the bundle being planned, whether every block's is.
+  std::vector<double> q_lo_, q_hi_, w_lo_;
+  std::vector<std::uint8_t> proven_;
+  std::vector<CellPlan> plans_;
+  // Per proof block its corner rays (view_ray of its corner pixels); per bundle its rays'
+  // scales' range.
+  std::vector<std::array<glm::dvec3, 4>> corners_;
+  std::vector<std::array<double, 2>> scales_;
+  // plan_bundle's scratch, per cell: its bounds per level (intersected with the coarser).
+  std::vector<std::array<Bounds, kCellShift + 1>> cell_bounds_;
+  std::vector<std::uint8_t> most_;  // per cell: 0 (full rate only) or kSuperPixel
+  std::vector<double> front_;       // per cell: the transmittance in front, at most
+};
+
+template <SphKernel K>
+void TilePlanner::add(const glm::dvec3& c, double inv_h, double v, double q, std::int64_t first,
+                      std::int64_t last, const PixelRect& rect) {
+  const int x0 = std::max(rect.x0, tile_.x0) - tile_.x0,
+            x1 = std::min(rect.x1, tile_.x1) - tile_.x0;
+  const int y0 = std::max(rect.y0, tile_.y0) - tile_.y0,
+            y1 = std::min(rect.y1, tile_.y1) - tile_.y0;
+  for (int by = y0 / kBundle; by <= y1 / kBundle; ++by)
+    for (int bx = x0 / kBundle; bx <= x1 / kBundle; ++bx) {
+      const std::size_t at = sample(bx + by * bundles_x_, first);
+      for (std::size_t k = at; k <= at + std::size_t(last - first); ++k) {
+        q_lo_[k] = std::min(q_lo_[k], q);
+        q_hi_[k] = std::max(q_hi_[k], q);
+      }
+    }
+  const std::size_t n = std::size_t(cells_ * kCellSamples);
+  for (int py = y0 / kProofBlock; py <= y1 / kProofBlock; ++py)
+    for (int px = x0 / kProofBlock; px <= x1 / kProofBlock; ++px) {
+      const std::size_t block = std::size_t(px + py * blocks_x_);
+      // Per corner ray d: the depth nearest c and the squared distance there (chord form).
+      double zc[4], a[4], m2[4];
+      for (std::size_t k = 0; k < 4; ++k) {
+        const glm::dvec3& d = corners_[block][k];
+        a[k] = glm::dot(d, d);
+        zc[k] = glm::dot(d, c) / a[k];
+        const glm::dvec3 m = zc[k] * d - c;
+        m2[k] = glm::dot(m, m);
+      }
+      double* w = &w_lo_[block * n];
+      for (std::int64_t i = first; i <= last; ++i) {
+        const std::size_t k = std::size_t(i - (c0_ << kCellShift));
+        if (w[k] >= floor_) continue;  // proven already
+        // The sample's points of the block lie in a rectangle of the plane z = depth: the
+        // farthest from c is a corner, and the kernel falls with distance.
+        double far2 = 0;
+        for (std::size_t j = 0; j < 4; ++j) {
+          const double t = depth_[k] - zc[j];
+          far2 = std::max(far2, a[j] * t * t + m2[j]);
+        }
+        w[k] += v * kernel_shape<K>(std::sqrt(far2) * inv_h);
+      }
+    }
+}
+
+}  // namespace voxspan
