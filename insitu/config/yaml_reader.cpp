@@ -5,6 +5,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
+#include <span>
+#include <string_view>
+#include <utility>
 
 #include "voxspan/error.h"
 
@@ -91,6 +94,23 @@ std::string Range::text() const {
          number_text(max) + "]";
 }
 
+namespace {
+
+// Keys renamed since a release, old name first: a config that still says the old one is told
+// the new name where the new one belongs.
+constexpr std::pair<std::string_view, std::string_view> kRenamedKeys[] = {
+    {"alpha", "layer_angle"},  // a surface view's: `alpha` read as opacity
+};
+
+std::string_view renamed(std::string_view key, std::span<const std::string_view> allowed) {
+  for (const auto& [old_name, new_name] : kRenamedKeys)
+    if (key == old_name && std::find(allowed.begin(), allowed.end(), new_name) != allowed.end())
+      return new_name;
+  return {};
+}
+
+}  // namespace
+
 MapReader::MapReader(Checker& checker, const YAML::Node& node, std::string path,
                      std::span<const std::string_view> allowed)
     : checker_(checker), node_(node), path_(std::move(path)) {
@@ -111,6 +131,10 @@ MapReader::MapReader(Checker& checker, const YAML::Node& node, std::string path,
     const std::string& key = key_node.Scalar();
     std::string key_path = path_.empty() ? key : path_ + "." + key;
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+      if (const std::string_view now = renamed(key, allowed); !now.empty()) {
+        checker_.error(key_node, key_path, "was renamed '" + std::string(now) + "'");
+        continue;
+      }
       std::string hint = closest(key, allowed);
       std::string known;
       for (std::string_view k : allowed) known += (known.empty() ? "" : ", ") + std::string(k);

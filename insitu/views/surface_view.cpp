@@ -90,9 +90,9 @@ const schema::Section<SurfaceSettings>& surface_section() {
           {schema::choice("shading", &S::shading, kShadeModeNames, "shade pass ([ZD15] sec. 3.5)"),
            schema::flag("deep_ao", &S::deep_ao,
                         "deep ambient occlusion over all stored layers (sec. 3.6)"),
-           schema::number("alpha", &S::alpha_degrees, schema::above_up_to(0, 45),
-                          "normal-angle resolution of the depth layers, degrees "
-                          "(sec. 4.2; 14 degrees gives ~16 000 layers in the paper)"),
+           schema::number("layer_angle", &S::alpha_degrees, schema::above_up_to(0, 45),
+                          "normal-angle resolution of the depth layers, degrees: the paper's "
+                          "alpha (sec. 4.2; 14 degrees gives ~16 000 layers there)"),
            schema::number_or_auto("gap", &S::gap, schema::at_least(0),
                                   "gap-bridging distance, world units (sec. 3.2, "
                                   "4.4); `auto` = the particle spacing"),

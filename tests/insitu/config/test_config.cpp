@@ -57,7 +57,7 @@ views:
     shading: refractive
     deep_ao: true
     camera: {eye: [3, -4, 2], target: [0.5, 0.5, 0.2], up: [0, 0, 1], fov: 35}
-    alpha: 7
+    layer_angle: 7
     gap: 0.01
     max_spans: 7
     filter_radius: 0.02
@@ -204,7 +204,8 @@ TEST(Config, WrongTypesAndBadValuesNameKeyAndLine) {
        "test.yaml:2:14: views[0].shading: expected one of opaque, translucent, refractive; got "
        "\"glass\""},
       {"views:\n  - max_layers: 100\n", "views[0].max_layers: must be a multiple of 32"},
-      {"views:\n  - alpha: 0\n", "views[0].alpha: expected a number in (0, 45]"},
+      {"views:\n  - layer_angle: 0\n", "views[0].layer_angle: expected a number in (0, 45]"},
+      {"views:\n  - alpha: 7\n", "views[0].alpha: was renamed 'layer_angle'"},
       {"views:\n  - camera: {fov: 180}\n", "views[0].camera.fov: expected a number in (0, 179]"},
       {"views:\n  - camera: {eye: [1, 2]}\n",
        "views[0].camera.eye: expected three numbers [x, y, z]"},
