@@ -156,6 +156,17 @@ void draw_text(FloatImage& picture, int x, int y, std::string_view text, int sca
   stamp(picture, x, y, text, scale, colour, 0);
 }
 
+LegendMargins legend_margins(int width, int height) {
+  const int s = text_scale(height), bar = std::max(4, width / 40);
+  const int label = text_width("-3.5e+04", s);  // the longest legend_number
+  LegendMargins m{.left = s + label + s,
+                  .right = 2 * bar + bar / 2 + s + label + s,
+                  .top = 3 * s + 7 * s + 2 * s,
+                  .bottom = 4 * s + s + 7 * s + 2 * s};
+  if (width - m.left - m.right < width / 2 || height - m.top - m.bottom < height / 2) return {};
+  return m;
+}
+
 void draw_caption(FloatImage& picture, std::string_view text) {
   const int s = text_scale(picture.height);
   draw_text(picture, 3 * s, 3 * s, text, s);
@@ -242,6 +253,7 @@ void draw_axes(FloatImage& picture, const Axis& horizontal, const Axis& vertical
     const int y = h - int(std::lround((ys[n] - vertical.from) / (vertical.to - vertical.from) * h)),
               thick = std::max(1, s / 2 + 1);
     if (y > h - 3 * mark - 7 * s) continue;  // leave the corner to the bottom axis's labels
+    if (y - 9 * s < 12 * s) continue;        // and the top row to the caption
     // The value sits on its tick, which underlines it (beside it, a tick reads as a minus).
     const std::string t = tick_label(ys[n], vertical, n == ys.size() / 2);
     fill_rect(picture, 0, y - thick / 2, s + text_width(t, s), y - thick / 2 + thick, light);

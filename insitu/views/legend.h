@@ -34,6 +34,15 @@ enum class BarSide : std::uint8_t { right, left };
 void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi, std::string_view title,
                     BarSide side = BarSide::right);
 
+// The pixels along each edge of a width x height picture that a 2D view's legend may cover:
+// the colour bar with its labels (right), the axes' labels (left, bottom), the caption (top).
+// All zero where they would leave the data less than half the picture each way (tiny pictures:
+// the legend goes over the data there).
+struct LegendMargins {
+  int left = 0, right = 0, top = 0, bottom = 0;
+};
+LegendMargins legend_margins(int width, int height);
+
 // An axis along an edge of a 2D picture: the world coordinate at its two ends (left to right,
 // bottom to top; `from` > `to` when the coordinate falls that way) and its name ("x").
 struct Axis {

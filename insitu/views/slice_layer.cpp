@@ -14,8 +14,11 @@ namespace {
 
 glm::dvec3 vec(const Vec3d& v) { return {v[0], v[1], v[2]}; }
 
-// The plane's rectangle for this step: the settings, or fitted around the fluid's box.
-SlicePlane plane_for(const SliceField& s, const Bounds& box, glm::dvec3 up, int width, int height) {
+// The plane's rectangle for this step: the settings, or fitted around the fluid's box with
+// `legend`'s margins left clear (an automatic extent moves the picture's centre off the fluid's
+// by half the difference of opposite margins).
+SlicePlane plane_for(const SliceField& s, const Bounds& box, glm::dvec3 up, int width, int height,
+                     const LegendMargins& legend) {
   const bool have_box = !box.empty();
   const glm::dvec3 lo = have_box ? vec(box.lo) : glm::dvec3(-0.5);
   const glm::dvec3 hi = have_box ? vec(box.hi) : glm::dvec3(0.5);
@@ -30,7 +33,13 @@ SlicePlane plane_for(const SliceField& s, const Bounds& box, glm::dvec3 up, int 
       su = std::max(su, std::abs(glm::dot(corner - origin, p.u)));
       sv = std::max(sv, std::abs(glm::dot(corner - origin, p.v)));
     }
-    w = 2.1 * std::max({su, sv * aspect, 1e-300});
+    // World units a pixel, so that the box with 5 % to spare fits the data's own region.
+    const double free_w = double(width - legend.left - legend.right);
+    const double free_h = double(height - legend.top - legend.bottom);
+    const double per_pixel = 2.1 * std::max({su / free_w, sv / free_h, 1e-300});
+    w = per_pixel * width;
+    p.origin -= 0.5 * double(legend.left - legend.right) * per_pixel * p.u;
+    p.origin += 0.5 * double(legend.top - legend.bottom) * per_pixel * p.v;
   }
   p.width = w;
   p.height = w / aspect;
@@ -102,8 +111,9 @@ SliceLayer::SliceLayer(const SliceField& field, std::string view_name, std::stri
 }
 
 void SliceLayer::interpolate(const ParticleView& particles, const Bounds& fluid_box, glm::dvec3 up,
-                             std::int64_t step, int width, int height) {
-  plane_ = plane_for(field_, fluid_box, up, width, height);
+                             std::int64_t step, int width, int height,
+                             const LegendMargins& legend) {
+  plane_ = plane_for(field_, fluid_box, up, width, height, legend);
   SliceQuantity q;
   q.name = field_.quantity;
   q.key = quantity_key_;
