@@ -14,14 +14,14 @@ namespace {
 
 glm::dvec3 vec(const Vec3d& v) { return {v[0], v[1], v[2]}; }
 
-// The plane's rectangle for this step: the settings, or fitted around the fluid's box with
-// `legend`'s margins left clear (an automatic extent moves the picture's centre off the fluid's
-// by half the difference of opposite margins).
-SlicePlane plane_for(const SliceField& s, const Bounds& box, glm::dvec3 up, int width, int height,
-                     const LegendMargins& legend) {
+// The plane's rectangle for this step: the settings, or fitted around the fluid's box grown by
+// `reach` (where the sums still reach) with `legend`'s margins left clear (an automatic extent
+// moves the picture's centre off the fluid's by half the difference of opposite margins).
+SlicePlane plane_for(const SliceField& s, const Bounds& box, double reach, glm::dvec3 up, int width,
+                     int height, const LegendMargins& legend) {
   const bool have_box = !box.empty();
-  const glm::dvec3 lo = have_box ? vec(box.lo) : glm::dvec3(-0.5);
-  const glm::dvec3 hi = have_box ? vec(box.hi) : glm::dvec3(0.5);
+  const glm::dvec3 lo = have_box ? vec(box.lo) - reach : glm::dvec3(-0.5);
+  const glm::dvec3 hi = have_box ? vec(box.hi) + reach : glm::dvec3(0.5);
   const glm::dvec3 origin = s.plane.origin ? vec(*s.plane.origin) : 0.5 * (lo + hi);
   const double aspect = double(width) / double(height);
   SlicePlane p = SlicePlane::make(origin, vec(s.plane.normal), 1, 1, up);
@@ -113,7 +113,11 @@ SliceLayer::SliceLayer(const SliceField& field, std::string view_name, std::stri
 void SliceLayer::interpolate(const ParticleView& particles, const Bounds& fluid_box, glm::dvec3 up,
                              std::int64_t step, int width, int height,
                              const LegendMargins& legend) {
-  plane_ = plane_for(field_, fluid_box, up, width, height, legend);
+  // With a legend to keep clear (a slice view's own picture) the sums' whole reach is fitted,
+  // so that no value lies under it; a plane in a 3D view keeps the box's size.
+  const double h = field_.smoothing_length.value_or(kAutoSmoothingFactor * spacing_);
+  plane_ = plane_for(field_, fluid_box, legend.right > 0 ? kernel_support(field_.kernel) * h : 0,
+                     up, width, height, legend);
   SliceQuantity q;
   q.name = field_.quantity;
   q.key = quantity_key_;

@@ -144,3 +144,37 @@ TEST(Legend, AFallingAxisTicksFromTheRight) {
 
 }  // namespace
 }  // namespace voxspan
+
+namespace voxspan {
+namespace {
+
+TEST(SliceView, AnAutomaticPlaneFitsTheFluidClearOfTheLegend) {
+  const test::ParticleBlock b = block();
+  constexpr int kW = 320, kH = 180;
+  const std::string run =
+      "output_folder: " + testing::TempDir() + "slice_margins\n" +
+      "outputs: {png: {enabled: false}, stats: {enabled: false},\n"
+      "          exr: {enabled: true, trigger: {every_steps: 1}}}\n"
+      "writer: {fsync: false}\n"
+      "trigger: {every_steps: 1}\n"
+      "views:\n  - {name: s, kind: slice, width: 320, height: 180, quantity: density,"
+      " plane: {normal: [0, -1, 0]}}\n";
+  Adapter a = adapter_from_config_text(run, test::spaced(b.spacing));
+  ASSERT_TRUE(a.execute(0, 0, b.view()).ok());
+  const FieldImage* field = test::latest_view(a).field;
+  ASSERT_NE(field, nullptr);
+  const LegendMargins m = legend_margins(kW, kH);
+  ASSERT_GT(m.right, 0);
+  int reached = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      if (!(field->values.at(x, y).g > 0)) continue;
+      ++reached;
+      EXPECT_TRUE(x >= m.left && x < kW - m.right && y >= m.top && y < kH - m.bottom)
+          << "fluid under the legend at " << x << ", " << y;
+    }
+  EXPECT_GT(reached, kW * kH / 8);
+}
+
+}  // namespace
+}  // namespace voxspan
