@@ -34,12 +34,12 @@ def config_text(folder, live, every=5, width=320, height=180):
 class LiveJob:
     """The job, its live page's address and token, and what it wrote."""
 
-    def __init__(self, dambreak, folder, live, steps, particles=4000, every=5):
+    def __init__(self, dambreak, folder, live, steps, particles=4000, every=5, size=(320, 180)):
         os.makedirs(folder, exist_ok=True)
         self.folder = folder
         path = os.path.join(folder, "run.yaml")
         with open(path, "w") as f:
-            f.write(config_text(folder, live, every))
+            f.write(config_text(folder, live, every, *size))
         self.log = []
         self.url = None
         self._found = threading.Event()
