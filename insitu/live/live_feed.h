@@ -6,8 +6,9 @@
 // immutable, that any number of server threads read at once: the state as JSON and each view's
 // latest picture as a PNG. The solver's thread only fills a mailbox under a mutex the feed's
 // thread holds for a swap, never for work; a step that comes before the last is encoded
-// replaces it (the latest only), so a slow encoder never makes the solver wait. Once the pass
-// names are known, publishing allocates nothing.
+// replaces it (the latest only), so a slow encoder never makes the solver wait; nor does the
+// solver wake that thread: it looks for a new step every 50 ms, at a lower priority. Once the
+// pass names are known, publishing allocates nothing.
 #pragma once
 
 #include <chrono>

@@ -241,11 +241,13 @@ struct InsituPipeline::Impl {
   void publish_live(const StepData& data, const StepStats& stats, double outputs_ms,
                     double process_ms) {
     if (!live_feed) return;
+    const Stopwatch handing;
     live_passes[0].second = 1e3 * stats.seconds_classify;
     live_passes[1].second = 1e3 * stats.seconds_compact;
     live_passes[2].second = outputs_ms;
     live_feed->publish({data.step, data.time, std::int64_t(stats.counts.particles),
                         in_situ_ms(stats, process_ms), results, live_passes});
+    totals.seconds_live += handing.seconds();
   }
 
   // The live page's server keeps the process up a while after the last step, when asked.
