@@ -135,12 +135,12 @@ constexpr std::size_t kMinTokenLength = 16;
 
 void check_live(MapReader& r, LiveConfig& c) {
   Checker& ch = r.checker();
-  in6_addr any{};
-  const bool numeric = inet_pton(AF_INET, c.address.c_str(), &any) == 1 ||
-                       inet_pton(AF_INET6, c.address.c_str(), &any) == 1;
-  if (!numeric && c.address != "localhost")
+  // IPv4 only: Debian's civetweb is built without IPv6.
+  in_addr any{};
+  if (inet_pton(AF_INET, c.address.c_str(), &any) != 1 && c.address != "localhost")
     ch.error(r.find("address"), r.path("address"),
-             "expected an IPv4 or IPv6 address or `localhost`; got \"" + c.address + "\"");
+             "expected an IPv4 address (0.0.0.0: every interface) or `localhost`; got \"" +
+                 c.address + "\"");
   else if (c.enabled && !is_local_address(c.address) && c.token.empty())
     ch.error(r.find("address"), r.path("address"),
              c.address + " is reachable from other machines: give a `live.token` (" +
@@ -163,7 +163,7 @@ const Section<LiveConfig>& live_section() {
                     "serve the live page (rank 0): the latest pictures, the progress and the "
                     "in-situ cost per pass"),
        schema::text("address", &L::address,
-                    "the address it listens on; one other than 127.0.0.1, ::1 or `localhost` "
+                    "the IPv4 address it listens on; one outside 127.0.0.0/8 (not `localhost`) "
                     "needs `token`"),
        schema::integer("port", &L::port, 0, 65535, "0: a free port, printed with the URL"),
        schema::text("token", &L::token,
@@ -641,7 +641,7 @@ void flatten(const YAML::Node& node, const std::string& path, std::vector<std::s
 }  // namespace
 
 bool is_local_address(std::string_view address) {
-  if (address == "localhost" || address == "::1") return true;
+  if (address == "localhost") return true;
   in_addr v4{};
   return inet_pton(AF_INET, std::string(address).c_str(), &v4) == 1 &&
          (ntohl(v4.s_addr) >> 24) == 127;

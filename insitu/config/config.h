@@ -73,7 +73,7 @@ struct LiveConfig {
   double linger_seconds = 0;          // the final page kept up after the last step
   bool operator==(const LiveConfig&) const = default;
 };
-// True for the loopback addresses (127.0.0.0/8, ::1, `localhost`), which only this machine
+// True for the loopback addresses (127.0.0.0/8, `localhost`), which only this machine
 // reaches.
 bool is_local_address(std::string_view address);
 

@@ -128,12 +128,6 @@ std::shared_ptr<const LiveSnapshot> LiveFeed::snapshot() const {
   return snapshot_;
 }
 
-bool LiveFeed::wait_for_step(std::int64_t step, std::chrono::milliseconds timeout) const {
-  std::unique_lock lock(snapshot_mutex_);
-  return snapshot_changed_.wait_for(lock, timeout,
-                                    [&] { return shown_step_ >= step || shown_finished_; });
-}
-
 void LiveFeed::run() {
   // Below the solver's threads: the encoding waits for a core they leave free.
   setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kNice);
@@ -162,8 +156,6 @@ void LiveFeed::run() {
     next->state = state_json();
     std::lock_guard lock(snapshot_mutex_);
     snapshot_ = std::move(next);
-    shown_step_ = history_->step;
-    snapshot_changed_.notify_all();
   }
 }
 

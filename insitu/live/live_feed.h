@@ -58,8 +58,6 @@ class LiveFeed {
   void finish();
   // Any thread: the latest snapshot; never null.
   std::shared_ptr<const LiveSnapshot> snapshot() const;
-  // Blocks until the snapshot shows `step` (or the feed has ended); for tests and lingering.
-  bool wait_for_step(std::int64_t step, std::chrono::milliseconds timeout) const;
   const std::vector<std::string>& view_names() const { return names_; }
 
  private:
@@ -89,9 +87,7 @@ class LiveFeed {
   std::unique_ptr<History> history_;
 
   mutable std::mutex snapshot_mutex_;
-  mutable std::condition_variable snapshot_changed_;
   std::shared_ptr<const LiveSnapshot> snapshot_;
-  std::int64_t shown_step_ = -1;
   bool shown_finished_ = false;
   std::thread thread_;  // last: it starts with everything above made
 };

@@ -123,9 +123,7 @@ int log_message(const mg_connection*, const char* message) {
 }
 
 std::string listening_port(const std::string& address, int port) {
-  const std::string host = address == "localhost" ? "127.0.0.1" : address;
-  return (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" +
-         std::to_string(port);
+  return (address == "localhost" ? "127.0.0.1" : address) + ":" + std::to_string(port);
 }
 
 }  // namespace
@@ -236,9 +234,7 @@ int LiveServer::port() const { return impl_->port; }
 const std::string& LiveServer::token() const { return impl_->token; }
 
 std::string LiveServer::url() const {
-  const std::string host =
-      impl_->address.find(':') != std::string::npos ? "[" + impl_->address + "]" : impl_->address;
-  return "http://" + host + ":" + std::to_string(impl_->port) + "/?token=" + impl_->token;
+  return "http://" + impl_->address + ":" + std::to_string(impl_->port) + "/?token=" + impl_->token;
 }
 
 }  // namespace voxspan

@@ -2,12 +2,14 @@
 
   test_live_security.py DAMBREAK WORK_FOLDER
 
-Runs the dam break twice at once with the same config: without the live page (the reference) and
-with it, while this script sends to the latter, one after another: no token, wrong tokens, the token in the wrong
-place, path traversals, other methods, oversized requests, a burst over the rate limit, 200
-simultaneous connections, a client that sends a byte a second and one that reads a byte a second.
-Each must be refused or bounded with its status, and the job's in-situ time per render step
-(median over the run, from its stats lines) within TOLERANCE of the reference's.
+Runs the dam break twice at once with the same config: without the live page (the reference)
+and with it, while this script sends to the latter, one after another: no token, wrong tokens,
+the token in the wrong place, path traversals, other methods, oversized requests, 300 requests
+in a row (over the rate limit), 200 simultaneous connections, a client that sends a byte a
+second and one that reads a byte a second. Each must be refused or bounded with its status, and
+the job's in-situ time per render step (the 20th percentile over the run, from its stats lines)
+within TOLERANCE (VOXSPAN_LIVE_TOLERANCE, default 0.05) of the reference's. Both jobs run side
+by side so that the machine's other work weighs on both alike.
 """
 import os
 import shutil
@@ -119,7 +121,7 @@ def rate_limit(job):
     time.sleep(2.5)  # the bucket full again
     statuses = [job.get("/state.json")[0] for _ in range(300)]
     limited = statuses.count(429)
-    check("300 requests at once from one address: the rate limit answers 429",
+    check("300 requests in a row from one address: the rate limit answers 429",
           limited > 0 and set(statuses) <= {200, 429}, f"{limited} of 300 refused")
     time.sleep(2.5)
 
@@ -227,7 +229,6 @@ def in_situ_ms(job):
 def main():
     dambreak, work = sys.argv[1], sys.argv[2]
     shutil.rmtree(work, ignore_errors=True)
-    # Side by side, at the same time: the machine's other work weighs on both alike.
     reference = LiveJob(dambreak, os.path.join(work, "without"), None, STEPS, PARTICLES, EVERY)
     job = LiveJob(dambreak, os.path.join(work, "with"), {"enabled": "true", "port": 0}, STEPS,
                   PARTICLES, EVERY)
