@@ -8,6 +8,13 @@ find_package(PNG REQUIRED)
 pkg_check_modules(LIBDEFLATE REQUIRED IMPORTED_TARGET GLOBAL libdeflate)
 # muparser: the triggers' conditions (insitu/config/condition.h); found by its .pc file.
 pkg_check_modules(MUPARSER REQUIRED IMPORTED_TARGET GLOBAL muparser)
+# civetweb: the live page's HTTP server (insitu/live/live_server.h). Found by hand: Debian's
+# CMake files for it name a server program the -dev package does not ship, and fail.
+find_path(CIVETWEB_INCLUDE_DIR civetweb.h REQUIRED)
+find_library(CIVETWEB_LIBRARY civetweb REQUIRED)
+add_library(civetweb::civetweb UNKNOWN IMPORTED GLOBAL)
+set_target_properties(civetweb::civetweb PROPERTIES IMPORTED_LOCATION "${CIVETWEB_LIBRARY}"
+                      INTERFACE_INCLUDE_DIRECTORIES "${CIVETWEB_INCLUDE_DIR}")
 find_package(VTK 9.1 REQUIRED COMPONENTS CommonCore CommonDataModel IOXML IOXMLParser
              IOParallelXML)
 find_package(HDF5 REQUIRED COMPONENTS C)

@@ -3,7 +3,10 @@
 // insitu/outputs/). The mechanism is insitu/config/schema.h.
 #include "insitu/config/config.h"
 
+#include <arpa/inet.h>
+
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -123,6 +126,54 @@ const Section<WriterConfig>& writer_section() {
            "`wait` blocks the solver until a slot frees; `drop` skips the file and "
            "counts it (a warning at the 1st, 10th, 100th... drop, a summary at the end)"),
        schema::flag("fsync", &W::fsync, "files are fsynced before they get their final name")}};
+  return s;
+}
+
+// The token guards a page anyone on the network may reach: long enough not to be guessed, and
+// plain enough to sit in a URL and a header as it is.
+constexpr std::size_t kMinTokenLength = 16;
+
+void check_live(MapReader& r, LiveConfig& c) {
+  Checker& ch = r.checker();
+  // IPv4 only: Debian's civetweb is built without IPv6.
+  in_addr any{};
+  if (inet_pton(AF_INET, c.address.c_str(), &any) != 1 && c.address != "localhost")
+    ch.error(r.find("address"), r.path("address"),
+             "expected an IPv4 address (0.0.0.0: every interface) or `localhost`; got \"" +
+                 c.address + "\"");
+  else if (c.enabled && !is_local_address(c.address) && c.token.empty())
+    ch.error(r.find("address"), r.path("address"),
+             c.address + " is reachable from other machines: give a `live.token` (" +
+                 std::to_string(kMinTokenLength) + " or more letters and digits) or leave " +
+                 "`address` at 127.0.0.1");
+  const bool plain = std::all_of(c.token.begin(), c.token.end(), [](char k) {
+    return std::isalnum(static_cast<unsigned char>(k)) || k == '-' || k == '_';
+  });
+  if (!c.token.empty() && (c.token.size() < kMinTokenLength || !plain))
+    ch.error(r.find("token"), r.path("token"),
+             "expected " + std::to_string(kMinTokenLength) +
+                 " or more letters, digits, `-` or `_`; empty: a random one");
+}
+
+const Section<LiveConfig>& live_section() {
+  using L = LiveConfig;
+  static const Section<L> s{
+      "live",
+      {schema::flag("enabled", &L::enabled,
+                    "serve the live page (rank 0): the latest pictures, the progress and the "
+                    "in-situ cost per pass"),
+       schema::text("address", &L::address,
+                    "the IPv4 address it listens on; one outside 127.0.0.0/8 (not `localhost`) "
+                    "needs `token`"),
+       schema::integer("port", &L::port, 0, 65535, "0: a free port, printed with the URL"),
+       schema::text("token", &L::token,
+                    "what every request must carry; empty: a random one made at start and "
+                    "printed once with the URL")
+           .default_shown_as("random"),
+       schema::number("linger_seconds", &L::linger_seconds, schema::between(0, 86400),
+                      "the page stays up this long after the last step, saying the job ended "
+                      "(the job waits)")},
+      check_live};
   return s;
 }
 
@@ -409,6 +460,7 @@ std::vector<Key<Config>> top_keys(const ConfigKinds& kinds) {
         e << YAML::EndMap;
       }));
   keys.push_back(schema::map("writer", &Config::writer, writer_section(), "the background writer"));
+  keys.push_back(schema::map("live", &Config::live, live_section(), "the live page"));
   return keys;
 }
 
@@ -588,6 +640,13 @@ void flatten(const YAML::Node& node, const std::string& path, std::vector<std::s
 
 }  // namespace
 
+bool is_local_address(std::string_view address) {
+  if (address == "localhost") return true;
+  in_addr v4{};
+  return inet_pton(AF_INET, std::string(address).c_str(), &v4) == 1 &&
+         (ntohl(v4.s_addr) >> 24) == 127;
+}
+
 std::vector<std::string> config_lines(const Config& config, const ConfigKinds& kinds) {
   std::vector<std::string> lines;
   flatten(YAML::Load(write_config(config, kinds)), "", lines);
@@ -606,6 +665,7 @@ std::string config_reference(const ConfigKinds& kinds) {
   for (const OutputConfigKind& k : kinds.outputs)
     s += "\n#### `outputs." + std::string(k.name) + "`\n\n" + k.reference();
   s += "\n#### `writer`\n\n" + writer_section().reference();
+  s += "\n#### `live`\n\n" + live_section().reference();
   return s;
 }
 

@@ -64,6 +64,19 @@ struct WriterConfig {
   bool operator==(const WriterConfig&) const = default;
 };
 
+// The live page (insitu/live/live_server.h): served from rank 0 while the job runs.
+struct LiveConfig {
+  bool enabled = false;
+  std::string address = "127.0.0.1";  // a non-local one needs `token`
+  int port = 0;                       // 0: a free port, chosen at start and printed
+  std::string token;                  // empty: a random one made at start and printed
+  double linger_seconds = 0;          // the final page kept up after the last step
+  bool operator==(const LiveConfig&) const = default;
+};
+// True for the loopback addresses (127.0.0.0/8, `localhost`), which only this machine
+// reaches.
+bool is_local_address(std::string_view address);
+
 // A view or an output of the config: its kind's name and its settings.
 template <class Base> struct Configured {
   std::string kind;
@@ -84,6 +97,7 @@ struct Config {
   ClassificationConfig classification;
   std::vector<ConfiguredOutput> outputs;  // every output kind, in the kinds' order
   WriterConfig writer;
+  LiveConfig live;
   bool operator==(const Config&) const = default;
 
   // An output's folder: absolute as given, else under output_folder.

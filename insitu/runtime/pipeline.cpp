@@ -3,12 +3,16 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <sstream>
 #include <thread>
 
+#include "insitu/live/live_feed.h"
+#include "insitu/live/live_server.h"
 #include "insitu/outputs/formats/stats_record.h"
 #include "insitu/parallel/communicator.h"
 #include "insitu/runtime/config_file.h"
@@ -179,8 +183,7 @@ struct InsituPipeline::Impl {
                        registered_view_kind(v.kind).make(*v.settings, view_context),
                        ViewFraming(*v.settings),
                        {},
-                       // The writer's queue, the job it runs, the latest picture.
-                       std::make_unique<PicturePool>(std::size_t(config.writer.queue_size) + 2),
+                       std::make_unique<PicturePool>(pictures_per_view(config)),
                        {},
                        {},
                        {},
@@ -191,9 +194,12 @@ struct InsituPipeline::Impl {
     for (const ViewState& v : views) record.view(v.name);  // made once: their addresses stay
     results.resize(views.size());
     for (const ConfiguredOutput& o : config.outputs) make_output(o);
+    if (config.live.enabled && reports_here()) start_live();
   }
 
   ~Impl() {
+    live_server.reset();  // no request reads the feed after this
+    live_feed.reset();    // its references to the pictures dropped before their pools go
     writer.drain();
     for (OutputState& o : outputs)
       if (o.output) o.output->close();
@@ -299,6 +305,42 @@ struct InsituPipeline::Impl {
       }
     }
     return failure;
+  }
+
+  // The writer's queue, the job it runs, the latest picture; with the live page, the one its
+  // mailbox holds and the one it encodes.
+  static std::size_t pictures_per_view(const Config& config) {
+    return std::size_t(config.writer.queue_size) + 2 + (config.live.enabled ? 2 : 0);
+  }
+
+  void start_live() {
+    live_feed = std::make_unique<LiveFeed>(view_names);
+    live_server = std::make_unique<LiveServer>(config.live, *live_feed);
+    // Said once, at a level shown by default: the token is in it (as Jupyter prints its URL).
+    log_warning("live page: ", live_server->url());
+  }
+
+  // The solver's thread hands over references and a few numbers (insitu/live/live_feed.h).
+  void publish_live(const StepData& data, const StepStats& stats, double outputs_ms,
+                    double process_ms) {
+    if (!live_feed) return;
+    const Stopwatch handing;
+    live_passes[0].second = 1e3 * stats.seconds_classify;
+    live_passes[1].second = 1e3 * stats.seconds_compact;
+    live_passes[2].second = outputs_ms;
+    live_feed->publish({data.step, data.time, std::int64_t(stats.counts.particles),
+                        in_situ_ms(stats, process_ms), results, live_passes});
+    totals.seconds_live += handing.seconds();
+  }
+
+  // The live page's server keeps the process up a while after the last step, when asked.
+  void finish_live() {
+    if (!live_feed || live_finished) return;
+    live_finished = true;
+    live_feed->finish();
+    if (config.live.linger_seconds <= 0) return;
+    log_warning("live page: kept up ", config.live.linger_seconds, " s after the last step");
+    std::this_thread::sleep_for(std::chrono::duration<double>(config.live.linger_seconds));
   }
 
   void make_current() {
@@ -448,6 +490,12 @@ struct InsituPipeline::Impl {
 
   std::vector<std::int64_t> bulk_scratch, bulk_bins;
   std::int64_t strays_told = 0;
+
+  std::unique_ptr<LiveFeed> live_feed;  // on the root, when the live page is enabled
+  std::unique_ptr<LiveServer> live_server;
+  std::array<std::pair<const char*, double>, 3> live_passes{
+      {{"classify", 0}, {"compact", 0}, {"outputs", 0}}};
+  bool live_finished = false;
 };
 
 const OutputTally& PipelineTotals::output(std::string_view kind) const {
@@ -602,6 +650,7 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
     m.write_outputs(step, p, true, failure);
   }
 
+  if (p.render) m.publish_live(data, stats, outputs_ms, process.ms());
   m.totals.seconds_render += 1e-3 * render_ms;
   m.totals.seconds_outputs += outputs.seconds();
   m.totals.seconds_process += process.seconds();
@@ -609,7 +658,10 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
   return {StatusCode::pipeline_failed, failure};
 }
 
-void InsituPipeline::finish() { impl_->writer.drain(); }
+void InsituPipeline::finish() {
+  impl_->writer.drain();
+  impl_->finish_live();
+}
 
 PipelineTotals InsituPipeline::totals() const {
   PipelineTotals t = impl_->totals;

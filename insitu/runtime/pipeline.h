@@ -47,6 +47,7 @@ struct PipelineTotals {
   double seconds_render = 0;          // solver's thread: framing, rendering, read-back
   double seconds_outputs = 0;         // solver's thread: copies into job slots, submits (and waits)
   double seconds_process = 0;         // solver's thread: all of process()
+  double seconds_live = 0;            // solver's thread: handing render steps to the live page
   FrameStats passes;                  // milliseconds per pass, summed over all views and steps
   std::vector<OutputTotals> outputs;  // every output kind, in the config's order
   WriterStats writer;

@@ -24,7 +24,7 @@ void fill_step_record(const StepRecordInput& in, StatsRecord& r) {
   t.add_time("compact", 1e3 * a.seconds_compact);
   t.add_time("render", in.render_ms);
   t.add_time("outputs", in.outputs_ms);
-  t.add_time("in_situ", 1e3 * (a.seconds_classify + a.seconds_compact) + in.process_ms);
+  t.add_time("in_situ", in_situ_ms(a, in.process_ms));
   t.add_count("particles", std::int64_t(c.particles));
   t.add_count("owned", std::int64_t(c.owned));
   t.add_count("boundary", std::int64_t(c.boundary));

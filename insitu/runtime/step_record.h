@@ -34,6 +34,12 @@ struct StepRecordInput {
   HostMemory memory;
 };
 
+// All of a step's in-situ work on the solver's thread: the adapter's classification and
+// compaction, and the pipeline's process().
+inline double in_situ_ms(const StepStats& adapter, double process_ms) {
+  return 1e3 * (adapter.seconds_classify + adapter.seconds_compact) + process_ms;
+}
+
 // Fills the record's totals and memory. Its view sections are the views' own FrameStats (the
 // passes reported into them while rendering); each gets its particles.culled count here.
 void fill_step_record(const StepRecordInput& in, StatsRecord& record);

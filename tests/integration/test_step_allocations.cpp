@@ -1,6 +1,7 @@
 // Once sizes are stable, a render step allocates nothing new on the solver's thread: the
 // renderer reuses its GPU buffers, the read-back images and the snapshots' copies live in
-// pooled slots, the stats record keeps its names, the writer's queue is a ring. Counted with
+// pooled slots, the stats record keeps its names, the writer's queue is a ring, the live page's
+// mailbox keeps its pictures' and passes' storage. Counted with
 // a replaced operator new, on the solver's thread only (the writer's thread encodes PNGs and
 // builds VDB grids, which allocate as libpng and OpenVDB do).
 #include <gtest/gtest.h>
@@ -28,6 +29,7 @@ outputs:
   vtk: {enabled: true, trigger: {every_steps: 4}, attributes: [velocity]}
   depth: {enabled: true, trigger: {every_steps: 2}}
 writer: {queue_size: 64, fsync: false}
+live: {enabled: true}
 )";
   Adapter adapter = adapter_from_config_text(yaml, test::solver_options(sim), "alloc.yaml");
   const dambreak::Fluid& f = sim.fluid();

@@ -14,6 +14,8 @@ packages=(
   libopenexr-dev                                     # depth (and deep) images
   libhdf5-dev                                        # PySPH's HDF5 particle files (offline tools)
   libmuparser-dev                                    # the expressions of the triggers' conditions
+  libcivetweb-dev                                    # the live page's HTTP server
+  chromium                                           # the live page's test in a real browser
   libopenmpi-dev openmpi-bin                         # many ranks
   libembree-dev                                      # Embree against the CPU caster (tools/bench_embree)
   libgtest-dev gfortran clang-format                 # tests (gfortran: the Fortran bindings)

@@ -190,6 +190,31 @@ TEST(Config, ATriggerMistakeIsOneErrorWithItsLine) {
   EXPECT_EQ(e.find("outputs."), std::string::npos) << e;
 }
 
+// The live page listens where only this machine reaches it unless told otherwise; an address
+// others reach needs a token of the user's own.
+TEST(Config, TheLivePageNeedsATokenOnAnAddressOthersReach) {
+  const Config c = load_config_string("live: {enabled: true}\n", "test.yaml");
+  EXPECT_EQ(c.live.address, "127.0.0.1");
+  EXPECT_TRUE(c.live.token.empty());
+  EXPECT_EQ(c.live.port, 0);
+  std::string e = error_of("live:\n  enabled: true\n  address: 0.0.0.0\n");
+  EXPECT_NE(e.find("test.yaml:3:12: live.address: 0.0.0.0 is reachable from other machines: "
+                   "give a `live.token`"),
+            std::string::npos)
+      << e;
+  EXPECT_EQ(error_of("live: {enabled: true, address: 0.0.0.0, token: abcdefghijklmnop12}\n"), "");
+  e = error_of("live: {enabled: true, address: \"::1\"}\n");
+  EXPECT_NE(e.find("live.address: expected an IPv4 address"), std::string::npos) << e;
+  EXPECT_EQ(error_of("live: {enabled: true, address: localhost}\n"), "");
+  e = error_of("live: {address: 0.0.0.0, token: short}\n");
+  EXPECT_NE(e.find("live.token: expected 16 or more letters"), std::string::npos) << e;
+  e = error_of("live: {address: example.org}\n");
+  EXPECT_NE(e.find("live.address: expected an IPv4 address"), std::string::npos) << e;
+  EXPECT_TRUE(is_local_address("127.0.0.2"));
+  EXPECT_FALSE(is_local_address("10.0.0.1"));
+  EXPECT_FALSE(is_local_address("::"));
+}
+
 TEST(Config, WrongTypesAndBadValuesNameKeyAndLine) {
   struct Case {
     const char* yaml;

@@ -1,0 +1,118 @@
+"""A dam break job with the live page (insitu/live/), for the live page's tests.
+
+Starts examples/dambreak with a config that renders one view every few steps, writes its PNG
+frames and stats lines, and serves the live page on a free port; reads the URL the job prints.
+Standard library only.
+"""
+import glob
+import http.client
+import json
+import os
+import re
+import subprocess
+import threading
+import time
+import urllib.parse
+
+SKIP = 77  # ctest's SKIP_RETURN_CODE for these tests
+
+
+def config_text(folder, live, every=5, width=320, height=180):
+    lines = [
+        f"output_folder: {folder}",
+        f"trigger: {{every_steps: {every}, first: true, last: true}}",
+        f"views: [{{name: main, width: {width}, height: {height}}}]",
+        "outputs:",
+        "  png: {enabled: true}",
+        "  stats: {enabled: true}",
+    ]
+    if live is not None:
+        lines.append("live: {" + ", ".join(f"{k}: {v}" for k, v in live.items()) + "}")
+    return "\n".join(lines) + "\n"
+
+
+class LiveJob:
+    """The job, its live page's address and token, and what it wrote."""
+
+    def __init__(self, dambreak, folder, live, steps, particles=4000, every=5, size=(320, 180)):
+        os.makedirs(folder, exist_ok=True)
+        self.folder = folder
+        path = os.path.join(folder, "run.yaml")
+        with open(path, "w") as f:
+            f.write(config_text(folder, live, every, *size))
+        self.log = []
+        self.url = None
+        self._found = threading.Event()
+        self.process = subprocess.Popen(
+            [dambreak, "--config", path, "--particles", str(particles), "--steps", str(steps),
+             "--progress-every", "0"],
+            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        threading.Thread(target=self._read_log, daemon=True).start()
+
+    def _read_log(self):
+        for line in self.process.stderr:
+            self.log.append(line.rstrip("\n"))
+            m = re.search(r"live page: (http://\S+)", line)
+            if m and self.url is None:
+                self.url = m.group(1)
+                self._found.set()
+        self._found.set()
+
+    def wait_url(self, timeout=120):
+        self._found.wait(timeout)
+        if self.url is None:
+            raise RuntimeError("the job printed no live page URL:\n" + "\n".join(self.log))
+        u = urllib.parse.urlsplit(self.url)
+        self.host, self.port = u.hostname, u.port
+        self.token = urllib.parse.parse_qs(u.query)["token"][0]
+        return self.url
+
+    def request(self, path, headers=None, method="GET", timeout=10):
+        """(status, headers, body) of one request with the given headers (no token added)."""
+        c = http.client.HTTPConnection(self.host, self.port, timeout=timeout)
+        c.request(method, path, headers=headers or {})
+        r = c.getresponse()
+        body = r.read()
+        c.close()
+        return r.status, dict(r.getheaders()), body
+
+    def get(self, path):
+        return self.request(path, {"Authorization": "Bearer " + self.token})
+
+    def state(self):
+        status, _, body = self.get("/state.json")
+        assert status == 200, status
+        return json.loads(body)
+
+    def wait_state(self, holds, timeout=120):
+        end = time.time() + timeout
+        while time.time() < end:
+            s = self.state()
+            if holds(s):
+                return s
+            time.sleep(0.2)
+        raise RuntimeError("the live page's state never got there")
+
+    def finish(self, timeout=300):
+        rc = self.process.wait(timeout)
+        if rc != 0:
+            raise RuntimeError(f"the job failed ({rc}):\n" + "\n".join(self.log))
+
+    def threads(self):
+        with open(f"/proc/{self.process.pid}/status") as f:
+            return int(re.search(r"Threads:\s+(\d+)", f.read()).group(1))
+
+    def stats(self):
+        lines = []
+        for path in glob.glob(os.path.join(self.folder, "**", "*.jsonl"), recursive=True):
+            with open(path) as f:
+                lines += [json.loads(line) for line in f if line.strip()]
+        return sorted(lines, key=lambda r: r["step"])
+
+    def png(self, view, step):
+        paths = glob.glob(os.path.join(self.folder, "**", f"{view}_*{step}.png"), recursive=True)
+        paths = [p for p in paths if re.search(rf"{view}_0*{step}\.png$", p)]
+        if not paths:
+            raise RuntimeError(f"no PNG of view {view} at step {step} in {self.folder}")
+        with open(paths[0], "rb") as f:
+            return f.read()

@@ -1,0 +1,264 @@
+"""The live page over HTTP, as a hostile client sees it (insitu/live/live_server.h).
+
+  test_live_security.py DAMBREAK WORK_FOLDER
+
+Runs the dam break twice at once with the same config: without the live page (the reference)
+and with it, while this script sends to the latter, one after another: no token, wrong tokens,
+the token in the wrong place, path traversals, other methods, oversized requests, 300 requests
+in a row (over the rate limit), 200 simultaneous connections, a client that sends a byte a
+second and one that reads a byte a second. Each must be refused or bounded with its status, and
+the job's in-situ time per render step (the 20th percentile over the run, from its stats lines)
+within TOLERANCE (VOXSPAN_LIVE_TOLERANCE, default 0.25; the goal, 0.05, is printed) of the
+reference's. Both jobs run side
+by side so that the machine's other work weighs on both alike.
+"""
+import os
+import shutil
+import socket
+import statistics
+import sys
+import threading
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from live_job import LiveJob  # noqa: E402
+
+# The goal is 5 %, but two identical jobs without the page, side by side on the shared 2-core
+# machine where this was written, differed by +9.7 and +15.0 % (the one started second slower);
+# with the page (started second): +2.6, +5.1, -1.5, +5.4 %. So the test fails only past 25 % (a
+# page that held the solver up would show far more) and prints where the run stood.
+GOAL = 0.05
+TOLERANCE = float(os.environ.get("VOXSPAN_LIVE_TOLERANCE", "0.25"))
+STEPS, PARTICLES, EVERY = 5000, 4000, 5
+failures = []
+
+
+def check(what, ok, detail=""):
+    print(("ok   " if ok else "FAIL ") + what + (f": {detail}" if detail else ""), flush=True)
+    if not ok:
+        failures.append(what)
+
+
+def raw(job, data, timeout=15):
+    """Sends `data` on a fresh connection; (status or None, seconds until the server closed)."""
+    start = time.time()
+    s = socket.create_connection((job.host, job.port), timeout=timeout)
+    try:
+        s.sendall(data)
+    except OSError:
+        pass
+    reply = b""
+    try:
+        while True:
+            chunk = s.recv(65536)
+            if not chunk:
+                break
+            reply += chunk
+    except OSError:
+        pass
+    s.close()
+    status = int(reply.split(b" ")[1]) if reply.startswith(b"HTTP/") else None
+    return status, time.time() - start
+
+
+def token_rules(job):
+    t = job.token
+    right = {"Authorization": "Bearer " + t}
+    check("the page with the token in its URL", job.request("/?token=" + t)[0] == 200)
+    check("the state with the token in the header", job.request("/state.json", right)[0] == 200)
+    status, headers, body = job.request("/view/main.png", right)
+    check("a picture with the token", status == 200 and body[:8] == b"\x89PNG\r\n\x1a\n")
+    check("no-store, nosniff, no framing", headers.get("Cache-Control") == "no-store" and
+          headers.get("X-Content-Type-Options") == "nosniff" and
+          headers.get("X-Frame-Options") == "DENY")
+    wrong = "0" * len(t)
+    for what, path, headers in [
+            ("no token: the page", "/", {}),
+            ("no token: the state", "/state.json", {}),
+            ("no token: a picture", "/view/main.png", {}),
+            ("a wrong token of the same length", "/state.json", {"Authorization": "Bearer " + wrong}),
+            ("a wrong token in the page's URL", "/?token=" + wrong, {}),
+            ("the token's first half", "/state.json", {"Authorization": "Bearer " + t[:len(t) // 2]}),
+            ("the token with more after it", "/state.json", {"Authorization": "Bearer " + t + "0"}),
+            ("the token in the query of the state", "/state.json?token=" + t, {}),
+            ("the token in the query of a picture", "/view/main.png?token=" + t, {}),
+            ("the token in the path", f"/{t}/state.json", {}),
+            ("the token in a cookie", "/state.json", {"Cookie": "token=" + t}),
+            ("the token without `Bearer`", "/state.json", {"Authorization": t}),
+            ("the token in another header", "/state.json", {"X-Token": t})]:
+        status, headers, _ = job.request(path, headers)
+        check(what + " -> 401", status == 401 and headers.get("WWW-Authenticate") == "Bearer",
+              str(status))
+
+
+def fixed_paths(job):
+    right = {"Authorization": "Bearer " + job.token}
+    for path in ["/../../../../etc/passwd", "/view/../../../../etc/passwd",
+                 "/view/..%2f..%2f..%2fetc%2fpasswd", "/%2e%2e/%2e%2e/etc/passwd",
+                 "/view/main.png/../../state.json", "//etc/passwd", "/view/", "/view/main",
+                 "/state.json/", "/index.html", "/live_page.html", "/view/..%00.png"]:
+        status, _, body = job.request(path, right)
+        check(f"{path} -> 404 (or 400)", status in (400, 404) and b"root:" not in body, str(status))
+    for method in ["POST", "PUT", "DELETE", "PATCH", "OPTIONS"]:
+        status, headers, _ = job.request("/state.json", right, method=method)
+        check(f"{method} -> 405", status == 405 and headers.get("Allow") == "GET, HEAD", str(status))
+
+
+def oversized(job):
+    auth = f"Authorization: Bearer {job.token}\r\n".encode()
+    cases = [
+        ("a 20000-character path", b"GET /" + b"a" * 20000 + b" HTTP/1.1\r\nHost: x\r\n" + auth +
+         b"\r\n", (400, 413, 414)),
+        ("a 20000-byte header", b"GET /state.json HTTP/1.1\r\nHost: x\r\nX-Big: " + b"b" * 20000 +
+         b"\r\n" + auth + b"\r\n", (400, 413, 431)),
+        ("100 headers", b"GET /state.json HTTP/1.1\r\nHost: x\r\n" + auth +
+         b"".join(b"X-H%d: 1\r\n" % i for i in range(100)) + b"\r\n", (431,)),
+        ("a body on a GET", b"GET /state.json HTTP/1.1\r\nHost: x\r\nContent-Length: 1000000\r\n" +
+         auth + b"\r\n" + b"c" * 1000, (400, 413)),
+    ]
+    for what, data, expected in cases:
+        status, seconds = raw(job, data)
+        # Closed at the latest when civetweb stops reading what it drops (two timeouts).
+        check(f"{what} -> {'/'.join(map(str, expected))}", status in expected and seconds < 12,
+              f"{status}, closed after {seconds:.2f} s")
+
+
+def rate_limit(job):
+    time.sleep(2.5)  # the bucket full again
+    statuses = [job.get("/state.json")[0] for _ in range(300)]
+    limited = statuses.count(429)
+    check("300 requests in a row from one address: the rate limit answers 429",
+          limited > 0 and set(statuses) <= {200, 429}, f"{limited} of 300 refused")
+    time.sleep(2.5)
+
+
+def simultaneous(job, count=200):
+    before = job.threads()
+    results, most_threads = [None] * count, [before]
+    start = threading.Barrier(count + 1)
+
+    def one(i):
+        start.wait()
+        t0 = time.time()
+        try:
+            status, _ = raw(job, f"GET /state.json HTTP/1.1\r\nHost: x\r\nAuthorization: Bearer "
+                                 f"{job.token}\r\n\r\n".encode(), timeout=60)
+        except OSError as e:
+            status = type(e).__name__
+        results[i] = (status, time.time() - t0)
+
+    threads = [threading.Thread(target=one, args=(i,)) for i in range(count)]
+    for t in threads:
+        t.start()
+    start.wait()
+    while any(t.is_alive() for t in threads):
+        most_threads.append(job.threads())
+        time.sleep(0.05)
+    for t in threads:
+        t.join()
+    statuses = [r[0] for r in results]
+    slowest = max(r[1] for r in results)
+    summary = {s: statuses.count(s) for s in set(statuses)}
+    check(f"{count} simultaneous connections: each answered 200 or 429, none held",
+          set(statuses) <= {200, 429} and slowest < 30, f"{summary}, slowest {slowest:.2f} s")
+    check("... on the job's threads as before (a fixed pool)", max(most_threads) <= before,
+          f"{before} threads before, at most {max(most_threads)} during")
+    time.sleep(2.5)
+
+
+def slow_sender(job):
+    s = socket.create_connection((job.host, job.port), timeout=30)
+    head = b"GET /state.json HTTP/1.1\r\nHost: x\r\nX-Slow: " + b"s" * 60
+    start, closed = time.time(), None
+    for b in head:
+        try:
+            s.sendall(bytes([b]))
+            s.settimeout(1.0)
+            if s.recv(1) == b"":
+                closed = time.time() - start
+                break
+        except socket.timeout:
+            continue
+        except OSError:
+            closed = time.time() - start
+            break
+        if time.time() - start > 20:
+            break
+    s.close()
+    check("a client sending a byte a second is cut off after the request timeout (5 s)",
+          closed is not None and closed < 9, f"after {closed and round(closed, 1)} s")
+
+
+def slow_reader(job):
+    s = socket.socket()
+    s.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 2048)
+    s.settimeout(5)
+    s.connect((job.host, job.port))
+    s.sendall(f"GET /view/main.png HTTP/1.1\r\nHost: x\r\nAuthorization: Bearer {job.token}"
+              f"\r\n\r\n".encode())
+    latencies, stop = [], threading.Event()
+
+    def others():
+        while not stop.is_set():
+            t0 = time.time()
+            status = job.get("/state.json")[0]
+            latencies.append((status, time.time() - t0))
+            time.sleep(0.5)
+
+    other = threading.Thread(target=others)
+    other.start()
+    read = 0
+    for _ in range(10):
+        try:
+            read += len(s.recv(1))
+        except OSError:
+            break
+        time.sleep(1)
+    stop.set()
+    other.join()
+    s.close()
+    worst = max(t for _, t in latencies)
+    check("a client reading a byte a second holds no one up: others served meanwhile",
+          all(st == 200 for st, _ in latencies) and worst < 1.0,
+          f"{len(latencies)} requests, slowest {worst * 1000:.0f} ms; it read {read} bytes")
+
+
+def in_situ_ms(job):
+    """The 20th percentile of the in-situ time per render step (the first left out): the cost of
+    a step when the machine's other work leaves it alone, which the median is not on a shared
+    machine."""
+    rows = [r for r in job.stats() if r.get("timings_ms", {}).get("in_situ") is not None]
+    times = sorted(r["timings_ms"]["in_situ"] for r in rows[1:])
+    return statistics.quantiles(times, n=5)[0], len(rows)
+
+
+def main():
+    dambreak, work = sys.argv[1], sys.argv[2]
+    shutil.rmtree(work, ignore_errors=True)
+    reference = LiveJob(dambreak, os.path.join(work, "without"), None, STEPS, PARTICLES, EVERY)
+    job = LiveJob(dambreak, os.path.join(work, "with"), {"enabled": "true", "port": 0}, STEPS,
+                  PARTICLES, EVERY)
+    print("live page:", job.wait_url(), flush=True)
+    job.wait_state(lambda s: s["views"][0]["step"] >= 0)
+    for part in [token_rules, fixed_paths, oversized, rate_limit, simultaneous, slow_sender,
+                 slow_reader]:
+        if job.process.poll() is not None:
+            check(f"{part.__name__}: the job still running", False, "raise STEPS")
+            break
+        part(job)
+    job.finish()
+    reference.finish()
+    ref_ms, ref_steps = in_situ_ms(reference)
+    live_ms, live_steps = in_situ_ms(job)
+    change = live_ms / ref_ms - 1
+    goal = "within" if abs(change) <= GOAL else "NOT within"
+    check(f"in-situ time per render step within {TOLERANCE:.0%} of the run without the page "
+          f"({goal} the {GOAL:.0%} goal)", abs(change) <= TOLERANCE,
+          f"20th percentile {live_ms:.3f} ms over {live_steps} steps, without {ref_ms:.3f} ms over "
+          f"{ref_steps}: {change:+.1%}")
+    print(f"{len(failures)} failed" if failures else "all passed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
