@@ -464,6 +464,25 @@ std::vector<Key<Config>> top_keys(const ConfigKinds& kinds) {
   return keys;
 }
 
+// An enabled output's `views` names views of the config.
+void check_named_views(MapReader& top, const Config& c) {
+  if (!top.has("outputs")) return;
+  std::string known;
+  for (const ConfiguredView& v : c.views) known += (known.empty() ? "" : ", ") + v.settings->name;
+  for (const ConfiguredOutput& o : c.outputs) {
+    if (!o.settings->enabled) continue;
+    for (const std::string& name : o.settings->named_views()) {
+      const bool found = std::any_of(c.views.begin(), c.views.end(),
+                                     [&](const auto& v) { return v.settings->name == name; });
+      if (found) continue;
+      const YAML::Node output = top.find("outputs")[o.kind];
+      const std::string path = "outputs." + o.kind + ".views";
+      top.checker().error(output && output["views"] ? output["views"] : output, path,
+                          "there is no view \"" + name + "\" (the views: " + known + ")");
+    }
+  }
+}
+
 void check_top(MapReader& top, Config& c) {
   Checker& checker = top.checker();
   if (top.has("output_folder") && c.output_folder.empty())
@@ -473,6 +492,7 @@ void check_top(MapReader& top, Config& c) {
     checker.error(top.find("log_level"), "log_level",
                   "expected one of error, warning, info, debug; got \"" + c.log_level + "\"");
   check_conditions(top, c);
+  check_named_views(top, c);
 }
 
 Section<Config> top_section(const ConfigKinds& kinds) {

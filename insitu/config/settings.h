@@ -74,6 +74,8 @@ struct OutputSettings {
   virtual bool equals(const OutputSettings& other) const = 0;
   // The particle attributes the output needs compacted with the boundary particles.
   virtual std::span<const std::string> needed_attributes() const { return {}; }
+  // The views it names under its key `views` (checked against the config's views).
+  virtual std::span<const std::string> named_views() const { return {}; }
   bool operator==(const OutputSettings&) const = default;
 
  protected:

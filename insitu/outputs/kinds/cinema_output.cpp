@@ -26,6 +26,7 @@ struct CinemaSettings : CloneAs<CinemaSettings, OutputSettings> {
   std::vector<std::int64_t> phi{-90, -45, 0, 45, 90};
   std::vector<std::int64_t> theta{0, 30};
   bool depth = false;
+  std::span<const std::string> named_views() const override { return views; }
   bool operator==(const CinemaSettings&) const = default;
 };
 

@@ -114,7 +114,7 @@ TEST(Cinema, TheViewsOwnAngleIsTheViewsPictureAndTheOthersDiffer) {
 TEST(Cinema, BadSettingsAreRefusedAtStartUp) {
   const test::ParticleBlock b = block();
   for (const auto& [cinema, words] : std::vector<std::pair<std::string, std::string>>{
-           {"views: [nowhere]", "outputs.cinema.views: there is no view \"nowhere\""},
+           {"views: [nowhere]", ":10:61: outputs.cinema.views: there is no view \"nowhere\""},
            {"phi: []", "needs at least one angle"},
            {"theta: [90]", "theta"},
            {"phi: [0, 0]", "phi"}}) {
