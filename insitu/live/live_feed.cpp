@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <deque>
 
+#include "insitu/outputs/formats/json_text.h"
 #include "insitu/outputs/formats/png_image.h"
 #include "voxspan/log.h"
 
@@ -15,25 +16,6 @@ namespace {
 
 constexpr int kPollMs = 50;  // how often the feed's thread looks for a step handed over
 constexpr int kNice = 10;    // the feed's thread's niceness
-
-void append_number(std::string& out, double v) {
-  if (!std::isfinite(v)) {
-    out += "null";
-    return;
-  }
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  out += text;
-}
-
-// View names are plain (letters, digits, `_` `-` `.`: the config checks), pass names the
-// renderers' own: neither needs escaping, but a quote or a backslash would break the page.
-void append_string(std::string& out, std::string_view s) {
-  out += '"';
-  for (char c : s)
-    if (c != '"' && c != '\\' && static_cast<unsigned char>(c) >= 0x20) out += c;
-  out += '"';
-}
 
 }  // namespace
 
@@ -184,8 +166,7 @@ void LiveFeed::take(Handed& work) {
     SharedPicture& p = work.pictures[i];
     if (!p) continue;
     try {
-      h.pictures[i] = std::make_shared<const std::string>(
-          encode_png(linear_to_srgb8(p->rgba, p->width, p->height)));
+      h.pictures[i] = std::make_shared<const std::string>(encode_picture_png(*p));
       h.views[i] = {work.step, p->width, p->height};
     } catch (const std::exception& e) {
       log_warning("live page: view ", names_[i], ": ", e.what());

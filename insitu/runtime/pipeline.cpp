@@ -117,12 +117,6 @@ struct ViewState {
   bool jump_told = false;  // the framing's jump is said once
 };
 
-std::string listed(std::span<const std::string> names) {
-  std::string s;
-  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
-  return s;
-}
-
 std::string point(const std::array<double, 3>& p) {
   std::ostringstream s;
   s << "(" << p[0] << ", " << p[1] << ", " << p[2] << ")";
@@ -230,7 +224,7 @@ struct InsituPipeline::Impl {
     OutputState state{&kind, nullptr, {}, {}};
     if (o.settings->enabled && kind.orbits) {
       state.orbits = kind.orbits(*o.settings);
-      state.orbit_views = orbit_views(o.kind, state.orbits.views);
+      state.orbit_views = orbit_views(state.orbits.views);
       orbit_pictures.reserve(orbit_pictures.capacity() + state.orbit_views.size() *
                                                              state.orbits.phi.size() *
                                                              state.orbits.theta.size());
@@ -252,18 +246,13 @@ struct InsituPipeline::Impl {
     outputs.push_back(std::move(state));
   }
 
-  // The views an output's orbits name, by index (every view when it names none).
-  std::vector<std::size_t> orbit_views(std::string_view kind, std::span<const std::string> names) {
+  // The views an output's orbits name, by index (every view when it names none); the config
+  // has checked the names (check_named_views).
+  std::vector<std::size_t> orbit_views(std::span<const std::string> names) const {
     std::vector<std::size_t> chosen;
-    if (names.empty())
-      for (std::size_t i = 0; i < views.size(); ++i) chosen.push_back(i);
-    for (const std::string& name : names) {
-      const auto it = std::find(view_names.begin(), view_names.end(), name);
-      if (it == view_names.end())
-        throw make_error("outputs.", kind, ".views: there is no view \"", name,
-                         "\" (the views: ", listed(view_names), ")");
-      chosen.push_back(std::size_t(it - view_names.begin()));
-    }
+    for (std::size_t i = 0; i < views.size(); ++i)
+      if (names.empty() || std::find(names.begin(), names.end(), view_names[i]) != names.end())
+        chosen.push_back(i);
     return chosen;
   }
 

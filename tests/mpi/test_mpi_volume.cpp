@@ -20,6 +20,7 @@
 #include "voxspan/error.h"
 #include "tests/support/mpi_tests.h"
 #include "voxspan/mpi.h"
+#include "tests/support/image_difference.h"
 
 namespace voxspan {
 namespace {
@@ -125,12 +126,7 @@ MPI_Comm first_ranks(int ranks) {
   return comm;
 }
 
-double largest_difference(const std::vector<float>& a, const std::vector<float>& b) {
-  if (a.size() != b.size()) return 1e30;
-  double d = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, double(std::abs(a[i] - b[i])));
-  return d;
-}
+using test::largest_difference;
 
 const char* const kModes[][2] = {
     {"dvr", "mode: dvr, termination: 0"},

@@ -245,4 +245,13 @@ void write_png(const std::filesystem::path& path, const ImageRGBA8& image, bool 
   write_file_atomically(path, encode_png(image, encoding), sync);
 }
 
+std::string encode_picture_png(const FloatImage& picture, PngEncoding encoding) {
+  return encode_png(linear_to_srgb8(picture.rgba, picture.width, picture.height), encoding);
+}
+
+void write_picture_png(const std::filesystem::path& path, const FloatImage& picture, bool sync,
+                       PngEncoding encoding) {
+  write_file_atomically(path, encode_picture_png(picture, encoding), sync);
+}
+
 }  // namespace voxspan

@@ -13,6 +13,8 @@
 #include <string_view>
 #include <vector>
 
+#include "render/float_image.h"
+
 namespace voxspan {
 
 struct ImageRGBA8 {
@@ -52,5 +54,11 @@ ImageRGBA8 read_png(const std::filesystem::path& path);
 // encode_png + write_file_atomically (temp name, fsync when sync, rename).
 void write_png(const std::filesystem::path& path, const ImageRGBA8& image, bool sync = true,
                PngEncoding encoding = {});
+
+// A view's linear picture as its PNG (linear_to_srgb8, then as above): what the PNG frames,
+// the Cinema database and the live page show, the same bytes for the same encoding.
+std::string encode_picture_png(const FloatImage& picture, PngEncoding encoding = {});
+void write_picture_png(const std::filesystem::path& path, const FloatImage& picture,
+                       bool sync = true, PngEncoding encoding = {});
 
 }  // namespace voxspan

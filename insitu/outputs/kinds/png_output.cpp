@@ -28,8 +28,7 @@ class PngOutput final : public Output {
       : jobs_(c, "png", "PNG frame",
               [encoding = PngEncoding{s.compression_level, PngFilter::sub}, sync = c.fsync](
                   const std::filesystem::path& path, const FloatImage& picture) {
-                write_png(path, linear_to_srgb8(picture.rgba, picture.width, picture.height), sync,
-                          encoding);
+                write_picture_png(path, picture, sync, encoding);
               }) {}
   void write(const OutputStep& step) override { jobs_.submit(step, &ViewResult::picture); }
   OutputTally tally() const override { return jobs_.tally(); }

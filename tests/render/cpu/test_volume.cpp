@@ -21,6 +21,7 @@
 #include "render/sph_kernel.h"
 #include "tests/support/volume_cloud.h"
 #include "tools/scenes/scenes.h"
+#include "tests/support/image_difference.h"
 
 namespace voxspan {
 namespace {
@@ -35,12 +36,7 @@ TransferTable ramp(double lo, double hi, glm::vec3 rgb, float alpha) {
   return t;
 }
 
-double largest_difference(const FloatImage& a, const FloatImage& b) {
-  double d = 0;
-  for (std::size_t i = 0; i < a.rgba.size(); ++i)
-    d = std::max(d, double(std::abs(a.rgba[i] - b.rgba[i])));
-  return d;
-}
+using test::largest_difference;
 
 // Quadrature of f over [a, b], composite Simpson on n (even) intervals.
 template <class F> double simpson(F&& f, double a, double b, int n) {

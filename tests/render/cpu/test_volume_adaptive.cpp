@@ -14,6 +14,7 @@
 
 #include "render/cpu/volume_caster.h"
 #include "tools/scenes/scenes.h"
+#include "tests/support/image_difference.h"
 
 namespace voxspan {
 namespace {
@@ -85,12 +86,7 @@ std::vector<Scene> scenes() {
   return out;
 }
 
-double largest_difference(const FloatImage& a, const FloatImage& b) {
-  double d = 0;
-  for (std::size_t i = 0; i < a.rgba.size(); ++i)
-    d = std::max(d, double(std::abs(a.rgba[i] - b.rgba[i])));
-  return d;
-}
+using test::largest_difference;
 
 TEST(VolumeAdaptive, NoPixelMovesByMoreThanTheTolerance) {
   std::int64_t skipped = 0, super_pixels = 0, coarse = 0;

@@ -16,6 +16,7 @@
 #include "render/cpu/volume_renderer.h"
 #include "render/volume_merge.h"
 #include "tests/support/volume_cloud.h"
+#include "tests/support/image_difference.h"
 
 namespace voxspan {
 namespace {
@@ -85,11 +86,7 @@ Merged split_frame(const Camera& camera, const std::vector<VolumeParticle>& part
   return out;
 }
 
-double largest_difference(const std::vector<float>& a, const std::vector<float>& b) {
-  double d = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, double(std::abs(a[i] - b[i])));
-  return d;
-}
+using test::largest_difference;
 
 struct NamedSplit {
   std::string name;

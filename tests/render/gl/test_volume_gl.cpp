@@ -19,15 +19,12 @@
 #include "render/gl/volume_renderer.h"
 #include "render/reference/volume_reference.h"
 #include "tests/support/volume_cloud.h"
+#include "tests/support/image_difference.h"
 
 namespace voxspan {
 namespace {
 
-double largest_difference(const std::vector<float>& a, const std::vector<float>& b) {
-  double d = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, double(std::abs(a[i] - b[i])));
-  return d;
-}
+using test::largest_difference;
 
 // The GL renderer's frame of the cloud.
 VolumeCounts on_gl(const test::Cloud& c, const VolumeOptions& o, VolumeFrame& out) {
