@@ -292,6 +292,13 @@ class PyAdapter {
                 : adapter_.execute(step, time, arrays.view, arrays.grid);
   }
 
+  std::size_t set_scenery(const py::object& x, const py::object& y, const py::object& z,
+                          const py::object& radius) {
+    StepArrays arrays;
+    build_step(arrays, x, y, z, radius, std::nullopt, py::dict(), py::dict(), std::nullopt);
+    return adapter_.set_scenery(arrays.view);
+  }
+
   void finish() {
     py::gil_scoped_release unlocked;
     adapter_.finish();
@@ -510,6 +517,12 @@ PYBIND11_MODULE(_voxspan, m) {
     adapter.def("execute_last", execute(true), args...,
                 "execute() for the solver's last step: triggers with `last` fire on it.");
   });
+  adapter.def("set_scenery", &PyAdapter::set_scenery, py::arg("x"), py::arg("y") = py::none(),
+              py::arg("z") = py::none(), py::kw_only(), py::arg("radius") = py::none(),
+              "The solver's walls and obstacles, drawn by the surface views as opaque solids: "
+              "positions as in execute() (copied: give them again only when they move); radius "
+              "a number or an array (default: the particles'). Returns the count kept (NaN "
+              "positions are left out).");
   adapter.def("finish", &PyAdapter::finish, "Waits for the files still being written.")
       .def("summary", [](const PyAdapter& a) { return a.adapter().summary(); })
       .def("description", [](const PyAdapter& a) { return a.pipeline().description(); })

@@ -16,6 +16,7 @@ struct Camera {
   double fov_y_degrees = 45;
   int width = 960;
   int height = 540;
+  bool operator==(const Camera&) const = default;
 };
 
 // The camera turned about its target: by `phi_degrees` about its `up`, then raised by

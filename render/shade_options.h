@@ -62,6 +62,9 @@ struct Environment {
   // Up to this height above the ground the fluid's lower surface rests on it: a ray leaving the
   // fluid there downwards goes on unbent to the ground (column_march.glsl); 0: nowhere.
   double ground_contact = 0;
+  // The same against the walls of a backdrop (render/backdrop.h), in view depth: a ray leaving
+  // the fluid within this depth in front of its column's walls goes on unbent to them.
+  double wall_contact = 0;
   glm::dvec3 sky_zenith{0.22, 0.42, 0.8};
   glm::dvec3 sky_horizon{0.78, 0.84, 0.9};
   glm::dvec3 ground_light{0.8, 0.76, 0.68};

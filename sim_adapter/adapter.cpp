@@ -68,6 +68,8 @@ struct Adapter::Impl {
   StepStats stats;
   std::int64_t steps_seen = 0, render_steps = 0, failed_steps = 0;
   double seconds_in_situ = 0;
+  std::vector<ParticleSphere> scenery;
+  std::uint64_t scenery_version = 0;
 
   // Throws what the classification throws (bad input).
   const Classification& classify(std::int64_t step, const ParticleView& particles,
@@ -121,7 +123,8 @@ bool Adapter::Impl::confirm(std::int64_t step, double time,
 
 void Adapter::Impl::process(std::int64_t step, double time, const Classification& c,
                             const ParticleView& particles, const GridView& grid) {
-  const StepData data{step, time, c.boundary, c.cell_states(), c.attributes, &particles, &grid};
+  const StepData data{step,       time,  c.boundary, c.cell_states(), c.attributes,
+                      &particles, &grid, scenery,    scenery_version};
   const Stopwatch t0;
   try {
     Status s = pipeline->process(data, stats);
@@ -146,6 +149,16 @@ Adapter& Adapter::operator=(Adapter&&) noexcept = default;
 
 void Adapter::set_pipeline(std::shared_ptr<Pipeline> pipeline) {
   impl_->pipeline = std::move(pipeline);
+}
+
+std::size_t Adapter::set_scenery(const ParticleView& scenery) {
+  Impl& m = *impl_;
+  const std::size_t dropped = pack_spheres(scenery, m.options.classify, m.scenery);
+  ++m.scenery_version;
+  if (dropped > 0)
+    log_quietly(LogLevel::warning, "scenery: left out ", dropped,
+                " particles with a NaN or infinite position or radius");
+  return m.scenery.size();
 }
 
 bool Adapter::is_render_step(std::int64_t step, double time) const noexcept {

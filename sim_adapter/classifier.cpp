@@ -605,6 +605,38 @@ const Classification& Classifier::run(const ParticleView& view, const GridView& 
   return work_->result;
 }
 
+namespace {
+
+template <class T>
+std::size_t pack_positions(const detail::Positions<T>& pos, const detail::Radii& radii,
+                           std::size_t n, std::vector<ParticleSphere>& out) {
+  out.resize(n);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    T x, y, z;
+    const float radius = radii.get(i);
+    if (!pos.load(i, x, y, z) || !detail::Radii::usable(radius) || !(radius > 0)) continue;
+    out[kept++] = {float(x), float(y), float(z), radius};
+  }
+  out.resize(kept);
+  return n - kept;
+}
+
+}  // namespace
+
+std::size_t pack_spheres(const ParticleView& particles, const ClassifyOptions& options,
+                         std::vector<ParticleSphere>& out) {
+  out.clear();
+  if (particles.empty()) return 0;
+  for (int a = 0; a < 3; ++a)
+    if (!particles.axis(a).present() || particles.axis(a).type != particles.axis(0).type)
+      throw make_error("particle positions are missing or mix float and double (axis ", a, ")");
+  const detail::Radii radii = radii_of(particles, options);
+  if (particles.axis(0).type == ScalarType::float32)
+    return pack_positions(detail::Positions<float>(particles), radii, particles.size(), out);
+  return pack_positions(detail::Positions<double>(particles), radii, particles.size(), out);
+}
+
 Classification classify(const ParticleView& particles, const GridView& grid,
                         const ClassifyOptions& options) {
   Classifier classifier;

@@ -180,6 +180,12 @@ int run(const Options& o) {
     if (root) std::fprintf(stderr, "dambreak: %s\n", e.what());
     return 1;
   }
+  // The tank, drawn by the views: its walls stand still and every rank holds them all, so the
+  // root alone gives them, once.
+  if (root) {
+    const dambreak::Walls& w = sim.walls();
+    adapter->set_scenery(voxspan::ParticleView::soa(w.x.data(), w.y.data(), w.z.data(), w.size()));
+  }
 
   const auto t0 = Clock::now();
   auto last = t0;

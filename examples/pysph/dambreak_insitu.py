@@ -10,7 +10,8 @@ the adapter is attached through Solver.add_post_step_callback and renders the fl
 PySPH's output frequency --pfreq, so that every rendered step is also a file PySPH writes), the
 initial state and the last step, with the views and outputs of the YAML config (default:
 insitu.yaml beside this script: two views of the water and a slice of the pressure as PNG, the
-stats, an OpenVDB snapshot at the end).
+stats, an OpenVDB snapshot at the end). The application's other arrays (the tank's `boundary`,
+the `obstacle`) are its scenery: handed over once, they are drawn as opaque walls.
 
 The particles are handed over as PySPH holds them: x, y, z, u, v, w, rho, p and m of the array,
 numpy views of its own memory, not copies, under PySPH's names (rho, p, velocity), as the
@@ -55,7 +56,7 @@ def rest_spacing(arrays):
 class Insitu:
     """The adapter as a PySPH post-step callback."""
 
-    def __init__(self, solver, arrays, config, every, output):
+    def __init__(self, solver, arrays, scenery, config, every, output):
         self.arrays = arrays
         self.every = every
         self.spacing = rest_spacing(arrays)
@@ -64,6 +65,10 @@ class Insitu:
         self.adapter = voxspan.Adapter.from_config_file(config, spacing=self.spacing,
                                                         output=output or "")
         print("voxspan:", self.adapter.description())
+        if scenery:  # walls stand still: given once, copied by the adapter
+            walls = [numpy.concatenate([getattr(pa, n) for pa in scenery]) for n in "xyz"]
+            kept = self.adapter.set_scenery(*walls)
+            print(f"voxspan: scenery {', '.join(pa.name for pa in scenery)} ({kept} particles)")
         self.rendered = None  # the last step rendered
         self.python_seconds = 0.0  # wall time of execute() calls, seen from Python
 
@@ -111,7 +116,8 @@ def main():
     if len(arrays) != len(ours.arrays.split(",")):
         have = ", ".join(pa.name for pa in app.particles)
         sys.exit(f"dambreak_insitu: --arrays {ours.arrays}: the application has {have}")
-    insitu = Insitu(solver, arrays, ours.config, ours.render_every or solver.pfreq,
+    scenery = [pa for pa in app.particles if pa not in arrays]
+    insitu = Insitu(solver, arrays, scenery, ours.config, ours.render_every or solver.pfreq,
                     ours.voxspan_output)
     insitu.render(solver.count, solver.t)  # the initial state, PySPH's first file
     solver.add_post_step_callback(insitu)

@@ -64,14 +64,20 @@ ParticleData read_particles(const std::filesystem::path& path, const ParticleRea
     throw make_error("cannot read particles from ", path.string(), ": unknown extension \"", ext,
                      "\" (known: .vtp .vtu .csv .xyz .hdf5 .h5)");
   // Named arrays would otherwise read as the whole file, silently; `all` is what it holds.
-  const bool all = options.arrays.size() == 1 && options.arrays[0] == "all";
-  if (!options.arrays.empty() && !all) {
+  const auto refuse_names = [&](const char* what, const std::vector<std::string>& list) {
     std::string names;
-    for (const std::string& n : options.arrays) names += (names.empty() ? "" : ", ") + n;
-    throw make_error("cannot read particles from ", path.string(), ": particle arrays were named (",
+    for (const std::string& n : list) names += (names.empty() ? "" : ", ") + n;
+    throw make_error("cannot read particles from ", path.string(), ": ", what, " were named (",
                      names, "), but only PySPH files (.hdf5 .h5) have named arrays; a ", ext,
                      " file is one set of particles");
-  }
+  };
+  const auto only = [](const std::vector<std::string>& list, const char* word) {
+    return list.size() == 1 && list[0] == word;
+  };
+  if (!options.arrays.empty() && !only(options.arrays, "all"))
+    refuse_names("particle arrays", options.arrays);
+  if (!options.scenery.empty() && !only(options.scenery, "none"))
+    refuse_names("scenery arrays", options.scenery);
   if (vtk) return read_vtk_particles(path);
   return ext == ".csv" ? read_csv_particles(path) : read_xyz_particles(path);
 }

@@ -26,6 +26,8 @@ struct ParticleData {
   std::optional<std::int64_t> step;  // step/iteration, when the file says
   std::optional<double> spacing;     // the rest spacing, when the file gives it (PySPH: m, rho)
   std::string chosen;                // what of the file was read, when it had a choice
+  // The walls and obstacles (PySPH's arrays that are not the fluid: Adapter::set_scenery).
+  std::vector<std::array<double, 3>> scenery;
 
   std::size_t size() const { return positions.size(); }
   const Attribute* attribute(std::string_view name) const;
@@ -44,6 +46,9 @@ struct ParticleReadOptions {
   // PySPH: the particle arrays to read (e.g. {"fluid"}); {"all"}: every array; empty: the
   // fluid's (kPickFluid in read_pysph_hdf5.cpp).
   std::vector<std::string> arrays;
+  // PySPH: the arrays read as scenery (walls, obstacles); empty: every array not read as the
+  // fluid (none when `arrays` is `all`); {"none"}: none.
+  std::vector<std::string> scenery;
 };
 
 // By extension: .vtp/.vtu (VTK XML), .csv, .xyz, .hdf5/.h5 (PySPH). Throws voxspan::Error

@@ -219,6 +219,43 @@ std::optional<double> spacing_from_mass(const std::vector<const ArrayData*>& arr
   return d[d.size() / 2];
 }
 
+// The arrays read as scenery (ParticleReadOptions::scenery): by default those not read as the
+// fluid whose particles stand still (walls, obstacles; not an inlet's fluid); named ones must
+// exist and must not be read as the fluid too.
+template <class StandsStill>
+std::vector<std::string> scenery_arrays(const ParticleReadOptions& options,
+                                        const std::vector<std::string>& available,
+                                        const std::vector<std::string>& fluid,
+                                        const std::string& file, StandsStill stands_still) {
+  const auto in = [](const std::vector<std::string>& list, const std::string& n) {
+    return std::find(list.begin(), list.end(), n) != list.end();
+  };
+  if (options.scenery.size() == 1 && options.scenery[0] == "none") return {};
+  if (options.scenery.empty()) {
+    std::vector<std::string> rest;
+    for (const std::string& n : available)
+      if (!in(fluid, n) && stands_still(n)) rest.push_back(n);
+    return rest;
+  }
+  for (const std::string& n : options.scenery) {
+    if (!in(available, n))
+      throw make_error(file, ": no particle array \"", n,
+                       "\" for the scenery (the file has: ", joined(available), ")");
+    if (in(fluid, n))
+      throw make_error(file, ": particle array \"", n, "\" is read as the fluid and as scenery");
+  }
+  return options.scenery;
+}
+
+// An array's particles appended to the scenery.
+void add_scenery(const ArrayData& a, ParticleData& data) {
+  const auto& x = a.properties.at("x");
+  const auto& y = a.properties.at("y");
+  const auto z = a.properties.find("z");
+  for (std::size_t i = 0; i < a.count; ++i)
+    data.scenery.push_back({x[i], y[i], z == a.properties.end() ? 0.0 : z->second[i]});
+}
+
 }  // namespace
 
 ParticleData read_pysph_hdf5(const std::filesystem::path& path,
@@ -318,9 +355,24 @@ ParticleData read_pysph_hdf5(const std::filesystem::path& path,
     if (read_scalar_attribute(solver.get(), "count", H5T_NATIVE_LLONG, count)) data.step = count;
   }
   data.spacing = spacing_from_mass(filled, three_d ? 3 : 2);
+  std::map<std::string, ArrayData> more;  // arrays read for the scenery alone
+  const auto array = [&](const std::string& n) -> const ArrayData& {
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (names[i] == n) return read[i];
+    auto [it, fresh] = more.try_emplace(n);
+    if (fresh) it->second = read_array(particles.get(), n, file);
+    return it->second;
+  };
+  const std::vector<std::string> scenery = scenery_arrays(
+      options, available, chosen, file, [&](const std::string& n) { return !moves(array(n)); });
+  for (const std::string& n : scenery) add_scenery(array(n), data);
+  std::vector<std::string> unused;
+  for (const std::string& n : others)
+    if (std::find(scenery.begin(), scenery.end(), n) == scenery.end()) unused.push_back(n);
   if (options.arrays.empty())
     data.chosen = "PySPH arrays " + joined(chosen) + " (" + why + ")" +
-                  (others.empty() ? "" : "; left out: " + joined(others) + " (--arrays picks)");
+                  (scenery.empty() ? "" : "; scenery: " + joined(scenery) + " (--scenery picks)") +
+                  (unused.empty() ? "" : "; left out: " + joined(unused) + " (--arrays picks)");
   adopt_radius_attribute(data);
   return data;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -273,8 +274,9 @@ struct InsituPipeline::Impl {
             recorder->record_into(v.orbit_stats);
             try {
               const Camera camera = orbited(v.camera, double(phi), double(theta));
-              const bool shown = v.view->render({data, camera, v.framing.box(), needs, true},
-                                                *recorder, v.orbit_products);
+              const bool shown =
+                  v.view->render({data, camera, v.framing.box(), needs, true, &scenery}, *recorder,
+                                 v.orbit_products);
               recorder->collect();
               if (!shown) continue;
               draw_caption(i, data, v.orbit_products.picture);
@@ -350,6 +352,9 @@ struct InsituPipeline::Impl {
   std::string render_views(const StepData& data, const ViewNeeds& needs) {
     std::string failure;
     const Bounds step_box = global_box(data.boundary);
+    update_scenery(data);
+    Bounds with_scenery = step_box;
+    with_scenery.add(scenery.box);
     for (std::size_t i = 0; i < views.size(); ++i) {
       ViewState& v = views[i];
       FrameStats& stats = record.views[i].second;
@@ -357,7 +362,7 @@ struct InsituPipeline::Impl {
       results[i] = {.name = v.name, .stats = &stats};
       recorder->record_into(stats);
       try {
-        const Camera camera = v.framing.update(step_box);
+        const Camera camera = v.framing.update(v.view->draws_scenery() ? with_scenery : step_box);
         v.camera = camera;
         if (v.framing.jumped() && !v.jump_told && reports_here()) {
           v.jump_told = true;
@@ -365,8 +370,8 @@ struct InsituPipeline::Impl {
                       point(v.framing.box().lo), " to ", point(v.framing.box().hi),
                       ", over 4 times its size before); said once");
         }
-        const bool shown =
-            v.view->render({data, camera, v.framing.box(), needs}, *recorder, v.products);
+        const bool shown = v.view->render({data, camera, v.framing.box(), needs, false, &scenery},
+                                          *recorder, v.products);
         recorder->collect();
         for (const FrameStats::Pass& pass : stats.passes)
           totals.passes.add_time(pass.name, pass.ms);
@@ -476,6 +481,40 @@ struct InsituPipeline::Impl {
                 point(split.left_out_box.hi), "); it frames ", point(split.box.lo), " to ",
                 point(split.box.hi), " (camera.bounds frames a box of your own)");
   }
+
+  // The scenery the views see (Scenery): this process's own in one process; with ranks, the
+  // box of every rank's, and on the root all their spheres, gathered again whenever any rank
+  // gives new ones (the versions only grow, so their sum changes then). Collective.
+  void update_scenery(const StepData& data) {
+    if (comm == nullptr) {
+      if (data.scenery_version != scenery.version) {
+        scenery.box = Bounds::of_spheres(data.scenery);
+        scenery.version = data.scenery_version;
+      }
+      scenery.spheres = data.scenery;
+      return;
+    }
+    std::int64_t version = std::int64_t(data.scenery_version);
+    comm->sum(std::span(&version, 1));
+    if (std::uint64_t(version) == scenery.version) return;
+    scenery.version = std::uint64_t(version);
+    scenery.box = Bounds::of_spheres(data.scenery);
+    comm->min(scenery.box.lo);
+    comm->max(scenery.box.hi);
+    const std::vector<std::vector<std::byte>> parts = comm->gather(std::as_bytes(data.scenery));
+    scenery_spheres.clear();
+    for (const std::vector<std::byte>& part : parts) {
+      const std::size_t n = part.size() / sizeof(ParticleSphere);
+      const std::size_t at = scenery_spheres.size();
+      scenery_spheres.resize(at + n);
+      std::memcpy(scenery_spheres.data() + at, part.data(), n * sizeof(ParticleSphere));
+    }
+    scenery.spheres = comm->root() ? std::span<const ParticleSphere>(scenery_spheres)
+                                   : std::span<const ParticleSphere>();
+  }
+
+  Scenery scenery;
+  std::vector<ParticleSphere> scenery_spheres;  // every rank's, on the root of an MPI job
 
   std::vector<std::int64_t> bulk_scratch, bulk_bins;
   std::int64_t strays_told = 0;

@@ -130,7 +130,9 @@ const schema::Section<SurfaceSettings>& surface_section() {
                                       "an SPH slice plane drawn where it lies in front of the "
                                       "first surface",
                                       true)
-               .only_when([](const S& v) { return !v.slice.quantity.empty(); })}),
+               .only_when([](const S& v) { return !v.slice.quantity.empty(); }),
+           schema::map<S, ScenerySettings>("scenery", &S::scenery, scenery_section(),
+                                           "the solver's walls and obstacles as opaque solids")}),
       check_surface};
   return s;
 }
@@ -147,7 +149,8 @@ class SurfaceView final : public View {
                                      c.backend == RenderBackend::cpu})
                     : std::vector<std::unique_ptr<SpanStage>>{}),
         combine_ranks_(c.combine_ranks),
-        spacing_(c.particle_spacing) {
+        spacing_(c.particle_spacing),
+        scenery_(s.scenery, c.particle_spacing) {
     if (!s.slice.quantity.empty())
       slice_.emplace(s.slice, s.name, s.key_path("slice"), spacing_, c.comm);
   }
@@ -160,8 +163,10 @@ class SurfaceView final : public View {
           Material::water_absorption(std::max(smallest_side(step.fluid_box), spacing_));
     if (auto_absorption_) o.shade.material.absorption = *auto_absorption_;
     if (!step.fluid_box.empty() && !settings_.ground_height)
+      // Under the framed box: with scenery framed, under the tank rather than in its floor.
       o.shade.environment.rest_on_floor(
           floor_height(step.fluid_box, o.shade.environment.up, spacing_), spacing_);
+    o.shade.environment.wall_contact = spacing_;
     // Options are checked before any work, so a bad one costs nothing.
     validate(o.surfaces);
     validate(o.shade);
@@ -187,6 +192,8 @@ class SurfaceView final : public View {
     return true;
   }
 
+  bool draws_scenery() const override { return settings_.scenery.draw; }
+
   std::string description() const override {
     return std::string(shade_mode_name(settings_.shading)) + " " + std::to_string(settings_.width) +
            "x" + std::to_string(settings_.height);
@@ -199,12 +206,30 @@ class SurfaceView final : public View {
                        ViewProducts& out) {
     const FrameOptions& o = step_options_;
     if (!through_stages(step, o.spans, recorder)) return false;
+    const Backdrop* backdrop = nullptr;
+    if (step.scenery != nullptr) {
+      const Scenery& s = *step.scenery;
+      backdrop = scenery_.backdrop(step.camera, s.spheres, s.version, s.box, o.shade, recorder);
+    }
+    if (backdrop != nullptr) cut_at_walls(*backdrop, recorder);
+    renderer_->use_backdrop(backdrop);
     renderer_->shade(o.surfaces, o.shade, recorder, out.picture);
     if (needs.first_hit_depth) renderer_->first_hit(recorder, out.first_hit_depth);
     // No copy here: the outputs copy what they keep.
     out.shaded_spans =
         needs.spans ? &renderer_->host_spans(pass::span_readback, recorder) : nullptr;
     return true;
+  }
+
+  // The fluid's spans cut where the walls begin, when the walls cut any.
+  void cut_at_walls(const Backdrop& backdrop, Recorder& recorder) {
+    const SpanImage& spans = renderer_->host_spans(pass::span_readback, recorder);
+    std::int64_t cut = 0;
+    {
+      auto t = recorder.host(pass::scenery_cut);
+      cut = clip_at_walls(spans, backdrop, cut_spans_);
+    }
+    if (cut > 0) renderer_->use_spans(cut_spans_, pass::composite_upload, recorder);
   }
 
   // The renderer's span image through the view's stages, which take part even where this process
@@ -239,6 +264,8 @@ class SurfaceView final : public View {
   std::optional<glm::dvec3> auto_absorption_;  // absorption: auto, fixed at the first box
   std::optional<SliceLayer> slice_;
   std::vector<float> depth_;  // the surface's view depth per pixel, then the slice's
+  SceneryLayer scenery_;
+  SpanImage cut_spans_;  // the fluid's spans cut at the walls
 };
 
 }  // namespace

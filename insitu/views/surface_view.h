@@ -18,6 +18,7 @@
 #include <optional>
 
 #include "insitu/config/settings.h"
+#include "insitu/views/scenery.h"
 #include "insitu/views/slice_layer.h"
 #include "render/shade_options.h"
 
@@ -45,6 +46,7 @@ struct SurfaceSettings : CloneAs<SurfaceSettings, ViewSettings> {
   Vec3d sky_zenith = array_of(Environment{}.sky_zenith);
   Vec3d sky_horizon = array_of(Environment{}.sky_horizon);
   SliceField slice;  // an SPH slice plane in the view; quantity empty: none
+  ScenerySettings scenery;
   bool operator==(const SurfaceSettings&) const = default;
 };
 

@@ -15,6 +15,7 @@
 #include "insitu/config/config.h"
 #include "insitu/parallel/communicator.h"
 #include "insitu/parallel/span_merge.h"
+#include "insitu/views/scenery.h"
 #include "insitu/views/view_framing.h"
 #include "insitu/views/view_products.h"
 #include "render/camera.h"
@@ -77,6 +78,7 @@ struct ViewStep {
   // The same step again from another camera (an orbit of outputs.cinema): what follows the
   // steps (trails) does not advance.
   bool again = false;
+  const Scenery* scenery = nullptr;  // the solver's walls (null: none)
 };
 
 class View {
@@ -88,6 +90,8 @@ class View {
   virtual bool render(const ViewStep& step, Recorder& recorder, ViewProducts& out) = 0;
   // A few words for the start-up line: "translucent 640x360".
   virtual std::string description() const = 0;
+  // Whether the view draws the solver's scenery, so that automatic framing takes it in.
+  virtual bool draws_scenery() const { return false; }
 };
 
 struct ViewKind {

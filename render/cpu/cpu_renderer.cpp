@@ -117,8 +117,9 @@ class CpuRenderer::Passes final : public SurfacePasses {
     RefractTally tally;
     tally.dispatches =
         refract_dispatch_limit(spans.width(), spans.height(), tallies_.most_spans, options);
+    host.use_backdrop(r_.backdrop_ != nullptr ? &r_.backdrop_->pixels : nullptr);
     if (options.mode == ShadeMode::refractive) host.gather_block_bounds();
-    else host.use_background(r_.background_);
+    else if (r_.backdrop_ == nullptr) host.use_background(r_.background_);
     if (image.width != spans.width() || image.height != spans.height())
       image = FloatImage(spans.width(), spans.height());
     const int dispatches = tally.dispatches;

@@ -21,6 +21,7 @@
 #include <span>
 #include <vector>
 
+#include "render/backdrop.h"
 #include "render/cpu/span_caster.h"
 #include "render/float_image.h"
 #include "render/frame.h"
@@ -38,6 +39,10 @@ class CpuRenderer {
   const SpanImage& cast(const Camera& camera, std::span<const ParticleSphere> particles,
                         const CellStatesView& cells, const SpanOptions& options,
                         Recorder& recorder);
+
+  // The backdrop behind the fluid for the frames that follow (render/backdrop.h; null: the
+  // environment), the image's size, kept by the caller while it is in use.
+  void use_backdrop(const Backdrop* backdrop) { backdrop_ = backdrop; }
 
   // Connect, filter, normals, deep AO and shade a span image (this renderer's or one made
   // elsewhere: a composite of several ranks). Valid until the next shade().
@@ -66,6 +71,7 @@ class CpuRenderer {
   model::HostBuffers buffers_;            // the surface data, kept from frame to frame
   std::vector<model::vec2> next_depths_;  // the filter's other buffer
   model::BackgroundCache background_;     // behind the pixels, while the camera stays
+  const Backdrop* backdrop_ = nullptr;
 };
 
 }  // namespace voxspan

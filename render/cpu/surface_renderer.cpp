@@ -25,6 +25,8 @@ class CpuSurfaceRenderer final : public SurfaceRenderer {
     renderer_.shade(spans(), surfaces, shade, recorder, picture);
   }
 
+  void use_backdrop(const Backdrop* backdrop) override { renderer_.use_backdrop(backdrop); }
+
   void first_hit(Recorder& recorder, FloatImage& out) override {
     auto t = recorder.host(pass::first_hit);
     CpuRenderer::first_hit(spans(), out);

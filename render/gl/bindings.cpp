@@ -17,7 +17,8 @@ std::string surface_defines() {
 }
 
 std::string shade_defines() {
-  return surface_defines() + gl::defines({{"SHADED_IMAGE_BINDING", kShadedImage}});
+  return surface_defines() +
+         gl::defines({{"SHADED_IMAGE_BINDING", kShadedImage}, {"BACKDROP_BINDING", kBackdrop}});
 }
 
 std::string cell_state_defines() { return gl::defines({{"CELL_STATES_UNIT", kCellStatesUnit}}); }

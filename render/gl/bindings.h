@@ -25,8 +25,9 @@ enum Surfaces : GLuint {
   kSurfacesEnd,
 };
 
-// The shading passes' output: render/gl/passes/shade_common.glsl.
-enum Shade : GLuint { kShadedImage = kSurfacesEnd, kShadeEnd };
+// The shading passes' output and the backdrop they read (render/backdrop.h):
+// render/gl/passes/shade_common.glsl.
+enum Shade : GLuint { kShadedImage = kSurfacesEnd, kBackdrop, kShadeEnd };
 
 // Texture units: the cell states of render/gl/passes/cell_march.glsl, CellStateTexture::bind().
 enum TextureUnit : GLuint { kCellStatesUnit };

@@ -20,12 +20,15 @@ class Renderer::Passes final : public SurfacePasses {
   void deep_ao() override { r_.deep_ao_.run(spans_, r_.surfaces_, uniforms_); }
   RefractTally shade(const ShadeOptions& options) override {
     switch (options.mode) {
-      case ShadeMode::opaque: r_.opaque_.run(spans_, r_.surfaces_, uniforms_, r_.image_); break;
+      case ShadeMode::opaque:
+        r_.opaque_.run(spans_, r_.surfaces_, uniforms_, r_.backdrop_, r_.image_);
+        break;
       case ShadeMode::translucent:
-        r_.translucent_.run(spans_, r_.surfaces_, uniforms_, r_.image_);
+        r_.translucent_.run(spans_, r_.surfaces_, uniforms_, r_.backdrop_, r_.image_);
         break;
       case ShadeMode::refractive:
-        return r_.refractive_.run(spans_, r_.surfaces_, uniforms_, options, r_.image_);
+        return r_.refractive_.run(spans_, r_.surfaces_, uniforms_, options, r_.backdrop_,
+                                  r_.image_);
     }
     return {};
   }
@@ -43,7 +46,18 @@ Renderer::Renderer(const gl::ShaderLibrary& shaders)
       deep_ao_(shaders),
       opaque_(shaders, "render/gl/passes/shade_opaque.comp"),
       translucent_(shaders, "render/gl/passes/shade_translucent.comp"),
-      refractive_(shaders) {}
+      refractive_(shaders) {
+  backdrop_.reserve(sizeof(glm::vec4));  // bound where none is used: a binding must hold one
+}
+
+void Renderer::use_backdrop(const Backdrop* backdrop) {
+  backdrop_in_use_ = backdrop != nullptr;
+  if (backdrop == nullptr || backdrop->version == backdrop_version_) return;
+  const std::size_t bytes = backdrop->pixels.size() * sizeof(glm::vec4);
+  backdrop_.reserve(bytes);
+  backdrop_.upload(backdrop->pixels.data(), bytes);
+  backdrop_version_ = backdrop->version;
+}
 
 const GpuFloatImage& Renderer::render(const Camera& camera,
                                       std::span<const ParticleSphere> particles,
@@ -59,7 +73,8 @@ const GpuFloatImage& Renderer::render(const Camera& camera,
 const GpuFloatImage& Renderer::shade(const GpuSpanImage& spans, const SurfaceOptions& surfaces,
                                      const ShadeOptions& shade, Recorder& recorder) {
   validate(surfaces);  // before the shading's options, as render() checks them
-  const model::ShadeUniforms uniforms = model::shade_uniforms(shade);
+  model::ShadeUniforms uniforms = model::shade_uniforms(shade);
+  uniforms.u_use_backdrop = backdrop_in_use_ ? 1 : 0;
   Passes passes(*this, spans, uniforms);
   passes.run(spans.grid(), spans.span_count() > 0, surfaces, shade, recorder);
   gl::check_error("shading a frame");

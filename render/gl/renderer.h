@@ -29,6 +29,7 @@
 #include "render/gl/shader_library.h"
 #include "render/gl/voxelizer.h"
 #include "render/recorder.h"
+#include "render/backdrop.h"
 #include "render/shade_options.h"
 
 namespace voxspan {
@@ -50,6 +51,10 @@ class Renderer {
                               const CellStatesView& cells, const RenderOptions& options,
                               Recorder& recorder);
 
+  // The backdrop behind the fluid for the frames that follow (render/backdrop.h; null: the
+  // environment), the image's size; copied to the GPU when its version is new.
+  void use_backdrop(const Backdrop* backdrop);
+
   // Connect, filter, normals, deep AO and shade a span image.
   const GpuFloatImage& shade(const GpuSpanImage& spans, const SurfaceOptions& surfaces,
                              const ShadeOptions& shade, Recorder& recorder);
@@ -70,6 +75,9 @@ class Renderer {
   ShadeRefractivePass refractive_;
   GpuSurfaces surfaces_;
   GpuFloatImage image_;
+  gl::Buffer backdrop_;
+  std::uint64_t backdrop_version_ = 0;
+  bool backdrop_in_use_ = false;
 };
 
 }  // namespace voxspan

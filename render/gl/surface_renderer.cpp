@@ -46,6 +46,8 @@ class GlSurfaceRenderer final : public SurfaceRenderer {
     image.download(picture);
   }
 
+  void use_backdrop(const Backdrop* backdrop) override { renderer_.use_backdrop(backdrop); }
+
   void first_hit(Recorder& recorder, FloatImage& out) override {
     auto t = recorder.device(pass::first_hit);
     first_hit_.run(spans(), depth_);

@@ -24,6 +24,7 @@ void set_shade_uniforms(const gl::Program& p, const model::ShadeUniforms& u) {
   p.set("u_ground_height", u.u_ground_height);
   p.set("u_ground_tile", u.u_ground_tile);
   p.set("u_ground_contact", u.u_ground_contact);
+  p.set("u_wall_contact", u.u_wall_contact);
   p.set("u_ground_fade", u.u_ground_fade);
   p.set("u_sky_zenith", u.u_sky_zenith);
   p.set("u_sky_horizon", u.u_sky_horizon);
@@ -40,6 +41,7 @@ void set_shade_uniforms(const gl::Program& p, const model::ShadeUniforms& u) {
   p.set("u_ao_strength", u.u_ao_strength);
   p.set("u_ao_samples", u.u_ao_samples);
   p.set("u_bounces", u.u_bounces);
+  p.set("u_use_backdrop", u.u_use_backdrop);
 }
 
 }  // namespace voxspan

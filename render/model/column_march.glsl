@@ -22,11 +22,13 @@
 // iterations) and resumes the RayState in a later dispatch.
 //
 // Host needs: links.glsl, surface_geometry.glsl, octahedral.glsl, lighting.glsl, shade_modes.glsl
-// and their needs; u_bounces, u_near, u_grid_far, u_log2_step, u_ground_contact; vec2
+// and their needs; u_bounces, u_near, u_grid_far, u_log2_step, u_ground_contact, u_wall_contact; vec2
 // sd_block_bounds(ivec2): the nearest entry and farthest exit depth in a block of VX_BLOCK^2
-// columns ((3e38, -3e38) when it holds no span), and vec2 sd_block_inside(ivec2): the largest
-// entry and the smallest exit of the columns' first spans (x = 3e38 when a column has none),
-// both over the surface depths.
+// columns ((3e38, -3e38) when it holds no span; with a backdrop, a block with walls reaches from
+// its nearest wall depth, or nearer entry, to 3e38, so that no ray skips a wall), and vec2
+// sd_block_inside(ivec2): the largest entry and the smallest exit of the columns' first spans
+// (x = 3e38 when a column has none), both over the surface depths; u_use_backdrop and, when it
+// is set, vec4 sd_backdrop(ivec2) (the colour, and in the last component the walls' depth).
 #ifndef VX_MODEL_COLUMN_MARCH
 #define VX_MODEL_COLUMN_MARCH
 
@@ -134,12 +136,20 @@ RayState ray_leave(RayState s) {
 // Height of view-space point v above the ground plane.
 float above_ground(vec3 v) { return dot(view_to_world_point(v), u_env_up) - u_ground_height; }
 
-// Moves the ray to `point`, absorbing and scattering on the way when inside. The ground is
-// opaque and the fluid rests on it: a ray that reaches it, from inside or outside, ends there
-// and takes its colour. Without this, a ray in water lying on the ground would reach the
+// Where the walls of column q begin (render/backdrop.h), or 3e38 without a backdrop.
+float wall_depth(ivec2 q) { return u_use_backdrop != 0 ? sd_backdrop(q).w : 3.0e38f; }
+
+// Moves the ray to `point`, absorbing and scattering on the way when inside. The walls and the
+// ground are opaque: a ray that reaches its column's walls (the backdrop's depth there: in
+// screen space, as the fluid's own surfaces) ends on them and takes their colour; one that
+// reaches the ground, from inside or outside, ends there and takes its colour. Without this, a ray in water lying on the ground would reach the
 // union's bottom, just below the plane, and meet it as a free surface: past the critical angle
 // it reflects totally and runs on inside the thin layer (the refraction's speckles).
 RayState ray_advance(RayState s, vec3 point) {
+  float wall = wall_depth(s.pixel);
+  bool walled = point.z > wall;
+  if (walled)
+    point = s.origin.z >= wall ? s.origin : mix(s.origin, point, (wall - s.origin.z) / (point.z - s.origin.z));
   float h0 = above_ground(s.origin);
   float h1 = above_ground(point);
   bool grounded = h0 >= 0.0f && h1 < 0.0f;
@@ -150,6 +160,11 @@ RayState ray_advance(RayState s, vec3 point) {
     s.throughput *= t;
   }
   s.origin = point;
+  if (walled && !grounded) {
+    s.color += s.throughput * vec3(sd_backdrop(s.pixel));
+    s.marching = false;
+    return s;
+  }
   return grounded ? ray_leave(s) : s;
 }
 
@@ -160,6 +175,8 @@ RayState ray_interface(RayState s, vec3 n, bool entering) {
   if (!entering && above_ground(s.origin) < u_ground_contact &&
       dot(view_to_world_direction(s.dir), u_env_up) < 0.0f)
     return s;
+  // The same where it rests against a wall: leaving towards its column's walls, just behind.
+  if (!entering && s.dir.z > 0.0f && wall_depth(s.pixel) - s.origin.z < u_wall_contact) return s;
   if (s.bounces <= 0) {
     s.inside = entering;
     return s;

@@ -72,8 +72,15 @@ class Host : public GridUniforms, public ShadeUniforms {
   std::size_t pixel_index(ivec2 p) const {
     return std::size_t(p.x) + std::size_t(p.y) * std::size_t(u_image.x);
   }
+  vec4 sd_backdrop(ivec2 p) const { return (*backdrop_)[pixel_index(p)]; }
   vec3 sd_background(ivec2 p, vec3 dir) {
+    if (u_use_backdrop != 0) return vec3(sd_backdrop(p));
     return background_ != nullptr ? (*background_)[pixel_index(p)] : environment(u_eye, dir);
+  }
+  // The frame's backdrop (render/backdrop.h; null: none), kept by the caller while it shades.
+  void use_backdrop(const std::vector<vec4>* pixels) {
+    backdrop_ = pixels;
+    u_use_backdrop = pixels != nullptr ? 1 : 0;
   }
   // Looks sd_background up in `cache` when this frame's rays and environment are the last
   // frame's (filling it the first time), else computes it per pixel.
@@ -116,6 +123,8 @@ class Host : public GridUniforms, public ShadeUniforms {
         const std::size_t k =
             std::size_t(x / VX_BLOCK) + std::size_t(y / VX_BLOCK) * std::size_t(blocks_x_);
         const uint n = sd_count(ivec2(x, y));
+        if (u_use_backdrop != 0 && sd_backdrop(ivec2(x, y)).w < 3.0e38f)
+          block_bounds_[k] = vec2(min(block_bounds_[k].x, sd_backdrop(ivec2(x, y)).w), 3.0e38f);
         vec2& inside = block_inside_[k];
         if (n == 0) {
           inside.x = 3.0e38f;  // a column without fluid: the ray cannot stay inside
@@ -186,6 +195,7 @@ class Host : public GridUniforms, public ShadeUniforms {
   const PixelSpans& record(ivec2 p) const { return spans_.pixels[pixel_index(p)]; }
   const SpanImage& spans_;
   const std::vector<vec3>* background_ = nullptr;  // use_background's, or none
+  const std::vector<vec4>* backdrop_ = nullptr;    // use_backdrop's, or none
   std::vector<vec2> block_bounds_, block_inside_;
   int blocks_x_ = 1;
 };

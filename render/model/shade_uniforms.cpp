@@ -18,6 +18,7 @@ ShadeUniforms shade_uniforms(const ShadeOptions& o) {
   u.u_ground_height = float(e.ground_height);
   u.u_ground_tile = float(e.ground_tile);
   u.u_ground_contact = float(e.ground_contact);
+  u.u_wall_contact = float(e.wall_contact);
   u.u_ground_fade = float(e.ground_fade > 0 ? e.ground_fade : 40 * e.ground_tile);
   u.u_sky_zenith = vec3(e.sky_zenith);
   u.u_sky_horizon = vec3(e.sky_horizon);

@@ -13,6 +13,7 @@ namespace voxspan::model {
 struct ShadeUniforms {
   vec3 u_env_up{0.0f, 1.0f, 0.0f}, u_env_axis_a{1.0f, 0.0f, 0.0f}, u_env_axis_b{0.0f, 0.0f, 1.0f};
   float u_ground_height = 0.0f, u_ground_tile = 1.0f, u_ground_fade = 1.0f, u_ground_contact = 0.0f;
+  float u_wall_contact = 0.0f;
   vec3 u_sky_zenith{0.0f}, u_sky_horizon{0.0f}, u_ground_light{0.0f}, u_ground_dark{0.0f};
   vec3 u_sun_direction{0.0f, 1.0f, 0.0f}, u_sun_color{0.0f};
   vec3 u_absorption{0.0f};
@@ -22,6 +23,9 @@ struct ShadeUniforms {
   float u_ao_radius = 1.0f, u_ao_strength = 0.0f;
   int u_ao_samples = 1;
   int u_bounces = 0;
+  // 1: a backdrop (render/backdrop.h) stands behind the fluid: sd_backdrop() per pixel; set by
+  // the renderer that has one, not by the options.
+  int u_use_backdrop = 0;
   bool operator==(const ShadeUniforms&) const = default;
 };
 

@@ -78,6 +78,10 @@ struct StepData {
   std::span<const Attribute> attributes;     // in boundary order
   const ParticleView* particles = nullptr;   // all particles, for outputs that want them
   const GridView* grid = nullptr;            // the grid as the solver passed it
+  // The solver's walls and obstacles (Adapter::set_scenery), this process's; the version
+  // changes whenever they do (0: never given).
+  std::span<const ParticleSphere> scenery;
+  std::uint64_t scenery_version = 0;
 };
 
 // What the runtime plugs in behind the adapter: rendering and outputs.
@@ -128,6 +132,14 @@ class Adapter {
   Adapter& operator=(Adapter&&) noexcept;
 
   void set_pipeline(std::shared_ptr<Pipeline> pipeline);
+
+  // The solver's walls and obstacles, copied: the views draw them as opaque solids (docs/
+  // runtime.md, "Scenery"). Walls that stand still are given once; moving ones again whenever
+  // they have moved (each call costs one copy and makes the views draw them anew). Radii as the
+  // classification takes them (the view's, the options' radius, or the spacing). Particles with
+  // a NaN or infinite position or radius are left out and counted; returns the count kept.
+  // Throws voxspan::Error when no radius can be found. Under MPI each rank gives its own part.
+  std::size_t set_scenery(const ParticleView& scenery);
 
   // The per-step call. Returns ok on a step that is not a render step. Never throws; errors
   // are logged (voxspan/log.h) and returned.

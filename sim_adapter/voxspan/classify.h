@@ -131,6 +131,12 @@ class Classifier {
   std::unique_ptr<Work> work_;
 };
 
+// Every particle of `particles` (ghosts too) as a sphere into `out` (resized), radii as run()
+// takes them; those with a NaN or infinite position or radius are left out. Returns how many
+// were left out; throws voxspan::Error when no radius can be found.
+std::size_t pack_spheres(const ParticleView& particles, const ClassifyOptions& options,
+                         std::vector<ParticleSphere>& out);
+
 // The common case, with fresh buffers.
 Classification classify(const ParticleView& particles, const GridView& grid,
                         const ClassifyOptions& options);

@@ -79,7 +79,7 @@ TEST(DefaultViewPySPH, TheWaterOfPySPHsDamBreakIsClearlyVisibleWithNoConfig) {
           dir / "render.txt");
   ASSERT_EQ(r.status, 0) << r.out;
   std::printf("%s", r.out.c_str());
-  EXPECT_NE(r.out.find("reading PySPH arrays fluid (named like a fluid); left out: boundary, "
+  EXPECT_NE(r.out.find("reading PySPH arrays fluid (named like a fluid); scenery: boundary, "
                        "obstacle"),
             std::string::npos)
       << r.out;

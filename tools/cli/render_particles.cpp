@@ -6,7 +6,8 @@
 // OpenVDB and VTK snapshots on their own triggers (counted in files).
 //
 //   render_particles [--config FILE] [--output DIR] [--spacing DX] [--radius R]
-//                    [--arrays NAME,...] [--split slabs|uneven|interleaved] FILE...
+//                    [--arrays NAME,...] [--scenery NAME,...|none]
+//                    [--split slabs|uneven|interleaved] FILE...
 //   mpiexec -n N render_particles ... FILE...
 //
 // Under mpiexec every rank reads each file and keeps its part (tools/common/rank_split.h: compact
@@ -18,11 +19,14 @@
 // positions: the median nearest-neighbour distance). --radius: the sphere radius where a file
 // has none (default: the spacing). --arrays: PySPH particle arrays to read, or `all` (default:
 // the fluid's, picked by name or motion and printed: insitu/io/read_pysph_hdf5.cpp); an error
-// on the other formats, which have no arrays. Exit status 0 when every file was read and
+// on the other formats, which have no arrays. --scenery: the PySPH arrays drawn as walls and
+// obstacles (docs/runtime.md, "Scenery"; default: every array not read as the fluid), or
+// `none`. Exit status 0 when every file was read and
 // rendered, 1 otherwise, 2 on bad arguments; each failure is one line on stderr naming the
 // file. A file with no particles is rendered (no fluid in its pictures) with a warning.
 #include <mpi.h>
 
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -55,7 +59,8 @@ struct Options {
 
 constexpr char kUsage[] =
     "usage: render_particles [--config FILE] [--output DIR] [--spacing DX] "
-    "[--radius R] [--arrays NAME,...] [--split slabs|uneven|interleaved] FILE...\n"
+    "[--radius R] [--arrays NAME,...] [--scenery NAME,...|none] "
+    "[--split slabs|uneven|interleaved] FILE...\n"
     "  FILE: .vtp .vtu .csv .xyz .hdf5/.h5 (PySPH); each file is one step\n"
     "  under mpiexec each rank renders its part (--split) and rank 0 writes the pictures\n";
 
@@ -86,10 +91,10 @@ bool parse(int argc, char** argv, Options& o) {
                                   voxspan::names_of(voxspan::tools::kSplitNames), "; got \"", v,
                                   "\"");
       o.split = *split;
-    } else if (a == "--arrays") {
+    } else if (a == "--arrays" || a == "--scenery") {
       std::istringstream names(value());
       for (std::string n; std::getline(names, n, ',');)
-        if (!n.empty()) o.read.arrays.push_back(n);
+        if (!n.empty()) (a == "--arrays" ? o.read.arrays : o.read.scenery).push_back(n);
     } else if (!a.empty() && a[0] == '-') {
       throw voxspan::make_error("unknown option ", a);
     } else {
@@ -214,6 +219,7 @@ int render(const Options& o, const Ranks& ranks) {
 
     int failures = 0;
     std::int64_t previous_step = -1;
+    std::vector<std::array<double, 3>> scenery;  // the last given
     for (std::size_t i = 0; i < o.files.size(); ++i) {
       voxspan::ParticleData data;
       try {
@@ -236,6 +242,13 @@ int render(const Options& o, const Ranks& ranks) {
       const std::int64_t step = data.step_after(previous_step);
       previous_step = step;
       const double time = data.time.value_or(double(i));
+      // The walls, given again only when they moved (each time the views draw them anew); by
+      // the root alone, as every rank read them all.
+      if (ranks.rank == 0 && data.scenery != scenery) {
+        scenery = std::move(data.scenery);
+        adapter.set_scenery(voxspan::ParticleView::aos(
+            scenery.empty() ? nullptr : scenery[0].data(), scenery.size()));
+      }
       const voxspan::ParticleView view = view_of(data).with_owned(owned);
       const voxspan::Status s = i + 1 == o.files.size() ? adapter.execute_last(step, time, view)
                                                         : adapter.execute(step, time, view);

@@ -11,8 +11,14 @@
 #include "render/model/surface_geometry.glsl"
 #include "render/model/environment.glsl"
 #include "render/model/lighting.glsl"
-// What lies behind a pixel: computed for every pixel of every frame (each thread reads its own).
-vec3 sd_background(ivec2 p, vec3 dir) { return environment(u_eye, dir); }
+// The walls behind the fluid, when u_use_backdrop (render/backdrop.h): rgb, a = view depth.
+layout(std430, binding = BACKDROP_BINDING) readonly buffer Backdrop { vec4 backdrop[]; };
+vec4 sd_backdrop(ivec2 p) { return backdrop[p.x + p.y * u_image.x]; }
+// What lies behind a pixel: the backdrop, or the environment computed for every pixel of every
+// frame (each thread reads its own).
+vec3 sd_background(ivec2 p, vec3 dir) {
+  return u_use_backdrop != 0 ? sd_backdrop(p).rgb : environment(u_eye, dir);
+}
 #include "render/model/shade_modes.glsl"
 
 layout(std430, binding = SHADED_IMAGE_BINDING) writeonly buffer ShadedImage { vec4 shaded[]; };

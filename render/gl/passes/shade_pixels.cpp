@@ -10,10 +10,12 @@ ShadePixelsPass::ShadePixelsPass(const gl::ShaderLibrary& shaders, std::string_v
     : program_(shaders.compute(shader, binding::shade_defines())) {}
 
 void ShadePixelsPass::run(const GpuSpanImage& image, const GpuSurfaces& surfaces,
-                          const model::ShadeUniforms& uniforms, GpuFloatImage& out) {
+                          const model::ShadeUniforms& uniforms, const gl::Buffer& backdrop,
+                          GpuFloatImage& out) {
   out.resize(image.width(), image.height());
   surfaces.bind(image);
   out.buffer().bind(GL_SHADER_STORAGE_BUFFER, binding::kShadedImage);
+  backdrop.bind(GL_SHADER_STORAGE_BUFFER, binding::kBackdrop);
   set_grid_uniforms(program_, image.grid());
   set_shade_uniforms(program_, uniforms);
   dispatch_threads(program_, std::size_t(image.width()) * std::size_t(image.height()));

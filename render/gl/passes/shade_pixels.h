@@ -24,8 +24,9 @@ class ShadePixelsPass {
  public:
   // `shader`: render/gl/passes/shade_opaque.comp or shade_translucent.comp.
   ShadePixelsPass(const gl::ShaderLibrary& shaders, std::string_view shader);
+  // `backdrop`: render/backdrop.h's pixels, read where uniforms.u_use_backdrop says.
   void run(const GpuSpanImage& image, const GpuSurfaces& surfaces,
-           const model::ShadeUniforms& uniforms, GpuFloatImage& out);
+           const model::ShadeUniforms& uniforms, const gl::Buffer& backdrop, GpuFloatImage& out);
 
  private:
   gl::Program program_;

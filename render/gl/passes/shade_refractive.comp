@@ -91,6 +91,11 @@ void main() {
   uint n = sd_count(p);
   atomicMax(most_spans, n);
   uint b = block_word(p / VX_BLOCK);
+  float wall = wall_depth(p);
+  if (wall < 3.0e38) {
+    atomicMax(block_bounds[b], ~floatBitsToUint(wall));
+    atomicMax(block_bounds[b + 1u], floatBitsToUint(3.0e38));
+  }
   if (n > 0u) {
     uint base = sd_offset(p);
     vec2 first = sd_depths(base);

@@ -33,7 +33,8 @@ ShadeRefractivePass::ShadeRefractivePass(const gl::ShaderLibrary& shaders)
 
 RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfaces& surfaces,
                                       const model::ShadeUniforms& uniforms,
-                                      const ShadeOptions& options, GpuFloatImage& out) {
+                                      const ShadeOptions& options, const gl::Buffer& backdrop,
+                                      GpuFloatImage& out) {
   const std::size_t pixels = std::size_t(image.width()) * std::size_t(image.height());
   out.resize(image.width(), image.height());
   rays_.reserve(std::max<std::size_t>(16, pixels * kRayRecordBytes));
@@ -45,6 +46,7 @@ RefractTally ShadeRefractivePass::run(const GpuSpanImage& image, const GpuSurfac
   const auto bind = [&] {
     surfaces.bind(image);
     gl::bind_storage({{out.buffer(), binding::kShadedImage},
+                      {backdrop, binding::kBackdrop},
                       {rays_, kRays},
                       {active_, kMarchTally},
                       {blocks_, kBlockBounds}});

@@ -26,10 +26,11 @@ class ShadeRefractivePass {
  public:
   explicit ShadeRefractivePass(const gl::ShaderLibrary& shaders);
   // `options`: the bounces and march_budget (column events per ray per dispatch); at most
-  // refract_dispatch_limit() march dispatches (render/shade_options.h).
+  // refract_dispatch_limit() march dispatches (render/shade_options.h). `backdrop`:
+  // render/backdrop.h's pixels, read where uniforms.u_use_backdrop says.
   RefractTally run(const GpuSpanImage& image, const GpuSurfaces& surfaces,
                    const model::ShadeUniforms& uniforms, const ShadeOptions& options,
-                   GpuFloatImage& out);
+                   const gl::Buffer& backdrop, GpuFloatImage& out);
 
  private:
   gl::Program begin_, march_, resolve_;

@@ -74,13 +74,13 @@ TEST(CsvParticles, NamedArraysAreAnErrorOutsidePySphFiles) {
   test::TempFolder dir;
   std::ofstream(dir / "p.csv") << "x,y,z\n0,0,0\n";
   std::ofstream(dir / "p.xyz") << "0 0 0\n";
-  EXPECT_EQ(error_of(dir / "p.csv", {{"fluid"}}),
+  EXPECT_EQ(error_of(dir / "p.csv", {{"fluid"}, {}}),
             "cannot read particles from " + (dir / "p.csv").string() +
                 ": particle arrays were named (fluid), but only PySPH files (.hdf5 .h5) have "
                 "named arrays; a .csv file is one set of particles");
-  EXPECT_NE(error_of(dir / "p.xyz", {{"fluid", "wall"}}).find("named (fluid, wall)"),
+  EXPECT_NE(error_of(dir / "p.xyz", {{"fluid", "wall"}, {}}).find("named (fluid, wall)"),
             std::string::npos);
-  EXPECT_EQ(read_particles(dir / "p.csv", {{"all"}}).size(), 1u);  // all of it: what it holds
+  EXPECT_EQ(read_particles(dir / "p.csv", {{"all"}, {}}).size(), 1u);  // all of it: what it holds
 }
 
 TEST(XyzParticles, PlainAndExtended) {
@@ -198,7 +198,7 @@ TEST(PySphParticles, OfflineStepsAreTheFilesOwn) {
 TEST(PySphParticles, ReadsEveryArrayWithTimeStepAndCommonProperties) {
   test::TempFolder dir;
   write_pysph_file(dir / "dam_break_1500.hdf5");
-  ParticleData d = read_particles(dir / "dam_break_1500.hdf5", {{"all"}});
+  ParticleData d = read_particles(dir / "dam_break_1500.hdf5", {{"all"}, {}});
   ASSERT_EQ(d.size(), 5u);
   EXPECT_TRUE(d.chosen.empty());
   EXPECT_DOUBLE_EQ(d.positions[2][2], 0.3);
@@ -221,10 +221,10 @@ TEST(PySphParticles, ReadsEveryArrayWithTimeStepAndCommonProperties) {
 TEST(PySphParticles, SelectsArraysByName) {
   test::TempFolder dir;
   write_pysph_file(dir / "out.hdf5");
-  ParticleData fluid = read_particles(dir / "out.hdf5", {{"fluid"}});
+  ParticleData fluid = read_particles(dir / "out.hdf5", {{"fluid"}, {}});
   ASSERT_EQ(fluid.size(), 3u);
   EXPECT_NE(fluid.attribute("p"), nullptr);
-  std::string e = error_of(dir / "out.hdf5", {{"water"}});
+  std::string e = error_of(dir / "out.hdf5", {{"water"}, {}});
   EXPECT_NE(e.find("no particle array \"water\" (the file has: fluid, solid)"), std::string::npos)
       << e;
   std::ofstream(dir / "fake.h5") << "not hdf5";
@@ -255,8 +255,10 @@ TEST(PySphParticles, WithoutNamesTheFluidIsReadAndTheSpacingComesFromMassAndDens
   write_pysph_file(dir / "named.hdf5");  // arrays fluid and solid, both moving
   const ParticleData named = read_particles(dir / "named.hdf5");
   EXPECT_EQ(named.size(), 3u);
+  // The solid moves: not scenery (an inlet's fluid would too).
   EXPECT_EQ(named.chosen,
             "PySPH arrays fluid (named like a fluid); left out: solid (--arrays picks)");
+  EXPECT_TRUE(named.scenery.empty());
   // m = 0.001, rho = 1000..1002: (m / rho)^(1/3) about 0.01 (the median particle has 1001).
   ASSERT_TRUE(named.spacing.has_value());
   EXPECT_NEAR(*named.spacing, std::cbrt(0.001 / 1001), 1e-12);
@@ -270,10 +272,23 @@ TEST(PySphParticles, WithoutNamesTheFluidIsReadAndTheSpacingComesFromMassAndDens
   const ParticleData moving = read_particles(dir / "moving.h5");
   ASSERT_EQ(moving.size(), 1u);
   EXPECT_DOUBLE_EQ(moving.positions[0][0], 0.5);
+  // The tank stands still: the scenery, unless told otherwise.
   EXPECT_EQ(moving.chosen,
-            "PySPH arrays water (their particles move, the others' do not); left out: tank "
-            "(--arrays picks)");
-  EXPECT_EQ(read_particles(dir / "moving.h5", {{"all"}}).size(), 3u);
+            "PySPH arrays water (their particles move, the others' do not); scenery: tank "
+            "(--scenery picks)");
+  ASSERT_EQ(moving.scenery.size(), 2u);
+  EXPECT_DOUBLE_EQ(moving.scenery[1][0], 1.0);
+  EXPECT_TRUE(read_particles(dir / "moving.h5", {{}, {"none"}}).scenery.empty());
+  EXPECT_EQ(read_particles(dir / "moving.h5", {{"water"}, {"tank"}}).scenery.size(), 2u);
+  EXPECT_NE(error_of(dir / "moving.h5", {{"water"}, {"wall"}})
+                .find("no particle array \"wall\" for the scenery (the file has: tank, water)"),
+            std::string::npos);
+  EXPECT_NE(error_of(dir / "moving.h5", {{"water"}, {"water"}})
+                .find("particle array \"water\" is read as the fluid and as scenery"),
+            std::string::npos);
+  EXPECT_NE(error_of(dir / "p.csv", {{}, {"tank"}}).find("scenery arrays were named (tank)"),
+            std::string::npos);
+  EXPECT_EQ(read_particles(dir / "moving.h5", {{"all"}, {}}).size(), 3u);
 }
 
 TEST(PySphParticles, TwoDimensionalRunsGetZeroZ) {
@@ -305,7 +320,7 @@ TEST(PySphParticles, TwoDimensionalRunsWithZStoredAndAnEmptyFluid) {
   EXPECT_EQ(fluid.size(), 0u);
   EXPECT_EQ(fluid.chosen,
             "PySPH arrays fluid (named like a fluid); left out: inlet (--arrays picks)");
-  const ParticleData all = read_particles(dir / "inlet.h5", {{"all"}});
+  const ParticleData all = read_particles(dir / "inlet.h5", {{"all"}, {}});
   ASSERT_EQ(all.size(), 3u);
   EXPECT_NE(all.attribute("p"), nullptr);  // the empty array has no say
   ASSERT_TRUE(all.spacing.has_value());

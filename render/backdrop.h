@@ -1,0 +1,40 @@
+// render/backdrop.h - what stands behind the fluid when a scene has walls (the solver's scenery,
+// insitu/views/scenery.h): per pixel the colour seen there without the fluid (the walls, lit, or
+// the environment) and the view depth of the walls' first drawn surface. A renderer given one
+// (SurfaceRenderer::use_backdrop) shows it behind the fluid instead of the environment and ends
+// refracted rays where they reach a column's walls (render/model/column_march.glsl), as a ray
+// ends on the ground; the fluid's spans are first cut where the walls begin (clip_at_walls), so
+// water behind an obstacle is hidden and water against a wall ends at it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "render/span_image.h"
+
+namespace voxspan {
+
+struct Backdrop {
+  static constexpr float kNoWall = 3.0e38f;  // the depth of a pixel whose ray meets no wall
+
+  int width = 0, height = 0;
+  // Per pixel (x + y * width, row 0 at the top): rgb the linear colour, a the walls' view depth
+  // (kNoWall where none): the layout the GPU reads as it is.
+  std::vector<glm::vec4> pixels;
+  // Changes whenever `pixels` do, so that a renderer copies them to the GPU only then.
+  std::uint64_t version = 0;
+
+  float wall_depth(int x, int y) const {
+    return pixels[std::size_t(x) + std::size_t(y) * std::size_t(width)].a;
+  }
+};
+
+// `spans` with every span cut where its pixel's walls begin (those past it dropped, the one
+// across it ended there) into `out` (its buffers reused). A pixel that loses nothing keeps its
+// record, a capped one included; a cut pixel's `inside` is its kept spans' length. Returns the
+// pixels cut. The backdrop must be the image's size.
+std::int64_t clip_at_walls(const SpanImage& spans, const Backdrop& backdrop, SpanImage& out);
+
+}  // namespace voxspan
