@@ -273,7 +273,8 @@ class SurfaceView final : public View {
 ViewKind surface_view_kind() {
   return view_kind<SurfaceSettings, SurfaceView>("surface", surface_section(), [] {
     return part_reference("slice", "surface", slice_section()) +
-           "\nIts `plane` is a `views[i].plane` (kind `slice`).\n";
+           "\nIts `plane` is a `views[i].plane` (kind `slice`).\n" +
+           part_reference("scenery", "surface", scenery_section());
   });
 }
 
