@@ -172,7 +172,10 @@ const Section<LiveConfig>& live_section() {
            .default_shown_as("random"),
        schema::number("linger_seconds", &L::linger_seconds, schema::between(0, 86400),
                       "the page stays up this long after the last step, saying the job ended "
-                      "(the job waits)")},
+                      "(the job waits)"),
+       schema::flag("interactive", &L::interactive,
+                    "the page may orbit, pan and zoom the views' cameras, from the next render "
+                    "step on; never the solver")},
       check_live};
   return s;
 }

@@ -71,6 +71,7 @@ struct LiveConfig {
   int port = 0;                       // 0: a free port, chosen at start and printed
   std::string token;                  // empty: a random one made at start and printed
   double linger_seconds = 0;          // the final page kept up after the last step
+  bool interactive = false;           // the page may turn the views' cameras (POST /camera)
   bool operator==(const LiveConfig&) const = default;
 };
 // True for the loopback addresses (127.0.0.0/8, `localhost`), which only this machine

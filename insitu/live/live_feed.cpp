@@ -45,8 +45,10 @@ struct LiveFeed::History {
   }
 };
 
-LiveFeed::LiveFeed(std::vector<std::string> view_names)
-    : names_(std::move(view_names)), history_(std::make_unique<History>()) {
+LiveFeed::LiveFeed(std::vector<std::string> view_names, bool interactive)
+    : names_(std::move(view_names)),
+      interactive_(interactive),
+      history_(std::make_unique<History>()) {
   mailbox_.pictures.resize(names_.size());
   history_->views.resize(names_.size());
   history_->pictures.resize(names_.size());
@@ -176,13 +178,14 @@ void LiveFeed::take(Handed& work) {
   work.fresh = false;
 }
 
-// {"running":true,"step":120,"time":0.6,"particles":100000,"render_steps":13,
+// {"running":true,"interactive":false,"step":120,"time":0.6,"particles":100000,"render_steps":13,
 //  "in_situ_ms":41.2,"in_situ_share":0.18,"views":[{"name":"main","step":120,"width":960,
 //  "height":540}],"passes":["classify",...],"history":[[120,3.1,...],...]}
 std::string LiveFeed::state_json() const {
   const History& h = *history_;
   std::string s = "{\"running\":";
   s += shown_finished_ ? "false" : "true";
+  s += interactive_ ? ",\"interactive\":true" : ",\"interactive\":false";
   s += ",\"step\":" + std::to_string(h.step);
   s += ",\"time\":";
   append_number(s, h.time);

@@ -47,7 +47,8 @@ class LiveFeed {
   // Steps kept for the chart: older ones are dropped first.
   static constexpr std::size_t kHistorySteps = 1000;
 
-  explicit LiveFeed(std::vector<std::string> view_names);
+  // `interactive`: the state says the page may turn the cameras (POST /camera).
+  explicit LiveFeed(std::vector<std::string> view_names, bool interactive = false);
   ~LiveFeed();
   LiveFeed(const LiveFeed&) = delete;
   LiveFeed& operator=(const LiveFeed&) = delete;
@@ -77,6 +78,7 @@ class LiveFeed {
   std::string state_json() const;
 
   const std::vector<std::string> names_;
+  const bool interactive_;
   mutable std::mutex mailbox_mutex_;
   std::condition_variable wake_;
   Handed mailbox_;

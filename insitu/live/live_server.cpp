@@ -130,14 +130,15 @@ std::string listening_port(const std::string& address, int port) {
 
 struct LiveServer::Impl {
   const LiveFeed& feed;
+  CameraMailbox* const cameras;
   const std::string token;
   std::string address;
   int port = 0;
   RateLimit rate;
   mg_context* context = nullptr;
 
-  Impl(const LiveConfig& config, const LiveFeed& f)
-      : feed(f), token(config.token.empty() ? random_token() : config.token) {
+  Impl(const LiveConfig& config, const LiveFeed& f, CameraMailbox* c)
+      : feed(f), cameras(c), token(config.token.empty() ? random_token() : config.token) {
     address = config.address;
     mg_init_library(0);
     const std::string ports = listening_port(config.address, config.port);
@@ -201,6 +202,7 @@ struct LiveServer::Impl {
       return refuse(conn, 401, "a token is needed: open the URL the job printed\n",
                     "WWW-Authenticate", "Bearer");
     const std::string_view method = r.request_method;
+    if (path == "/camera") return camera(conn, r, method);
     const bool head = method == "HEAD";
     if (method != "GET" && !head)
       return refuse(conn, 405, "read-only: GET or HEAD\n", "Allow", "GET, HEAD");
@@ -223,10 +225,38 @@ struct LiveServer::Impl {
     }
     return refuse(conn, 404, "not found\n");
   }
+
+  // POST /camera: checked, read whole (it is small), merged into the mailbox.
+  int camera(mg_connection* conn, const mg_request_info& r, std::string_view method) {
+    if (cameras == nullptr)
+      return refuse(conn, 403,
+                    "read-only: this job's page may not turn the cameras "
+                    "(live.interactive is off)\n");
+    if (method != "POST") return refuse(conn, 405, "POST only\n", "Allow", "POST");
+    const char* type = mg_get_header(conn, "Content-Type");
+    if (type == nullptr || !std::string_view(type).starts_with("application/x-www-form-urlencoded"))
+      return refuse(conn, 415, "expected application/x-www-form-urlencoded\n");
+    if (r.content_length < 0) return refuse(conn, 411, "a Content-Length is needed\n");
+    if (r.content_length > kMaxCameraBodyBytes)
+      return refuse(conn, 413, "at most " + std::to_string(kMaxCameraBodyBytes) + " bytes\n");
+    char body[kMaxCameraBodyBytes];
+    std::size_t got = 0;
+    while (got < std::size_t(r.content_length)) {
+      const int n = mg_read(conn, body + got, std::size_t(r.content_length) - got);
+      if (n <= 0) return refuse(conn, 400, "the body ended early\n");
+      got += std::size_t(n);
+    }
+    CameraRequest request;
+    const std::string why = parse_camera_request({body, got}, feed.view_names(), request);
+    if (!why.empty()) return refuse(conn, 400, why + "\n");
+    cameras->post(request);
+    send(conn, 202, "text/plain; charset=utf-8", "accepted: applied at the next render step\n");
+    return 202;
+  }
 };
 
-LiveServer::LiveServer(const LiveConfig& config, const LiveFeed& feed)
-    : impl_(std::make_unique<Impl>(config, feed)) {}
+LiveServer::LiveServer(const LiveConfig& config, const LiveFeed& feed, CameraMailbox* cameras)
+    : impl_(std::make_unique<Impl>(config, feed, cameras)) {}
 
 LiveServer::~LiveServer() = default;
 

@@ -101,6 +101,12 @@ std::string Communicator::broadcast(const std::string& text, int root) {
   return out;
 }
 
+void Communicator::broadcast(std::span<std::byte> bytes, int root) {
+  check(MPI_Bcast(bytes.data(), as_count(bytes.size(), "broadcast"), MPI_BYTE, root, mpi_->comm),
+        "Bcast");
+  if (rank_ == root) bytes_sent_ += std::int64_t(bytes.size());
+}
+
 std::vector<std::vector<std::byte>> Communicator::gather(std::span<const std::byte> bytes,
                                                          int root) {
   const int mine = as_count(bytes.size(), "gather");

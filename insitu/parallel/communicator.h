@@ -45,6 +45,8 @@ class Communicator {
   void sum(std::span<double> values);
   // Rank `root`'s text on every rank.
   std::string broadcast(const std::string& text, int root = 0);
+  // Rank `root`'s bytes over every rank's, in place (every rank gives as many).
+  void broadcast(std::span<std::byte> bytes, int root = 0);
   // Every rank's bytes, on the root only (in rank order; empty elsewhere).
   std::vector<std::vector<std::byte>> gather(std::span<const std::byte> bytes, int root = 0);
   // Rank r sends send[d] to rank d and receives what every rank sent it, in rank order. The

@@ -18,6 +18,7 @@
 #include "insitu/parallel/communicator.h"
 #include "insitu/runtime/config_file.h"
 #include "insitu/runtime/host_memory.h"
+#include "insitu/runtime/live_cameras.h"
 #include "insitu/runtime/output_folder.h"
 #include "insitu/runtime/rank_stats.h"
 #include "insitu/runtime/registry.h"
@@ -110,7 +111,7 @@ struct ViewState {
   std::unique_ptr<PicturePool> pictures;
   SharedPicture latest;
   std::string caption;  // this step's, its storage kept
-  Camera camera;        // this step's
+  Camera camera;        // this step's framing's (the live page's offset left out)
   // The orbits' (outputs.cinema): their products, their depth images' pool, their passes.
   ViewProducts orbit_products;
   std::unique_ptr<PicturePool> depths;
@@ -190,6 +191,8 @@ struct InsituPipeline::Impl {
     results.resize(views.size());
     for (const ConfiguredOutput& o : config.outputs) make_output(o);
     if (config.live.enabled && reports_here()) start_live();
+    if (config.live.enabled && config.live.interactive)
+      live_cameras.emplace(view_names, camera_mailbox.get(), comm);
   }
 
   ~Impl() {
@@ -305,8 +308,9 @@ struct InsituPipeline::Impl {
   }
 
   void start_live() {
-    live_feed = std::make_unique<LiveFeed>(view_names);
-    live_server = std::make_unique<LiveServer>(config.live, *live_feed);
+    live_feed = std::make_unique<LiveFeed>(view_names, config.live.interactive);
+    if (config.live.interactive) camera_mailbox = std::make_unique<CameraMailbox>(views.size());
+    live_server = std::make_unique<LiveServer>(config.live, *live_feed, camera_mailbox.get());
     // Said once, at a level shown by default: the token is in it (as Jupyter prints its URL).
     log_warning("live page: ", live_server->url());
   }
@@ -362,8 +366,8 @@ struct InsituPipeline::Impl {
       results[i] = {.name = v.name, .stats = &stats};
       recorder->record_into(stats);
       try {
-        const Camera camera = v.framing.update(v.view->draws_scenery() ? with_scenery : step_box);
-        v.camera = camera;
+        v.camera = v.framing.update(v.view->draws_scenery() ? with_scenery : step_box);
+        const Camera camera = live_cameras ? live_cameras->camera(i, v.camera) : v.camera;
         if (v.framing.jumped() && !v.jump_told && reports_here()) {
           v.jump_told = true;
           log_warning("view ", v.name, ": the automatic framing jumped (the fluid's box now ",
@@ -519,8 +523,10 @@ struct InsituPipeline::Impl {
   std::vector<std::int64_t> bulk_scratch, bulk_bins;
   std::int64_t strays_told = 0;
 
-  std::unique_ptr<LiveFeed> live_feed;  // on the root, when the live page is enabled
+  std::unique_ptr<LiveFeed> live_feed;            // on the root, when the live page is enabled
+  std::unique_ptr<CameraMailbox> camera_mailbox;  // on the root, when it is interactive
   std::unique_ptr<LiveServer> live_server;
+  std::optional<LiveCameras> live_cameras;  // on every rank, when it is interactive
   std::array<std::pair<const char*, double>, 3> live_passes{
       {{"classify", 0}, {"compact", 0}, {"outputs", 0}}};
   bool live_finished = false;
@@ -659,6 +665,7 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
   m.orbit_pictures.clear();  // the last step's references go
   if (p.render) {
     const Stopwatch render;
+    if (m.live_cameras) m.live_cameras->take();
     failure = m.render_views(data, m.needs(p));
     const std::string orbits = m.render_orbits(data, p);
     if (failure.empty()) failure = orbits;

@@ -67,10 +67,10 @@ class LiveJob:
         self.token = urllib.parse.parse_qs(u.query)["token"][0]
         return self.url
 
-    def request(self, path, headers=None, method="GET", timeout=10):
+    def request(self, path, headers=None, method="GET", timeout=10, body=None):
         """(status, headers, body) of one request with the given headers (no token added)."""
         c = http.client.HTTPConnection(self.host, self.port, timeout=timeout)
-        c.request(method, path, headers=headers or {})
+        c.request(method, path, body=body, headers=headers or {})
         r = c.getresponse()
         body = r.read()
         c.close()

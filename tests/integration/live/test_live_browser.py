@@ -6,16 +6,19 @@ While the job runs, the page is loaded and left to poll; its DOM then must show 
 SHA-256 (which the page computes from the bytes it shows) is that of the job's own PNG frame of
 the step it claims, a step no older than the job's latest when the browser started, and the
 chart drawn. After the last step (the job keeps the page up: live.linger_seconds) the page must
-say that the job ended and show the last step's picture. SCREENSHOT: where the screenshot of the
-page during the run goes (default WORK_FOLDER/live_page.png). Exits 77 (skipped) without
-Chromium.
+say that the job ended and show the last step's picture. The job's page is interactive: first a
+drag on the picture and a click on its reset button (through the DevTools protocol on a pipe)
+must reach the job, which logs both changes. SCREENSHOT: where the screenshot of the page during
+the run goes (default WORK_FOLDER/live_page.png). Exits 77 (skipped) without Chromium.
 """
 import hashlib
+import json
 import os
 import re
 import shutil
 import subprocess
 import sys
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from live_job import SKIP, LiveJob  # noqa: E402
@@ -36,17 +39,128 @@ def chromium():
     return None
 
 
+def browser_args(browser, profile):
+    return [browser, "--headless=new", "--no-sandbox", "--disable-gpu", "--no-first-run",
+            "--disable-extensions", f"--user-data-dir={profile}", "--window-size=1120,820",
+            "--hide-scrollbars"]
+
+
 def browse(browser, url, profile, screenshot=None, budget_ms=6000):
     """The page's DOM after `budget_ms` of the page's own time (and a screenshot)."""
-    args = [browser, "--headless=new", "--no-sandbox", "--disable-gpu", "--no-first-run",
-            "--disable-extensions", f"--user-data-dir={profile}", "--window-size=1120,820",
-            f"--virtual-time-budget={budget_ms}", "--hide-scrollbars"]
+    args = browser_args(browser, profile) + [f"--virtual-time-budget={budget_ms}"]
     if screenshot:
         subprocess.run(args + [f"--screenshot={screenshot}", url], check=True, timeout=120,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     dom = subprocess.run(args + ["--dump-dom", url], check=True, timeout=120,
                          capture_output=True, text=True).stdout
     return dom
+
+
+class DevTools:
+    """Chromium driven through the DevTools protocol on a pipe (--remote-debugging-pipe: it
+    reads commands on fd 3 and answers on fd 4, each message JSON ended by a NUL byte)."""
+
+    def __init__(self, browser, profile):
+        to_browser, self._commands = os.pipe()
+        self._answers, from_browser = os.pipe()
+
+        def pipes():  # in the child: its ends at 3 and 4, whatever numbers they had
+            ends = [os.dup(to_browser), os.dup(from_browser)]
+            for fd, end in zip([3, 4], ends):
+                os.dup2(end, fd)
+                os.set_inheritable(fd, True)
+
+        self.process = subprocess.Popen(
+            browser_args(browser, profile) + ["--remote-debugging-pipe", "about:blank"],
+            preexec_fn=pipes, close_fds=False, stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL)
+        os.close(to_browser)
+        os.close(from_browser)
+        self._next, self._buffer, self.session = 0, b"", None
+
+    def send(self, method, **params):
+        self._next += 1
+        message = {"id": self._next, "method": method, "params": params}
+        if self.session:
+            message["sessionId"] = self.session
+        os.write(self._commands, json.dumps(message).encode() + b"\0")
+        while True:
+            while b"\0" not in self._buffer:
+                chunk = os.read(self._answers, 65536)
+                if not chunk:
+                    raise RuntimeError("chromium closed its DevTools pipe")
+                self._buffer += chunk
+            raw, self._buffer = self._buffer.split(b"\0", 1)
+            answer = json.loads(raw)
+            if answer.get("id") == self._next:
+                if "error" in answer:
+                    raise RuntimeError(f"{method}: {answer['error']}")
+                return answer.get("result", {})
+
+    def open(self, url):
+        target = self.send("Target.createTarget", url=url)["targetId"]
+        attached = self.send("Target.attachToTarget", targetId=target, flatten=True)
+        self.session = attached["sessionId"]
+
+    def value(self, expression):
+        return self.send("Runtime.evaluate", expression=expression,
+                         returnByValue=True)["result"].get("value")
+
+    def wait(self, expression, timeout=60):
+        end = time.time() + timeout
+        while time.time() < end:
+            if self.value(expression):
+                return True
+            time.sleep(0.2)
+        return False
+
+    def mouse(self, kind, x, y, buttons):
+        self.send("Input.dispatchMouseEvent", type=kind, x=x, y=y, button="left",
+                  buttons=buttons, clickCount=1)
+
+    def close(self):
+        self.process.kill()
+        self.process.wait()
+
+
+def turned(job):
+    return [line for line in job.log if "camera turned from the live page" in line]
+
+
+def drag_and_reset(browser, job, url, profile):
+    """A drag across the picture and a click on reset, as a user makes them."""
+    tools = DevTools(browser, profile)
+    try:
+        tools.open(url)
+        ready = tools.wait("!!document.querySelector('figure.interactive img[data-step]')")
+        check("interactive: the page shows the camera controls", ready and tools.value(
+            "document.querySelectorAll('figure.interactive button').length") == 3)
+        box = tools.value("(() => { const r = document.querySelector('figure.interactive img')"
+                          ".getBoundingClientRect(); return [r.x + r.width / 2, r.y + "
+                          "r.height / 2, r.width]; })()")
+        x, y, width = box
+        tools.mouse("mousePressed", x, y, 1)
+        for i in range(1, 11):
+            tools.mouse("mouseMoved", x + 0.03 * width * i, y + 2 * i, 1)
+            time.sleep(0.03)
+        tools.mouse("mouseReleased", x + 0.3 * width, y + 20, 0)
+        accepted = tools.wait("Number(document.body.dataset.camera) >= 1")
+        end = time.time() + 60
+        while not turned(job) and time.time() < end:
+            time.sleep(0.2)
+        check("... a drag on the picture: accepted and logged by the job", accepted and turned(job),
+              turned(job)[0] if turned(job) else "nothing logged")
+        before = len(turned(job))
+        tools.value("document.querySelector('figure.interactive button[data-action=reset]')"
+                    ".click()")
+        end = time.time() + 60
+        while len(turned(job)) == before and time.time() < end:
+            time.sleep(0.2)
+        check("... the reset button: logged by the job as a reset",
+              len(turned(job)) > before and "reset" in turned(job)[-1],
+              turned(job)[-1] if turned(job) else "")
+    finally:
+        tools.close()
 
 
 def attribute(dom, element_pattern, name):
@@ -73,10 +187,13 @@ def main():
     screenshot = sys.argv[3] if len(sys.argv) > 3 else os.path.join(work, "live_page.png")
     shutil.rmtree(work, ignore_errors=True)
     job = LiveJob(dambreak, os.path.join(work, "job"),
-                  {"enabled": "true", "port": 0, "linger_seconds": 25}, steps=1000,
+                  {"enabled": "true", "port": 0, "linger_seconds": 25, "interactive": "true"},
+                  steps=1000,
                   particles=6000, every=10, size=(480, 270))
     url = job.wait_url()
     print("live page:", url, flush=True)
+    job.wait_state(lambda s: s["render_steps"] >= 2)
+    drag_and_reset(browser, job, url, os.path.join(work, "profile-drag"))
     latest = job.wait_state(lambda s: s["render_steps"] >= 20)["step"]
 
     dom = browse(browser, url, os.path.join(work, "profile"), screenshot)

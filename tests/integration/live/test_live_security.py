@@ -4,13 +4,13 @@
 
 Runs the dam break twice at once with the same config: without the live page (the reference)
 and with it, while this script sends to the latter, one after another: no token, wrong tokens,
-the token in the wrong place, path traversals, other methods, oversized requests, 300 requests
-in a row (over the rate limit), 200 simultaneous connections, a client that sends a byte a
-second and one that reads a byte a second. Each must be refused or bounded with its status, and
-the job's in-situ time per render step (the 20th percentile over the run, from its stats lines)
-within TOLERANCE (VOXSPAN_LIVE_TOLERANCE, default 0.25; the goal, 0.05, is printed) of the
-reference's. Both jobs run side
-by side so that the machine's other work weighs on both alike.
+the token in the wrong place, path traversals, other methods, a camera request (the page is not
+interactive), oversized requests, 300 requests in a row (over the rate limit), 200 simultaneous
+connections, a client that sends a byte a second and one that reads a byte a second. Each must
+be refused or bounded with its status, and the job's in-situ time per render step (the 20th
+percentile over the run, from its stats lines) within TOLERANCE (VOXSPAN_LIVE_TOLERANCE, default
+0.25; the goal, 0.05, is printed) of the reference's. Both jobs run side by side so that the
+machine's other work weighs on both alike.
 """
 import os
 import shutil
@@ -30,6 +30,7 @@ from live_job import LiveJob  # noqa: E402
 GOAL = 0.05
 TOLERANCE = float(os.environ.get("VOXSPAN_LIVE_TOLERANCE", "0.25"))
 STEPS, PARTICLES, EVERY = 5000, 4000, 5
+FORM = "application/x-www-form-urlencoded"
 failures = []
 
 
@@ -102,6 +103,10 @@ def fixed_paths(job):
     for method in ["POST", "PUT", "DELETE", "PATCH", "OPTIONS"]:
         status, headers, _ = job.request("/state.json", right, method=method)
         check(f"{method} -> 405", status == 405 and headers.get("Allow") == "GET, HEAD", str(status))
+    status, _, body = job.request("/camera", dict(right, **{"Content-Type": FORM}), method="POST",
+                                  body="view=main&action=reset")
+    check("POST /camera, the page not interactive -> 403", status == 403 and
+          b"live.interactive is off" in body, str(status))
 
 
 def oversized(job):
