@@ -3,10 +3,10 @@
 // point x the sums of (m_j / rho_j) A_j W(|x - x_j|, h) and of (m_j / rho_j) W over the owned
 // particles whose support reaches x, which ranks add up like the slice's.
 // Costs: one pass over the owned particles (those within the support of the points' box are
-// counted into a uniform grid of cells no smaller than the support), then per point the
-// particles of the 3x3x3 cells around it; points in parallel (oneTBB). The grid holds at most
-// kMaxCells cells: a sparse set of points over a large box gets larger cells (more particles a
-// point, the same sums).
+// counted into a uniform grid of cells of half the support), then per point the particles of
+// the 5x5x5 cells around it; points in parallel (oneTBB). The grid holds at most kMaxCells
+// cells: a sparse set of points over a large box gets larger cells (more particles a point, the
+// same sums).
 #pragma once
 
 #include <cstdint>

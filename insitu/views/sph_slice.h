@@ -61,7 +61,10 @@ struct SphTerm {
 struct SphSum {
   double sum = 0, weight = 0;
   void add(const SphTerm& t, glm::dvec3 x, SphKernel kernel, double h) {
-    const double w = kernel_value(kernel, glm::length(x - t.p), h);
+    const glm::dvec3 d = x - t.p;
+    const double r2 = glm::dot(d, d), support = kernel_support(kernel) * h;
+    if (r2 >= support * support) return;  // W is 0 there: most of a neighbourhood's particles
+    const double w = kernel_value(kernel, std::sqrt(r2), h);
     sum += t.volume_value * w;
     weight += t.volume * w;
   }
