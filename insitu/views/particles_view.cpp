@@ -67,11 +67,10 @@ const schema::Section<ParticlesSettings>& particles_section() {
       view_keys<S>(
           "particles",
           schema::joined(
-              std::vector<schema::Key<S>>{
-                  schema::text("color_by", &S::color_by,
-                               "the attribute that colours the glyphs (a vector: its magnitude); "
-                               "empty: one colour")},
-              color_map_keys<S>("the colour map", "the drawn particles' smallest and largest"),
+              schema::from_base<S>(
+                  color_by_keys("the attribute that colours the glyphs (a vector: its "
+                                "magnitude); empty: one colour",
+                                "the drawn particles' smallest and largest")),
               std::vector<schema::Key<S>>{
                   schema::text("cull_by", &S::cull_by,
                                "the attribute cull_range tests; empty: color_by"),
@@ -93,7 +92,6 @@ const schema::Section<ParticlesSettings>& particles_section() {
                       "spacing (glyphs at rest touch)"),
                   schema::number("ambient_occlusion", &S::ambient_occlusion, schema::between(0, 1),
                                  "how much neighbouring glyphs darken a glyph (0: not at all)"),
-                  schema::flag("legend", &S::legend, "draw the colour bar with its values"),
                   schema::map<S, TrailSettings>(
                       "trails", &S::trails, trails_section(),
                       "paths of chosen particles over the last render steps"),

@@ -22,6 +22,7 @@
 #include "insitu/views/color_map.h"
 #include "insitu/views/glyphs.h"
 #include "insitu/views/slice_layer.h"
+#include "insitu/views/view_keys.h"
 
 namespace voxspan {
 
@@ -47,18 +48,14 @@ struct TrailSettings {
   bool operator==(const TrailSettings&) const = default;
 };
 
-struct ParticlesSettings : CloneAs<ParticlesSettings, ViewSettings> {
-  std::string color_by;  // empty: one colour
-  ColorMap color_map = ColorMap::viridis;
-  std::string units;                           // after the colour bar's title; empty: none
-  std::optional<std::array<double, 2>> range;  // nullopt = the selected particles' min and max
-  std::string cull_by;                         // empty: color_by
+// Its colouring: color_by empty gives one colour; range nullopt = the drawn particles' min and max.
+struct ParticlesSettings : CloneAs<ParticlesSettings, ViewSettings>, ColorBySettings {
+  std::string cull_by;  // empty: color_by
   std::optional<std::array<double, 2>> cull_range;
   GlyphSubset draw = GlyphSubset::all;
   GlyphCulling culling = GlyphCulling::occlusion;
   std::optional<double> radius;  // world units; nullopt = half the particle spacing
   double ambient_occlusion = 0.8;
-  bool legend = true;
   TrailSettings trails;
   ParticleSlice slice;  // quantity empty: none
   bool operator==(const ParticlesSettings&) const = default;

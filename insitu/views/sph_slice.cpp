@@ -37,8 +37,8 @@ glm::dvec3 SlicePlane::pixel_centre(int i, int j, int image_width, int image_hei
   return origin + s * u + t * v;
 }
 
-void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
-                       const SlicePlane& plane, int width, int height, SliceImage& out) {
+void sph_terms(const ParticleView& particles, const SliceQuantity& q,
+               const std::function<bool(const glm::dvec3&)>& near, std::vector<SphTerm>& out) {
   if (!(q.smoothing_length > 0))
     throw make_error("slice: the smoothing length must be positive; got ", q.smoothing_length);
   const AttributeView* quantity = &require_attribute(particles, q.name, q.key);
@@ -48,22 +48,31 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
   if (!per_particle_volume && !(q.rest_volume > 0))
     throw make_error("slice: no \"", q.mass, "\" and \"", q.density,
                      "\" attributes and no rest volume (particle spacing)");
-
-  const double h = q.smoothing_length;
-  const double support = kernel_support(q.kernel) * h;
-  std::vector<SliceImage::Near>& near = out.near;
-  near.clear();
+  out.clear();
   for (std::size_t i = 0; i < particles.owned_count(); ++i) {
     if (!particles.position_finite(i)) continue;
     const auto a = particles.position(i);
     const glm::dvec3 p(a[0], a[1], a[2]);
-    if (std::abs(glm::dot(p - plane.origin, plane.normal)) >= support) continue;
+    if (!near(p)) continue;
     const double volume =
         per_particle_volume ? mass->magnitude(i) / density->magnitude(i) : q.rest_volume;
     const double value = quantity->magnitude(i);
     if (!std::isfinite(volume) || !std::isfinite(value)) continue;
-    near.push_back({p, volume * value, volume});
+    out.push_back({p, volume * value, volume});
   }
+}
+
+void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
+                       const SlicePlane& plane, int width, int height, SliceImage& out) {
+  const double h = q.smoothing_length;
+  const double support = kernel_support(q.kernel) * h;
+  std::vector<SphTerm>& near = out.near;
+  sph_terms(
+      particles, q,
+      [&](const glm::dvec3& p) {
+        return std::abs(glm::dot(p - plane.origin, plane.normal)) < support;
+      },
+      near);
 
   // Bins of the support's size on the plane: a pixel's particles are in the 3x3 around it.
   const int bx = std::max(1, int(std::ceil(plane.width / support)));
@@ -105,21 +114,17 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
       const glm::dvec3 x = plane.pixel_centre(i, j, width, height);
       int cx, cy;
       bin_of(x, cx, cy);
-      double sum = 0, weight = 0;
+      SphSum sum;
       for (int y = cy - 1; y <= cy + 1; ++y)
         for (int xb = cx - 1; xb <= cx + 1; ++xb) {
           if (xb < -1 || xb > bx || y < -1 || y > by) continue;
           const std::size_t b = std::size_t(xb + 1) + std::size_t(bx + 2) * std::size_t(y + 1);
-          for (std::uint32_t s = start[b]; s < start[b + 1]; ++s) {
-            const SliceImage::Near& n = near[sorted[s]];
-            const double w = kernel_value(q.kernel, glm::length(x - n.p), h);
-            sum += n.volume_value * w;
-            weight += n.volume * w;
-          }
+          for (std::uint32_t s = start[b]; s < start[b + 1]; ++s)
+            sum.add(near[sorted[s]], x, q.kernel, h);
         }
       const std::size_t pixel = std::size_t(i) + std::size_t(width) * std::size_t(j);
-      out.sum[pixel] = sum;
-      out.weight[pixel] = weight;
+      out.sum[pixel] = sum.sum;
+      out.weight[pixel] = sum.weight;
     }
   });
   finish_slice(out, q.shepard);
@@ -128,9 +133,9 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
 void finish_slice(SliceImage& image, bool shepard) {
   image.pixels_reached = 0;
   for (std::size_t k = 0; k < image.values.size(); ++k) {
-    const double w = image.weight[k], s = image.sum[k];
-    image.values[k] = w > 0 ? float(shepard ? s / w : s) : 0.0f;
-    image.pixels_reached += w > 0 ? 1 : 0;
+    const SphSum sum{image.sum[k], image.weight[k]};
+    image.values[k] = float(sum.value(shepard));
+    image.pixels_reached += sum.weight > 0 ? 1 : 0;
   }
 }
 

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string_view>
 #include <vector>
 
@@ -50,6 +51,33 @@ struct SliceQuantity {
   bool shepard = false;
 };
 
+// One owned particle's part of an SPH sum: its position, (m / rho) A and m / rho.
+struct SphTerm {
+  glm::dvec3 p;
+  double volume_value, volume;
+};
+
+// The sums at one point x: sum_j (m_j / rho_j) A_j W and sum_j (m_j / rho_j) W.
+struct SphSum {
+  double sum = 0, weight = 0;
+  void add(const SphTerm& t, glm::dvec3 x, SphKernel kernel, double h) {
+    const glm::dvec3 d = x - t.p;
+    const double r2 = glm::dot(d, d), support = kernel_support(kernel) * h;
+    if (r2 >= support * support) return;  // W is 0 there: most of a neighbourhood's particles
+    const double w = kernel_value(kernel, std::sqrt(r2), h);
+    sum += t.volume_value * w;
+    weight += t.volume * w;
+  }
+  // The interpolated value: 0 where no particle reaches.
+  double value(bool shepard) const { return weight > 0 ? (shepard ? sum / weight : sum) : 0.0; }
+};
+
+// The terms of `q` of the owned particles at finite positions for which near(position) holds,
+// those with a finite volume and value, into `out` (cleared first). Throws voxspan::Error naming
+// the attribute when the quantity is missing, or when h is not positive.
+void sph_terms(const ParticleView& particles, const SliceQuantity& q,
+               const std::function<bool(const glm::dvec3&)>& near, std::vector<SphTerm>& out);
+
 struct SliceImage {
   int width = 0, height = 0;
   std::vector<float> values;       // row 0 at the top; 0 where no particle reaches
@@ -59,11 +87,7 @@ struct SliceImage {
   std::size_t pixels_reached = 0;  // pixels with a positive weight
 
   // Working storage, kept from step to step (a step with stable sizes allocates nothing).
-  struct Near {
-    glm::dvec3 p;
-    double volume_value, volume;  // (m / rho) A and m / rho
-  };
-  std::vector<Near> near;
+  std::vector<SphTerm> near;
   std::vector<std::uint32_t> bin_start, bin_fill, bin_of, sorted;
 };
 

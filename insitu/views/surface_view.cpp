@@ -1,5 +1,7 @@
 #include "insitu/views/surface_view.h"
 
+#include "insitu/views/surface_colors.h"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -87,52 +89,66 @@ const schema::Section<SurfaceSettings>& surface_section() {
       "views[i]",
       view_keys<S>(
           "surface",
-          {schema::choice("shading", &S::shading, kShadeModeNames, "shade pass ([ZD15] sec. 3.5)"),
-           schema::flag("deep_ao", &S::deep_ao,
-                        "deep ambient occlusion over all stored layers (sec. 3.6)"),
-           schema::number("layer_angle", &S::alpha_degrees, schema::above_up_to(0, 45),
-                          "normal-angle resolution of the depth layers, degrees: the paper's "
-                          "alpha (sec. 4.2; 14 degrees gives ~16 000 layers there)"),
-           schema::number_or_auto("gap", &S::gap, schema::at_least(0),
-                                  "gap-bridging distance, world units (sec. 3.2, "
-                                  "4.4); `auto` = the particle spacing"),
-           schema::integer("max_spans", &S::max_spans, 0, 1 << 20,
-                           "stored spans per pixel, 0: no cap; over the cap the last "
-                           "span is extended and its empty length recorded (sec. 3.1)"),
-           schema::number_or_auto("filter_radius", &S::filter_radius, schema::at_least(0),
-                                  "world radius of the depth filter (sec. 3.4, "
-                                  "4.6); 0 = off; `auto` = the particle spacing"),
-           schema::integer("max_layers", &S::max_layers, 32, 1 << 20,
-                           "cap on depth layers, a multiple of 32"),
-           schema::vec3_or_auto("absorption", &S::absorption,
-                                "Beer-Lambert absorption per world unit, RGB, >= 0; `auto` = "
-                                "clear water's tint, scaled to the fluid: red keeps a tenth "
-                                "through the smallest side of the fluid's box at the first "
-                                "render step (kept for the run)"),
-           schema::number("ior", &S::ior, schema::between(1, 4),
-                          "refractive index (refractive mode)"),
-           schema::integer("bounces", &S::bounces, 0, 16,
-                           "refraction/reflection bounces (refractive mode)"),
-           schema::number_or_auto("ground_height", &S::ground_height, schema::any_number(),
-                                  "height of the ground plane along the camera's `up`, world "
-                                  "units; `auto` = the floor under the fluid, half a spacing "
-                                  "under its lowest spheres (each step)"),
-           schema::number_or_auto("ground_tile", &S::ground_tile, schema::above(0),
-                                  "side of the ground's checker, world units; `auto` = 12 "
-                                  "particle spacings"),
-           schema::vec3("ground_light", &S::ground_light, "the ground's light squares, linear RGB"),
-           schema::vec3("ground_dark", &S::ground_dark, "the ground's dark squares, linear RGB"),
-           schema::vec3("sky_zenith", &S::sky_zenith, "the sky overhead, linear RGB"),
-           schema::vec3("sky_horizon", &S::sky_horizon,
-                        "the sky at the horizon (and the ground's fade into the distance), "
-                        "linear RGB"),
-           schema::map<S, SliceField>("slice", &S::slice, slice_section(),
-                                      "an SPH slice plane drawn where it lies in front of the "
-                                      "first surface",
-                                      true)
-               .only_when([](const S& v) { return !v.slice.quantity.empty(); }),
-           schema::map<S, ScenerySettings>("scenery", &S::scenery, scenery_section(),
-                                           "the solver's walls and obstacles as opaque solids")}),
+          schema::joined(
+              schema::from_base<S>(color_by_keys(
+                  "the attribute SPH-interpolated at the first surface that colours it (a "
+                  "vector: its magnitude); empty: the shading's own colours",
+                  "the picture's smallest and largest")),
+              std::vector<schema::Key<S>>{
+                  schema::choice("shading", &S::shading, kShadeModeNames,
+                                 "shade pass ([ZD15] sec. 3.5)"),
+                  schema::flag("deep_ao", &S::deep_ao,
+                               "deep ambient occlusion over all stored layers (sec. 3.6)"),
+                  schema::number(
+                      "layer_angle", &S::alpha_degrees, schema::above_up_to(0, 45),
+                      "normal-angle resolution of the depth layers, degrees: the paper's "
+                      "alpha (sec. 4.2; 14 degrees gives ~16 000 layers there)"),
+                  schema::number_or_auto("gap", &S::gap, schema::at_least(0),
+                                         "gap-bridging distance, world units (sec. 3.2, "
+                                         "4.4); `auto` = the particle spacing"),
+                  schema::integer("max_spans", &S::max_spans, 0, 1 << 20,
+                                  "stored spans per pixel, 0: no cap; over the cap the last "
+                                  "span is extended and its empty length recorded (sec. 3.1)"),
+                  schema::number_or_auto("filter_radius", &S::filter_radius, schema::at_least(0),
+                                         "world radius of the depth filter (sec. 3.4, "
+                                         "4.6); 0 = off; `auto` = the particle spacing"),
+                  schema::integer("max_layers", &S::max_layers, 32, 1 << 20,
+                                  "cap on depth layers, a multiple of 32"),
+                  schema::vec3_or_auto(
+                      "absorption", &S::absorption,
+                      "Beer-Lambert absorption per world unit, RGB, >= 0; `auto` = "
+                      "clear water's tint, scaled to the fluid: red keeps a tenth "
+                      "through the smallest side of the fluid's box at the first "
+                      "render step (kept for the run)"),
+                  schema::number("ior", &S::ior, schema::between(1, 4),
+                                 "refractive index (refractive mode)"),
+                  schema::integer("bounces", &S::bounces, 0, 16,
+                                  "refraction/reflection bounces (refractive mode)"),
+                  schema::number_or_auto(
+                      "ground_height", &S::ground_height, schema::any_number(),
+                      "height of the ground plane along the camera's `up`, world "
+                      "units; `auto` = the floor under the fluid, half a spacing "
+                      "under its lowest spheres (each step)"),
+                  schema::number_or_auto("ground_tile", &S::ground_tile, schema::above(0),
+                                         "side of the ground's checker, world units; `auto` = 12 "
+                                         "particle spacings"),
+                  schema::vec3("ground_light", &S::ground_light,
+                               "the ground's light squares, linear RGB"),
+                  schema::vec3("ground_dark", &S::ground_dark,
+                               "the ground's dark squares, linear RGB"),
+                  schema::vec3("sky_zenith", &S::sky_zenith, "the sky overhead, linear RGB"),
+                  schema::vec3("sky_horizon", &S::sky_horizon,
+                               "the sky at the horizon (and the ground's fade into the distance), "
+                               "linear RGB"),
+                  schema::map<S, SliceField>(
+                      "slice", &S::slice, slice_section(),
+                      "an SPH slice plane drawn where it lies in front of the "
+                      "first surface",
+                      true)
+                      .only_when([](const S& v) { return !v.slice.quantity.empty(); }),
+                  schema::map<S, ScenerySettings>(
+                      "scenery", &S::scenery, scenery_section(),
+                      "the solver's walls and obstacles as opaque solids")})),
       check_surface};
   return s;
 }
@@ -149,10 +165,12 @@ class SurfaceView final : public View {
                                      c.backend == RenderBackend::cpu})
                     : std::vector<std::unique_ptr<SpanStage>>{}),
         combine_ranks_(c.combine_ranks),
+        comm_(c.comm),
         spacing_(c.particle_spacing),
         scenery_(s.scenery, c.particle_spacing) {
     if (!s.slice.quantity.empty())
       slice_.emplace(s.slice, s.name, s.key_path("slice"), spacing_, c.comm);
+    if (!s.color_by.empty()) colors_.emplace(s, s.name, s.key_path("color_by"), spacing_, c.comm);
   }
 
   bool render(const ViewStep& step, Recorder& recorder, ViewProducts& out) override {
@@ -173,16 +191,18 @@ class SurfaceView final : public View {
     // With stages, every span goes on (a merge needs them all); the stages apply the cap.
     if (!stages_.empty()) o.spans.max_spans = 0;
     o.spans.combine_ranks = combine_ranks_;
-    if (!slice_) return render_surfaces(step, step.needs, recorder, out);
-    if (step.data.particles == nullptr) throw make_error("slice: the step has no particles");
+    if (!slice_ && !colors_) return render_surfaces(step, step.needs, recorder, out);
+    if (step.data.particles == nullptr)
+      throw make_error(slice_ ? "slice" : "color_by", ": the step has no particles");
+    ViewNeeds with_depth = step.needs;
+    with_depth.first_hit_depth = true;
+    if (!slice_) return render_colored(step, with_depth, recorder, out);
     {
       auto t = recorder.host(pass::slice_sum);  // collective: before anything that may fail
       slice_->interpolate(*step.data.particles, step.fluid_box, step.camera.up, step.data.step,
                           settings_.width, settings_.height);
     }
-    ViewNeeds with_depth = step.needs;
-    with_depth.first_hit_depth = true;
-    if (!render_surfaces(step, with_depth, recorder, out)) return false;
+    if (!render_colored(step, with_depth, recorder, out)) return false;
     auto t = recorder.host(pass::slice_draw);
     view_depth_from_distances(step.camera, out.first_hit_depth, depth_);
     slice_->draw_in_view(step.camera, depth_, out.picture, BarSide::right);
@@ -195,11 +215,37 @@ class SurfaceView final : public View {
   bool draws_scenery() const override { return settings_.scenery.draw; }
 
   std::string description() const override {
-    return std::string(shade_mode_name(settings_.shading)) + " " + std::to_string(settings_.width) +
-           "x" + std::to_string(settings_.height);
+    return std::string(shade_mode_name(settings_.shading)) +
+           (colors_ ? " by " + settings_.color_by : std::string()) + " " +
+           std::to_string(settings_.width) + "x" + std::to_string(settings_.height);
   }
 
  private:
+  // render_surfaces (which must give the first-hit distances), then with color_by the first
+  // surface coloured: the sums are collective, so a process that failed to shade still takes
+  // part and all ranks throw together.
+  bool render_colored(const ViewStep& step, const ViewNeeds& needs, Recorder& recorder,
+                      ViewProducts& out) {
+    if (!colors_) return render_surfaces(step, needs, recorder, out);
+    bool shown = false;
+    std::string failure;
+    try {
+      shown = render_surfaces(step, needs, recorder, out);
+    } catch (const std::exception& e) {
+      if (comm_ == nullptr) throw;
+      failure = e.what();
+    }
+    {
+      auto t = recorder.host(pass::color_sum);
+      colors_->sample(*step.data.particles, step.camera, shown ? &out.first_hit_depth : nullptr,
+                      failure);
+    }
+    if (!shown) return false;
+    auto t = recorder.host(pass::color_draw);
+    colors_->paint(step_options_.shade, out.picture, slice_ ? BarSide::left : BarSide::right);
+    return true;
+  }
+
   // The span image, through the stages, shaded; the products `needs` asks for. False where this
   // process has nothing to shade (an MPI rank other than the root).
   bool render_surfaces(const ViewStep& step, const ViewNeeds& needs, Recorder& recorder,
@@ -260,9 +306,11 @@ class SurfaceView final : public View {
   std::unique_ptr<SurfaceRenderer> renderer_;
   std::vector<std::unique_ptr<SpanStage>> stages_;
   DepthRangeCombine combine_ranks_;
+  Communicator* const comm_;  // null in one process
   const double spacing_;
   std::optional<glm::dvec3> auto_absorption_;  // absorption: auto, fixed at the first box
   std::optional<SliceLayer> slice_;
+  std::optional<SurfaceColors> colors_;
   std::vector<float> depth_;  // the surface's view depth per pixel, then the slice's
   SceneryLayer scenery_;
   SpanImage cut_spans_;  // the fluid's spans cut at the walls

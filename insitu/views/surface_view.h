@@ -3,9 +3,10 @@
 //   voxelize (sec. 3.1-4.4) -> the span stages of the context (none in one process; MPI
 //   compositing) -> connect, filter, normals, deep AO (3.3-3.6) -> shade (3.5) -> read back,
 // and, when an output asks, the first-hit distance of every pixel (render/gl/passes/first_hit.h).
-// With `slice`, an SPH slice plane (insitu/views/slice_layer.h) drawn where it lies nearer than
-// the first surface (opaque over the water: it shows where the plane leaves the fluid or where
-// the water in front of it was cut away; a particles view can cut).
+// With `color_by`, the first surface coloured by an attribute SPH-interpolated there
+// (insitu/views/surface_colors.h). With `slice`, an SPH slice plane (insitu/views/slice_layer.h)
+// drawn where it lies nearer than the first surface (opaque over the water: it shows where the
+// plane leaves the fluid or where the water in front of it was cut away; a particles view can cut).
 // Its settings, for the code that reads them by type (tests, tools).
 //
 // Reads: the step's boundary spheres and cell states, the camera, the fluid's box (the ground
@@ -20,13 +21,16 @@
 #include "insitu/config/settings.h"
 #include "insitu/views/scenery.h"
 #include "insitu/views/slice_layer.h"
+#include "insitu/views/view_keys.h"
 #include "render/shade_options.h"
 
 namespace voxspan {
 
 inline Vec3d array_of(glm::dvec3 v) { return {v.x, v.y, v.z}; }
 
-struct SurfaceSettings : CloneAs<SurfaceSettings, ViewSettings> {
+// Its colouring by an attribute at the first surface (insitu/views/surface_colors.h): color_by
+// empty gives the shading's own colours.
+struct SurfaceSettings : CloneAs<SurfaceSettings, ViewSettings>, ColorBySettings {
   ShadeMode shading = ShadeMode::translucent;
   bool deep_ao = false;
   double alpha_degrees = 14;  // normal-angle resolution of the depth layers ([ZD15], 4.2)

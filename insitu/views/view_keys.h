@@ -1,7 +1,10 @@
 // insitu/views/view_keys.h - config keys that several view kinds share, written once: an SPH
-// sum's (the slice's and the volume view's) and a colour map's.
+// sum's (the slice's and the volume view's), a colour map's, and the colouring by an attribute
+// of the particles and surface views.
 #pragma once
 
+#include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,6 +44,29 @@ std::vector<schema::Key<S>> color_map_keys(std::string map_help, std::string ran
           schema::text("units", &S::units,
                        "the values' units, shown after the colour bar's title (the quantity's "
                        "name): `m/s` gives \"speed [m/s]\"; empty: the name alone")};
+}
+
+// Colouring by a particle attribute (the particles and surface views): which, through what map
+// and range, and whether the colour bar shows.
+struct ColorBySettings {
+  std::string color_by;  // the attribute (a vector: its magnitude); empty: none
+  ColorMap color_map = ColorMap::viridis;
+  std::string units;                           // after the colour bar's title; empty: none
+  std::optional<std::array<double, 2>> range;  // nullopt = the picture's min and max
+  bool legend = true;
+  bool operator==(const ColorBySettings&) const = default;
+};
+
+// `color_by` (`color_by_help` says what it colours), the colour map's keys and `legend`;
+// `range_auto` says what `auto` takes.
+inline std::vector<schema::Key<ColorBySettings>> color_by_keys(std::string color_by_help,
+                                                               std::string range_auto) {
+  using S = ColorBySettings;
+  return schema::joined(
+      std::vector<schema::Key<S>>{schema::text("color_by", &S::color_by, std::move(color_by_help))},
+      color_map_keys<S>("the colour map", std::move(range_auto)),
+      std::vector<schema::Key<S>>{
+          schema::flag("legend", &S::legend, "draw the colour bar with its values")});
 }
 
 // The colour bar's title: the quantity's name, with its units when given.

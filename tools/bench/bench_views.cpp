@@ -1,6 +1,7 @@
-// bench_views: the `particles` and `slice` views through the runtime (an Adapter from a YAML
-// config, as a solver runs them), timed per pass from each render step's stats. Figures go to
-// docs/benchmarks.md ("Particle glyphs and slices") with the command that produced them.
+// bench_views: the `particles` and `slice` views and a surface's `color_by` through the runtime (an
+// Adapter from a YAML config, as a solver runs them), timed per pass from each render step's stats.
+// Figures go to docs/benchmarks.md ("Particle glyphs and slices") with the command that produced
+// them.
 //   1. [GRIBBLE] Table 1: frames per second and particles drawn without culling, with frustum
 //      culling and with occlusion culling, on a dense scene (the dam break's column at rest)
 //      and a sparse splashing one (the collapsed column with a third of its particles thrown
@@ -8,12 +9,16 @@
 //      modes compared pixel for pixel.
 //   2. Glyphs for 10^5 to 10^7 particles at 640x360 and 1920x1080: glyph_raster, glyph_shade.
 //   3. Slices at 1920x1080 for the same counts: slice_sum, slice_draw.
+//   4. A surface view's color_by (the CPU renderer, translucent) at 640x360 and 1920x1080 for
+//      the same counts: color_sum (the SPH sums at the first hits), color_draw, and the view's
+//      shade pass beside them.
 // Scenes: the Ritter-profile dam break of tools/scenes/scenes.h, with a made-up speed field
 // (the glyphs' colour and the slice's quantity). Medians over --frames render steps after one
 // warm-up step. The views run on the CPU with either renderer (docs/runtime.md), so one
 // backend is timed.
 //
 //   bench_views [--counts 1e5,1e6,1e7] [--table-particles N] [--frames N] [--skip-scaling]
+//               [--colors-only]
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -34,15 +39,17 @@ struct Args : tools::SceneArgs {
   double table_particles = 1e6;
   int frames = 3;
   bool skip_scaling = false;
+  bool colors_only = false;
 };
 
 constexpr char kUsage[] =
     "usage: bench_views [--counts 1e5,1e6,1e7] [--table-particles N] [--frames N]\n"
-    "         [--skip-scaling]\n";
+    "         [--skip-scaling] [--colors-only]\n";
 
 bool read_flag(tools::Arg& arg, Args& a) {
   return arg.value("--counts", a.counts) || arg.value("--table-particles", a.table_particles) ||
-         arg.value("--frames", a.frames) || arg.flag("--skip-scaling", a.skip_scaling);
+         arg.value("--frames", a.frames) || arg.flag("--skip-scaling", a.skip_scaling) ||
+         arg.flag("--colors-only", a.colors_only);
 }
 
 // A scene's particles, spacing and speed field.
@@ -127,6 +134,7 @@ Timing run(const Scene& s, const std::string& yaml, int frames,
 
 const std::vector<std::string> kGlyphPasses = {"glyph_raster", "glyph_shade"};
 const std::vector<std::string> kSlicePasses = {"slice_sum", "slice_draw"};
+const std::vector<std::string> kColorPasses = {"color_sum", "color_draw", "shade"};
 
 void culling_table(const Args& a) {
   std::printf("\n[GRIBBLE] Table 1: %.3g particles, 640x360, camera at 0.6 box diagonals\n",
@@ -168,6 +176,22 @@ void scaling(const Args& a) {
   }
 }
 
+void surface_colors(const Args& a) {
+  std::printf("\nsurface color_by (CPU renderer, translucent), ms (median of %d)\n", a.frames);
+  std::printf("%-10s %-10s %10s %10s %10s %12s\n", "particles", "size", "color_sum", "color_draw",
+              "color_by", "shade");
+  for (const std::string& count : tools::comma_list(a.counts)) {
+    const Scene s = dam_break_scene("dense", std::atof(count.c_str()), 0.3, 0.01);
+    for (const auto& [w, h] : {std::pair{640, 360}, std::pair{1920, 1080}}) {
+      const Timing t =
+          run(s, "renderer: {backend: cpu}\n" + config("color_by: speed", s, w, h, 1.0), a.frames,
+              kColorPasses);
+      std::printf("%-10zu %4dx%-5d %10.1f %10.1f %10.1f %12.1f\n", s.particles.size(), w, h,
+                  t.ms[0].second, t.ms[1].second, t.ms[0].second + t.ms[1].second, t.ms[2].second);
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -176,8 +200,9 @@ int main(int argc, char** argv) {
       [](int c, char** v, Args& a) { return tools::read_args(c, v, a, read_flag) && a.frames > 0; },
       [](const Args& a) {
         std::printf("bench_views: the particles and slice views through the runtime (CPU)\n");
-        culling_table(a);
-        if (!a.skip_scaling) scaling(a);
+        if (!a.colors_only) culling_table(a);
+        if (!a.skip_scaling && !a.colors_only) scaling(a);
+        surface_colors(a);
         return 0;
       });
 }
