@@ -45,10 +45,10 @@ class SurfaceRenderer {
   // top; resized to the image): the GL renderer's read back as pass::readback.
   virtual void shade(const SurfaceOptions& surfaces, const ShadeOptions& shade, Recorder& recorder,
                      FloatImage& picture) = 0;
-  // The backdrop shade() shows behind the fluid from now on (render/backdrop.h; null: the
-  // environment), the image's size, kept alive by the caller while in use. It does not cut
-  // the spans: the caller does (clip_at_walls) before use_spans().
-  virtual void use_backdrop(const Backdrop* backdrop) = 0;
+  // The backdrop shade() shows behind the fluid (render/backdrop.h; null: the environment), the
+  // image's size, kept alive by the caller while in use; the frame's span image (made or
+  // given before) is cut where its walls begin, timed as pass::scenery_cut.
+  virtual void use_backdrop(const Backdrop* backdrop, Recorder& recorder) = 0;
   // Per pixel the distance along its ray to the frame's first span entry, 0 where there is
   // none, in the first channel (what depth images are made of), timed as pass::first_hit.
   virtual void first_hit(Recorder& recorder, FloatImage& out) = 0;

@@ -49,8 +49,7 @@ struct Scenery {
 };
 
 namespace pass {
-inline constexpr StatName scenery{"scenery"};          // the walls' backdrop, when made anew
-inline constexpr StatName scenery_cut{"scenery_cut"};  // the fluid's spans cut at the walls
+inline constexpr StatName scenery{"scenery"};  // the walls' backdrop, when made anew
 }  // namespace pass
 
 // Per pixel, the scenery spans to draw: those of `spans` after the cutaway's (see above) into

@@ -257,25 +257,13 @@ class SurfaceView final : public View {
       const Scenery& s = *step.scenery;
       backdrop = scenery_.backdrop(step.camera, s.spheres, s.version, s.box, o.shade, recorder);
     }
-    if (backdrop != nullptr) cut_at_walls(*backdrop, recorder);
-    renderer_->use_backdrop(backdrop);
+    renderer_->use_backdrop(backdrop, recorder);
     renderer_->shade(o.surfaces, o.shade, recorder, out.picture);
     if (needs.first_hit_depth) renderer_->first_hit(recorder, out.first_hit_depth);
     // No copy here: the outputs copy what they keep.
     out.shaded_spans =
         needs.spans ? &renderer_->host_spans(pass::span_readback, recorder) : nullptr;
     return true;
-  }
-
-  // The fluid's spans cut where the walls begin, when the walls cut any.
-  void cut_at_walls(const Backdrop& backdrop, Recorder& recorder) {
-    const SpanImage& spans = renderer_->host_spans(pass::span_readback, recorder);
-    std::int64_t cut = 0;
-    {
-      auto t = recorder.host(pass::scenery_cut);
-      cut = clip_at_walls(spans, backdrop, cut_spans_);
-    }
-    if (cut > 0) renderer_->use_spans(cut_spans_, pass::composite_upload, recorder);
   }
 
   // The renderer's span image through the view's stages, which take part even where this process
@@ -313,7 +301,6 @@ class SurfaceView final : public View {
   std::optional<SurfaceColors> colors_;
   std::vector<float> depth_;  // the surface's view depth per pixel, then the slice's
   SceneryLayer scenery_;
-  SpanImage cut_spans_;  // the fluid's spans cut at the walls
 };
 
 }  // namespace

@@ -25,7 +25,12 @@ class CpuSurfaceRenderer final : public SurfaceRenderer {
     renderer_.shade(spans(), surfaces, shade, recorder, picture);
   }
 
-  void use_backdrop(const Backdrop* backdrop) override { renderer_.use_backdrop(backdrop); }
+  void use_backdrop(const Backdrop* backdrop, Recorder& recorder) override {
+    renderer_.use_backdrop(backdrop);
+    if (backdrop == nullptr) return;
+    auto t = recorder.host(pass::scenery_cut);
+    if (clip_at_walls(spans(), *backdrop, cut_) > 0) spans_ = &cut_;
+  }
 
   void first_hit(Recorder& recorder, FloatImage& out) override {
     auto t = recorder.host(pass::first_hit);
@@ -39,7 +44,8 @@ class CpuSurfaceRenderer final : public SurfaceRenderer {
   }
 
   CpuRenderer renderer_;
-  const SpanImage* spans_ = nullptr;  // the frame's: the renderer's cast or the caller's
+  const SpanImage* spans_ = nullptr;  // the frame's: the renderer's cast or the caller's, or cut_
+  SpanImage cut_;                     // the frame's cut at a backdrop's walls
 };
 
 }  // namespace

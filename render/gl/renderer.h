@@ -54,6 +54,8 @@ class Renderer {
   // The backdrop behind the fluid for the frames that follow (render/backdrop.h; null: the
   // environment), the image's size; copied to the GPU when its version is new.
   void use_backdrop(const Backdrop* backdrop);
+  // The last backdrop's pixels on the GPU (one unused pixel before any).
+  const gl::Buffer& backdrop_buffer() const { return backdrop_; }
 
   // Connect, filter, normals, deep AO and shade a span image.
   const GpuFloatImage& shade(const GpuSpanImage& spans, const SurfaceOptions& surfaces,

@@ -1,6 +1,7 @@
 #include "render/gl/surface_renderer.h"
 
 #include "render/gl/gpu_float_image.h"
+#include "render/gl/passes/cut_at_walls.h"
 #include "render/gl/passes/first_hit.h"
 #include "render/gl/renderer.h"
 #include "render/stat_names.h"
@@ -12,7 +13,7 @@ namespace {
 class GlSurfaceRenderer final : public SurfaceRenderer {
  public:
   GlSurfaceRenderer(const gl::ShaderLibrary& shaders, const VoxelizeOptions& voxelize)
-      : renderer_(shaders), first_hit_(shaders), voxelize_(voxelize) {}
+      : renderer_(shaders), first_hit_(shaders), cut_(shaders), voxelize_(voxelize) {}
 
   void make_spans(const Camera& camera, std::span<const ParticleSphere> particles,
                   const CellStatesView& cells, const SpanOptions& options,
@@ -46,7 +47,13 @@ class GlSurfaceRenderer final : public SurfaceRenderer {
     image.download(picture);
   }
 
-  void use_backdrop(const Backdrop* backdrop) override { renderer_.use_backdrop(backdrop); }
+  void use_backdrop(const Backdrop* backdrop, Recorder& recorder) override {
+    renderer_.use_backdrop(backdrop);
+    if (backdrop == nullptr) return;
+    auto t = recorder.device(pass::scenery_cut);
+    cut_.run(spans(), renderer_.backdrop_buffer());
+    host_ = nullptr;  // a copy in host memory is uncut
+  }
 
   void first_hit(Recorder& recorder, FloatImage& out) override {
     auto t = recorder.device(pass::first_hit);
@@ -62,6 +69,7 @@ class GlSurfaceRenderer final : public SurfaceRenderer {
 
   Renderer renderer_;
   FirstHitPass first_hit_;
+  CutAtWallsPass cut_;
   VoxelizeOptions voxelize_;
   const GpuSpanImage* spans_ = nullptr;  // the frame's: the voxelizer's or uploaded_
   GpuSpanImage uploaded_;
