@@ -3,8 +3,9 @@
 // alone (the stray left out, said in one warning with the count, the step done); and the same
 // block framed alike at every decade of spacing from 1e-10 to 1e20 (and at 1e-30, 1e-20, 1e30
 // and 1e36: frames far from unit scale are rendered in their own units, render/frame_units.h),
-// and refused by name at 1e37 (its frame past the float depth images' range). Measured: the share
-// of the view's pixels the fluid covers (the first-hit depth output), which automatic framing sets.
+// and refused by name at 1e37 (its frame past the float depth images' range); the particles and
+// volume views alike from 1e-20 to 1e30. Measured: the share of the view's pixels the fluid
+// covers (the first-hit depth output), which automatic framing sets.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -38,15 +39,16 @@ Block block(double spacing, const std::vector<glm::dvec3>& strays = {}) {
   return b;
 }
 
-// The share of the view's pixels with fluid in them, on `backend`, after one step.
-double coverage(const std::string& backend, const Block& b) {
+// The share of the view's pixels with fluid in them, on `backend` in a view of `kind`, after one
+// step.
+double coverage(const std::string& backend, const Block& b, const std::string& kind = "surface") {
   test::TempFolder dir;
   const std::string yaml =
       "output_folder: " + dir.path().string() +
       "\noutputs: {png: {enabled: false}, stats: {enabled: false}, "
       "depth: {enabled: true, trigger: {every_steps: 1}}}\ntrigger: {every_steps: 1}\n"
       "writer: {fsync: false}\nrenderer: {backend: " +
-      backend + "}\nviews:\n  - {name: v, width: 96, height: 72}\n";
+      backend + "}\nviews:\n  - {name: v, kind: " + kind + ", width: 96, height: 72}\n";
   AdapterOptions o;
   o.classify.particle_spacing = b.spacing;
   Adapter a = adapter_from_config_text(yaml, o, "framing.yaml");
@@ -77,6 +79,22 @@ TEST(Stability, StrayParticlesLeaveTheFramingAndAreSaid) {
       EXPECT_NE(warnings[0].find("leaves out 1 particle "), std::string::npos) << warnings[0];
     }
   }
+}
+
+// The particles and volume views need no frame units (their glyphs and marches work in double
+// where lengths are squared): the same share of the view from 1e-20 to 1e30 too.
+TEST(Stability, ParticlesAndVolumeViewsFrameAlikeAtEveryScale) {
+  for (const std::string backend : {"cpu", "gl"})
+    for (const std::string kind : {"particles", "volume"}) {
+      SCOPED_TRACE(backend + " " + kind);
+      const double unit = coverage(backend, block(1), kind);
+      for (double spacing : {1e-20, 1e-10, 1e10, 1e20, 1e30}) {
+        const double share = coverage(backend, block(spacing), kind);
+        std::printf("%s %s: spacing %g covers %.4f of the view (%.4f at 1)\n", backend.c_str(),
+                    kind.c_str(), spacing, share, unit);
+        EXPECT_NEAR(share, unit, 0.01 * unit) << spacing;
+      }
+    }
 }
 
 TEST(Stability, TheSameFramingAtEveryScale) {
