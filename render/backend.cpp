@@ -4,6 +4,7 @@
 
 #include "render/cpu/surface_renderer.h"
 #include "render/cpu/volume_renderer.h"
+#include "render/frame_units.h"
 #include "render/gl/gpu_recorder.h"
 #include "render/gl/info.h"
 #include "render/gl/surface_renderer.h"
@@ -62,10 +63,10 @@ std::unique_ptr<Recorder> make_recorder(const BackendChoice& choice) {
 std::unique_ptr<SurfaceRenderer> make_surface_renderer(RenderBackend backend,
                                                        const gl::ShaderLibrary& shaders,
                                                        std::size_t gpu_memory_budget) {
-  if (backend == RenderBackend::cpu) return make_cpu_surface_renderer();
+  if (backend == RenderBackend::cpu) return in_frame_units(make_cpu_surface_renderer());
   VoxelizeOptions voxelize;
   voxelize.tiles.memory_budget = gpu_memory_budget;
-  return make_gl_surface_renderer(shaders, voxelize);
+  return in_frame_units(make_gl_surface_renderer(shaders, voxelize));
 }
 
 std::unique_ptr<VolumeRenderer> make_volume_renderer(RenderBackend backend,

@@ -40,7 +40,8 @@ std::unique_ptr<Recorder> make_recorder(const BackendChoice& choice);
 
 // The surface renderer of `backend` (gl or cpu, as chosen). The GL one needs the context
 // current and compiles its passes from `shaders`; `gpu_memory_budget` bounds its bit grid's
-// tiles (bytes). The CPU one uses neither.
+// tiles (bytes). The CPU one uses neither. Either renders frames far from unit scale in
+// their own units (render/frame_units.h).
 std::unique_ptr<SurfaceRenderer> make_surface_renderer(RenderBackend backend,
                                                        const gl::ShaderLibrary& shaders,
                                                        std::size_t gpu_memory_budget);

@@ -23,6 +23,9 @@ struct SpanOptions {
   // With them, this process's inner-full cells need not lie between its own boundary
   // particles (another rank may hold the fluid's far side).
   DepthRangeCombine combine_ranks;
+  // World units per unit of the frame's lengths (render/frame_units.h), so that fit_frame
+  // records and refuses in world units; 1 unless the frame was rescaled.
+  double unit = 1;
 };
 
 // Throws voxspan::Error naming the option that is out of range.
@@ -30,9 +33,11 @@ void validate(const SpanOptions& options);
 
 // A frame's perspective grid, fitted to the particles the camera sees (options.grid,
 // options.combine_ranks), timed as pass::frame, with its counts and figures (particles.*,
-// grid.*: render/stat_names.h). Throws voxspan::Error (its counts recorded) when the visible
-// particles reach past 1e18 world units from the eye: the passes after it work in float,
-// whose squares of lengths overflow there.
+// grid.*: render/stat_names.h, in world units). Throws voxspan::Error (its counts recorded)
+// when the visible particles reach past 1e18 frame units from the eye (the passes after it
+// work in float, whose squares of lengths overflow there; render/frame_units.h rescales frames
+// far from unit scale) or past 1e38 world units (the float span and depth images that leave
+// the renderer hold no more).
 PerspectiveGrid fit_frame(const Camera& camera, std::span<const ParticleSphere> particles,
                           const SpanOptions& options, Recorder& recorder);
 

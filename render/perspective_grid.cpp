@@ -63,6 +63,15 @@ PerspectiveGrid PerspectiveGrid::over(const Camera& camera, double near, double 
   return g;
 }
 
+PerspectiveGrid PerspectiveGrid::rescaled(const Camera& camera, double factor) const {
+  PerspectiveGrid g = *this;
+  g.camera_ = camera;
+  g.view_ = ViewFrame(camera);
+  g.near_ *= factor;
+  g.far_ *= factor;
+  return g;
+}
+
 void PerspectiveGrid::set_depth_range(double near, double far, const GridOptions& options) {
   near_ = near;
   far_ = far;

@@ -75,6 +75,9 @@ class PerspectiveGrid {
   // A grid over the depth range [near, far] as given (0 < near < far).
   static PerspectiveGrid over(const Camera& camera, double near, double far,
                               const GridOptions& options);
+  // This grid in units `factor` times smaller (its depths times `factor`: the same layers),
+  // seen from `camera`, this grid's camera in those units (render/frame_units.h).
+  PerspectiveGrid rescaled(const Camera& camera, double factor) const;
 
   const Camera& camera() const { return camera_; }
   const ViewFrame& view() const { return view_; }

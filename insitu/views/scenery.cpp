@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "render/cpu/cpu_renderer.h"
+#include "render/frame_units.h"
 #include "render/model/shade_uniforms.h"
 
 namespace voxspan {
@@ -103,17 +104,27 @@ const Backdrop* SceneryLayer::backdrop(const Camera& camera,
 void SceneryLayer::render(const Camera& camera, std::span<const ParticleSphere> scenery,
                           const Bounds& box, const ShadeOptions& shade) {
   Recorder own;  // the scenery's passes are not the fluid's: timed as one, pass::scenery
+  // In the frame's units, as the fluid's (render/frame_units.h); the wall depths back in world
+  // units below.
+  const FrameUnits u = FrameUnits::of(camera);
+  std::span<const ParticleSphere> spheres = scenery;
+  Bounds frame_box = box;
+  if (u.scaled()) {
+    u.spheres(scenery, spheres_);
+    spheres = spheres_;
+    for (int k = 0; k < 3; ++k) frame_box.lo[k] /= u.unit, frame_box.hi[k] /= u.unit;
+  }
   SpanOptions spans;
   spans.gap_bridging = spacing_;
   float radius = 0;
-  for (const ParticleSphere& s : scenery) radius = std::max(radius, s.radius);
+  for (const ParticleSphere& s : spheres) radius = std::max(radius, s.radius);
   if (!renderer_) renderer_ = std::make_unique<CpuRenderer>();
-  const SpanImage& cast = renderer_->cast(camera, scenery, {}, spans, own);
-  if (settings_.cutaway) cut_away(cast, box, 1.01 * radius, drawn_);
+  const SpanImage& cast = renderer_->cast(u.camera(camera), spheres, {}, u.options(spans), own);
+  if (settings_.cutaway) cut_away(cast, frame_box, 1.01 * radius, drawn_);
   else drawn_ = cast;
   SurfaceOptions surfaces;
   surfaces.filter_radius = spacing_;
-  renderer_->shade(drawn_, surfaces, shade, own, picture_);
+  renderer_->shade(drawn_, u.options(surfaces), u.options(shade), own, picture_);
   backdrop_.width = drawn_.width();
   backdrop_.height = drawn_.height();
   backdrop_.pixels.resize(std::size_t(backdrop_.width) * std::size_t(backdrop_.height));
@@ -125,7 +136,8 @@ void SceneryLayer::render(const Camera& camera, std::span<const ParticleSphere> 
       const PixelSpans& p = drawn_.pixel(x, y);
       float depth = Backdrop::kNoWall;
       if (p.count > 0)
-        depth = filtered.empty() ? drawn_.spans[p.offset].entry : filtered[p.offset].x;
+        depth = static_cast<float>(
+            (filtered.empty() ? drawn_.spans[p.offset].entry : filtered[p.offset].x) * u.unit);
       backdrop_.pixels[std::size_t(x) + std::size_t(y) * std::size_t(backdrop_.width)] =
           glm::vec4(glm::vec3(picture_.at(x, y)), depth);
     }

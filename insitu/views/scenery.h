@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "insitu/config/schema.h"
 #include "insitu/config/settings.h"
@@ -76,6 +77,7 @@ class SceneryLayer {
   const ScenerySettings settings_;
   const double spacing_;
   std::unique_ptr<CpuRenderer> renderer_;  // made with the first backdrop
+  std::vector<ParticleSphere> spheres_;    // in the frame's units, when it has its own
   SpanImage drawn_;                        // the scenery's spans after the cutaway
   FloatImage picture_;
   Backdrop backdrop_;

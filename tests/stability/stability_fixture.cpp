@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "render/backend.h"
 #include "render/gl/gpu_recorder.h"
 #include "render/gl/tiling.h"
 #include "render/reference/exact_spans.h"
+#include "render/stat_names.h"
 #include "tests/render/gl/gl_fixture.h"
 #include "tools/scenes/accuracy_scenes.h"
 #include "voxspan/stopwatch.h"
@@ -65,6 +67,24 @@ Frame render_cpu(const Scene& scene) {
   for (std::size_t m = 0; m < kModes.size(); ++m)
     f.images[m] = renderer.shade(f.spans, scene.surfaces, shading(scene, kModes[m]), recorder);
   recorder.collect();
+  return f;
+}
+
+Frame render_as_view(const Scene& scene, RenderBackend backend) {
+  if (backend == RenderBackend::gl) context();
+  const std::unique_ptr<SurfaceRenderer> renderer =
+      make_surface_renderer(backend, shaders(), scene.voxelize.tiles.memory_budget);
+  Frame f;
+  std::unique_ptr<Recorder> recorder =
+      backend == RenderBackend::gl
+          ? std::make_unique<gl::GpuRecorder>(f.stats, context().has_gpu_timers())
+          : std::make_unique<Recorder>(f.stats);
+  renderer->make_spans(scene.camera, scene.particles, scene.cells, scene.voxelize, *recorder);
+  for (std::size_t m = 0; m < kModes.size(); ++m)
+    renderer->shade(scene.surfaces, shading(scene, kModes[m]), *recorder, f.images[m]);
+  renderer->first_hit(*recorder, f.first_hit);
+  f.spans = renderer->host_spans(pass::span_readback, *recorder);
+  recorder->collect();
   return f;
 }
 

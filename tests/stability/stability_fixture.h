@@ -22,6 +22,7 @@
 #include "render/frame_stats.h"
 #include "render/gl/renderer.h"
 #include "render/span_image.h"
+#include "render/surface_renderer.h"
 #include "tools/scenes/scenes.h"
 #include "tools/scenes/span_compare.h"
 
@@ -50,10 +51,15 @@ struct Frame {
   SpanImage spans;
   std::array<FloatImage, 3> images;  // kModes' order
   FrameStats stats;
+  FloatImage first_hit;  // render_as_view's; empty otherwise
 };
 
 Frame render_gl(const Scene& scene);
 Frame render_cpu(const Scene& scene);
+// The scene as a view renders it: through the surface-renderer interface of `backend` as
+// make_surface_renderer gives it (frames far from unit scale in their own units,
+// render/frame_units.h), with the first-hit distances.
+Frame render_as_view(const Scene& scene, RenderBackend backend);
 
 // Non-finite channels over all three pictures.
 std::int64_t nonfinite_channels(const Frame& frame);

@@ -1,11 +1,14 @@
 // The stability suite's automatic framing, through the public Adapter on both renderers: a
 // 20^3 block with one particle escaped to 2, 1e6 or 1e30 world units is framed as the block
 // alone (the stray left out, said in one warning with the count, the step done); and the same
-// block framed alike at every spacing from 1e-10 to 1e16, and refused by name at 1e20 (its frame
-// past the float passes' range). Measured: the share of the view's
-// pixels the fluid covers (the first-hit depth output), which automatic framing sets.
+// block framed alike at every decade of spacing from 1e-10 to 1e20 (and at 1e-30, 1e-20, 1e30
+// and 1e36: frames far from unit scale are rendered in their own units, render/frame_units.h),
+// and refused by name at 1e37 (its frame past the float depth images' range); the particles and
+// volume views alike from 1e-20 to 1e30. Measured: the share of the view's pixels the fluid
+// covers (the first-hit depth output), which automatic framing sets.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -36,15 +39,16 @@ Block block(double spacing, const std::vector<glm::dvec3>& strays = {}) {
   return b;
 }
 
-// The share of the view's pixels with fluid in them, on `backend`, after one step.
-double coverage(const std::string& backend, const Block& b) {
+// The share of the view's pixels with fluid in them, on `backend` in a view of `kind`, after one
+// step.
+double coverage(const std::string& backend, const Block& b, const std::string& kind = "surface") {
   test::TempFolder dir;
   const std::string yaml =
       "output_folder: " + dir.path().string() +
       "\noutputs: {png: {enabled: false}, stats: {enabled: false}, "
       "depth: {enabled: true, trigger: {every_steps: 1}}}\ntrigger: {every_steps: 1}\n"
       "writer: {fsync: false}\nrenderer: {backend: " +
-      backend + "}\nviews:\n  - {name: v, width: 96, height: 72}\n";
+      backend + "}\nviews:\n  - {name: v, kind: " + kind + ", width: 96, height: 72}\n";
   AdapterOptions o;
   o.classify.particle_spacing = b.spacing;
   Adapter a = adapter_from_config_text(yaml, o, "framing.yaml");
@@ -77,11 +81,30 @@ TEST(Stability, StrayParticlesLeaveTheFramingAndAreSaid) {
   }
 }
 
+// The particles and volume views need no frame units (their glyphs and marches work in double
+// where lengths are squared): the same share of the view from 1e-20 to 1e30 too.
+TEST(Stability, ParticlesAndVolumeViewsFrameAlikeAtEveryScale) {
+  for (const std::string backend : {"cpu", "gl"})
+    for (const std::string kind : {"particles", "volume"}) {
+      SCOPED_TRACE(backend + " " + kind);
+      const double unit = coverage(backend, block(1), kind);
+      for (double spacing : {1e-20, 1e-10, 1e10, 1e20, 1e30}) {
+        const double share = coverage(backend, block(spacing), kind);
+        std::printf("%s %s: spacing %g covers %.4f of the view (%.4f at 1)\n", backend.c_str(),
+                    kind.c_str(), spacing, share, unit);
+        EXPECT_NEAR(share, unit, 0.01 * unit) << spacing;
+      }
+    }
+}
+
 TEST(Stability, TheSameFramingAtEveryScale) {
   for (const std::string backend : {"cpu", "gl"}) {
     SCOPED_TRACE(backend);
     const double unit = coverage(backend, block(1));
-    for (double spacing : {1e-10, 1e-8, 1e-4, 1e4, 1e10, 1e16}) {
+    // Every decade from 1e-10 to 1e20, and a few past it to each side.
+    std::vector<double> spacings = {1e-30, 1e-20, 1e30, 1e36};
+    for (int e = -10; e <= 20; ++e) spacings.push_back(std::pow(10.0, e));
+    for (double spacing : spacings) {
       const double share = coverage(backend, block(spacing));
       std::printf("%s: spacing %g covers %.4f of the view (%.4f at 1)\n", backend.c_str(), spacing,
                   share, unit);
@@ -90,21 +113,27 @@ TEST(Stability, TheSameFramingAtEveryScale) {
   }
 }
 
-// Past 1e18 world units from the eye the float passes would overflow: the step is refused,
-// the bound named, not a wrong picture (docs/runtime.md).
+// Past 1e38 world units from the eye the float depth images (and span images) that leave
+// the renderers would overflow: the step is refused, the bound named, not a wrong picture
+// (docs/runtime.md). The 20^3 block at spacing 1e37 is framed from 6.9e38.
 TEST(Stability, FramingPastTheFloatRangeIsRefusedByName) {
-  test::TempFolder dir;
-  const Block b = block(1e20);
-  AdapterOptions o;
-  o.classify.particle_spacing = b.spacing;
-  Adapter a = adapter_from_config_text(
-      "output_folder: " + dir.path().string() + "\nviews: [{name: v, width: 32, height: 24}]\n", o,
-      "far.yaml");
-  const Status s =
-      a.execute(1, 0.0, ParticleView::soa(b.x.data(), b.y.data(), b.z.data(), b.x.size()));
-  EXPECT_FALSE(s.ok());
-  EXPECT_NE(s.message.find("beyond the 1e+18 the renderers' float passes hold"), std::string::npos)
-      << s.message;
+  for (const std::string backend : {"cpu", "gl"}) {
+    SCOPED_TRACE(backend);
+    test::TempFolder dir;
+    const Block b = block(1e37);
+    AdapterOptions o;
+    o.classify.particle_spacing = b.spacing;
+    Adapter a = adapter_from_config_text("output_folder: " + dir.path().string() +
+                                             "\nrenderer: {backend: " + backend +
+                                             "}\nviews: [{name: v, width: 32, height: 24}]\n",
+                                         o, "far.yaml");
+    const Status s =
+        a.execute(1, 0.0, ParticleView::soa(b.x.data(), b.y.data(), b.z.data(), b.x.size()));
+    EXPECT_FALSE(s.ok());
+    EXPECT_NE(s.message.find("past the 1e+38 that its float span and depth images hold"),
+              std::string::npos)
+        << s.message;
+  }
 }
 
 }  // namespace

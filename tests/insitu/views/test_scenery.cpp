@@ -1,7 +1,7 @@
 // The solver's scenery (Adapter::set_scenery, insitu/views/scenery.h) in surface views through
 // the runtime: a closed tank hides its water unless cut away, and then shows it; refracted rays
-// end on the walls behind the water; both renderers draw the same tank; the keys read and
-// refused as documented; particles with NaN positions left out and counted. Under MPI:
+// end on the walls behind the water; both renderers draw the same tank, at any scale; the keys
+// read and refused as documented; particles with NaN positions left out and counted. Under MPI:
 // tests/mpi/test_mpi_scenery.cpp.
 #include <gtest/gtest.h>
 
@@ -20,8 +20,8 @@ namespace {
 
 constexpr double kSpacing = 0.05;
 
-test::ParticleBlock water() {
-  return {kSpacing, "height", [](int, double x) { return x; }};
+test::ParticleBlock water(double spacing = kSpacing) {
+  return {spacing, "height", [](int, double x) { return x; }};
 }
 
 std::string config(const std::string& keys, const std::string& backend = "cpu") {
@@ -30,10 +30,10 @@ std::string config(const std::string& keys, const std::string& backend = "cpu") 
 }
 
 // The picture of one step of `config` with the tank, with or without the water.
-FloatImage picture(const std::string& config, bool with_water) {
-  const test::ParticleBlock w = water();
-  const test::Tank tank(kSpacing);
-  Adapter a = adapter_from_config_text(config, test::spaced(kSpacing));
+FloatImage picture(const std::string& config, bool with_water, double spacing = kSpacing) {
+  const test::ParticleBlock w = water(spacing);
+  const test::Tank tank(spacing);
+  Adapter a = adapter_from_config_text(config, test::spaced(spacing));
   EXPECT_EQ(a.set_scenery(tank.view()), tank.size());
   const ParticleView none = ParticleView::aos(static_cast<const double*>(nullptr), 0);
   const Status s = a.execute(0, 0, with_water ? w.view() : none);
@@ -93,6 +93,23 @@ TEST(Scenery, BothRenderersDrawTheSameTank) {
     const double off = share(differing(cpu, gl, 0.1));
     std::printf("%s: %.2f %% of the pixels more than 0.1 apart\n", shading, 100 * off);
     EXPECT_LT(off, 0.02) << shading;
+  }
+}
+
+// Far from unit scale the walls are drawn in the frame's units as the water is
+// (render/frame_units.h): the tank at 1e-20 and 1e20 times the spacing looks as at the
+// spacing itself, on both renderers.
+TEST(Scenery, TheTankLooksTheSameAtEveryScale) {
+  for (const char* backend : {"cpu", "gl"}) {
+    const FloatImage unit = picture(config("shading: refractive", backend), true);
+    for (double scale : {1e-20, 1e20}) {
+      const FloatImage scaled =
+          picture(config("shading: refractive", backend), true, kSpacing * scale);
+      const double off = share(differing(unit, scaled, 0.02));
+      std::printf("%s at %g: %.2f %% of the pixels more than 0.02 apart\n", backend, scale,
+                  100 * off);
+      EXPECT_LT(off, 0.005) << backend << " " << scale;
+    }
   }
 }
 
