@@ -56,13 +56,18 @@ SobelSample sobel_step(SurfacePoint v, int dir) {
 // Corner sample: horizontal step h, then vertical direction dir_y.
 vec3 sobel_corner(SobelSample h, int dir_y) { return h.across ? sobel_step(h.point, dir_y).position : h.position; }
 
-// Whether the surface at v goes on behind the walls towards dir rather than turning there. The
+// Whether the surface at v goes on to the walls towards dir rather than turning there. The
 // fluid's spans are cut where its walls begin (render/backdrop.h): a neighbour whose walls
 // stand in front of v has lost its fluid to them, and v's link towards it ends although the
-// surface does not.
+// surface goes on behind the wall. And where v's own span ends on its walls, the water reaches
+// them: a neighbour that meets walls and no water lies past the line where the surface meets
+// a wall (water against the back wall, seen from the front), not past a silhouette.
 bool hidden_by_walls(SurfacePoint v, int dir) {
   ivec2 q = v.pixel + link_step(dir);
-  return in_image(q) && sd_wall_depth(q) <= point_depth(v);
+  if (!in_image(q)) return false;
+  float wall = sd_wall_depth(q);
+  if (wall <= point_depth(v)) return true;
+  return wall < 3.0e38f && sd_raw_depths(v.span).y >= sd_wall_depth(v.pixel);
 }
 
 // A Sobel tangent (towards +x or row + 1) from its halves before and after the point, and
