@@ -100,6 +100,7 @@ class CpuRenderer::Passes final : public SurfacePasses {
 
   void normals() override {
     model::Host& host = host_;
+    host.use_backdrop(r_.backdrop_ != nullptr ? &r_.backdrop_->pixels : nullptr);
     host.fill_per_span(host.normals_,
                        [&](model::ivec2 p, model::uint s) { return host.span_normal_words(p, s); });
   }

@@ -13,7 +13,8 @@ std::string surface_defines() {
                                              {"SPAN_LINKS_BINDING", kSpanLinks},
                                              {"SURFACE_DEPTHS_BINDING", kSurfaceDepths},
                                              {"SPAN_NORMALS_BINDING", kSpanNormals},
-                                             {"PIXEL_AO_BINDING", kPixelAo}});
+                                             {"PIXEL_AO_BINDING", kPixelAo},
+                                             {"WALL_DEPTHS_BINDING", kWallDepths}});
 }
 
 std::string shade_defines() {

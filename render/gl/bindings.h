@@ -22,6 +22,7 @@ enum Surfaces : GLuint {
   kSurfaceDepths,
   kSpanNormals,
   kPixelAo,
+  kWallDepths,  // the backdrop (render/backdrop.h), read by the normals pass for its depths
   kSurfacesEnd,
 };
 

@@ -73,6 +73,9 @@ class Host : public GridUniforms, public ShadeUniforms {
     return std::size_t(p.x) + std::size_t(p.y) * std::size_t(u_image.x);
   }
   vec4 sd_backdrop(ivec2 p) const { return (*backdrop_)[pixel_index(p)]; }
+  float sd_wall_depth(ivec2 p) const {
+    return backdrop_ != nullptr ? (*backdrop_)[pixel_index(p)].w : 3.0e38f;
+  }
   vec3 sd_background(ivec2 p, vec3 dir) {
     if (u_use_backdrop != 0) return vec3(sd_backdrop(p));
     return background_ != nullptr ? (*background_)[pixel_index(p)] : environment(u_eye, dir);

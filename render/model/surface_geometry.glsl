@@ -11,7 +11,9 @@
 // at an exit (so every stored normal points out of the fluid), in world space.
 //
 // Host needs: links.glsl and its needs, vec2 sd_depths(uint) (the surface depths the normals are
-// built on: filtered or not), u_image, u_tan_half, u_right, u_up, u_forward.
+// built on: filtered or not), float sd_wall_depth(ivec2) (the view depth where the pixel's walls
+// begin, render/backdrop.h; 3e38 where none or without walls), u_image, u_tan_half, u_right,
+// u_up, u_forward.
 #ifndef VX_MODEL_SURFACE_GEOMETRY
 #define VX_MODEL_SURFACE_GEOMETRY
 
@@ -54,6 +56,28 @@ SobelSample sobel_step(SurfacePoint v, int dir) {
 // Corner sample: horizontal step h, then vertical direction dir_y.
 vec3 sobel_corner(SobelSample h, int dir_y) { return h.across ? sobel_step(h.point, dir_y).position : h.position; }
 
+// Whether the surface at v goes on to the walls towards dir rather than turning there. The
+// fluid's spans are cut where its walls begin (render/backdrop.h): a neighbour whose walls
+// stand in front of v has lost its fluid to them, and v's link towards it ends although the
+// surface goes on behind the wall. And where v's own span ends on its walls, the water reaches
+// them: a neighbour that meets walls and no water lies past the line where the surface meets
+// a wall (water against the back wall, seen from the front), not past a silhouette.
+bool hidden_by_walls(SurfacePoint v, int dir) {
+  ivec2 q = v.pixel + link_step(dir);
+  if (!in_image(q)) return false;
+  float wall = sd_wall_depth(q);
+  if (wall <= point_depth(v)) return true;
+  return wall < 3.0e38f && sd_raw_depths(v.span).y >= sd_wall_depth(v.pixel);
+}
+
+// A Sobel tangent (towards +x or row + 1) from its halves before and after the point, and
+// whether a wall hides each side.
+vec3 sobel_tangent(vec3 before, vec3 after, bool hidden_before, bool hidden_after) {
+  if (hidden_before && !hidden_after) return 2.0f * after;
+  if (hidden_after && !hidden_before) return 2.0f * before;
+  return before + after;
+}
+
 // Outward unit normal at v, view space.
 vec3 sobel_normal_view(SurfacePoint v) {
   vec3 c = point_position(v);
@@ -65,12 +89,20 @@ vec3 sobel_normal_view(SurfacePoint v) {
   vec3 ld = sobel_corner(l, 3);
   vec3 ru = sobel_corner(r, 2);
   vec3 rd = sobel_corner(r, 3);
+  // Where a wall hides one side, the tangent is the other side's half alone (a one-sided
+  // difference): a silhouette's wall sample there would turn the surface edge-on along every
+  // wall the water touches, a line of grazing normals that reflect the sky in translucent water
+  // and bend refracted rays aside (dots where the water meets a wall).
   // In units of v's depth: the cross product of world lengths is an area, whose squares under-
   // or overflow floats at scene scales past 1e-7 or 1e11 world units; relative to the depth
   // the numbers are the same at every scale.
   float unit = 1.0f / c.z;
-  vec3 tx = ((ru - lu) + 2.0f * (r.position - l.position) + (rd - ld)) * unit;  // towards +x
-  vec3 ty = ((ld - lu) + 2.0f * (d.position - u.position) + (rd - ru)) * unit;  // towards row + 1
+  vec3 tx = sobel_tangent(((u.position - lu) + 2.0f * (c - l.position) + (d.position - ld)) * unit,
+                          ((ru - u.position) + 2.0f * (r.position - c) + (rd - d.position)) * unit,
+                          !l.across && hidden_by_walls(v, 0), !r.across && hidden_by_walls(v, 1));
+  vec3 ty = sobel_tangent(((l.position - lu) + 2.0f * (c - u.position) + (r.position - ru)) * unit,
+                          ((ld - l.position) + 2.0f * (d.position - c) + (rd - r.position)) * unit,
+                          !u.across && hidden_by_walls(v, 2), !d.across && hidden_by_walls(v, 3));
   vec3 n = cross(tx, ty);
   float len = length(n);
   // Out of the fluid: towards the eye at an entry, away from it at an exit.

@@ -9,9 +9,12 @@ namespace voxspan {
 NormalsPass::NormalsPass(const gl::ShaderLibrary& shaders)
     : program_(shaders.compute("render/gl/passes/normals.comp", binding::surface_defines())) {}
 
-void NormalsPass::run(const GpuSpanImage& image, const GpuSurfaces& surfaces) {
+void NormalsPass::run(const GpuSpanImage& image, const GpuSurfaces& surfaces,
+                      const gl::Buffer& backdrop, bool walls) {
   if (image.span_count() == 0) return;
   surfaces.bind(image);
+  backdrop.bind(GL_SHADER_STORAGE_BUFFER, binding::kWallDepths);
+  program_.set("u_walls_cut", walls ? 1 : 0);
   set_grid_uniforms(program_, image.grid());
   dispatch_threads(program_, image.span_count());
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -1,9 +1,10 @@
 // render/gl/passes/normals.h - surface normals ([ZD15] sec. 3.4, 4.5;
 // render/gl/passes/normals.comp, the rule in render/model/surface_geometry.glsl): the Sobel
 // operator along the links on the surface depths (filtered or not), outward world normals,
-// octahedral in 32 bits each. Reads: the span image, GpuSurfaces owners, links, depths. Writes:
-// GpuSurfaces normals. Cost: one thread per span, 9 linked depths per end; 8 bytes written per span
-// (the paper's GTX 970: 8 ms at 1080p).
+// octahedral in 32 bits each. Reads: the span image, GpuSurfaces owners, links, depths, the
+// backdrop's depths (where the fluid is cut at walls). Writes: GpuSurfaces normals. Cost: one
+// thread per span, 9 linked depths per end; 8 bytes written per span (the paper's GTX 970: 8 ms
+// at 1080p).
 #pragma once
 
 #include "render/gl/gpu_span_image.h"
@@ -16,7 +17,10 @@ namespace voxspan {
 class NormalsPass {
  public:
   explicit NormalsPass(const gl::ShaderLibrary& shaders);
-  void run(const GpuSpanImage& image, const GpuSurfaces& surfaces);
+  // `backdrop`: render/backdrop.h's pixels, whose depths the normals read where `walls` says
+  // (the fluid's spans cut at the walls: render/model/surface_geometry.glsl).
+  void run(const GpuSpanImage& image, const GpuSurfaces& surfaces, const gl::Buffer& backdrop,
+           bool walls);
 
  private:
   gl::Program program_;
