@@ -130,20 +130,17 @@ class FrameUnitsRenderer final : public SurfaceRenderer {
   }
   void shade(const SurfaceOptions& surfaces, const ShadeOptions& shade, Recorder& recorder,
              FloatImage& picture) override {
-    if (!units_.scaled()) {
-      inner_->use_backdrop(backdrop_);
-      return inner_->shade(surfaces, shade, recorder, picture);
-    }
-    if (backdrop_ != nullptr) {
-      units_.to_frame(*backdrop_, frame_backdrop_);
-      // Its own versions: the same world backdrop in other units is another picture.
-      frame_backdrop_.version = kOwnVersions | ++conversions_;
-    }
-    inner_->use_backdrop(backdrop_ != nullptr ? &frame_backdrop_ : nullptr);
+    if (!units_.scaled()) return inner_->shade(surfaces, shade, recorder, picture);
     inner_->shade(units_.options(surfaces), units_.options(shade), recorder, picture);
   }
-  // Converted when shaded, as the frame's units are known only once its spans are made.
-  void use_backdrop(const Backdrop* backdrop) override { backdrop_ = backdrop; }
+  // Given after the frame's spans, whose units it takes.
+  void use_backdrop(const Backdrop* backdrop, Recorder& recorder) override {
+    if (!units_.scaled() || backdrop == nullptr) return inner_->use_backdrop(backdrop, recorder);
+    units_.to_frame(*backdrop, frame_backdrop_);
+    // Its own versions: the same world backdrop in other units is another picture.
+    frame_backdrop_.version = kOwnVersions | ++conversions_;
+    inner_->use_backdrop(&frame_backdrop_, recorder);
+  }
   void first_hit(Recorder& recorder, FloatImage& out) override {
     inner_->first_hit(recorder, out);
     if (!units_.scaled()) return;
@@ -159,7 +156,6 @@ class FrameUnitsRenderer final : public SurfaceRenderer {
   Camera camera_;                        // the frame's, in world units
   std::vector<ParticleSphere> spheres_;  // the frame's spheres in frame units, when scaled
   SpanImage world_spans_, frame_spans_;  // span images converted out and in
-  const Backdrop* backdrop_ = nullptr;   // the caller's, in world units
   Backdrop frame_backdrop_;
   std::uint64_t conversions_ = 0;
 };
