@@ -509,6 +509,7 @@ struct InsituPipeline::Impl {
     scenery_spheres.clear();
     for (const std::vector<std::byte>& part : parts) {
       const std::size_t n = part.size() / sizeof(ParticleSphere);
+      if (n == 0) continue;  // a rank with none (memcpy must not see its null data)
       const std::size_t at = scenery_spheres.size();
       scenery_spheres.resize(at + n);
       std::memcpy(scenery_spheres.data() + at, part.data(), n * sizeof(ParticleSphere));
