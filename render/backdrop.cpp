@@ -1,43 +1,58 @@
 #include "render/backdrop.h"
 
 #include <algorithm>
+#include <span>
 
 #include "voxspan/error.h"
 
 namespace voxspan {
 
-std::int64_t clip_at_walls(const SpanImage& spans, const Backdrop& backdrop, SpanImage& out) {
-  const int width = spans.width(), height = spans.height();
-  if (backdrop.width != width || backdrop.height != height)
+namespace {
+
+void check_size(const SpanImage& spans, const Backdrop& backdrop) {
+  if (backdrop.width != spans.width() || backdrop.height != spans.height())
     throw make_error("the backdrop is ", backdrop.width, "x", backdrop.height, ", the span image ",
-                     width, "x", height);
-  out.grid = spans.grid;
-  out.pixels.resize(spans.pixels.size());
-  out.spans.clear();
+                     spans.width(), "x", spans.height());
+}
+
+bool cut_by_walls(const PixelSpans& p, std::span<const Span> spans, float wall) {
+  return p.count > 0 && spans[p.offset + p.count - 1].exit > wall;
+}
+
+}  // namespace
+
+std::int64_t clip_at_walls(SpanImage& spans, const Backdrop& backdrop) {
+  check_size(spans, backdrop);
+  const int width = spans.width(), height = spans.height();
   std::int64_t cut = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
-      const PixelSpans& in = spans.pixel(x, y);
-      PixelSpans& p = out.pixels[std::size_t(x) + std::size_t(y) * std::size_t(width)];
-      p = in;
-      p.offset = static_cast<std::uint32_t>(out.spans.size());
+      PixelSpans& p = spans.pixels[std::size_t(x) + std::size_t(y) * std::size_t(width)];
       const float wall = backdrop.wall_depth(x, y);
-      const std::span<const Span> list = spans.spans_at(x, y);
-      if (list.empty() || list.back().exit <= wall) {
-        out.spans.insert(out.spans.end(), list.begin(), list.end());
-        continue;
-      }
+      if (!cut_by_walls(p, spans.spans, wall)) continue;
       ++cut;
       double length = 0;
-      for (const Span& s : list) {
+      std::uint32_t kept = 0;
+      for (; kept < p.count; ++kept) {
+        Span& s = spans.spans[p.offset + kept];
         if (s.entry >= wall) break;
-        out.spans.push_back({s.entry, std::min(s.exit, wall)});
-        length += out.spans.back().exit - s.entry;
+        s.exit = std::min(s.exit, wall);
+        length += s.exit - s.entry;
       }
-      p.count = p.total = static_cast<std::uint32_t>(out.spans.size() - p.offset);
+      p.count = p.total = kept;
       p.inside = static_cast<float>(length * spans.grid.view().ray_scale(x, y));
     }
   return cut;
+}
+
+bool reaches_past_walls(const SpanImage& spans, const Backdrop& backdrop) {
+  check_size(spans, backdrop);
+  const int width = spans.width();
+  for (std::size_t i = 0; i < spans.pixels.size(); ++i)
+    if (cut_by_walls(spans.pixels[i], spans.spans,
+                     backdrop.wall_depth(int(i % std::size_t(width)), int(i / std::size_t(width)))))
+      return true;
+  return false;
 }
 
 }  // namespace voxspan

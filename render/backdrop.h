@@ -31,10 +31,15 @@ struct Backdrop {
   }
 };
 
-// `spans` with every span cut where its pixel's walls begin (those past it dropped, the one
-// across it ended there) into `out` (its buffers reused). A pixel that loses nothing keeps its
-// record, a capped one included; a cut pixel's `inside` is its kept spans' length. Returns the
-// pixels cut. The backdrop must be the image's size.
-std::int64_t clip_at_walls(const SpanImage& spans, const Backdrop& backdrop, SpanImage& out);
+// Cuts every span of `spans` where its pixel's walls begin, in place (those past them dropped,
+// the one across them ended there: the rule of render/gl/passes/cut_at_walls.comp). A cut pixel
+// keeps its offset, its count and total become the spans kept, its `inside` their length; a pixel
+// that loses nothing keeps its record, a capped one included. Returns the pixels cut. The
+// backdrop must be the image's size.
+std::int64_t clip_at_walls(SpanImage& spans, const Backdrop& backdrop);
+
+// Whether clip_at_walls would cut any pixel of `spans`: a read-only scan, so that an image held
+// by someone else is copied only when a wall cuts it.
+bool reaches_past_walls(const SpanImage& spans, const Backdrop& backdrop);
 
 }  // namespace voxspan

@@ -39,9 +39,9 @@ Tallies tally(const SpanImage& spans) {
 
 }  // namespace
 
-const SpanImage& CpuRenderer::cast(const Camera& camera, std::span<const ParticleSphere> particles,
-                                   const CellStatesView& cells, const SpanOptions& options,
-                                   Recorder& recorder) {
+SpanImage& CpuRenderer::cast(const Camera& camera, std::span<const ParticleSphere> particles,
+                             const CellStatesView& cells, const SpanOptions& options,
+                             Recorder& recorder) {
   validate(options);
   const PerspectiveGrid grid = fit_frame(camera, particles, options, recorder);
   auto t = recorder.host(pass::cast);

@@ -35,10 +35,9 @@ namespace voxspan {
 class CpuRenderer {
  public:
   // The span image of a frame: the grid fitted as the GL renderer fits it (fit_frame), the
-  // spans exact. Valid until the next cast().
-  const SpanImage& cast(const Camera& camera, std::span<const ParticleSphere> particles,
-                        const CellStatesView& cells, const SpanOptions& options,
-                        Recorder& recorder);
+  // spans exact. Valid until the next cast(); the caller may cut it in place (clip_at_walls).
+  SpanImage& cast(const Camera& camera, std::span<const ParticleSphere> particles,
+                  const CellStatesView& cells, const SpanOptions& options, Recorder& recorder);
 
   // The backdrop behind the fluid for the frames that follow (render/backdrop.h; null: the
   // environment), the image's size, kept by the caller while it is in use.

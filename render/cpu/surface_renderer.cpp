@@ -13,12 +13,15 @@ class CpuSurfaceRenderer final : public SurfaceRenderer {
                   const CellStatesView& cells, const SpanOptions& options,
                   Recorder& recorder) override {
     spans_ = nullptr;
-    spans_ = &renderer_.cast(camera, particles, cells, options, recorder);
+    spans_ = own_ = &renderer_.cast(camera, particles, cells, options, recorder);
   }
 
   // No copy and no upload: the images are in host memory.
   const SpanImage& host_spans(StatName, Recorder&) override { return spans(); }
-  void use_spans(const SpanImage& spans, StatName, Recorder&) override { spans_ = &spans; }
+  void use_spans(const SpanImage& spans, StatName, Recorder&) override {
+    spans_ = &spans;
+    own_ = nullptr;
+  }
 
   void shade(const SurfaceOptions& surfaces, const ShadeOptions& shade, Recorder& recorder,
              FloatImage& picture) override {
@@ -29,7 +32,12 @@ class CpuSurfaceRenderer final : public SurfaceRenderer {
     renderer_.use_backdrop(backdrop);
     if (backdrop == nullptr) return;
     auto t = recorder.host(pass::scenery_cut);
-    if (clip_at_walls(spans(), *backdrop, cut_) > 0) spans_ = &cut_;
+    if (own_ == nullptr) {  // the caller's image: copied only when a wall cuts it
+      if (!reaches_past_walls(spans(), *backdrop)) return;
+      cut_ = spans();
+      spans_ = own_ = &cut_;
+    }
+    clip_at_walls(*own_, *backdrop);
   }
 
   void first_hit(Recorder& recorder, FloatImage& out) override {
@@ -45,7 +53,8 @@ class CpuSurfaceRenderer final : public SurfaceRenderer {
 
   CpuRenderer renderer_;
   const SpanImage* spans_ = nullptr;  // the frame's: the renderer's cast or the caller's, or cut_
-  SpanImage cut_;                     // the frame's cut at a backdrop's walls
+  SpanImage* own_ = nullptr;          // spans_ when it may be cut in place
+  SpanImage cut_;                     // the caller's image, copied to be cut at the walls
 };
 
 }  // namespace

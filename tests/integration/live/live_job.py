@@ -17,6 +17,23 @@ import urllib.parse
 SKIP = 77  # ctest's SKIP_RETURN_CODE for these tests
 
 
+class Checks:
+    """A test script's checks: each printed as it is made, the failed ones kept for the end."""
+
+    def __init__(self):
+        self.failures = []
+
+    def __call__(self, what, ok, detail=""):
+        print(("ok   " if ok else "FAIL ") + what + (f": {detail}" if detail else ""), flush=True)
+        if not ok:
+            self.failures.append(what)
+
+    def verdict(self):
+        """Prints the tally; the script's exit status."""
+        print(f"{len(self.failures)} failed" if self.failures else "all passed")
+        return 1 if self.failures else 0
+
+
 def config_text(folder, live, every=5, width=320, height=180):
     lines = [
         f"output_folder: {folder}",

@@ -21,15 +21,9 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from live_job import SKIP, LiveJob  # noqa: E402
+from live_job import SKIP, Checks, LiveJob  # noqa: E402
 
-failures = []
-
-
-def check(what, ok, detail=""):
-    print(("ok   " if ok else "FAIL ") + what + (f": {detail}" if detail else ""), flush=True)
-    if not ok:
-        failures.append(what)
+check = Checks()
 
 
 def chromium():
@@ -220,8 +214,7 @@ def main():
           f"step {step}, last {final['step']}")
     job.finish()
     print("screenshot:", screenshot)
-    print(f"{len(failures)} failed" if failures else "all passed")
-    return 1 if failures else 0
+    return check.verdict()
 
 
 if __name__ == "__main__":

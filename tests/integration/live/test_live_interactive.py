@@ -19,17 +19,11 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from live_job import LiveJob  # noqa: E402
+from live_job import Checks, LiveJob  # noqa: E402
 
 STEPS, PARTICLES, EVERY = 1500, 4000, 5
 FORM = "application/x-www-form-urlencoded"
-failures = []
-
-
-def check(what, ok, detail=""):
-    print(("ok   " if ok else "FAIL ") + what + (f": {detail}" if detail else ""), flush=True)
-    if not ok:
-        failures.append(what)
+check = Checks()
 
 
 def post(job, body, token=None, path="/camera", content_type=FORM, method="POST"):
@@ -154,8 +148,7 @@ def main():
     mine, theirs = solver_steps(job), solver_steps(reference)
     check("the solver's steps: the reference's, every one", mine == theirs and len(mine) > 10,
           f"{len(mine)} steps, {len(theirs)} in the reference")
-    print(f"{len(failures)} failed" if failures else "all passed")
-    return 1 if failures else 0
+    return check.verdict()
 
 
 if __name__ == "__main__":

@@ -21,7 +21,7 @@ import threading
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from live_job import LiveJob  # noqa: E402
+from live_job import Checks, LiveJob  # noqa: E402
 
 # The goal is 5 %, but two identical jobs without the page, side by side on the shared 2-core
 # machine where this was written, differed by +9.7 and +15.0 % (the one started second slower);
@@ -31,13 +31,7 @@ GOAL = 0.05
 TOLERANCE = float(os.environ.get("VOXSPAN_LIVE_TOLERANCE", "0.25"))
 STEPS, PARTICLES, EVERY = 5000, 4000, 5
 FORM = "application/x-www-form-urlencoded"
-failures = []
-
-
-def check(what, ok, detail=""):
-    print(("ok   " if ok else "FAIL ") + what + (f": {detail}" if detail else ""), flush=True)
-    if not ok:
-        failures.append(what)
+check = Checks()
 
 
 def raw(job, data, timeout=15):
@@ -261,8 +255,7 @@ def main():
           f"({goal} the {GOAL:.0%} goal)", abs(change) <= TOLERANCE,
           f"20th percentile {live_ms:.3f} ms over {live_steps} steps, without {ref_ms:.3f} ms over "
           f"{ref_steps}: {change:+.1%}")
-    print(f"{len(failures)} failed" if failures else "all passed")
-    return 1 if failures else 0
+    return check.verdict()
 
 
 if __name__ == "__main__":
