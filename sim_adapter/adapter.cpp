@@ -161,6 +161,8 @@ std::size_t Adapter::set_scenery(const ParticleView& scenery) {
   return m.scenery.size();
 }
 
+std::span<const ParticleSphere> Adapter::scenery() const { return impl_->scenery; }
+
 bool Adapter::is_render_step(std::int64_t step, double time) const noexcept {
   const std::int64_t every = impl_->options.render_every;
   if (every <= 0 || step % every != 0) return false;

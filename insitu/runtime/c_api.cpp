@@ -139,6 +139,15 @@ voxspan_particles::Attribute& attribute_slot(voxspan_particles* p, const char* n
   return p->attributes.back();
 }
 
+// The walls `from` was given, given to `to` (an adapter made again with other options).
+void carry_scenery(const voxspan::Adapter& from, voxspan::Adapter& to) {
+  const std::span<const voxspan::ParticleSphere> walls = from.scenery();
+  if (walls.empty()) return;
+  constexpr std::size_t stride = sizeof(voxspan::ParticleSphere);
+  to.set_scenery(voxspan::ParticleView::aos(&walls[0].x, walls.size(), stride)
+                     .with_radii(&walls[0].radius, stride));
+}
+
 int execute_step(const char* function, voxspan_adapter* a, int64_t step, double time,
                  const voxspan_particles* particles, const voxspan_grid* grid, bool last) {
   return guarded(function, [&] {
@@ -242,8 +251,20 @@ int voxspan_adapter_add_attribute(voxspan_adapter* a, const char* name) {
     options.classify.attributes.push_back(name);
     auto replacement = std::make_unique<voxspan::Adapter>(options);  // checks the name
     replacement->set_pipeline(a->adapter->pipeline());               // the runtime stays
+    carry_scenery(*a->adapter, *replacement);
     a->options = std::move(options);
     a->adapter = std::move(replacement);
+    return VOXSPAN_OK;
+  });
+}
+
+int voxspan_adapter_set_scenery(voxspan_adapter* a, const voxspan_particles* scenery,
+                                size_t* kept) {
+  return guarded("voxspan_adapter_set_scenery", [&] {
+    require(a, "adapter");
+    require(scenery, "scenery");
+    const std::size_t n = a->adapter->set_scenery(scenery->build());
+    if (kept) *kept = n;
     return VOXSPAN_OK;
   });
 }
@@ -299,6 +320,13 @@ size_t voxspan_adapter_boundary(const voxspan_adapter* a, const float** xyzr) {
   const auto& b = a->adapter->last_classification().boundary;
   *xyzr = b.empty() ? nullptr : &b[0].x;
   return b.size();
+}
+
+size_t voxspan_adapter_scenery(const voxspan_adapter* a, const float** xyzr) {
+  if (!a || !xyzr) return 0;
+  const std::span<const voxspan::ParticleSphere> walls = a->adapter->scenery();
+  *xyzr = walls.empty() ? nullptr : &walls[0].x;
+  return walls.size();
 }
 
 size_t voxspan_adapter_cell_states(const voxspan_adapter* a, double origin[3], double* cell_size,

@@ -108,6 +108,13 @@ module voxspan
       integer(c_int) :: rc
     end function
 
+    ! The solver's walls and obstacles (copied); kept may be c_null_ptr.
+    function voxspan_adapter_set_scenery(adapter, scenery, kept) bind(C) result(rc)
+      import :: c_ptr, c_int
+      type(c_ptr), value :: adapter, scenery, kept
+      integer(c_int) :: rc
+    end function
+
     function voxspan_adapter_stats(adapter, stats) bind(C) result(rc)
       import :: c_ptr, c_int, voxspan_step_stats
       type(c_ptr), value :: adapter

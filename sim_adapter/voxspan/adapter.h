@@ -140,6 +140,8 @@ class Adapter {
   // a NaN or infinite position or radius are left out and counted; returns the count kept.
   // Throws voxspan::Error when no radius can be found. Under MPI each rank gives its own part.
   std::size_t set_scenery(const ParticleView& scenery);
+  // The scenery kept from the last set_scenery (empty when none was given).
+  std::span<const ParticleSphere> scenery() const;
 
   // The per-step call. Returns ok on a step that is not a render step. Never throws; errors
   // are logged (voxspan/log.h) and returned.

@@ -106,6 +106,11 @@ size_t voxspan_adapter_summary(const voxspan_adapter* adapter, char* buffer, siz
 void voxspan_adapter_destroy(voxspan_adapter* adapter);
 /* Compacts the named particle attribute beside the boundary particles. */
 int voxspan_adapter_add_attribute(voxspan_adapter* adapter, const char* name);
+/* The solver's walls and obstacles, copied (Adapter::set_scenery): the views draw them as opaque
+ * solids. Given once for walls that stand still, again whenever they move. Sets *kept (may be
+ * NULL) to the particles kept (those with a NaN or infinite position or radius are left out). */
+int voxspan_adapter_set_scenery(voxspan_adapter* adapter, const voxspan_particles* scenery,
+                                size_t* kept);
 /* The per-step call; grid may be NULL (the adapter sorts the particles itself). */
 int voxspan_adapter_execute(voxspan_adapter* adapter, int64_t step, double time,
                             const voxspan_particles* particles, const voxspan_grid* grid);
@@ -117,6 +122,9 @@ int voxspan_adapter_stats(const voxspan_adapter* adapter, voxspan_step_stats* st
 /* The latest render step's boundary particles: packed x, y, z, radius floats; returns the
  * count and sets *xyzr (valid until the next execute). */
 size_t voxspan_adapter_boundary(const voxspan_adapter* adapter, const float** xyzr);
+/* The scenery kept from the last voxspan_adapter_set_scenery: packed x, y, z, radius floats;
+ * returns the count and sets *xyzr (valid until the next set_scenery). */
+size_t voxspan_adapter_scenery(const voxspan_adapter* adapter, const float** xyzr);
 /* The latest render step's cell states (voxspan/cell_states.h bytes, x fastest). Returns the
  * number of cells. */
 size_t voxspan_adapter_cell_states(const voxspan_adapter* adapter, double origin[3],

@@ -1,5 +1,5 @@
 ! A Fortran solver's use of the C API through the voxspan module: a 4 x 4 x 4 lattice in
-! double SoA arrays with a 1-based per-particle cell index, then a bad grid.
+! double SoA arrays with a 1-based per-particle cell index, then a bad grid, then walls.
 program fortran_client
   use voxspan
   implicit none
@@ -8,7 +8,8 @@ program fortran_client
   integer(c_int32_t), target :: cell(n)
   type(voxspan_adapter_options) :: opt
   type(voxspan_step_stats) :: stats
-  type(c_ptr) :: adapter, particles, grid
+  type(c_ptr) :: adapter, particles, grid, walls
+  integer(c_size_t), target :: kept = 0
   real(c_double) :: origin(3) = 0
   integer(c_int) :: dims(3) = 2, rc
   integer :: i, j, k, p
@@ -55,6 +56,13 @@ program fortran_client
     print *, voxspan_error_message()
     error stop "message does not name the particle"
   end if
+
+  ! Walls (the lattice's first row) given as scenery: copied, every one kept.
+  walls = voxspan_particles_create()
+  rc = voxspan_particles_set_soa(walls, VOXSPAN_FLOAT64, c_loc(x), c_loc(y), c_loc(z), 4_c_size_t)
+  rc = voxspan_adapter_set_scenery(adapter, walls, c_loc(kept))
+  if (rc /= VOXSPAN_OK .or. kept /= 4) error stop "scenery not kept"
+  call voxspan_particles_destroy(walls)
 
   call voxspan_grid_destroy(grid)
   call voxspan_particles_destroy(particles)

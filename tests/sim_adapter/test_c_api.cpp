@@ -1,6 +1,7 @@
 // The C API from C (c_api_client.c) and from C++ (layouts, NULL handles, errors).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,15 @@
 #include "voxspan/voxspan.h"
 
 namespace {
+
+// An adapter with defaults but the particle spacing, logging nothing (NULL on error).
+voxspan_adapter* quiet_adapter(double spacing) {
+  voxspan_set_log_level(0);
+  voxspan_adapter_options o;
+  voxspan_adapter_options_init(&o);
+  o.particle_spacing = spacing;
+  return voxspan_adapter_create(&o);
+}
 
 TEST(CApi, CClientClassifiesALattice) {
   c_api_client_result r{};
@@ -21,12 +31,32 @@ TEST(CApi, CClientClassifiesALattice) {
   EXPECT_NE(std::string(r.bad_index_message).find("index type 17"), std::string::npos);
 }
 
+TEST(CApi, SceneryIsCopiedKeptWithoutNaNsAndOutlivesAddAttribute) {
+  voxspan_adapter* a = quiet_adapter(0.5);
+  ASSERT_NE(a, nullptr);
+  std::vector<float> xyz = {0, 0, 0, 1, 0, 0, NAN, 0, 0, 2, 0, 0};
+  voxspan_particles* walls = voxspan_particles_create();
+  ASSERT_EQ(voxspan_particles_set_aos(walls, VOXSPAN_FLOAT32, xyz.data(), 4, 0), VOXSPAN_OK);
+  ASSERT_EQ(voxspan_particles_set_radius(walls, 0.25), VOXSPAN_OK);
+  size_t kept = 0;
+  ASSERT_EQ(voxspan_adapter_set_scenery(a, walls, &kept), VOXSPAN_OK) << voxspan_last_error();
+  EXPECT_EQ(kept, 3u);
+  xyz.assign(xyz.size(), 9.0f);  // copied: the solver's arrays may change
+  ASSERT_EQ(voxspan_adapter_add_attribute(a, "velocity"), VOXSPAN_OK);
+  const float* xyzr = nullptr;
+  ASSERT_EQ(voxspan_adapter_scenery(a, &xyzr), 3u);
+  EXPECT_EQ(std::vector<float>(xyzr, xyzr + 12),
+            (std::vector<float>{0, 0, 0, 0.25f, 1, 0, 0, 0.25f, 2, 0, 0, 0.25f}));
+  EXPECT_EQ(voxspan_adapter_set_scenery(a, nullptr, nullptr), VOXSPAN_INVALID_INPUT);
+  EXPECT_NE(std::string(voxspan_last_error()).find("scenery"), std::string::npos)
+      << voxspan_last_error();
+  EXPECT_EQ(voxspan_adapter_set_scenery(nullptr, walls, nullptr), VOXSPAN_INVALID_INPUT);
+  voxspan_particles_destroy(walls);
+  voxspan_adapter_destroy(a);
+}
+
 TEST(CApi, SoaDoubleOneBasedCellIndexAndAttributes) {
-  voxspan_set_log_level(0);
-  voxspan_adapter_options o;
-  voxspan_adapter_options_init(&o);
-  o.particle_spacing = 1.0;
-  voxspan_adapter* a = voxspan_adapter_create(&o);
+  voxspan_adapter* a = quiet_adapter(1.0);
   ASSERT_NE(a, nullptr);
   ASSERT_EQ(voxspan_adapter_add_attribute(a, "velocity"), VOXSPAN_OK);
   std::vector<double> x, y, z, v;
