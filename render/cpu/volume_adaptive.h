@@ -42,6 +42,7 @@
 // are never relaxed (sec. 5.2: their error is the lateral spread). r = 0: the guarantee.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -131,6 +132,13 @@ class TilePlanner {
           }
       plan_bundle(b, o, tf, behind, counts);
     }
+  }
+
+  // Whether every cell of the bundle is at full rate (the march then reads no plan for it).
+  bool full_rate(int bundle) const {
+    const auto first = plans_.begin() + std::ptrdiff_t(bundle) * std::ptrdiff_t(cells_);
+    return std::all_of(first, first + std::ptrdiff_t(cells_),
+                       [](const CellPlan& c) { return c.level == 0; });
   }
 
   int bundle_of(int p) const {  // p: the pixel's index in the tile, row-major

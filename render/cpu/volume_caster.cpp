@@ -30,6 +30,9 @@ constexpr int kTilePixels = kTile * kTile;
 // the eye at a fine lattice) is refused with the reason.
 constexpr std::int64_t kMaxSupportSamples = std::int64_t(1) << 16;
 
+// TileScratch::bundle's mark of a pixel whose bundle is at full rate in every cell.
+constexpr std::uint8_t kFullRate = 0xff;
+
 // A particle's support in view space, as the march reads it.
 struct Support {
   glm::dvec3 c;            // centre
@@ -291,7 +294,8 @@ template <SphKernel K, bool kPart> class TileMarch {
     for (int p = 0; p < pixels_; ++p) {
       // Up to its last sample, or past its bundle's last super-pixel.
       std::int64_t end = w_.rays[std::size_t(p)].last + 1;
-      if (plan_ != nullptr) end = std::max(end, plan_->super_pixels_end(w_.bundle[std::size_t(p)]));
+      if (plan_ != nullptr && w_.bundle[std::size_t(p)] != kFullRate)
+        end = std::max(end, plan_->super_pixels_end(w_.bundle[std::size_t(p)]));
       flush(p, end);
       if constexpr (kPart) close(p);
     }
@@ -313,10 +317,17 @@ template <SphKernel K, bool kPart> class TileMarch {
       return glm::dvec3(host_.pixel_color(host_.vx_ray_start(), model::vec3(0.0f), true, f_, x, y));
     };
     planner.plan(o_, *tf_, behind, t_);
-    plan_ = &planner;
+    // A pixel's bundle, or kFullRate where all its cells are at full rate: the march as without
+    // a plan there, and without one at all where that holds for the whole tile.
     w_.bundle.resize(std::size_t(pixels_));
-    for (int p = 0; p < pixels_; ++p)
-      w_.bundle[std::size_t(p)] = std::uint8_t(planner.bundle_of(p));
+    bool any = false;
+    for (int p = 0; p < pixels_; ++p) {
+      const int b = planner.bundle_of(p);
+      const bool full = planner.full_rate(b);
+      w_.bundle[std::size_t(p)] = full ? kFullRate : std::uint8_t(b);
+      any = any || !full;
+    }
+    if (any) plan_ = &planner;
   }
 
   void start(const PixelRect& tile, std::span<const std::uint32_t> list,
@@ -454,7 +465,7 @@ template <SphKernel K, bool kPart> class TileMarch {
         const int p = row + (x0 - tile_.x0) + k;
         const int b = w_.bundle[std::size_t(p)];
         const double zc = w_.zc[k], m2 = w_.m2[k];
-        if (w_.sparse[std::size_t(b)] < 0) {
+        if (b == kFullRate || w_.sparse[std::size_t(b)] < 0) {
           const double half = std::sqrt(w_.h2[k]);
           const double d0 = std::max(zc - half, s_.near), d1 = zc + half;
           if (!(d1 < d0)) add_chord(p, s, zc, m2, d0, d1);
@@ -524,7 +535,7 @@ template <SphKernel K, bool kPart> class TileMarch {
   // its pending sums; how many.
   std::int64_t accumulate(int p, const Support& s, double a, double zc, double m2, std::int64_t i0,
                           std::int64_t i1) {
-    if (plan_ == nullptr) {
+    if (plan_ == nullptr || w_.bundle[std::size_t(p)] == kFullRate) {
       add_run(p, s, a, zc, m2, i0, i1);
       return i1 - i0 + 1;
     }
@@ -566,12 +577,13 @@ template <SphKernel K, bool kPart> class TileMarch {
   void flush(int p, std::int64_t upto) {
     RayState& r = w_.rays[std::size_t(p)];
     if (r.done) return;
-    const int bundle = plan_ != nullptr ? w_.bundle[std::size_t(p)] : 0;
+    const int bundle = plan_ != nullptr ? w_.bundle[std::size_t(p)] : kFullRate;
+    const TilePlanner* plan = bundle == kFullRate ? nullptr : plan_;
     // The next sample of a super-pixel cell (adaptive sampling): every ray of its bundle takes
     // it, whether or not a support was added to the ray there.
     const auto next_super_pixel = [&](std::int64_t i) {
-      return plan_ != nullptr ? plan_->next_super_pixel(bundle, i)
-                              : std::numeric_limits<std::int64_t>::max();
+      return plan != nullptr ? plan->next_super_pixel(bundle, i)
+                             : std::numeric_limits<std::int64_t>::max();
     };
     if (r.front == std::numeric_limits<std::int64_t>::min())  // its first support
       r.front = std::min(upto, next_super_pixel(r.front));
@@ -606,8 +618,8 @@ template <SphKernel K, bool kPart> class TileMarch {
         open(p, r.front);
       }
       std::int64_t span = 1;
-      if (plan_ != nullptr) {
-        const CellPlan& cell = plan_->cell(bundle, r.front);
+      if (plan != nullptr) {
+        const CellPlan& cell = plan->cell(bundle, r.front);
         if (cell.level == kSuperPixel) {
           super_pixel(r, cell);
           if (r.done) return;
