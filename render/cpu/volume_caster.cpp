@@ -32,6 +32,7 @@ constexpr std::int64_t kMaxSupportSamples = std::int64_t(1) << 16;
 
 // TileScratch::bundle's mark of a pixel whose bundle is at full rate in every cell.
 constexpr std::uint8_t kFullRate = 0xff;
+static_assert((kTile / kBundle) * (kTile / kBundle) < kFullRate, "a tile's bundles in a byte");
 
 // A particle's support in view space, as the march reads it.
 struct Support {
