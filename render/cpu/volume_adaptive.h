@@ -6,9 +6,9 @@
 // Reads a tile's supports (their values, weights, spheres, first and last samples); writes a
 // CellPlan per cell. A cell is a ray bundle of kBundle^2 pixels by kCellSamples lattice samples,
 // numbered i >> kCellShift from the lattice index i: cells stay put from frame to frame as the
-// samples do. Cost: per support and bundle one lower bound of the weight per sample (4 corner
-// distances and a kernel), per cell 31 transfer-function range look-ups; no allocation once the
-// sizes are stable.
+// samples do. Cost: per support and proof block one lower bound of the weight per sample (4
+// corner distances and a kernel, vectorised), per cell 31 transfer-function range look-ups; no
+// allocation once the sizes are stable.
 //
 // The bounds ([HOK16] sec. 4.1-4.2). At sample k of a bundle, the Shepard value S / w is a convex
 // combination of the values q_j of the particles reaching it, so it lies in [min q_j, max q_j]
@@ -29,7 +29,9 @@
 // bundle back to front and gives each cell the cheapest choice (super-pixel, then one sample in
 // 16, 8, 4, 2) whose term keeps the sum within the tolerance, less a reserve for the float
 // compositing's rounding and, where a ray may stop early, 2 termination x the brightest light
-// (the full-rate and the adaptive ray may stop at different samples).
+// (the full-rate and the adaptive ray may stop at different samples). With relax 0 a coarse
+// level never fits where the super-pixel does not: its bounds hold the full-rate ones, whose half
+// width is the super-pixel's term; so relax 0 chooses between full rate and super-pixels only.
 //
 // Surface rule ([HOK16] sec. 4.2): a cell where some sample is reached by a support but not
 // proven to hold a weight of at least weight_floor at every pixel (a lower bound from each
@@ -40,8 +42,10 @@
 // are never relaxed (sec. 5.2: their error is the lateral spread). r = 0: the guarantee.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -130,12 +134,37 @@ class TilePlanner {
     }
   }
 
+  // Whether every cell of the bundle is at full rate (the march then reads no plan for it).
+  bool full_rate(int bundle) const {
+    const auto first = plans_.begin() + std::ptrdiff_t(bundle) * std::ptrdiff_t(cells_);
+    return std::all_of(first, first + std::ptrdiff_t(cells_),
+                       [](const CellPlan& c) { return c.level == 0; });
+  }
+
   int bundle_of(int p) const {  // p: the pixel's index in the tile, row-major
     const int x = p % width_, y = p / width_;
     return x / kBundle + (y / kBundle) * bundles_x_;
   }
   const CellPlan& cell(int bundle, std::int64_t i) const {  // i: a lattice sample index
     return plans_[std::size_t(bundle) * std::size_t(cells_) + std::size_t((i >> kCellShift) - c0_)];
+  }
+  // The first sample at or after i in one of the bundle's super-pixel cells (none: INT64_MAX).
+  // Such a cell is defined at every pixel, so each ray takes it even where the march added to
+  // none of its samples (the supports reaching only super-pixels are not marched).
+  std::int64_t next_super_pixel(int bundle, std::int64_t i) const {
+    for (std::int64_t c = std::max(i >> kCellShift, c0_); c < c0_ + cells_; ++c)
+      if (plans_[std::size_t(bundle) * std::size_t(cells_) + std::size_t(c - c0_)].level ==
+          kSuperPixel)
+        return std::max(i, c << kCellShift);
+    return std::numeric_limits<std::int64_t>::max();
+  }
+  // One past the last sample of the bundle's last super-pixel cell (none: INT64_MIN).
+  std::int64_t super_pixels_end(int bundle) const {
+    for (std::int64_t c = c0_ + cells_; c-- > c0_;)
+      if (plans_[std::size_t(bundle) * std::size_t(cells_) + std::size_t(c - c0_)].level ==
+          kSuperPixel)
+        return (c + 1) << kCellShift;
+    return std::numeric_limits<std::int64_t>::min();
   }
 
  private:
@@ -174,6 +203,24 @@ class TilePlanner {
   std::vector<double> front_;       // per cell: the transmittance in front, at most
 };
 
+// A support's lower bound of its weight at n samples of depths z over a proof block whose corner
+// rays have |d|^2 = a[j], depth nearest the centre zc[j] and squared distance there m2[j], added
+// to w: the sample's points of the block lie in a rectangle of the plane z = depth, the farthest
+// from the centre is a corner, and the kernel falls with distance. No branch: it vectorizes.
+template <SphKernel K>
+__attribute__((target_clones("avx2", "default"))) void add_weight_floor(
+    const double* __restrict z, std::size_t n, const double (&zc)[4], const double (&a)[4],
+    const double (&m2)[4], double v, double inv_h, double* __restrict w) {
+  for (std::size_t k = 0; k < n; ++k) {
+    double far2 = 0;
+    for (std::size_t j = 0; j < 4; ++j) {
+      const double t = z[k] - zc[j];
+      far2 = std::max(far2, a[j] * t * t + m2[j]);
+    }
+    w[k] += v * kernel_shape<K>(std::sqrt(far2) * inv_h);
+  }
+}
+
 template <SphKernel K>
 void TilePlanner::add(const glm::dvec3& c, double inv_h, double v, double q, std::int64_t first,
                       std::int64_t last, const PixelRect& rect) {
@@ -202,19 +249,9 @@ void TilePlanner::add(const glm::dvec3& c, double inv_h, double v, double q, std
         const glm::dvec3 m = zc[k] * d - c;
         m2[k] = glm::dot(m, m);
       }
-      double* w = &w_lo_[block * n];
-      for (std::int64_t i = first; i <= last; ++i) {
-        const std::size_t k = std::size_t(i - (c0_ << kCellShift));
-        if (w[k] >= floor_) continue;  // proven already
-        // The sample's points of the block lie in a rectangle of the plane z = depth: the
-        // farthest from c is a corner, and the kernel falls with distance.
-        double far2 = 0;
-        for (std::size_t j = 0; j < 4; ++j) {
-          const double t = depth_[k] - zc[j];
-          far2 = std::max(far2, a[j] * t * t + m2[j]);
-        }
-        w[k] += v * kernel_shape<K>(std::sqrt(far2) * inv_h);
-      }
+      const std::size_t k0 = std::size_t(first - (c0_ << kCellShift));
+      add_weight_floor<K>(&depth_[k0], std::size_t(last - first + 1), zc, a, m2, v, inv_h,
+                          &w_lo_[block * n + k0]);
     }
 }
 

@@ -30,6 +30,10 @@ constexpr int kTilePixels = kTile * kTile;
 // the eye at a fine lattice) is refused with the reason.
 constexpr std::int64_t kMaxSupportSamples = std::int64_t(1) << 16;
 
+// TileScratch::bundle's mark of a pixel whose bundle is at full rate in every cell.
+constexpr std::uint8_t kFullRate = 0xff;
+static_assert((kTile / kBundle) * (kTile / kBundle) < kFullRate, "a tile's bundles in a byte");
+
 // A particle's support in view space, as the march reads it.
 struct Support {
   glm::dvec3 c;            // centre
@@ -88,6 +92,11 @@ struct TilePart {
 struct TileScratch {
   std::vector<RayState> rays;
   std::vector<glm::dvec3> dirs;  // view_ray per pixel
+  // Adaptive sampling: per pixel its bundle; per bundle of one support, the samples its plans
+  // take (TileMarch::sparse_bundles).
+  std::vector<std::uint8_t> bundle;
+  std::array<std::int32_t, (kTile / kBundle) * (kTile / kBundle)> sparse{}, sparse_end{};
+  std::vector<std::int64_t> needed;
   std::vector<double> a, inv_a;  // |view_ray|^2 and its inverse per pixel
   // One row of one support (chord_row): per pixel the depth nearest the centre, the squared
   // distance of the ray from the centre there, and the chord's half length in depth squared.
@@ -284,7 +293,11 @@ template <SphKernel K, bool kPart> class TileMarch {
       if (done_ == pixels_) break;  // every ray opaque: the supports behind are not read
     }
     for (int p = 0; p < pixels_; ++p) {
-      flush(p, w_.rays[std::size_t(p)].last + 1);
+      // Up to its last sample, or past its bundle's last super-pixel.
+      std::int64_t end = w_.rays[std::size_t(p)].last + 1;
+      if (plan_ != nullptr && w_.bundle[std::size_t(p)] != kFullRate)
+        end = std::max(end, plan_->super_pixels_end(w_.bundle[std::size_t(p)]));
+      flush(p, end);
       if constexpr (kPart) close(p);
     }
     if (has_hits_) light(list, supports);
@@ -305,7 +318,17 @@ template <SphKernel K, bool kPart> class TileMarch {
       return glm::dvec3(host_.pixel_color(host_.vx_ray_start(), model::vec3(0.0f), true, f_, x, y));
     };
     planner.plan(o_, *tf_, behind, t_);
-    plan_ = &planner;
+    // A pixel's bundle, or kFullRate where all its cells are at full rate: the march as without
+    // a plan there, and without one at all where that holds for the whole tile.
+    w_.bundle.resize(std::size_t(pixels_));
+    bool any = false;
+    for (int p = 0; p < pixels_; ++p) {
+      const int b = planner.bundle_of(p);
+      const bool full = planner.full_rate(b);
+      w_.bundle[std::size_t(p)] = full ? kFullRate : std::uint8_t(b);
+      any = any || !full;
+    }
+    if (any) plan_ = &planner;
   }
 
   void start(const PixelRect& tile, std::span<const std::uint32_t> list,
@@ -366,16 +389,108 @@ template <SphKernel K, bool kPart> class TileMarch {
 
   // One support into every ray of the tile it crosses.
   void add(const Support& s) {
+    if (plan_ != nullptr) {
+      const Sparse sparse = sparse_bundles(s);
+      if (sparse == Sparse::nothing_taken) return;  // super-pixels only: no sample to add to
+      if (sparse == Sparse::some) {
+        add_sparse(s);
+        return;
+      }
+    }
     each_chord(s, [&](int p, const Support& sp, double zc, double m2, double d0, double d1) {
-      RayState& r = w_.rays[std::size_t(p)];
-      if (r.done) return;
-      flush(p, sp.first);
-      if (r.done) return;
-      const std::int64_t i0 = first_sample(sp, d0), i1 = last_sample(sp, d1);
-      if (i1 < i0) return;
-      t_.kernel_evaluations += accumulate(p, sp, w_.a[std::size_t(p)], zc, m2, i0, i1);
-      r.last = std::max(r.last, i1);
+      add_chord(p, sp, zc, m2, d0, d1);
     });
+  }
+
+  // The support's kernel along pixel p's chord [d0, d1], at the samples its cells' plans take.
+  void add_chord(int p, const Support& s, double zc, double m2, double d0, double d1) {
+    RayState& r = w_.rays[std::size_t(p)];
+    if (r.done) return;
+    flush(p, s.first);
+    if (r.done) return;
+    const std::int64_t i0 = first_sample(s, d0), i1 = last_sample(s, d1);
+    if (i1 < i0) return;
+    t_.kernel_evaluations += accumulate(p, s, w_.a[std::size_t(p)], zc, m2, i0, i1);
+    r.last = std::max(r.last, i1);
+  }
+
+  // Adaptive sampling: per bundle of the tile that support s reaches, the samples of its range
+  // that the bundle's plans take, where no cell of that range is at full rate (w_.sparse: their
+  // offsets in w_.needed, -1 for a bundle with a full-rate cell).
+  enum class Sparse { none, some, nothing_taken };
+  Sparse sparse_bundles(const Support& s) {
+    const int x0 = std::max(s.rect.x0, tile_.x0) - tile_.x0,
+              x1 = std::min(s.rect.x1, tile_.x1) - tile_.x0;
+    const int y0 = std::max(s.rect.y0, tile_.y0) - tile_.y0,
+              y1 = std::min(s.rect.y1, tile_.y1) - tile_.y0;
+    const int bundles_x = (width() + kBundle - 1) / kBundle;
+    w_.needed.clear();
+    bool any = false, all = true;
+    for (int by = y0 / kBundle; by <= y1 / kBundle; ++by)
+      for (int bx = x0 / kBundle; bx <= x1 / kBundle; ++bx) {
+        const int b = bx + by * bundles_x;
+        const std::size_t begin = w_.needed.size();
+        bool sparse = true;
+        for (std::int64_t c = s.first >> kCellShift; sparse && c <= s.last >> kCellShift; ++c) {
+          const std::uint8_t level = plan_->cell(b, c << kCellShift).level;
+          if (level == 0) sparse = false;
+          if (level == 0 || level == kSuperPixel) continue;
+          const std::int64_t step = std::int64_t(1) << level;
+          const std::int64_t end = std::min(s.last, (c << kCellShift) | (kCellSamples - 1));
+          for (std::int64_t j = (std::max(s.first, c << kCellShift) + step - 1) & ~(step - 1);
+               j <= end; j += step)
+            w_.needed.push_back(j);
+        }
+        if (!sparse) w_.needed.resize(begin);
+        w_.sparse[std::size_t(b)] = sparse ? std::int32_t(begin) : -1;
+        w_.sparse_end[std::size_t(b)] = std::int32_t(w_.needed.size());
+        any = any || sparse;
+        all = all && sparse;
+      }
+    if (all && w_.needed.empty()) return Sparse::nothing_taken;
+    return any ? Sparse::some : Sparse::none;
+  }
+
+  // Support s into the rays of the tile it crosses, where sparse_bundles() found its samples:
+  // the kernel at those samples only (zero outside the support, which adds nothing), without
+  // the chord's ends.
+  void add_sparse(const Support& s) {
+    const int x0 = std::max(s.rect.x0, tile_.x0), x1 = std::min(s.rect.x1, tile_.x1);
+    const int y0 = std::max(s.rect.y0, tile_.y0), y1 = std::min(s.rect.y1, tile_.y1);
+    const double r2 = s.radius * s.radius;
+    for (int y = y0; y <= y1; ++y) {
+      const int row = (y - tile_.y0) * width();
+      chord_row(s, row + (x0 - tile_.x0), x1 - x0 + 1);
+      for (int k = 0; k <= x1 - x0; ++k) {
+        if (!(w_.h2[k] > 0)) continue;  // the ray misses the support
+        const int p = row + (x0 - tile_.x0) + k;
+        const int b = w_.bundle[std::size_t(p)];
+        const double zc = w_.zc[k], m2 = w_.m2[k];
+        if (b == kFullRate || w_.sparse[std::size_t(b)] < 0) {
+          const double half = std::sqrt(w_.h2[k]);
+          const double d0 = std::max(zc - half, s_.near), d1 = zc + half;
+          if (!(d1 < d0)) add_chord(p, s, zc, m2, d0, d1);
+          continue;
+        }
+        RayState& r = w_.rays[std::size_t(p)];
+        if (r.done) continue;
+        flush(p, s.first);
+        if (r.done) continue;
+        const double a = w_.a[std::size_t(p)];
+        double* sum = &w_.sum[std::size_t(p) * std::size_t(window_)];
+        double* weight = &w_.weight[std::size_t(p) * std::size_t(window_)];
+        for (std::int32_t n = w_.sparse[std::size_t(b)]; n < w_.sparse_end[std::size_t(b)]; ++n) {
+          const std::int64_t j = w_.needed[std::size_t(n)];
+          const double t = s_.depth(j) - zc;
+          if (!(a * t * t + m2 < r2)) continue;
+          // As add_run's: the same sums as the full-rate march's at this sample.
+          add_kernel<K>(&s_.depths[std::size_t(j - s_.base)], 1, zc, a, m2, s, sum + (j & mask_),
+                        weight + (j & mask_));
+          r.last = std::max(r.last, j);
+          ++t_.kernel_evaluations;
+        }
+      }
+    }
   }
 
   // The support's chords along n pixels of a row from pixel p: the ray z d meets the centre's
@@ -421,11 +536,11 @@ template <SphKernel K, bool kPart> class TileMarch {
   // its pending sums; how many.
   std::int64_t accumulate(int p, const Support& s, double a, double zc, double m2, std::int64_t i0,
                           std::int64_t i1) {
-    if (plan_ == nullptr) {
+    if (plan_ == nullptr || w_.bundle[std::size_t(p)] == kFullRate) {
       add_run(p, s, a, zc, m2, i0, i1);
       return i1 - i0 + 1;
     }
-    const int bundle = plan_->bundle_of(p);
+    const int bundle = w_.bundle[std::size_t(p)];
     std::int64_t n = 0;
     for (std::int64_t i = i0; i <= i1;) {
       const std::int64_t end = std::min(i1, (i | (kCellSamples - 1)));
@@ -463,16 +578,30 @@ template <SphKernel K, bool kPart> class TileMarch {
   void flush(int p, std::int64_t upto) {
     RayState& r = w_.rays[std::size_t(p)];
     if (r.done) return;
-    if (r.front == std::numeric_limits<std::int64_t>::min()) r.front = upto;  // its first support
+    const int bundle = plan_ != nullptr ? w_.bundle[std::size_t(p)] : kFullRate;
+    const TilePlanner* plan = bundle == kFullRate ? nullptr : plan_;
+    // The next sample of a super-pixel cell (adaptive sampling): every ray of its bundle takes
+    // it, whether or not a support was added to the ray there.
+    const auto next_super_pixel = [&](std::int64_t i) {
+      return plan != nullptr ? plan->next_super_pixel(bundle, i)
+                             : std::numeric_limits<std::int64_t>::max();
+    };
+    if (r.front == std::numeric_limits<std::int64_t>::min())  // its first support
+      r.front = std::min(upto, next_super_pixel(r.front));
     double* sum = &w_.sum[std::size_t(p) * std::size_t(window_)];
     double* weight = &w_.weight[std::size_t(p) * std::size_t(window_)];
     host_.record_into(&r.hits);
     for (; r.front < upto; ++r.front) {
-      if (r.front > r.last) {  // the samples up to `upto` are empty: the ray leaves the field
-        r.ray.defined = 0u;
-        r.front = upto;
-        if constexpr (kPart) close(p);
-        break;
+      if (r.front > r.last) {  // no support reaches the samples up to `upto`
+        const std::int64_t next = next_super_pixel(r.front);
+        if (next < upto) {
+          r.front = next;
+        } else {  // the ray leaves the field
+          r.ray.defined = 0u;
+          r.front = upto;
+          if constexpr (kPart) close(p);
+          break;
+        }
       }
       const std::size_t slot = std::size_t(r.front & mask_);
       const double s = sum[slot], w = weight[slot];
@@ -490,8 +619,8 @@ template <SphKernel K, bool kPart> class TileMarch {
         open(p, r.front);
       }
       std::int64_t span = 1;
-      if (plan_ != nullptr) {
-        const CellPlan& cell = plan_->cell(plan_->bundle_of(p), r.front);
+      if (plan != nullptr) {
+        const CellPlan& cell = plan->cell(bundle, r.front);
         if (cell.level == kSuperPixel) {
           super_pixel(r, cell);
           if (r.done) return;

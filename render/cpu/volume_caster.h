@@ -16,6 +16,10 @@
 //            sample), the ray stops when its transmittance falls under the termination and the
 //            tile when all its rays have; then the iso hits' gradients from the same supports,
 //            the hits lit, and the background behind what is left of each ray's transmittance.
+//            With adaptive sampling (render/cpu/volume_adaptive.h) a support whose samples lie in
+//            coarse cells of a bundle adds its kernel at the samples those take only, without
+//            its chords' ends, one that reaches only super-pixels is not read, and each ray takes
+//            its bundle's super-pixels whether a support reached it there or not.
 // Each sample's sum adds its particles in the sorted order: the picture does not depend on the
 // number of threads.
 #pragma once
