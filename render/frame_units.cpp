@@ -68,6 +68,7 @@ SpanOptions FrameUnits::options(const SpanOptions& world) const {
 SurfaceOptions FrameUnits::options(const SurfaceOptions& world) const {
   SurfaceOptions o = world;
   o.filter_radius = length(world.filter_radius);
+  o.fold_step = length(world.fold_step);
   return o;
 }
 

@@ -33,6 +33,8 @@ void validate(const SurfaceOptions& o) {
     throw make_error("filter_radius = ", o.filter_radius, " must be a finite number >= 0");
   if (o.max_iterations < 0 || o.max_iterations > 1000)
     throw make_error("filter max_iterations = ", o.max_iterations, " is outside 0..1000");
+  if (!std::isfinite(o.fold_step) || o.fold_step < 0)
+    throw make_error("fold_step = ", o.fold_step, " must be a finite number >= 0");
 }
 
 glm::dvec3 Material::water_absorption(double depth) {

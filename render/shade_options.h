@@ -22,6 +22,10 @@ namespace voxspan {
 struct SurfaceOptions {
   double filter_radius = 0;  // world units; 0 = no filter
   int max_iterations = 32;   // the paper needed up to 20 at 1080p
+  // Folds (render/model/links.glsl): neighbouring pixels' surface points linked across a
+  // depth step longer than this (world units, along the view axis) lie on two sheets of a
+  // folded surface, the nearer hiding the other, and are not linked; 0 = no folds.
+  double fold_step = 0;
 };
 
 enum class ShadeMode { opaque, translucent, refractive };

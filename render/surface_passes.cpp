@@ -31,7 +31,7 @@ void SurfacePasses::run(const PerspectiveGrid& grid, bool has_spans, const Surfa
   validate(shade);
   {
     auto t = time(recorder, pass::connect);
-    recorder.count(counter::links_unlinkable_spans, connect());
+    recorder.count(counter::links_unlinkable_spans, connect(surfaces));
   }
   {
     auto t = time(recorder, pass::filter);

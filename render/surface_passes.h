@@ -50,7 +50,8 @@ class SurfacePasses {
  protected:
   ~SurfacePasses() = default;
   virtual Recorder::Scope time(Recorder& recorder, StatName pass) = 0;  // host or device
-  virtual std::int64_t connect() = 0;  // returns the spans no link can name
+  // Returns the spans no link can name.
+  virtual std::int64_t connect(const SurfaceOptions& options) = 0;
   // `iterations` 0: no filter, the span depths are the surface's.
   virtual void filter(int iterations, const SurfaceOptions& options) = 0;
   virtual void normals() = 0;

@@ -39,6 +39,10 @@ FrameOptions frame_options(const SurfaceSettings& view, double spacing) {
   v.gap_bridging = view.gap.value_or(spacing);
   v.max_spans = static_cast<std::uint32_t>(view.max_spans);
   o.surfaces.filter_radius = view.filter_radius.value_or(spacing);
+  // Folds (render/model/links.glsl): the main job's crest hides the water behind it three to
+  // five spacings further on; below about two, the steps of a bumpy surface seen nearly edge-on
+  // (cut there, its bumps go unfiltered: docs/benchmarks.md).
+  o.surfaces.fold_step = 2.5 * spacing;
   ShadeOptions& shade = o.shade;
   shade.mode = view.shading;
   shade.deep_ao = view.deep_ao;

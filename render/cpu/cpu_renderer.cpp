@@ -75,8 +75,9 @@ class CpuRenderer::Passes final : public SurfacePasses {
 
   // Each step names its objects as locals: the loops' lambdas then reach them directly, not
   // through this object's members.
-  std::int64_t connect() override {
+  std::int64_t connect(const SurfaceOptions& options) override {
     model::Host& host = host_;
+    host.u_fold_step = float(options.fold_step);
     host.fill_per_span(host.links_, [&](model::ivec2 p, model::uint s) {
       return host.connect_span(p, s - host.sd_offset(p));
     });

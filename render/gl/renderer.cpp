@@ -12,7 +12,9 @@ class Renderer::Passes final : public SurfacePasses {
 
  private:
   Recorder::Scope time(Recorder& recorder, StatName pass) override { return recorder.device(pass); }
-  std::int64_t connect() override { return r_.connect_.run(spans_, r_.surfaces_); }
+  std::int64_t connect(const SurfaceOptions& options) override {
+    return r_.connect_.run(spans_, r_.surfaces_, options.fold_step);
+  }
   void filter(int iterations, const SurfaceOptions& options) override {
     r_.filter_.run(spans_, r_.surfaces_, options, iterations);
   }

@@ -51,6 +51,8 @@ class Host : public GridUniforms, public ShadeUniforms {
   // render/model/surface_filter.glsl's uniforms.
   uint u_filter_pass = 0u, u_max_iterations = 0u;
   float u_radius = 0.0f, u_iteration_scale = 0.0f;
+  // render/model/links.glsl's: 0, no folds.
+  float u_fold_step = 0.0f;
 
   uint sd_count(ivec2 p) const { return record(p).count; }
   uint sd_offset(ivec2 p) const { return record(p).offset; }

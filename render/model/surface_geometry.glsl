@@ -6,7 +6,9 @@
 // neighbours by one link, the corners by a horizontal link then a vertical one. Where a link
 // stays in the point's own column (SELF: the span's silhouette, OWN: a bubble wall), the surface
 // turns there: its sample is the wall point half a pixel over, halfway in depth between the
-// two linked points, and a corner beyond a wall is that wall point again. The normal is the
+// two linked points, and a corner beyond a wall is that wall point again; where the link was
+// cut at a fold (links.glsl) the surface goes on out of sight, and its sample is the point
+// half a pixel over at v's own depth. The normal is the
 // cross product of the two Sobel tangents, turned to face the eye at an entry and away from it
 // at an exit (so every stored normal points out of the fluid), in world space.
 //
@@ -34,21 +36,27 @@ float point_depth(SurfacePoint v) {
 
 vec3 point_position(SurfacePoint v) { return view_ray_at(vec2(v.pixel) + vec2(0.5f)) * point_depth(v); }
 
+// Whether v's link towards dir was cut at a fold (render/model/links.glsl).
+bool folds_away(SurfacePoint v, int dir) { return link_byte(link_word(v), dir) == VX_LINK_FOLD; }
+
 struct SobelSample {
   vec3 position;       // view space
   SurfacePoint point;  // the linked point
   bool across;         // in the neighbour pixel; false: a wall sample in v's own column
+  bool folded;         // not across: the link was cut at a fold
 };
 
 SobelSample sobel_step(SurfacePoint v, int dir) {
   SobelSample s;
   s.point = follow_link(v, dir);
   s.across = link_is_across(v, dir);
+  s.folded = !s.across && folds_away(v, dir);
   if (s.across) {
     s.position = point_position(s.point);
   } else {
     vec2 xy = vec2(v.pixel) + vec2(0.5f) + 0.5f * vec2(link_step(dir));
-    s.position = view_ray_at(xy) * (0.5f * (point_depth(v) + point_depth(s.point)));
+    float z = s.folded ? point_depth(v) : 0.5f * (point_depth(v) + point_depth(s.point));
+    s.position = view_ray_at(xy) * z;
   }
   return s;
 }
@@ -70,6 +78,11 @@ bool hidden_by_walls(SurfacePoint v, int dir) {
   return wall < 3.0e38f && sd_raw_depths(v.span).y >= sd_wall_depth(v.pixel);
 }
 
+// Whether the side of v towards dir, whose Sobel sample is s, is hidden: by walls or behind a fold.
+bool hidden_side(SurfacePoint v, SobelSample s, int dir) {
+  return s.folded || (!s.across && hidden_by_walls(v, dir));
+}
+
 // A Sobel tangent (towards +x or row + 1) from its halves before and after the point, and
 // whether a wall hides each side.
 vec3 sobel_tangent(vec3 before, vec3 after, bool hidden_before, bool hidden_after) {
@@ -89,20 +102,30 @@ vec3 sobel_normal_view(SurfacePoint v) {
   vec3 ld = sobel_corner(l, 3);
   vec3 ru = sobel_corner(r, 2);
   vec3 rd = sobel_corner(r, 3);
-  // Where a wall hides one side, the tangent is the other side's half alone (a one-sided
-  // difference): a silhouette's wall sample there would turn the surface edge-on along every
-  // wall the water touches, a line of grazing normals that reflect the sky in translucent water
-  // and bend refracted rays aside (dots where the water meets a wall).
+  // Where a wall or a fold hides one side, the tangent is the other side's half alone (a
+  // one-sided difference), and the other tangent leaves that side's row or column out: a
+  // silhouette's wall sample there would turn the surface edge-on along every wall the water
+  // touches, a line of grazing normals that reflect the sky in translucent water and bend
+  // refracted rays aside (dots where the water meets a wall), and a corner reached past the
+  // hidden side through a neighbour's own link may lie on the other sheet of a fold.
   // In units of v's depth: the cross product of world lengths is an area, whose squares under-
   // or overflow floats at scene scales past 1e-7 or 1e11 world units; relative to the depth
   // the numbers are the same at every scale.
   float unit = 1.0f / c.z;
-  vec3 tx = sobel_tangent(((u.position - lu) + 2.0f * (c - l.position) + (d.position - ld)) * unit,
-                          ((ru - u.position) + 2.0f * (r.position - c) + (rd - d.position)) * unit,
-                          !l.across && hidden_by_walls(v, 0), !r.across && hidden_by_walls(v, 1));
-  vec3 ty = sobel_tangent(((l.position - lu) + 2.0f * (c - u.position) + (r.position - ru)) * unit,
-                          ((ld - l.position) + 2.0f * (d.position - c) + (rd - r.position)) * unit,
-                          !u.across && hidden_by_walls(v, 2), !d.across && hidden_by_walls(v, 3));
+  bool hl = hidden_side(v, l, 0);
+  bool hr = hidden_side(v, r, 1);
+  bool hu = hidden_side(v, u, 2);
+  bool hd = hidden_side(v, d, 3);
+  float wu = hu && !hd ? 0.0f : 1.0f;
+  float wd = hd && !hu ? 0.0f : 1.0f;
+  float wl = hl && !hr ? 0.0f : 1.0f;
+  float wr = hr && !hl ? 0.0f : 1.0f;
+  vec3 tx = sobel_tangent((wu * (u.position - lu) + 2.0f * (c - l.position) + wd * (d.position - ld)) * unit,
+                          (wu * (ru - u.position) + 2.0f * (r.position - c) + wd * (rd - d.position)) * unit,
+                          hl, hr);
+  vec3 ty = sobel_tangent((wl * (l.position - lu) + 2.0f * (c - u.position) + wr * (r.position - ru)) * unit,
+                          (wl * (ld - l.position) + 2.0f * (d.position - c) + wr * (rd - r.position)) * unit,
+                          hu, hd);
   vec3 n = cross(tx, ty);
   float len = length(n);
   // Out of the fluid: towards the eye at an entry, away from it at an exit.

@@ -6,8 +6,9 @@
 
 namespace voxspan {
 
-std::vector<glm::uvec2> reference_links(const SpanImage& spans) {
+std::vector<glm::uvec2> reference_links(const SpanImage& spans, double fold_step) {
   model::Host host(spans, model::ShadeUniforms{});
+  host.u_fold_step = float(fold_step);
   return host.per_span(
       [&](model::ivec2 p, model::uint s) { return host.connect_span(p, s - host.sd_offset(p)); });
 }

@@ -20,8 +20,9 @@
 
 namespace voxspan {
 
-// Listing 1 on a span image: per span the (entry, exit) link words, as ConnectPass writes them.
-std::vector<glm::uvec2> reference_links(const SpanImage& spans);
+// Listing 1 on a span image, not across folds deeper than `fold_step` (SurfaceOptions): per
+// span the (entry, exit) link words, as ConnectPass writes them.
+std::vector<glm::uvec2> reference_links(const SpanImage& spans, double fold_step = 0);
 
 // Sobel normals along those links on the span depths: per span the (entry, exit) octahedral
 // words of the outward world normals, as NormalsPass writes them.

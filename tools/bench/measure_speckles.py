@@ -14,7 +14,8 @@ of that channel over its 3x3 neighbourhood (the picture's edge repeated) by more
 200 x 14 pixels at the top left, where a view draws its caption, are left out. With --mask, the
 mask view of tools/scenes/speckles/main-job.yaml (the water opaque and blue, the walls red): a
 pixel is on the water where the mask's blue exceeds its red by more than 40/255, or next to
-such a pixel. Needs numpy, scipy and Pillow (Debian: python3-numpy, python3-scipy,
+such a pixel; and inside the water's outline where it is three pixels or more inside the
+mask's water (the top surface and what lies on it, not its edges against walls and sky). Needs numpy, scipy and Pillow (Debian: python3-numpy, python3-scipy,
 python3-pil)."""
 import sys
 
@@ -38,10 +39,11 @@ def water_share(argv):
 
 
 def off_median(argv):
-    water = None
+    water = inside = None
     if argv[:1] == ["--mask"]:
         m = np.asarray(Image.open(argv[1]).convert("RGB")).astype(float)
         water = binary_dilation(m[..., 2] - m[..., 0] > 40, iterations=1)
+        inside = binary_erosion(m[..., 2] - m[..., 0] > 40, iterations=3)
         argv = argv[2:]
     for path in argv:
         a = np.asarray(Image.open(path).convert("RGB")).astype(float)
@@ -50,7 +52,8 @@ def off_median(argv):
         speckled[:14, :200] = False
         line = f"{path}: {int(speckled.sum())} pixels more than 40/255 off their 3x3 median"
         if water is not None:
-            line += f", {int((speckled & water).sum())} on the water"
+            line += (f", {int((speckled & water).sum())} on the water, "
+                     f"{int((speckled & inside).sum())} inside its outline")
         print(line)
     return 0
 

@@ -1,6 +1,6 @@
 // Surface connection ([ZD15] sec. 3.3, Listing 1; render/gl/passes/connect.h).
 // CONNECT_OWNERS: one thread per pixel writes its pixel number beside each of its spans and
-// tallies the spans past index 253, which links cannot name. Otherwise one thread per span
+// tallies the spans past index 252, which links cannot name. Otherwise one thread per span
 // links its entry and exit to the overlapping spans of the four neighbour pixels
 // (render/model/links.glsl): two binary searches per neighbour.
 layout(local_size_x = 64) in;

@@ -25,7 +25,7 @@ ConnectPass::ConnectPass(const gl::ShaderLibrary& shaders)
       connect_(shaders.compute(kShader, binding_defines())),
       tally_(16) {}
 
-std::uint32_t ConnectPass::run(const GpuSpanImage& image, GpuSurfaces& surfaces) {
+std::uint32_t ConnectPass::run(const GpuSpanImage& image, GpuSurfaces& surfaces, double fold_step) {
   surfaces.prepare(image);
   if (image.span_count() == 0) return 0;
   tally_.clear();
@@ -35,6 +35,7 @@ std::uint32_t ConnectPass::run(const GpuSpanImage& image, GpuSurfaces& surfaces)
   dispatch_threads(owners_, std::size_t(image.width()) * std::size_t(image.height()));
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   set_grid_uniforms(connect_, image.grid());
+  connect_.set("u_fold_step", float(fold_step));
   dispatch_threads(connect_, image.span_count());
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   return tally_.read_array<std::uint32_t, 1>()[0];

@@ -19,9 +19,10 @@ namespace voxspan {
 class ConnectPass {
  public:
   explicit ConnectPass(const gl::ShaderLibrary& shaders);
-  // Sizes `surfaces` for the image and links every span. Returns the spans no link can name
-  // (past index 253 of their pixel: neighbours see the surface end before them).
-  std::uint32_t run(const GpuSpanImage& image, GpuSurfaces& surfaces);
+  // Sizes `surfaces` for the image and links every span, not across folds deeper than
+  // `fold_step` (SurfaceOptions). Returns the spans no link can name (past index 252 of their
+  // pixel: neighbours see the surface end before them).
+  std::uint32_t run(const GpuSpanImage& image, GpuSurfaces& surfaces, double fold_step);
 
  private:
   gl::Program owners_, connect_;

@@ -138,6 +138,7 @@ TEST(CpuRenderer, FilterNormalsAndShadingAreTheGpuPassesOnOneSpanImage) {
   const SpanImage spans = test::voxelize(scene.camera, scene.particles, scene.options);
   SurfaceOptions filter;
   filter.filter_radius = 2 * scene.particles.front().radius;
+  filter.fold_step = 2.5 * scene.particles.front().radius;  // as the views set it
   CpuRenderer cpu;
   for (ShadeMode mode : {ShadeMode::opaque, ShadeMode::translucent, ShadeMode::refractive}) {
     SCOPED_TRACE(shade_mode_name(mode));

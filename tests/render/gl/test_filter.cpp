@@ -28,7 +28,7 @@ double roughness(const SpanImage& spans, const std::vector<glm::uvec2>& links,
         const glm::vec3 a = host.decode_normal(normals[s].x);
         for (int dir : {1, 3}) {
           const std::uint32_t b = links[s].x >> (8 * dir) & 255;
-          if (b > 253) continue;
+          if (b > 252) continue;
           const PixelSpans& q = dir == 1 ? spans.pixel(x + 1, y) : spans.pixel(x, y + 1);
           const glm::vec3 c = host.decode_normal(normals[q.offset + b].x);
           angles.push_back(glm::degrees(std::acos(std::clamp(double(glm::dot(a, c)), -1.0, 1.0))));
