@@ -14,6 +14,7 @@
 #include "render/enum_names.h"
 #include "render/float_image.h"
 #include "render/frame.h"
+#include "render/pending_picture.h"
 #include "render/recorder.h"
 #include "render/shade_options.h"
 #include "render/span_image.h"
@@ -45,6 +46,11 @@ class SurfaceRenderer {
   // top; resized to the image): the GL renderer's read back as pass::readback.
   virtual void shade(const SurfaceOptions& surfaces, const ShadeOptions& shade, Recorder& recorder,
                      FloatImage& picture) = 0;
+  // shade() with the picture read back without waiting where the renderer can: `picture` is
+  // sized and its pixels arrive through the returned read (render/pending_picture.h; the
+  // caller's until released); null where they are in `picture` already (the CPU renderer's).
+  virtual PendingPicture* shade_later(const SurfaceOptions& surfaces, const ShadeOptions& shade,
+                                      Recorder& recorder, FloatImage& picture) = 0;
   // The backdrop shade() shows behind the fluid (render/backdrop.h; null: the environment), the
   // image's size, kept alive by the caller while in use; the frame's span image (made or
   // given before) is cut where its walls begin, timed as pass::scenery_cut.

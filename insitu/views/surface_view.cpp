@@ -258,7 +258,9 @@ class SurfaceView final : public View {
       backdrop = scenery_.backdrop(step.camera, s.spheres, s.version, s.box, o.shade, recorder);
     }
     renderer_->use_backdrop(backdrop, recorder);
-    renderer_->shade(o.surfaces, o.shade, recorder, out.picture);
+    // The pixels may land later unless this thread draws on them next (a slice, colours).
+    if (slice_ || colors_) renderer_->shade(o.surfaces, o.shade, recorder, out.picture);
+    else out.pending_picture = renderer_->shade_later(o.surfaces, o.shade, recorder, out.picture);
     if (needs.first_hit_depth) renderer_->first_hit(recorder, out.first_hit_depth);
     // No copy here: the outputs copy what they keep.
     out.shaded_spans =
