@@ -134,9 +134,10 @@ class FrameUnitsRenderer final : public SurfaceRenderer {
     inner_->shade(units_.options(surfaces), units_.options(shade), recorder, picture);
   }
   PendingPicture* shade_later(const SurfaceOptions& surfaces, const ShadeOptions& shade,
-                              Recorder& recorder, FloatImage& picture) override {
-    if (!units_.scaled()) return inner_->shade_later(surfaces, shade, recorder, picture);
-    return inner_->shade_later(units_.options(surfaces), units_.options(shade), recorder, picture);
+                              Recorder& recorder, FloatImage& picture, ReadLater when) override {
+    if (!units_.scaled()) return inner_->shade_later(surfaces, shade, recorder, picture, when);
+    return inner_->shade_later(units_.options(surfaces), units_.options(shade), recorder, picture,
+                               when);
   }
   // Given after the frame's spans, whose units it takes.
   void use_backdrop(const Backdrop* backdrop, Recorder& recorder) override {

@@ -166,6 +166,7 @@ class SurfaceView final : public View {
                     : std::vector<std::unique_ptr<SpanStage>>{}),
         combine_ranks_(c.combine_ranks),
         comm_(c.comm),
+        read_later_(c.renderer.readback),
         spacing_(c.particle_spacing),
         scenery_(s.scenery, c.particle_spacing) {
     if (!s.slice.quantity.empty())
@@ -260,7 +261,9 @@ class SurfaceView final : public View {
     renderer_->use_backdrop(backdrop, recorder);
     // The pixels may land later unless this thread draws on them next (a slice, colours).
     if (slice_ || colors_) renderer_->shade(o.surfaces, o.shade, recorder, out.picture);
-    else out.pending_picture = renderer_->shade_later(o.surfaces, o.shade, recorder, out.picture);
+    else
+      out.pending_picture =
+          renderer_->shade_later(o.surfaces, o.shade, recorder, out.picture, read_later_);
     if (needs.first_hit_depth) renderer_->first_hit(recorder, out.first_hit_depth);
     // No copy here: the outputs copy what they keep.
     out.shaded_spans =
@@ -297,6 +300,7 @@ class SurfaceView final : public View {
   std::vector<std::unique_ptr<SpanStage>> stages_;
   DepthRangeCombine combine_ranks_;
   Communicator* const comm_;  // null in one process
+  const ReadLater read_later_;
   const double spacing_;
   std::optional<glm::dvec3> auto_absorption_;  // absorption: auto, fixed at the first box
   std::optional<SliceLayer> slice_;

@@ -26,7 +26,7 @@ class CpuSurfaceRenderer final : public SurfaceRenderer {
   }
   // Shaded in host memory: nothing to wait for.
   PendingPicture* shade_later(const SurfaceOptions& surfaces, const ShadeOptions& shading,
-                              Recorder& recorder, FloatImage& picture) override {
+                              Recorder& recorder, FloatImage& picture, ReadLater) override {
     shade(surfaces, shading, recorder, picture);
     return nullptr;
   }

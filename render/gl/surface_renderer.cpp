@@ -49,8 +49,8 @@ class GlSurfaceRenderer final : public SurfaceRenderer {
   }
 
   PendingPicture* shade_later(const SurfaceOptions& surfaces, const ShadeOptions& shading,
-                              Recorder& recorder, FloatImage& picture) override {
-    if (!readback_.available()) {
+                              Recorder& recorder, FloatImage& picture, ReadLater when) override {
+    if (!reads_later(when)) {
       shade(surfaces, shading, recorder, picture);
       return nullptr;
     }
@@ -79,6 +79,13 @@ class GlSurfaceRenderer final : public SurfaceRenderer {
   }
 
  private:
+  // A GPU is told apart from a software renderer as the staging does it (render/gl/objects.h).
+  bool reads_later(ReadLater when) const {
+    if (when == ReadLater::never || !readback_.available()) return false;
+    const gl::ReadbackStaging* staging = gl::current_staging();
+    return when == ReadLater::always || (staging != nullptr && staging->in_use());
+  }
+
   const GpuSpanImage& spans() const {
     if (spans_ == nullptr) throw make_error("the GL surface renderer has no span image yet");
     return *spans_;

@@ -15,7 +15,7 @@
 namespace voxspan {
 namespace {
 
-// Render steps on `backend` ("cpu", or "gl": its pictures read back without waiting).
+// Render steps on `backend` ("cpu", or "gl, readback: later": its pictures read back later).
 void expect_render_steps_allocate_nothing(const std::string& backend) {
   test::TempFolder dir;
   // A particle spacing of its own, and a tank that does not move: the same sizes every step.
@@ -69,7 +69,7 @@ TEST(StepAllocations, RenderStepsWithFramesStatsAndSnapshotsAllocateNothingOnceS
 }
 
 TEST(StepAllocations, SoDoTheGlRenderersWithTheirPicturesReadBackLater) {
-  expect_render_steps_allocate_nothing("gl");
+  expect_render_steps_allocate_nothing("gl, readback: later");
 }
 
 // Conditions checked on every step, rendering on some and not on others: the reductions, the

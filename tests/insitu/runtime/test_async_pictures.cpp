@@ -1,7 +1,8 @@
-// A GL run's pictures read back without waiting (render/gl/picture_readback.h) through the
-// runtime: each frame holds the picture of its own step (the particles move from step to step)
-// with its caption, whether the writer's thread finished it or the caller asked for it
-// (InsituPipeline::latest_views()); the last step's frames are there once finish() returns.
+// A GL run's pictures read back later (renderer.readback: later, render/gl/picture_readback.h)
+// through the runtime: each frame is the one a run that waits for its pictures writes, of its
+// own step (the particles move from step to step) with its caption, whether the writer's
+// thread finished the picture or the caller asked for it (InsituPipeline::latest_views()); the
+// last step's frames are there once finish() returns.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -19,9 +20,9 @@ namespace {
 constexpr int kSteps = 3;
 constexpr std::array<const char*, 2> kViews = {"front", "side"};
 
-std::string config(const std::filesystem::path& folder) {
-  return "output_folder: " + folder.string() + R"(
-renderer: {backend: gl}
+std::string config(const std::filesystem::path& folder, const std::string& readback) {
+  return "output_folder: " + folder.string() + "\nrenderer: {backend: gl, readback: " + readback +
+         "}" + R"(
 trigger: {every_steps: 1}
 views:
   - {name: front, width: 64, height: 40, caption: "{view} {step}"}
@@ -33,9 +34,10 @@ writer: {fsync: false}
 
 // Runs the steps over a block that moves along x; with `ask`, the pictures the caller reads
 // after each step (in the views' order), else none.
-std::vector<FloatImage> run(const std::filesystem::path& folder, bool ask) {
+std::vector<FloatImage> run(const std::filesystem::path& folder, const std::string& readback,
+                            bool ask) {
   test::ParticleBlock block(0.05, "density", [](int, double) { return 1000.0; });
-  Adapter a = adapter_from_config_text(config(folder), test::spaced(block.spacing));
+  Adapter a = adapter_from_config_text(config(folder, readback), test::spaced(block.spacing));
   std::vector<FloatImage> asked;
   for (int step = 1; step <= kSteps; ++step) {
     for (std::size_t i = 0; i < block.xyz.size(); i += 3) block.xyz[i] += 0.02;
@@ -53,17 +55,18 @@ std::filesystem::path frame(const std::filesystem::path& folder, const char* vie
   return folder / "frames" / step_file_name(view, step, "png");
 }
 
-TEST(AsyncPictures, EachFrameHoldsItsStepsPictureAndTheLastIsWrittenByFinish) {
+TEST(AsyncPictures, EachFrameIsTheOneReadAtOnceAndTheLastIsWrittenByFinish) {
   test::TempFolder dir;
-  run(dir / "written", false);  // every picture finished by the writer's jobs
-  const std::vector<FloatImage> asked = run(dir / "asked", true);
+  run(dir / "waited", "wait", false);    // read at once, on the solver's thread
+  run(dir / "written", "later", false);  // every picture finished by the writer's jobs
+  const std::vector<FloatImage> asked = run(dir / "asked", "later", true);
   ASSERT_EQ(asked.size(), kSteps * kViews.size());
   for (int step = 1; step <= kSteps; ++step)
     for (std::size_t v = 0; v < kViews.size(); ++v) {
       const FloatImage& picture = asked[std::size_t(step - 1) * kViews.size() + v];
       ASSERT_EQ(picture.rgba.size(), std::size_t(picture.width) * picture.height * 4);
       const ImageRGBA8 want = linear_to_srgb8(picture.rgba, picture.width, picture.height);
-      for (const char* run : {"written", "asked"}) {
+      for (const char* run : {"waited", "written", "asked"}) {
         const std::filesystem::path file = frame(dir / run, kViews[v], step);
         ASSERT_TRUE(std::filesystem::exists(file)) << file;
         EXPECT_EQ(read_png(file).pixels, want.pixels) << file;

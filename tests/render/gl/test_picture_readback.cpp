@@ -9,6 +9,7 @@
 
 #include "render/backend.h"
 #include "render/gl/gpu_recorder.h"
+#include "render/gl/objects.h"
 #include "render/gl/picture_readback.h"
 #include "render/stat_names.h"
 #include "tests/render/gl/shading_fixture.h"
@@ -42,8 +43,10 @@ TEST(PictureReadback, ThePixelsThatLandAreTheSynchronousReadsOnAnyThread) {
   ASSERT_NE(want_opaque.rgba, want_translucent.rgba);
   for (int round = 0; round < 3; ++round) {
     FloatImage a, b, got_a, got_b;
-    PendingPicture* read_a = renderer->shade_later(surfaces, opaque, recorder, a);
-    PendingPicture* read_b = renderer->shade_later(surfaces, translucent, recorder, b);
+    PendingPicture* read_a =
+        renderer->shade_later(surfaces, opaque, recorder, a, ReadLater::always);
+    PendingPicture* read_b =
+        renderer->shade_later(surfaces, translucent, recorder, b, ReadLater::always);
     ASSERT_NE(read_a, nullptr);  // llvmpipe has EGL fences
     ASSERT_NE(read_b, nullptr);
     EXPECT_EQ(a.width, 48);  // sized for the pixels to come
@@ -59,6 +62,14 @@ TEST(PictureReadback, ThePixelsThatLandAreTheSynchronousReadsOnAnyThread) {
     EXPECT_EQ(got_b.rgba, want_translucent.rgba) << "round " << round;
     EXPECT_EQ(got_a.width, 48);
     EXPECT_EQ(got_a.height, 32);
+  }
+  // Where it is not asked for, or on llvmpipe by default (the copy costs more than the read),
+  // the picture is read at once.
+  FloatImage now;
+  EXPECT_EQ(renderer->shade_later(surfaces, opaque, recorder, now, ReadLater::never), nullptr);
+  EXPECT_EQ(now.rgba, want_opaque.rgba);
+  if (!gl::current_staging()->in_use()) {  // a software renderer
+    EXPECT_EQ(renderer->shade_later(surfaces, opaque, recorder, now, ReadLater::on_gpu), nullptr);
   }
   recorder.collect();
 }
