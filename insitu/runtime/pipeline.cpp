@@ -282,7 +282,10 @@ struct InsituPipeline::Impl {
                   v.view->render({data, camera, v.framing.box(), needs, true, &scenery}, *recorder,
                                  v.orbit_products);
               recorder->collect();
-              if (!shown) continue;
+              if (!shown) {
+                drop_pending(v.orbit_products);
+                continue;
+              }
               OrbitPicture& picture = orbit_pictures.emplace_back();
               picture.view = i, picture.phi = phi, picture.theta = theta;
               picture.picture = take_picture(i, data, v.orbit_products);
@@ -380,7 +383,10 @@ struct InsituPipeline::Impl {
         recorder->collect();
         for (const FrameStats::Pass& pass : stats.passes)
           totals.passes.add_time(pass.name, pass.ms);
-        if (!shown) continue;  // an MPI rank that only voxelized: the root shows the view
+        if (!shown) {  // an MPI rank that only voxelized: the root shows the view
+          drop_pending(v.products);
+          continue;
+        }
         ++totals.frames;
         v.latest.reset();  // its buffer, unless a job holds it, is the one traded in
         v.latest = take_picture(i, data, v.products);

@@ -260,10 +260,8 @@ class SurfaceView final : public View {
     }
     renderer_->use_backdrop(backdrop, recorder);
     // The pixels may land later unless this thread draws on them next (a slice, colours).
-    if (slice_ || colors_) renderer_->shade(o.surfaces, o.shade, recorder, out.picture);
-    else
-      out.pending_picture =
-          renderer_->shade_later(o.surfaces, o.shade, recorder, out.picture, read_later_);
+    const ReadLater when = slice_ || colors_ ? ReadLater::never : read_later_;
+    out.pending_picture = renderer_->shade_later(o.surfaces, o.shade, recorder, out.picture, when);
     if (needs.first_hit_depth) renderer_->first_hit(recorder, out.first_hit_depth);
     // No copy here: the outputs copy what they keep.
     out.shaded_spans =
