@@ -61,6 +61,7 @@ class PictureReadback::Slot final : public PendingPicture {
 
   // GL thread: the copy of `image` behind a fence.
   void issue(const GpuFloatImage& image) {
+    drop_fence();  // one left by an issue that failed
     const std::size_t bytes = std::size_t(image.width()) * std::size_t(image.height()) * 16;
     reserve(bytes);
     width_ = image.width();
@@ -70,8 +71,8 @@ class PictureReadback::Slot final : public PendingPicture {
       glCopyNamedBufferSubData(image.buffer().id(), id_, 0, 0, static_cast<GLsizeiptr>(bytes));
     fence_ = fences_.create(fences_.display, EGL_SYNC_FENCE_KHR, nullptr);
     if (fence_ == EGL_NO_SYNC_KHR)
-      throw make_error("a fence for the picture's read-back (EGL error 0x", std::hex, eglGetError(),
-                       ")");
+      throw make_error("cannot make a fence for the picture's read-back (EGL error 0x", std::hex,
+                       eglGetError(), ")");
     // The fence reaches the GPU now: a reader on another thread cannot flush this context.
     glFlush();
     check_error("issuing the picture's read-back");
