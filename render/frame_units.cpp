@@ -134,6 +134,12 @@ class FrameUnitsRenderer final : public SurfaceRenderer {
     if (!units_.scaled()) return inner_->shade(surfaces, shade, recorder, picture);
     inner_->shade(units_.options(surfaces), units_.options(shade), recorder, picture);
   }
+  PendingPicture* shade_later(const SurfaceOptions& surfaces, const ShadeOptions& shade,
+                              Recorder& recorder, FloatImage& picture, ReadLater when) override {
+    if (!units_.scaled()) return inner_->shade_later(surfaces, shade, recorder, picture, when);
+    return inner_->shade_later(units_.options(surfaces), units_.options(shade), recorder, picture,
+                               when);
+  }
   // Given after the frame's spans, whose units it takes.
   void use_backdrop(const Backdrop* backdrop, Recorder& recorder) override {
     if (!units_.scaled() || backdrop == nullptr) return inner_->use_backdrop(backdrop, recorder);

@@ -14,6 +14,7 @@
 #include "render/enum_names.h"
 #include "render/float_image.h"
 #include "render/frame.h"
+#include "render/pending_picture.h"
 #include "render/recorder.h"
 #include "render/shade_options.h"
 #include "render/span_image.h"
@@ -24,6 +25,14 @@ namespace voxspan {
 enum class RenderBackend { automatic, gl, cpu };
 inline constexpr EnumName<RenderBackend> kRenderBackendNames[] = {
     {"auto", RenderBackend::automatic}, {"gl", RenderBackend::gl}, {"cpu", RenderBackend::cpu}};
+
+// When shade_later() reads the picture later. On a GPU a read at once waits for every pass of the
+// frame; on a software renderer (llvmpipe) the passes are done when the read starts and its
+// buffers are host memory, so the copy for later costs more than the read (twice, at 1920x1080:
+// docs/benchmarks.md). `always`: wherever EGL has fences (to run that path on llvmpipe).
+enum class ReadLater { on_gpu, always, never };
+inline constexpr EnumName<ReadLater> kReadLaterNames[] = {
+    {"auto", ReadLater::on_gpu}, {"later", ReadLater::always}, {"wait", ReadLater::never}};
 
 class SurfaceRenderer {
  public:
@@ -45,6 +54,11 @@ class SurfaceRenderer {
   // top; resized to the image): the GL renderer's read back as pass::readback.
   virtual void shade(const SurfaceOptions& surfaces, const ShadeOptions& shade, Recorder& recorder,
                      FloatImage& picture) = 0;
+  // shade() with the picture read back later where `when` says and the renderer can: `picture`
+  // is sized and its pixels arrive through the returned read (render/pending_picture.h; the
+  // caller's until released); null where they are in `picture` already (the CPU renderer's).
+  virtual PendingPicture* shade_later(const SurfaceOptions& surfaces, const ShadeOptions& shade,
+                                      Recorder& recorder, FloatImage& picture, ReadLater when) = 0;
   // The backdrop shade() shows behind the fluid (render/backdrop.h; null: the environment), the
   // image's size, kept alive by the caller while in use; the frame's span image (made or
   // given before) is cut where its walls begin, timed as pass::scenery_cut.

@@ -97,6 +97,11 @@ const Section<RendererConfig>& renderer_section() {
        schema::choice("composite", &R::composite, kCompositeSchemeNames,
                       "in an MPI job, how the ranks merge their span images: bands merged by "
                       "every rank (`direct_send`) or all on rank 0 (`root`); docs/design.md"),
+       schema::choice("readback", &R::readback, kReadLaterNames,
+                      "when the GL renderer's pictures are read back: `later` (the solver's "
+                      "thread issues the read, a file's job waits for it), `wait` (at once), "
+                      "`auto` = later on a GPU, at once on a software renderer (faster there); "
+                      "docs/design.md"),
        schema::number_or_auto("host_memory_mib", &R::host_memory_mib, schema::above(0),
                               "host memory the views may take, checked at start-up from their "
                               "sizes (about 96 bytes a pixel); `auto` = half of this machine's")}};

@@ -44,6 +44,7 @@ struct RendererConfig {
   // The GPU (EGL device) of this process; nullopt: the node-local MPI rank's, modulo devices.
   std::optional<std::int64_t> gpu_device;
   CompositeScheme composite = CompositeScheme::direct_send;
+  ReadLater readback = ReadLater::on_gpu;  // when the GL renderer's pictures are read later
   // Host memory the views may take, checked at start-up by estimate; nullopt: half of the
   // machine's.
   std::optional<double> host_memory_mib;

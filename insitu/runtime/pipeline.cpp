@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 #include <thread>
+#include <utility>
 
 #include "insitu/live/live_feed.h"
 #include "insitu/live/live_server.h"
@@ -179,7 +180,7 @@ struct InsituPipeline::Impl {
                        registered_view_kind(v.kind).make(*v.settings, view_context),
                        ViewFraming(*v.settings),
                        {},
-                       std::make_unique<PicturePool>(pictures_per_view(config)),
+                       std::make_unique<PicturePool>(pictures_per_view(config), v.settings->name),
                        {},
                        {},
                        {},
@@ -281,15 +282,18 @@ struct InsituPipeline::Impl {
                   v.view->render({data, camera, v.framing.box(), needs, true, &scenery}, *recorder,
                                  v.orbit_products);
               recorder->collect();
-              if (!shown) continue;
-              draw_caption(i, data, v.orbit_products.picture);
+              if (!shown) {
+                drop_pending(v.orbit_products);
+                continue;
+              }
               OrbitPicture& picture = orbit_pictures.emplace_back();
               picture.view = i, picture.phi = phi, picture.theta = theta;
-              picture.picture = v.pictures->take(v.orbit_products.picture);
+              picture.picture = take_picture(i, data, v.orbit_products);
               if (needs.first_hit_depth)
                 picture.depth = v.depths->take(v.orbit_products.first_hit_depth);
             } catch (const std::exception& e) {
               recorder->collect();
+              drop_pending(v.orbit_products);
               if (failure.empty())
                 failure = "outputs." + std::string(out.kind->config.name) + ": view " + v.name +
                           " at phi " + std::to_string(phi) + ", theta " + std::to_string(theta) +
@@ -379,12 +383,14 @@ struct InsituPipeline::Impl {
         recorder->collect();
         for (const FrameStats::Pass& pass : stats.passes)
           totals.passes.add_time(pass.name, pass.ms);
-        if (!shown) continue;  // an MPI rank that only voxelized: the root shows the view
+        if (!shown) {  // an MPI rank that only voxelized: the root shows the view
+          drop_pending(v.products);
+          continue;
+        }
         ++totals.frames;
-        draw_caption(i, data, v.products.picture);
         v.latest.reset();  // its buffer, unless a job holds it, is the one traded in
-        v.latest = v.pictures->take(v.products.picture);
-        results[i].picture = v.latest.get();
+        v.latest = take_picture(i, data, v.products);
+        results[i].picture = v.latest.target();
         results[i].shared_picture = &v.latest;
         if (needs.first_hit_depth) results[i].first_hit_depth = &v.products.first_hit_depth;
         if (needs.spans) results[i].spans = v.products.shaded_spans;
@@ -392,6 +398,7 @@ struct InsituPipeline::Impl {
         if (needs.deep) results[i].deep = v.products.shaded_deep;
       } catch (const std::exception& e) {
         recorder->collect();  // closes the scopes of the failed frame
+        drop_pending(v.products);
         ++totals.failed_views;
         if (failure.empty()) failure = "view " + v.name + ": " + e.what();
       }
@@ -399,13 +406,37 @@ struct InsituPipeline::Impl {
     return failure;
   }
 
-  // The view's caption, its fields filled from the step, on a picture of it.
-  void draw_caption(std::size_t view, const StepData& data, FloatImage& picture) {
-    const std::string& pattern = config.views[view].settings->caption;
-    if (pattern.empty()) return;
+  // The view's picture traded into its pool, to be finished by its first reader: its pixels
+  // may still be on their way from the GPU, and its caption (the fields filled from the step)
+  // is drawn on them then, on the writer's thread when a file's job reads first.
+  SharedPicture take_picture(std::size_t view, const StepData& data, ViewProducts& products) {
     ViewState& v = views[view];
-    expand_caption(pattern, {data.step, data.time, v.name}, v.caption);
-    voxspan::draw_caption(picture, v.caption);
+    const std::string& pattern = config.views[view].settings->caption;
+    if (!pattern.empty()) expand_caption(pattern, {data.step, data.time, v.name}, v.caption);
+    const PictureFinish finish{std::exchange(products.pending_picture, nullptr),
+                               pattern.empty() ? std::string_view() : v.caption, data.step};
+    return v.pictures->take(products.picture, finish);
+  }
+
+  // A failed frame's read, if it issued one, goes back unread.
+  static void drop_pending(ViewProducts& products) {
+    if (products.pending_picture != nullptr)
+      std::exchange(products.pending_picture, nullptr)->release();
+  }
+
+  // The latest pictures finished for a caller that reads them (latest_views()); one whose
+  // pixels never came is said and left out.
+  void finish_latest() {
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      if (results[i].shared_picture == nullptr) continue;
+      try {
+        results[i].shared_picture->get();
+      } catch (const std::exception& e) {
+        log_error(e.what());
+        results[i].picture = nullptr;
+        results[i].shared_picture = nullptr;
+      }
+    }
   }
 
   // Hands the step to every output due whose `reports_step` is as asked.
@@ -709,7 +740,10 @@ PipelineTotals InsituPipeline::totals() const {
 
 const Config& InsituPipeline::config() const { return impl_->config; }
 
-std::span<const ViewResult> InsituPipeline::latest_views() const { return impl_->results; }
+std::span<const ViewResult> InsituPipeline::latest_views() const {
+  impl_->finish_latest();
+  return impl_->results;
+}
 
 std::string InsituPipeline::description() const {
   const Impl& m = *impl_;

@@ -79,7 +79,8 @@ class InsituPipeline final : public Pipeline {
   PipelineTotals totals() const;
   const Config& config() const;
   // The latest render step's views (name and picture; the picture is null where the view
-  // failed or, in an MPI job, on every rank but the root), valid until the next step.
+  // failed, its read-back failed (said in the log) or, in an MPI job, on every rank but the
+  // root), valid until the next step. Waits for pictures still on their way from the GPU.
   std::span<const ViewResult> latest_views() const;
   // One line: the GL platform and renderer, the views and the enabled outputs.
   std::string description() const;

@@ -3,13 +3,45 @@
 #include <cassert>
 #include <utility>
 
+#include "insitu/views/legend.h"
+#include "voxspan/error.h"
+
 namespace voxspan {
 
 struct SharedPicture::Entry {
   FloatImage image;
   std::atomic<int> holders{0};
   PicturePool* pool = nullptr;
+  // What take() left to do (PictureFinish), done once under the mutex by the first reader.
+  std::atomic<bool> finished{true};
+  std::mutex finishing;
+  PendingPicture* pending = nullptr;
+  std::string caption;
+  std::int64_t step = 0;
+  std::string failure;  // why the pixels never came; said to every reader
+
+  void finish(const std::string& view);
+  void drop_pending() noexcept {
+    if (pending != nullptr) std::exchange(pending, nullptr)->release();
+  }
 };
+
+void SharedPicture::Entry::finish(const std::string& view) {
+  std::lock_guard lock(finishing);
+  if (finished.load(std::memory_order_relaxed)) return;
+  if (failure.empty()) {
+    try {
+      if (pending != nullptr) pending->copy_into(image);
+    } catch (const std::exception& e) {
+      failure = "view " + view + ", step " + std::to_string(step) +
+                ": reading the picture back failed: " + e.what();
+    }
+    drop_pending();
+  }
+  if (!failure.empty()) throw Error(failure);
+  if (!caption.empty()) draw_caption(image, caption);
+  finished.store(true, std::memory_order_release);
+}
 
 SharedPicture::SharedPicture(const SharedPicture& other) noexcept : entry_(other.entry_) {
   if (entry_ != nullptr) entry_->holders.fetch_add(1, std::memory_order_relaxed);
@@ -31,10 +63,16 @@ void SharedPicture::reset() noexcept {
 }
 
 const FloatImage* SharedPicture::get() const {
+  if (entry_ == nullptr) return nullptr;
+  if (!entry_->finished.load(std::memory_order_acquire)) entry_->finish(entry_->pool->view_);
+  return &entry_->image;
+}
+
+const FloatImage* SharedPicture::target() const {
   return entry_ != nullptr ? &entry_->image : nullptr;
 }
 
-PicturePool::PicturePool(std::size_t expected) {
+PicturePool::PicturePool(std::size_t expected, std::string view) : view_(std::move(view)) {
   entries_.reserve(expected);
   free_.reserve(expected);
 }
@@ -43,7 +81,7 @@ PicturePool::~PicturePool() {
   assert(free_.size() == entries_.size() && "a SharedPicture outlived its pool");
 }
 
-SharedPicture PicturePool::take(FloatImage& picture) {
+SharedPicture PicturePool::take(FloatImage& picture, const PictureFinish& finish) {
   SharedPicture::Entry* entry = nullptr;
   {
     std::lock_guard lock(mutex_);
@@ -59,6 +97,12 @@ SharedPicture PicturePool::take(FloatImage& picture) {
     }
   }
   std::swap(entry->image, picture);
+  entry->pending = finish.pending;
+  entry->caption.assign(finish.caption);  // its storage kept: no allocation once long enough
+  entry->step = finish.step;
+  entry->failure.clear();
+  entry->finished.store(finish.pending == nullptr && finish.caption.empty(),
+                        std::memory_order_relaxed);
   entry->holders.store(1, std::memory_order_relaxed);
   return SharedPicture(entry);
 }
@@ -69,6 +113,7 @@ std::size_t PicturePool::buffers() const {
 }
 
 void PicturePool::give_back(SharedPicture::Entry* entry) noexcept {
+  entry->drop_pending();  // never read: its read-back buffer goes back to the renderer
   std::lock_guard lock(mutex_);
   free_.push_back(entry);
 }

@@ -8,15 +8,23 @@
 // before (no allocation once the pool is warm). A SharedPicture is a counted reference to one
 // such buffer, read-only; the buffer goes back to the pool when the last reference is dropped,
 // on whichever thread. Every reference must be dropped before its pool goes.
+//
+// A picture is finished by its first reader (get()): its pixels may still be on their way from
+// the GPU (render/pending_picture.h) and its caption is drawn on them then, so that neither
+// waits on the solver's thread when a file's job reads first (on the writer's thread).
 #pragma once
 
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <mutex>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "render/float_image.h"
+#include "render/pending_picture.h"
 
 namespace voxspan {
 
@@ -32,7 +40,12 @@ class SharedPicture {
 
   void reset() noexcept;
   explicit operator bool() const { return entry_ != nullptr; }
+  // The finished picture, waiting for it on the first read (any thread). Throws voxspan::Error,
+  // naming the view and the step, when its pixels never came.
   const FloatImage* get() const;
+  // Where the picture is, finished or not: to tell pictures apart without reading them.
+  const FloatImage* target() const;
+  bool refers_to(const FloatImage& image) const { return target() == &image; }
   const FloatImage& operator*() const { return *get(); }
   const FloatImage* operator->() const { return get(); }
 
@@ -43,24 +56,33 @@ class SharedPicture {
   Entry* entry_ = nullptr;
 };
 
+// What is left to do to a picture before it may be read.
+struct PictureFinish {
+  PendingPicture* pending = nullptr;  // its pixels on their way; the picture's to release
+  std::string_view caption;           // drawn on it once its pixels are there
+  std::int64_t step = 0;              // named when the pixels never came
+};
+
 class PicturePool {
  public:
   // `expected`: buffers reserved for (the writer's queue plus what the pipeline holds); more are
-  // made when that many are all held.
-  explicit PicturePool(std::size_t expected);
+  // made when that many are all held. `view`: the view named in messages.
+  explicit PicturePool(std::size_t expected, std::string view = {});
   ~PicturePool();
   PicturePool(const PicturePool&) = delete;
   PicturePool& operator=(const PicturePool&) = delete;
 
   // Moves `picture` into a free buffer and gives `picture` that buffer's former storage (empty,
   // or a picture this view drew before: its pixels are stale, its size most likely the same).
-  SharedPicture take(FloatImage& picture);
+  // `finish`: what its first reader does before reading it (nothing by default).
+  SharedPicture take(FloatImage& picture, const PictureFinish& finish = {});
   std::size_t buffers() const;
 
  private:
   friend class SharedPicture;
   void give_back(SharedPicture::Entry* entry) noexcept;
 
+  const std::string view_;
   mutable std::mutex mutex_;
   std::vector<std::unique_ptr<SharedPicture::Entry>> entries_;
   std::vector<SharedPicture::Entry*> free_;

@@ -170,6 +170,7 @@ class SurfaceView final : public View {
                     : std::vector<std::unique_ptr<SpanStage>>{}),
         combine_ranks_(c.combine_ranks),
         comm_(c.comm),
+        read_later_(c.renderer.readback),
         spacing_(c.particle_spacing),
         scenery_(s.scenery, c.particle_spacing) {
     if (!s.slice.quantity.empty())
@@ -262,7 +263,9 @@ class SurfaceView final : public View {
       backdrop = scenery_.backdrop(step.camera, s.spheres, s.version, s.box, o.shade, recorder);
     }
     renderer_->use_backdrop(backdrop, recorder);
-    renderer_->shade(o.surfaces, o.shade, recorder, out.picture);
+    // The pixels may land later unless this thread draws on them next (a slice, colours).
+    const ReadLater when = slice_ || colors_ ? ReadLater::never : read_later_;
+    out.pending_picture = renderer_->shade_later(o.surfaces, o.shade, recorder, out.picture, when);
     if (needs.first_hit_depth) renderer_->first_hit(recorder, out.first_hit_depth);
     // No copy here: the outputs copy what they keep.
     out.shaded_spans =
@@ -299,6 +302,7 @@ class SurfaceView final : public View {
   std::vector<std::unique_ptr<SpanStage>> stages_;
   DepthRangeCombine combine_ranks_;
   Communicator* const comm_;  // null in one process
+  const ReadLater read_later_;
   const double spacing_;
   std::optional<glm::dvec3> auto_absorption_;  // absorption: auto, fixed at the first box
   std::optional<SliceLayer> slice_;

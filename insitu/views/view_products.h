@@ -49,6 +49,9 @@ struct FieldImage {
 // failed.
 struct ViewResult {
   std::string_view name;
+  // The picture; its pixels may still be on their way (shared_picture's get() waits for them),
+  // so an output reads them through shared_picture, the caller through
+  // InsituPipeline::latest_views().
   const FloatImage* picture = nullptr;
   // The same picture for an output that keeps it past the step (its copy of the reference
   // keeps the pixels as they are: no copy of them; insitu/views/shared_picture.h).
@@ -68,7 +71,7 @@ struct KeptImage {
   FloatImage copy;
 
   void keep(const FloatImage& image, const SharedPicture* same, std::size_t reserve_floats = 0) {
-    if (same != nullptr && same->get() == &image) {
+    if (same != nullptr && same->refers_to(image)) {
       shared = *same;
       return;
     }
@@ -85,7 +88,10 @@ struct KeptImage {
 
 // A view's products of one step, kept from step to step (their storage is reused).
 struct ViewProducts {
-  FloatImage picture;          // linear RGBA, row 0 at the top
+  FloatImage picture;  // linear RGBA, row 0 at the top
+  // Where the picture's pixels are still on their way from the GPU (sized, not yet filled),
+  // their read: the pipeline hands it to the picture's pool (PictureFinish). Null otherwise.
+  PendingPicture* pending_picture = nullptr;
   FloatImage first_hit_depth;  // when asked: distance to the first entry in r, 0: no fluid
   // When asked: the span image the picture was shaded from (after the stages: the composite),
   // valid for this step: the CPU renderer's own, or the GL renderer's read back into `spans`.

@@ -3,6 +3,7 @@
 #include "render/gl/gpu_float_image.h"
 #include "render/gl/passes/cut_at_walls.h"
 #include "render/gl/passes/first_hit.h"
+#include "render/gl/picture_readback.h"
 #include "render/gl/renderer.h"
 #include "render/stat_names.h"
 #include "voxspan/error.h"
@@ -47,6 +48,22 @@ class GlSurfaceRenderer final : public SurfaceRenderer {
     image.download(picture);
   }
 
+  PendingPicture* shade_later(const SurfaceOptions& surfaces, const ShadeOptions& shading,
+                              Recorder& recorder, FloatImage& picture, ReadLater when) override {
+    if (!reads_later(when)) {
+      shade(surfaces, shading, recorder, picture);
+      return nullptr;
+    }
+    const GpuFloatImage& image = renderer_.shade(spans(), surfaces, shading, recorder);
+    // A host scope: what the solver's thread spends issuing it (a device scope would wait).
+    auto t = recorder.host(pass::readback);
+    PendingPicture& read = readback_.issue(image);
+    picture.width = image.width();
+    picture.height = image.height();
+    picture.rgba.resize(std::size_t(image.width()) * std::size_t(image.height()) * 4);
+    return &read;
+  }
+
   void use_backdrop(const Backdrop* backdrop, Recorder& recorder) override {
     renderer_.use_backdrop(backdrop);
     if (backdrop == nullptr) return;
@@ -62,6 +79,13 @@ class GlSurfaceRenderer final : public SurfaceRenderer {
   }
 
  private:
+  // A GPU is told apart from a software renderer as the staging does it (render/gl/objects.h).
+  bool reads_later(ReadLater when) const {
+    if (when == ReadLater::never || !readback_.available()) return false;
+    const gl::ReadbackStaging* staging = gl::current_staging();
+    return when == ReadLater::always || (staging != nullptr && staging->in_use());
+  }
+
   const GpuSpanImage& spans() const {
     if (spans_ == nullptr) throw make_error("the GL surface renderer has no span image yet");
     return *spans_;
@@ -77,6 +101,7 @@ class GlSurfaceRenderer final : public SurfaceRenderer {
       nullptr;  // the frame's in host memory where known: read_ or the caller's
   SpanImage read_;
   GpuFloatImage depth_;
+  gl::PictureReadback readback_;
 };
 
 }  // namespace

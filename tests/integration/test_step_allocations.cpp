@@ -15,11 +15,13 @@
 namespace voxspan {
 namespace {
 
-TEST(StepAllocations, RenderStepsWithFramesStatsAndSnapshotsAllocateNothingOnceStable) {
+// Render steps on `backend` ("cpu", or "gl, readback: later": its pictures read back later).
+void expect_render_steps_allocate_nothing(const std::string& backend) {
   test::TempFolder dir;
   // A particle spacing of its own, and a tank that does not move: the same sizes every step.
   dambreak::DamBreak sim(test::small_dambreak(3000));
-  const std::string yaml = "output_folder: " + dir.path().string() + R"(
+  const std::string yaml =
+      "output_folder: " + dir.path().string() + "\nrenderer: {backend: " + backend + "}" + R"(
 trigger: {every_steps: 1}
 views:
   - {name: a, width: 96, height: 64}
@@ -60,6 +62,14 @@ live: {enabled: true}
   const long allocated = test::thread_allocations() - before;
   test::trace_thread_allocations(0);
   EXPECT_EQ(allocated, 0) << "allocations in 8 render steps (their backtraces above)";
+}
+
+TEST(StepAllocations, RenderStepsWithFramesStatsAndSnapshotsAllocateNothingOnceStable) {
+  expect_render_steps_allocate_nothing("cpu");
+}
+
+TEST(StepAllocations, SoDoTheGlRenderersWithTheirPicturesReadBackLater) {
+  expect_render_steps_allocate_nothing("gl, readback: later");
 }
 
 // Conditions checked on every step, rendering on some and not on others: the reductions, the

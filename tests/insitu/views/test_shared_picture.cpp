@@ -1,14 +1,20 @@
 // A view's picture handed to the outputs without a copy (insitu/views/shared_picture.h): the
 // pixels move with their storage, a held picture stays as it was while the view draws the next,
-// and buffers come back to the view (no allocation once warm).
+// and buffers come back to the view (no allocation once warm); a picture whose pixels are on
+// their way is finished by its first reader, on any thread, and a read that fails is said with
+// its view and step to every reader.
 #include "insitu/views/shared_picture.h"
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
+#include "insitu/outputs/writer/background_writer.h"
+#include "insitu/views/legend.h"
 #include "insitu/views/view_products.h"
+#include "voxspan/error.h"
 
 namespace voxspan {
 namespace {
@@ -95,6 +101,76 @@ TEST(KeptImage, KeepsAViewsPictureByReferenceAndAnyOtherImageAsACopy) {
   kept.keep(*picture, nullptr);  // no reference given: copied
   EXPECT_EQ(kept.image().rgba, picture->rgba);
   EXPECT_NE(kept.image().rgba.data(), picture->rgba.data());
+}
+
+// A read-back that lands `value` everywhere (or fails), counting its copies and releases.
+struct FakeRead final : PendingPicture {
+  int width = 4, height = 2;
+  float value = 0.75f;
+  bool fails = false;
+  int copies = 0, releases = 0;
+  void copy_into(FloatImage& out) override {
+    ++copies;
+    if (fails) throw std::runtime_error("the fence was lost");
+    out = FloatImage(width, height);
+    std::fill(out.rgba.begin(), out.rgba.end(), value);
+  }
+  void release() noexcept override { ++releases; }
+};
+
+TEST(SharedPicture, PixelsOnTheirWayLandAtTheFirstReadOnAnyThreadWithTheCaption) {
+  PicturePool pool(2, "main");
+  FakeRead read;
+  read.width = 64, read.height = 32;
+  FloatImage view(64, 32);  // sized by the renderer, not yet filled
+  const SharedPicture picture = pool.take(view, {&read, "step 7", 7});
+  EXPECT_EQ(read.copies, 0);  // nothing waited for on the taking thread
+  std::thread writer([&] { EXPECT_EQ(picture->width, 64); });
+  writer.join();
+  EXPECT_EQ(read.copies, 1);
+  EXPECT_EQ(read.releases, 1);
+  picture.get();  // finished once
+  EXPECT_EQ(read.copies, 1);
+  FloatImage expected(64, 32);
+  std::fill(expected.rgba.begin(), expected.rgba.end(), 0.75f);
+  draw_caption(expected, "step 7");
+  EXPECT_NE(expected.rgba, std::vector<float>(expected.rgba.size(), 0.75f));  // text drawn
+  EXPECT_EQ(picture->rgba, expected.rgba);
+}
+
+TEST(SharedPicture, AReadNeverMadeGoesBackWhenThePictureIsDropped) {
+  PicturePool pool(2, "main");
+  FakeRead read;
+  FloatImage view(4, 2);
+  SharedPicture picture = pool.take(view, {&read, {}, 3});
+  SharedPicture job = picture;
+  picture.reset();
+  EXPECT_EQ(read.releases, 0);  // a job still holds it
+  job.reset();
+  EXPECT_EQ(read.copies, 0);
+  EXPECT_EQ(read.releases, 1);
+}
+
+TEST(SharedPicture, AFailedReadIsSaidWithItsViewAndStepToEveryReader) {
+  PicturePool pool(2, "main");
+  FakeRead read;
+  read.fails = true;
+  FloatImage view(4, 2);
+  const SharedPicture picture = pool.take(view, {&read, {}, 120});
+  // As an output's job meets it on the writer's thread: a counted failure with the message.
+  BackgroundWriter writer(4, QueuePolicy::wait);
+  for (int job = 0; job < 2; ++job)
+    writer.submit("frame main_00000120.png", [picture] { (void)picture->width; });
+  writer.drain();
+  const WriterStats stats = writer.stats();
+  EXPECT_EQ(stats.failed, 2u);
+  EXPECT_NE(stats.first_error.find("view main, step 120: reading the picture back failed: the "
+                                   "fence was lost"),
+            std::string::npos)
+      << stats.first_error;
+  EXPECT_THROW(picture.get(), Error);
+  EXPECT_EQ(read.copies, 1);  // tried once, said to each
+  EXPECT_EQ(read.releases, 1);
 }
 
 }  // namespace
