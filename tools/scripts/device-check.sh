@@ -19,6 +19,8 @@
 #                        --vdb-every 50 --non-render-steps 1000000, the main job's two views at
 #                        1920x1080 (its runs: the solver alone, rendering, rendering + VDB);
 #   insitu_640x360       the same at the main job's 640x360, 50 steps;
+#   insitu_1080p_wait    insitu_1080p with `renderer: {readback: wait}`: the pictures read back
+#                        at once, as before reading later (the default on a GPU) existed;
 #   shading_16.3m        as shading_8.5m with --particles 13.35e6 --budget-mib 2048, translucent
 #                        and refractive;
 #   shading_8.5m_4k      as shading_8.5m at 3840x2160, translucent and refractive;
@@ -147,6 +149,11 @@ if [[ -x $bin/bench_insitu ]]; then
   step 60 insitu_1080p "$bin/bench_insitu" "${insitu[@]}" --steps "$insitu_steps" --size "$hd"
   step 50 insitu_640x360 "$bin/bench_insitu" "${insitu[@]}" --steps "$insitu_low_steps" \
     --size "$low"
+  # The last --config wins: the main job's, reading its pictures at once.
+  wait_config="$out/main-job-readback-wait.yaml"
+  { cat "$repo/examples/dambreak/main-job.yaml"; echo "renderer: {readback: wait}"; } >"$wait_config"
+  step 60 insitu_1080p_wait "$bin/bench_insitu" "${insitu[@]}" --config "$wait_config" \
+    --steps "$insitu_steps" --size "$hd"
 else
   echo "device-check: insitu steps skipped: the bundle has no bench_insitu"
 fi
@@ -290,6 +297,8 @@ summary() {
     "$(figures insitu_1080p "" "$(with "$sh" %)" \
       "$(with "$(share insitu_1080p "render + VDB snapshots")" %)" "$(with "$ms" ms)")" \
     "share $(goal "$sh" 3 %); per render step $(goal "$ms" 15 ms)"
+  r "the same, solver thread per render step: pictures read later (\`readback: auto\`) / at once (\`wait\`)" \
+    "$(figures insitu_1080p_wait "" "$(with "$ms" ms)" "$(with "$(thread_ms insitu_1080p_wait)" ms)")"
   local w=0 where="" s c
   for s in "${steps[@]}"; do
     c=$(grep -ci "performance warning" "$(outfile "$s")" 2>/dev/null) || true
