@@ -415,7 +415,12 @@ struct InsituPipeline::Impl {
     if (!pattern.empty()) expand_caption(pattern, {data.step, data.time, v.name}, v.caption);
     const PictureFinish finish{std::exchange(products.pending_picture, nullptr),
                                pattern.empty() ? std::string_view() : v.caption, data.step};
-    return v.pictures->take(products.picture, finish);
+    SharedPicture picture = v.pictures->take(products.picture, finish);
+    // With the live page, its mailbox's picture and the one its encoder reads may both be held
+    // when the next is taken: three buffers, made at the first picture rather than on the step
+    // where the encoder first lags.
+    if (live_feed) v.pictures->reserve(*picture.target(), 3);
+    return picture;
   }
 
   // A failed frame's read, if it issued one, goes back unread.

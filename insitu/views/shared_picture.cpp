@@ -7,6 +7,9 @@
 #include "voxspan/error.h"
 
 namespace voxspan {
+namespace {
+constexpr std::size_t kCaptionRoom = 128;  // a caption's storage made ahead (reserve)
+}  // namespace
 
 struct SharedPicture::Entry {
   FloatImage image;
@@ -105,6 +108,19 @@ SharedPicture PicturePool::take(FloatImage& picture, const PictureFinish& finish
                         std::memory_order_relaxed);
   entry->holders.store(1, std::memory_order_relaxed);
   return SharedPicture(entry);
+}
+
+void PicturePool::reserve(const FloatImage& like, std::size_t count) {
+  std::lock_guard lock(mutex_);
+  while (entries_.size() < count) {
+    entries_.push_back(std::make_unique<SharedPicture::Entry>());
+    SharedPicture::Entry* entry = entries_.back().get();
+    entry->pool = this;
+    entry->image = FloatImage(like.width, like.height);
+    entry->caption.reserve(kCaptionRoom);
+    free_.reserve(entries_.capacity());
+    free_.push_back(entry);
+  }
 }
 
 std::size_t PicturePool::buffers() const {

@@ -77,6 +77,10 @@ class PicturePool {
   // `finish`: what its first reader does before reading it (nothing by default).
   SharedPicture take(FloatImage& picture, const PictureFinish& finish = {});
   std::size_t buffers() const;
+  // Makes free buffers the size of `like` (captions' storage too) until `count` exist: for
+  // readers that may hold a picture longer later than in the warm-up (the live page's encoder on
+  // a loaded machine), so that the pool does not grow on the solver's thread then.
+  void reserve(const FloatImage& like, std::size_t count);
 
  private:
   friend class SharedPicture;

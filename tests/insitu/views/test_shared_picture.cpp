@@ -37,6 +37,21 @@ TEST(SharedPicture, TakeMovesThePixelsNotACopy) {
   EXPECT_TRUE(view.rgba.empty());  // a fresh buffer: the view sizes it
 }
 
+// The buffers made ahead for lagging readers (the live page's) come sized: a view that takes
+// one draws into it without allocating; asked again, the pool makes none.
+TEST(SharedPicture, ReservedBuffersComeSizedAndAreMadeOnce) {
+  PicturePool pool(4);
+  pool.reserve(filled(8, 4, 0.0f), 3);
+  EXPECT_EQ(pool.buffers(), 3u);
+  pool.reserve(filled(8, 4, 0.0f), 3);
+  EXPECT_EQ(pool.buffers(), 3u);
+  FloatImage view = filled(8, 4, 0.5f);
+  const SharedPicture first = pool.take(view), second = pool.take(view);
+  EXPECT_EQ(view.rgba.size(), 8u * 4u * 4u);  // a reserved buffer, not a fresh one
+  EXPECT_EQ(view.width, 8);
+  EXPECT_EQ(pool.buffers(), 3u);
+}
+
 TEST(SharedPicture, ABufferComesBackToTheViewOnceReleased) {
   PicturePool pool(4);
   SharedPicture latest;
