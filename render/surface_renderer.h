@@ -56,9 +56,13 @@ class SurfaceRenderer {
                      FloatImage& picture) = 0;
   // shade() with the picture read back later where `when` says and the renderer can: `picture`
   // is sized and its pixels arrive through the returned read (render/pending_picture.h; the
-  // caller's until released); null where they are in `picture` already (the CPU renderer's).
-  virtual PendingPicture* shade_later(const SurfaceOptions& surfaces, const ShadeOptions& shade,
-                                      Recorder& recorder, FloatImage& picture, ReadLater when) = 0;
+  // caller's until released); null where they are in `picture` already, as a renderer that
+  // shades in host memory (the CPU one) leaves them by default.
+  virtual PendingPicture* shade_later(const SurfaceOptions& surfaces, const ShadeOptions& shading,
+                                      Recorder& recorder, FloatImage& picture, ReadLater /*when*/) {
+    shade(surfaces, shading, recorder, picture);
+    return nullptr;
+  }
   // The backdrop shade() shows behind the fluid (render/backdrop.h; null: the environment), the
   // image's size, kept alive by the caller while in use; the frame's span image (made or
   // given before) is cut where its walls begin, timed as pass::scenery_cut.

@@ -27,12 +27,6 @@ class CpuSurfaceRenderer final : public SurfaceRenderer {
              FloatImage& picture) override {
     renderer_.shade(spans(), surfaces, shade, recorder, picture);
   }
-  // Shaded in host memory: nothing to wait for.
-  PendingPicture* shade_later(const SurfaceOptions& surfaces, const ShadeOptions& shading,
-                              Recorder& recorder, FloatImage& picture, ReadLater) override {
-    shade(surfaces, shading, recorder, picture);
-    return nullptr;
-  }
 
   void use_backdrop(const Backdrop* backdrop, Recorder& recorder) override {
     renderer_.use_backdrop(backdrop);
