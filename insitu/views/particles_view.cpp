@@ -8,6 +8,7 @@
 #include "insitu/views/legend.h"
 #include "insitu/views/trails.h"
 #include "insitu/views/view.h"
+#include "insitu/views/view_environment.h"
 #include "insitu/views/view_keys.h"
 #include "voxspan/error.h"
 
@@ -97,7 +98,10 @@ const schema::Section<ParticlesSettings>& particles_section() {
                       "paths of chosen particles over the last render steps"),
                   schema::map<S, ParticleSlice>("slice", &S::slice, slice_section(),
                                                 "an SPH slice plane placed among the glyphs", true)
-                      .only_when([](const S& v) { return !v.slice.quantity.empty(); })})),
+                      .only_when([](const S& v) { return !v.slice.quantity.empty(); }),
+                  schema::map<S, ScenerySettings>(
+                      "scenery", &S::scenery, scenery_section(),
+                      "the solver's walls and obstacles as opaque solids among the glyphs")})),
       [](yaml::MapReader& r, S& v) {
         if (v.cull_range && v.cull_by.empty() && v.color_by.empty())
           r.checker().error(r.find("cull_range"), r.path("cull_range"),
@@ -117,7 +121,7 @@ static_assert(sizeof(GlyphHit) == 24);
 class ParticlesView final : public View {
  public:
   ParticlesView(const ParticlesSettings& s, const ViewContext& c)
-      : settings_(s), spacing_(c.particle_spacing), comm_(c.comm) {
+      : settings_(s), spacing_(c.particle_spacing), comm_(c.comm), scenery_(s.scenery, spacing_) {
     if (!s.slice.quantity.empty())
       slice_.emplace(s.slice, s.name, s.key_path("slice"), spacing_, comm_);
   }
@@ -163,6 +167,7 @@ class ParticlesView final : public View {
     shading.ao_strength = settings_.ambient_occlusion;
     shade_glyphs(glyphs_, step.camera, shading, out.picture);
     depth_ = glyphs_.depth;
+    draw_walls(step, recorder, out.picture);
     if (slice_) {
       auto ts = recorder.host(pass::slice_draw);
       slice_->draw_in_view(step.camera, depth_, out.picture,
@@ -181,6 +186,8 @@ class ParticlesView final : public View {
     out.shaded_spans = nullptr;
     return true;
   }
+
+  bool draws_scenery() const override { return settings_.scenery.draw; }
 
   std::string description() const override {
     return "particles" +
@@ -211,6 +218,29 @@ class ParticlesView final : public View {
       s.cut = GlyphCut{side * p.normal, side * glm::dot(p.normal, p.origin) - s.radius};
     }
     return s;
+  }
+
+  // The walls where they stand nearer than the glyphs (or where there are none), into the picture
+  // and depth_, so that a slice, the trails and the depth output stand behind them too. Lit as a
+  // surface view lights them, under the sun of the view's up; the view's own dark background,
+  // not the environment, where no wall is.
+  void draw_walls(const ViewStep& step, Recorder& recorder, FloatImage& picture) {
+    if (step.scenery == nullptr) return;
+    const Scenery& s = *step.scenery;
+    ShadeOptions shade;
+    shade.environment.up = step.camera.up;
+    shade.environment.sun_direction = sun_direction(step.camera.up);
+    const Backdrop* walls =
+        scenery_.backdrop(step.camera, s.spheres, s.version, s.box, shade, recorder);
+    if (walls == nullptr) return;
+    for (int y = 0; y < walls->height; ++y)
+      for (int x = 0; x < walls->width; ++x) {
+        const std::size_t k = std::size_t(x) + std::size_t(y) * std::size_t(walls->width);
+        const glm::vec4 w = walls->pixels[k];
+        if (w.a == Backdrop::kNoWall || (depth_[k] > 0 && depth_[k] <= w.a)) continue;
+        picture.set(x, y, glm::vec4(w.r, w.g, w.b, 1.0f));
+        depth_[k] = w.a;
+      }
   }
 
   // The nearest glyph of all ranks per pixel on the root (ties: the lower rank), the value range
@@ -283,7 +313,8 @@ class ParticlesView final : public View {
   std::vector<TrailPoint> trail_points_;
   Trails trails_{int(settings_.trails.length)};
   std::optional<SliceLayer> slice_;
-  std::vector<float> depth_;  // the glyphs', then the slice's where nearer
+  std::vector<float> depth_;  // the glyphs' or the walls', then the slice's where nearer
+  SceneryLayer scenery_;
 };
 
 }  // namespace

@@ -4,7 +4,8 @@
 // with its legend, lit with a key light and ambient occlusion. Its settings, for the code that
 // reads them by type. With `trails`, the paths of chosen particles over the last render steps
 // as lines, hidden behind nearer glyphs; with `slice`, an SPH slice plane placed among the
-// glyphs (insitu/views/slice_layer.h), those in front of it cut away.
+// glyphs (insitu/views/slice_layer.h), those in front of it cut away. The solver's walls
+// (insitu/views/scenery.h) stand among the glyphs as in a surface view, nearer ones hiding them.
 //
 // Reads: the owned particles (positions, color_by, cull_by), the cell states (the shell and
 // the occlusion culling), the framed camera. Writes: the picture; the first-hit depth when an
@@ -21,6 +22,7 @@
 #include "insitu/config/settings.h"
 #include "insitu/views/color_map.h"
 #include "insitu/views/glyphs.h"
+#include "insitu/views/scenery.h"
 #include "insitu/views/slice_layer.h"
 #include "insitu/views/view_keys.h"
 
@@ -58,6 +60,7 @@ struct ParticlesSettings : CloneAs<ParticlesSettings, ViewSettings>, ColorBySett
   double ambient_occlusion = 0.8;
   TrailSettings trails;
   ParticleSlice slice;  // quantity empty: none
+  ScenerySettings scenery;
   bool operator==(const ParticlesSettings&) const = default;
 };
 

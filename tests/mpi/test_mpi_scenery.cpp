@@ -1,13 +1,15 @@
 // The solver's scenery in an MPI job (run under mpiexec on 3 ranks): the tank's walls given in
 // parts by two ranks and none by the third, the water interleaved over all three, make the
-// same pictures as one process given everything (up to rounding), in every shading; walls
-// given again later (moved) are drawn anew on every rank's frame. Only rank 0 checks.
+// same pictures as one process given everything (up to rounding), in every shading and in a
+// particles view; walls given again later (moved) are drawn anew on every rank's frame. Only
+// rank 0 checks.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "insitu/runtime/pipeline.h"
@@ -25,9 +27,9 @@ using test::world_size;
 
 constexpr double kSpacing = 0.05;
 
-std::string config(const std::string& name, const std::string& shading) {
+std::string config(const std::string& name, const std::string& keys) {
   return test::one_view_config("mpi-scenery-" + name,
-                               "name: v, caption: '', width: 80, height: 48, shading: " + shading);
+                               "name: v, caption: '', width: 80, height: 48, " + keys);
 }
 
 // Every `ranks`-th particle of the block's from `rank` on.
@@ -53,10 +55,14 @@ std::vector<float> picture_of(const Adapter& a) {
 TEST(MpiScenery, WallsGivenInPartsMakeOneProcesssPicture) {
   const test::ParticleBlock water(kSpacing, "height", [](int, double x) { return x; });
   const test::Tank tank(kSpacing);
-  for (const char* shading : {"opaque", "translucent", "refractive"}) {
+  const std::pair<const char*, const char*> views[] = {{"opaque", "shading: opaque"},
+                                                       {"translucent", "shading: translucent"},
+                                                       {"refractive", "shading: refractive"},
+                                                       {"particles", "kind: particles"}};
+  for (const auto& [shading, keys] : views) {
     std::vector<float> one;
     if (world_rank() == 0) {
-      Adapter a = adapter_from_config_text(config(std::string("one-") + shading, shading),
+      Adapter a = adapter_from_config_text(config(std::string("one-") + shading, keys),
                                            test::spaced(kSpacing));
       a.set_scenery(tank.view());
       EXPECT_TRUE(a.execute(0, 0, water.view()).ok());
@@ -64,7 +70,7 @@ TEST(MpiScenery, WallsGivenInPartsMakeOneProcesssPicture) {
     }
     AdapterOptions options = test::spaced(kSpacing);
     options = with_communicator(std::move(options), MPI_COMM_WORLD);
-    Adapter a = adapter_from_config_text(config(shading, shading), options);
+    Adapter a = adapter_from_config_text(config(shading, keys), options);
     // Ranks 0 and 1 hold a part of the walls each (rank 0 the smaller), the others none.
     const std::size_t third = tank.size() / 3;
     if (world_rank() == 0) a.set_scenery(tank.view(0, third));
@@ -83,7 +89,7 @@ TEST(MpiScenery, WallsGivenAgainAreDrawnAnew) {
   const test::ParticleBlock water(kSpacing, "height", [](int, double x) { return x; });
   const test::Tank tank(kSpacing);
   AdapterOptions options = with_communicator(test::spaced(kSpacing), MPI_COMM_WORLD);
-  Adapter a = adapter_from_config_text(config("again", "opaque"), options);
+  Adapter a = adapter_from_config_text(config("again", "shading: opaque"), options);
   const Share mine(water, world_rank(), world_size());
   if (world_rank() == 1) a.set_scenery(tank.view());
   ASSERT_TRUE(a.execute(0, 0, mine.view()).ok());

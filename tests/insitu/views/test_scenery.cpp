@@ -2,7 +2,8 @@
 // the runtime: a closed tank hides its water unless cut away, and then shows it; refracted rays
 // end on the walls behind the water; the water's surface goes on behind a wall in front of it
 // (no dotted line along the walls); both renderers draw the same tank, at any scale; the keys read
-// and refused as documented; particles with NaN positions left out and counted. Under MPI:
+// and refused as documented; particles with NaN positions left out and counted; particles views
+// show the tank too. Under MPI:
 // tests/mpi/test_mpi_scenery.cpp.
 #include <gtest/gtest.h>
 
@@ -149,6 +150,23 @@ TEST(Scenery, WaterAgainstTheWallsHasNoDotsAlongThem) {
     std::printf("%s: %d dots on the water\n", backend, dots);
     EXPECT_LT(dots, 20) << backend;
   }
+}
+
+// A particles view shows the tank as a surface view does: a closed one hides every glyph, a cut
+// away one shows them inside it, and draw: false leaves the walls out.
+TEST(Scenery, ParticleViewsShowTheTankAroundTheirGlyphs) {
+  const std::string closed = config("kind: particles, scenery: {cutaway: false}");
+  const FloatImage hidden = picture(closed, true), empty = picture(closed, false);
+  EXPECT_LT(test::largest_difference(hidden.rgba, empty.rgba), 1e-6);
+  const std::string cut = config("kind: particles");
+  const FloatImage glyphs = picture(cut, true), tank = picture(cut, false);
+  const double shown = share(differing(glyphs, tank, 0.02));
+  const FloatImage plain = picture(config("kind: particles, scenery: {draw: false}"), false);
+  const double walls = share(differing(tank, plain, 0.02));
+  std::printf("particles view: the walls cover %.1f %% of the picture, the glyphs change %.1f %%\n",
+              100 * walls, 100 * shown);
+  EXPECT_GT(walls, 0.2);
+  EXPECT_GT(shown, 0.05);
 }
 
 TEST(Scenery, DrawFalseLeavesThePictureAsWithoutScenery) {
