@@ -48,6 +48,68 @@ struct PointGrid {
   }
 };
 
+// The cells within grid.reach of a point's cell along every axis: those whose particles some
+// point reads (sum_at), so that the others' particles (the fluid's inside, far from its first
+// surface) are not even sorted. The points' cells marked, then widened by the reach one axis at
+// a time (a cube is the product of its axes' ranges).
+const std::vector<std::uint8_t>& reached_cells(const PointGrid& grid,
+                                               std::span<const glm::dvec3> points, SphPoints& out) {
+  std::vector<std::uint8_t>& marks = out.cell_reached;
+  std::vector<std::uint8_t>& widened = out.cell_widened;
+  marks.assign(grid.count(), 0);
+  for (const glm::dvec3& p : points) marks[grid.index(grid.cell_of(p))] = 1;
+  const long long stride[3] = {1, grid.dims[0], grid.dims[0] * grid.dims[1]};
+  for (int axis = 0; axis < 3; ++axis) {
+    widened.assign(marks.size(), 0);
+    const long long n = grid.dims[axis], r = grid.reach;
+    for (std::size_t k = 0; k < marks.size(); ++k) {
+      if (marks[k] == 0) continue;
+      const long long i = (long long)(k) / stride[axis] % n;
+      for (long long j = std::max(i - r, 0LL); j <= std::min(i + r, n - 1); ++j)
+        widened[std::size_t((long long)(k) + (j - i) * stride[axis])] = 1;
+    }
+    marks.swap(widened);
+  }
+  return marks;
+}
+
+// Squared distance from t to the interval of cell index i along an axis starting at lo.
+double gap_squared(double t, long long i, double lo, double cell) {
+  const double a = lo + double(i) * cell, b = a + cell;
+  const double d = t < a ? a - t : t > b ? t - b : 0.0;
+  return d * d;
+}
+
+// The sums at x over the cells up to grid.reach away from its own, each row of cells (along x)
+// one run of `sorted` from `start`, and of a row only the cells the support's sphere reaches
+// (the 5x5x5 block's corners lie outside it): the particles left out add nothing.
+SphSum sum_at(const PointGrid& grid, std::span<const std::uint32_t> start,
+              std::span<const SphTerm> sorted, const glm::dvec3& x, const SliceQuantity& q,
+              double h) {
+  const auto c = grid.cell_of(x);
+  const long long r = grid.reach;
+  const double support = kernel_support(q.kernel) * h, support2 = support * support;
+  SphSum sum;
+  for (long long z = std::max(c[2] - r, 0LL); z <= std::min(c[2] + r, grid.dims[2] - 1); ++z) {
+    const double gz = gap_squared(x.z, z, grid.lo.z, grid.cell);
+    for (long long y = std::max(c[1] - r, 0LL); y <= std::min(c[1] + r, grid.dims[1] - 1); ++y) {
+      const double g = gz + gap_squared(x.y, y, grid.lo.y, grid.cell);
+      if (g >= support2) continue;
+      const double reach = std::sqrt(support2 - g);
+      const long long x0 =
+          std::max({c[0] - r, 0LL, (long long)std::floor((x.x - reach - grid.lo.x) / grid.cell)});
+      const long long x1 = std::min({c[0] + r, grid.dims[0] - 1,
+                                     (long long)std::floor((x.x + reach - grid.lo.x) / grid.cell)});
+      if (x0 > x1) continue;
+      const std::size_t row = grid.index({0, y, z});
+      for (std::uint32_t s = start[row + std::size_t(x0)]; s < start[row + std::size_t(x1) + 1];
+           ++s)
+        sum.add(sorted[s], x, q.kernel, h);
+    }
+  }
+  return sum;
+}
+
 }  // namespace
 
 void interpolate_at_points(const ParticleView& particles, const SliceQuantity& q,
@@ -63,8 +125,14 @@ void interpolate_at_points(const ParticleView& particles, const SliceQuantity& q
     return;
   }
   const PointGrid grid(points, kernel_support(q.kernel) * std::max(h, 0.0));
+  const std::vector<std::uint8_t>& reached = reached_cells(grid, points, out);
   sph_terms(
-      particles, q, [&](const glm::dvec3& p) { return grid.inside(grid.cell_of(p)); }, out.near);
+      particles, q,
+      [&](const glm::dvec3& p) {
+        const auto c = grid.cell_of(p);
+        return grid.inside(c) && reached[grid.index(c)] != 0;
+      },
+      out.near);
   const std::vector<SphTerm>& near = out.near;
   out.particles_near = near.size();
 
@@ -79,28 +147,18 @@ void interpolate_at_points(const ParticleView& particles, const SliceQuantity& q
     ++start[cell[k] + 1];
   }
   for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+  // The terms themselves in cell order: a point reads each row of its cells as one run of
+  // memory.
   std::vector<std::uint32_t>& fill = out.cell_fill;
-  std::vector<std::uint32_t>& sorted = out.sorted;
+  std::vector<SphTerm>& sorted = out.sorted;
   fill.assign(start.begin(), start.end() - 1);
   sorted.resize(near.size());
-  for (std::size_t k = 0; k < near.size(); ++k) sorted[fill[cell[k]]++] = std::uint32_t(k);
+  for (std::size_t k = 0; k < near.size(); ++k) sorted[fill[cell[k]]++] = near[k];
 
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t k = range.begin(); k != range.end(); ++k) {
-                        const glm::dvec3 x = points[k];
-                        const auto c = grid.cell_of(x);
-                        SphSum sum;
-                        const long long r = grid.reach;
-                        for (long long dz = -r; dz <= r; ++dz)
-                          for (long long dy = -r; dy <= r; ++dy)
-                            for (long long dx = -r; dx <= r; ++dx) {
-                              const std::array<long long, 3> n{c[0] + dx, c[1] + dy, c[2] + dz};
-                              if (!grid.inside(n)) continue;
-                              const std::size_t b = grid.index(n);
-                              for (std::uint32_t s = start[b]; s < start[b + 1]; ++s)
-                                sum.add(near[sorted[s]], x, q.kernel, h);
-                            }
+                        const SphSum sum = sum_at(grid, start, sorted, points[k], q, h);
                         out.sum[k] = sum.sum;
                         out.weight[k] = sum.weight;
                       }

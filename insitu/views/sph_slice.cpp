@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "insitu/views/view_attributes.h"
@@ -48,18 +49,40 @@ void sph_terms(const ParticleView& particles, const SliceQuantity& q,
   if (!per_particle_volume && !(q.rest_volume > 0))
     throw make_error("slice: no \"", q.mass, "\" and \"", q.density,
                      "\" attributes and no rest volume (particle spacing)");
-  out.clear();
-  for (std::size_t i = 0; i < particles.owned_count(); ++i) {
-    if (!particles.position_finite(i)) continue;
+  // Particle i's term, false where it is left out.
+  const auto term = [&](std::size_t i, SphTerm& t) {
+    if (!particles.position_finite(i)) return false;
     const auto a = particles.position(i);
     const glm::dvec3 p(a[0], a[1], a[2]);
-    if (!near(p)) continue;
+    if (!near(p)) return false;
     const double volume =
         per_particle_volume ? mass->magnitude(i) / density->magnitude(i) : q.rest_volume;
     const double value = quantity->magnitude(i);
-    if (!std::isfinite(volume) || !std::isfinite(value)) continue;
-    out.push_back({p, volume * value, volume});
-  }
+    if (!std::isfinite(volume) || !std::isfinite(value)) return false;
+    t = {p, volume * value, volume};
+    return true;
+  };
+  // In parallel and in the particles' order (the sums do not depend on the thread count):
+  // chunks count their terms, then write them from their offsets.
+  constexpr std::size_t kChunks = 256;
+  const std::size_t n = particles.owned_count();
+  const std::size_t chunk = std::max<std::size_t>(4096, (n + kChunks - 1) / kChunks);
+  const std::size_t chunks = (n + chunk - 1) / chunk;
+  std::array<std::size_t, kChunks + 1> offset{};
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+    SphTerm t;
+    std::size_t kept = 0;
+    for (std::size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i) kept += term(i, t);
+    offset[c + 1] = kept;
+  });
+  for (std::size_t c = 0; c < chunks; ++c) offset[c + 1] += offset[c];
+  out.resize(offset[chunks]);
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+    std::size_t k = offset[c];
+    SphTerm t;
+    for (std::size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i)
+      if (term(i, t)) out[k++] = t;
+  });
 }
 
 void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,

@@ -1,7 +1,9 @@
 // The SPH slice's interpolation (insitu/views/sph_slice.h) against the sum computed in double
 // over every particle, kernel by kernel; a uniform field flat under Shepard normalisation; the
-// kernels normalised; a plane that misses the fluid; and the colour maps' ends.
+// kernels normalised; a plane that misses the fluid; the sums at any points (sph_points.h); and
+// the colour maps' ends.
 #include "insitu/views/sph_slice.h"
+#include "insitu/views/sph_points.h"
 
 #include <gtest/gtest.h>
 
@@ -99,6 +101,44 @@ TEST(SphSlice, EqualsTheDoubleSumAtSamplePointsForEveryKernel) {
           }
         EXPECT_LT(worst, 1e-5) << name << (shepard ? " with Shepard " : " ") << name_of_quantity;
       }
+}
+
+// interpolate_at_points (insitu/views/sph_points.h, a surface view's colours) leaves out the
+// particles of cells no point reads, and of a point's cells those its support cannot reach: its
+// sums are the full double sum's, at points on a sheet (a first surface: most particles far
+// from every point) and at a few scattered ones (larger cells), for every kernel.
+TEST(SphPoints, EqualsTheDoubleSumOnASheetAndAtScatteredPoints) {
+  const Particles s(16, 12, 30);
+  std::vector<glm::dvec3> sheet, scattered;
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 60; ++i)
+      sheet.push_back(
+          {0.02 + 1.6 * i / 59.0, 0.02 + 1.2 * j / 39.0, 0.85 + 0.1 * std::sin(i * 0.3)});
+  for (int k = 0; k < 7; ++k) scattered.push_back({0.23 * k, 1.3 - 0.17 * k, 0.1 + 0.4 * k});
+  scattered.push_back({50, 50, 50});  // far from every particle: reached by none
+  for (const auto& [name, kernel] : kSphKernelNames)
+    for (const std::vector<glm::dvec3>* points : {&sheet, &scattered}) {
+      SliceQuantity q = quantity("field");
+      q.kernel = kernel;
+      q.shepard = false;
+      SphPoints out;
+      interpolate_at_points(s.view(), q, *points, out);
+      ASSERT_EQ(out.sum.size(), points->size());
+      double worst = 0;
+      std::size_t reached = 0;
+      for (std::size_t k = 0; k < points->size(); ++k) {
+        const double want = reference(s, q, (*points)[k], false);
+        reached += out.weight[k] > 0;
+        if (std::abs(want) > 1e-3)
+          worst = std::max(worst, std::abs(out.sum[k] - want) / std::abs(want));
+        else EXPECT_NEAR(out.sum[k], want, 1e-10);
+      }
+      EXPECT_LT(worst, 1e-12) << name;
+      EXPECT_GT(reached, points->size() / 2) << name;
+      if (points == &sheet) {
+        EXPECT_LT(out.particles_near, 2 * s.x.size() / 3) << name;
+      }
+    }
 }
 
 TEST(SphSlice, AUniformFieldIsFlatWithShepardAwayFromTheFreeSurface) {
