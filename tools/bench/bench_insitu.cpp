@@ -31,7 +31,7 @@
 #include "insitu/runtime/config_file.h"
 #include "insitu/runtime/pipeline.h"
 #include "insitu/views/surface_view.h"
-#include "sph.h"
+#include "tools/common/dambreak_views.h"
 #include "tools/common/usage.h"
 #include "voxspan/adapter.h"
 #include "voxspan/error.h"
@@ -58,17 +58,8 @@ struct Options {
   std::vector<std::string> views;  // keep only these views (all when empty)
 };
 
-voxspan::ParticleView fluid_view(const dambreak::Fluid& f) {
-  return voxspan::ParticleView::soa(f.x.data(), f.y.data(), f.z.data(), f.size())
-      .with_vector("velocity", f.vx.data(), f.vy.data(), f.vz.data())
-      .with_scalar("density", f.rho.data());
-}
-
-voxspan::GridView fluid_grid(const dambreak::DamBreak& sim) {
-  const dambreak::GridShape& g = sim.fluid_grid().shape();
-  return voxspan::GridView::offsets(voxspan::GridGeometry{g.origin, g.cell_size, g.dims},
-                                    sim.fluid_grid().offsets().data());
-}
+using voxspan::tools::fluid_grid;
+using voxspan::tools::fluid_view;
 
 voxspan::AdapterOptions adapter_options(const dambreak::DamBreak& sim) {
   voxspan::AdapterOptions o;

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "insitu/runtime/pipeline.h"
-#include "sph.h"
+#include "tools/common/dambreak_views.h"
 #include "tools/common/usage.h"
 #include "voxspan/adapter.h"
 #include "voxspan/error.h"
@@ -66,11 +66,8 @@ void run(const Options& o, const std::string& renderer) {
       config(o, renderer, (folder / "without").string(), false), ao, "without.yaml");
   voxspan::Adapter with = voxspan::adapter_from_config_text(
       config(o, renderer, (folder / "with").string(), true), ao, "with.yaml");
-  const dambreak::Fluid& f = sim.fluid();
-  const dambreak::GridShape& g = sim.fluid_grid().shape();
-  const auto particles = voxspan::ParticleView::soa(f.x.data(), f.y.data(), f.z.data(), f.size());
-  const auto grid = voxspan::GridView::offsets(voxspan::GridGeometry{g.origin, g.cell_size, g.dims},
-                                               sim.fluid_grid().offsets().data());
+  const auto particles = voxspan::tools::fluid_view(sim.fluid());
+  const auto grid = voxspan::tools::fluid_grid(sim);
   std::vector<double> ms_without, ms_with;
   auto step = [&](voxspan::Adapter& a, std::int64_t s, std::vector<double>& out) {
     const double before = pipeline(a).totals().seconds_process;
@@ -94,7 +91,7 @@ void run(const Options& o, const std::string& renderer) {
       "%-4s %zu particles, %dx%d, %ld render steps each: handing a step to the page "
       "%.2f us mean, %.2f us most; process() median %.3f ms without, %.3f ms with "
       "(%+.3f ms)\n",
-      renderer.c_str(), f.size(), o.width, o.height, o.steps,
+      renderer.c_str(), sim.fluid().size(), o.width, o.height, o.steps,
       1e6 * t.seconds_live / double(t.render_steps), 1e3 * most_live_ms, without_ms, with_ms,
       with_ms - without_ms);
   std::filesystem::remove_all(folder);

@@ -1,0 +1,189 @@
+// check_adaptive: adaptive sampling under an error tolerance ([HOK16]; `views[i].adaptive`)
+// over a whole dam-break run (docs/benchmarks.md, "Volume views"). The WCSPH solver
+// (examples/dambreak) runs from the column's release with volume views of one field, one at the
+// full rate and one per (tolerance, relax), all automatically framed alike, rendered every
+// --every steps through the runtime for --frames render steps; each adaptive picture is held
+// against the full-rate one of its step.
+//   - relax 0 is a guarantee: a channel off by more than the tolerance (plus 1e-6 for float
+//     rounding) is a bug; the tool prints where and exits 1.
+//   - relax > 0 trades the guarantee for speed: the tool prints [HOK16]'s Table 3 for it, the
+//     share of rays (pixels) and of frames over the tolerance and the largest error.
+//
+//   check_adaptive [--particles N] [--tank-length L] [--frames F] [--every K] [--size WxH]
+//                  [--tolerances E,...] [--relax R,...] [--quantity NAME]
+// Defaults: 20000 particles, the main job's 3a tank, 1000 render steps every 3 solver steps,
+// 320x180, tolerances 0.001, 0.004, 0.01, relax 0 and 1, the speed (`velocity`).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "insitu/runtime/pipeline.h"
+#include "tools/common/dambreak_views.h"
+#include "tools/common/usage.h"
+#include "voxspan/insitu.h"
+
+namespace {
+
+constexpr double kRounding = 1e-6;  // float compositing's slack over the tolerance
+
+struct Options {
+  std::size_t particles = 20000;
+  double tank_length = 3;
+  long frames = 1000;
+  long every = 3;
+  int width = 320, height = 180;
+  std::vector<double> tolerances = {0.001, 0.004, 0.01};
+  std::vector<double> relaxes = {0, 1};
+  std::string quantity = "velocity";
+};
+
+// One adaptive view's tally over the run.
+struct Tally {
+  double tolerance = 0, relax = 0;
+  long long rays = 0, rays_over = 0;  // pixels compared, pixels with a channel past
+  long frames_over = 0;
+  double largest = 0;
+};
+
+std::vector<double> numbers(const char* text) {
+  std::vector<double> out;
+  std::string s(text);
+  for (std::size_t at = 0; at <= s.size();) {
+    const std::size_t comma = std::min(s.find(',', at), s.size());
+    out.push_back(std::atof(s.substr(at, comma - at).c_str()));
+    at = comma + 1;
+  }
+  return out;
+}
+
+bool parse(int argc, char** argv, Options& o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const char* v = i + 1 < argc ? argv[i + 1] : nullptr;
+    if (v == nullptr) return false;
+    if (a == "--particles") o.particles = std::size_t(std::atof(v));
+    else if (a == "--tank-length") o.tank_length = std::atof(v);
+    else if (a == "--frames") o.frames = std::atol(v);
+    else if (a == "--every") o.every = std::atol(v);
+    else if (a == "--size") {
+      if (std::sscanf(v, "%dx%d", &o.width, &o.height) != 2) return false;
+    } else if (a == "--tolerances") o.tolerances = numbers(v);
+    else if (a == "--relax") o.relaxes = numbers(v);
+    else if (a == "--quantity") o.quantity = v;
+    else return false;
+    ++i;
+  }
+  const auto in_unit = [](double e) { return e >= 0 && e <= 1; };
+  return o.particles > 0 && o.frames > 0 && o.every > 0 && o.width > 0 && o.height > 0 &&
+         std::all_of(o.tolerances.begin(), o.tolerances.end(),
+                     [](double e) { return e > 0 && e <= 1; }) &&
+         std::all_of(o.relaxes.begin(), o.relaxes.end(), in_unit);
+}
+
+// The views: `full` first, then one per (tolerance, relax) in the tallies' order.
+std::string config_text(const Options& o, const std::vector<Tally>& tallies) {
+  const std::string common = "kind: volume, width: " + std::to_string(o.width) +
+                             ", height: " + std::to_string(o.height) + ", quantity: " + o.quantity +
+                             ", caption: '', legend: false";
+  std::string text = "output_folder: " +
+                     (std::filesystem::temp_directory_path() / "voxspan-check-adaptive").string() +
+                     "\nlog_level: warning\noutputs: {png: {enabled: false}, stats: {enabled: "
+                     "false}}\ntrigger: {every_steps: " +
+                     std::to_string(o.every) + "}\nviews:\n  - {name: full, " + common + "}\n";
+  for (std::size_t k = 0; k < tallies.size(); ++k)
+    text += "  - {name: adaptive" + std::to_string(k) + ", " + common +
+            ", adaptive: {error_tolerance: " + std::to_string(tallies[k].tolerance) +
+            ", relax: " + std::to_string(tallies[k].relax) + "}}\n";
+  return text;
+}
+
+using voxspan::tools::fluid_grid;
+using voxspan::tools::fluid_view;
+
+// Adds one step's adaptive picture against its full-rate one; prints a relax-0 violation.
+void tally(const voxspan::FloatImage& full, const voxspan::FloatImage& adaptive, long step,
+           Tally& t) {
+  bool frame_over = false;
+  for (int y = 0; y < full.height; ++y)
+    for (int x = 0; x < full.width; ++x) {
+      const glm::vec4 a = full.at(x, y), b = adaptive.at(x, y);
+      double worst = 0;
+      for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(double(a[c]) - double(b[c])));
+      t.largest = std::max(t.largest, worst);
+      ++t.rays;
+      if (worst <= t.tolerance + kRounding) continue;
+      ++t.rays_over;
+      frame_over = true;
+      if (t.relax == 0 && t.rays_over <= 5)
+        std::printf("VIOLATION tolerance %g relax 0: step %ld pixel (%d, %d) off by %.3e\n",
+                    t.tolerance, step, x, y, worst);
+    }
+  t.frames_over += frame_over;
+}
+
+int run(const Options& o) {
+  std::vector<Tally> tallies;
+  for (double relax : o.relaxes)
+    for (double tolerance : o.tolerances) tallies.push_back({tolerance, relax});
+  dambreak::Config scene;
+  scene.particles = o.particles;
+  scene.tank_length = o.tank_length;
+  dambreak::DamBreak sim(scene);
+  voxspan::AdapterOptions options;
+  options.classify.particle_spacing = sim.dx();
+  voxspan::Adapter adapter = voxspan::adapter_from_config_text(config_text(o, tallies), options);
+  const auto& pipeline = dynamic_cast<const voxspan::InsituPipeline&>(*adapter.pipeline());
+  std::printf(
+      "dam break: %zu fluid particles; %zu adaptive views of %s at %dx%d against the "
+      "full rate, %ld render steps every %ld steps\n",
+      sim.fluid().size(), tallies.size(), o.quantity.c_str(), o.width, o.height, o.frames, o.every);
+  long frames = 0;
+  while (frames < o.frames) {
+    sim.step();
+    const long step = long(sim.steps());
+    const voxspan::Status s =
+        adapter.execute(step, sim.time(), fluid_view(sim.fluid()), fluid_grid(sim));
+    if (!s.ok()) {
+      std::fprintf(stderr, "check_adaptive: step %ld: %s\n", step, s.message.c_str());
+      return 2;
+    }
+    if (step % o.every != 0) continue;
+    const auto views = pipeline.latest_views();
+    for (std::size_t k = 0; k < tallies.size(); ++k)
+      tally(*views[0].picture, *views[k + 1].picture, step, tallies[k]);
+    if (++frames % 100 == 0)
+      std::printf("  %ld render steps (step %ld, T %.2f)\n", frames, step,
+                  sim.nondimensional_time());
+  }
+  std::printf("\n%9s %5s | %12s %14s %12s %10s\n", "tolerance", "relax", "rays over",
+              "share of rays", "frames over", "largest");
+  bool violated = false;
+  for (const Tally& t : tallies) {
+    std::printf("%9g %5g | %12lld %13.5f%% %6ld/%-5ld %10.3e\n", t.tolerance, t.relax, t.rays_over,
+                100.0 * double(t.rays_over) / double(std::max(1LL, t.rays)), t.frames_over, frames,
+                t.largest);
+    violated = violated || (t.relax == 0 && t.rays_over > 0);
+  }
+  return violated ? 1 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  constexpr char kUsage[] =
+      "usage: check_adaptive [--particles N] [--tank-length L] [--frames F] [--every K]\n"
+      "         [--size WxH] [--tolerances E,...] [--relax R,...] [--quantity NAME]\n";
+  if (voxspan::tools::asks_for_help(argc, argv)) return voxspan::tools::print_usage(stdout, kUsage);
+  Options o;
+  if (!parse(argc, argv, o)) return voxspan::tools::print_usage(stderr, kUsage);
+  try {
+    return run(o);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "check_adaptive: %s\n", e.what());
+    return 2;
+  }
+}
