@@ -78,6 +78,10 @@ struct IsoSurface {
 struct AdaptiveOptions {
   double error_tolerance = 0;  // in [0, 1]: largest change of a pixel's channel
   double relax = 0;            // in [0, 1]
+  // In (0, 1]: the share of the tolerance one rank's cells may spend when several ranks each
+  // march their own particles and their segments are composited (insitu/views/
+  // volume_compositor.cpp gives each 1 / ranks; render/cpu/volume_adaptive.h says why that holds).
+  double share = 1;
   bool operator==(const AdaptiveOptions&) const = default;
 };
 

@@ -386,7 +386,8 @@ template <SphKernel K, bool kPart> class TileMarch {
     const auto behind = [&](int x, int y) {
       return glm::dvec3(host_.pixel_color(host_.vx_ray_start(), model::vec3(0.0f), true, f_, x, y));
     };
-    planner.plan(o_, *tf_, behind, t_);
+    if constexpr (kPart) hold_shared(planner);
+    planner.plan(o_, *tf_, behind, kPart, t_);
     // A pixel's bundle, or kFullRate where all its cells are at full rate: the march as without
     // a plan there, and without one at all where that holds for the whole tile.
     w_.bundle.resize(std::size_t(pixels_));
@@ -398,6 +399,14 @@ template <SphKernel K, bool kPart> class TileMarch {
       any = any || !full;
     }
     if (any) plan_ = &planner;
+  }
+
+  // A rank's part: the cells holding samples other ranks reach too stay at full rate (their
+  // sums are sent, not composited here; render/cpu/volume_adaptive.h).
+  void hold_shared(TilePlanner& planner) const {
+    for (int p = 0; p < pixels_; ++p)
+      for (const SampleRange& r : shared_->of(global_pixel(p)))
+        planner.hold(planner.bundle_of(p), r.first, r.last);
   }
 
   void start(const PixelRect& tile, std::span<const std::uint32_t> list,
@@ -667,6 +676,9 @@ template <SphKernel K, bool kPart> class TileMarch {
       if (r.front > r.last) {  // no support reaches the samples up to `upto`
         const std::int64_t next = next_super_pixel(r.front);
         if (next < upto) {
+          // A part's segment ends before the samples passed over: other ranks' may lie there.
+          if constexpr (kPart)
+            if (next > r.front) close(p);
           r.front = next;
         } else {  // the ray leaves the field
           r.ray.defined = 0u;
@@ -683,22 +695,24 @@ template <SphKernel K, bool kPart> class TileMarch {
         if (w > 0) w_.raws[std::size_t(p)].push_back({std::int32_t(r.front), s, w});
         continue;
       }
+      const CellPlan* cell = plan != nullptr ? &plan->cell(bundle, r.front) : nullptr;
+      const bool super = cell != nullptr && cell->level == kSuperPixel;
       if (kPart && r.open < 0) {
         // A segment starts at a sample some particle reaches: one before this rank's first on
         // the ray (the march starts at its supports' first samples over their whole spheres)
-        // may lie among another rank's samples, and no particle reaches it.
-        if (!(w > 0)) continue;
+        // may lie among another rank's samples, and no particle reaches it. A super-pixel cell
+        // holds no other rank's sample and is defined at every ray of its bundle.
+        if (!(w > 0) && !super) continue;
         open(p, r.front);
       }
       std::int64_t span = 1;
-      if (plan != nullptr) {
-        const CellPlan& cell = plan->cell(bundle, r.front);
-        if (cell.level == kSuperPixel) {
-          super_pixel(p, r, cell);
+      if (cell != nullptr) {
+        if (super) {
+          super_pixel(p, r, *cell);
           if (r.done) return;
           continue;
         }
-        span = std::int64_t(1) << cell.level;
+        span = std::int64_t(1) << cell->level;
         if ((r.front & (span - 1)) != 0) {
           ++t_.samples_skipped;  // its run's first sample stood for it
           continue;
@@ -783,6 +797,8 @@ template <SphKernel K, bool kPart> class TileMarch {
   // Ray r enters a super-pixel cell: its light and transmittance, once.
   void super_pixel(int p, RayState& r, const CellPlan& cell) {
     ++t_.samples_skipped;
+    if constexpr (kPart)
+      w_.segments[std::size_t(p)][std::size_t(r.open)].out.last = std::int32_t(r.front);
     const std::int64_t at = r.front >> kCellShift;
     if (r.super_cell == at) return;
     r.super_cell = at;
@@ -792,7 +808,10 @@ template <SphKernel K, bool kPart> class TileMarch {
     r.ray.defined = 1u;
     if (r.first_depth == 0 && before >= 0.5f && r.ray.transmittance < 0.5f)
       r.first_depth = float(s_.lattice.depth((at << kCellShift) + kCellSamples / 2) * r.scale);
-    if (r.ray.transmittance < o_.termination) stop(p);
+    if (r.ray.transmittance < o_.termination) {
+      stop(p);
+      if constexpr (kPart) close(p);
+    }
   }
 
   // Pixel p's ray is opaque: it takes no more samples.
@@ -938,6 +957,16 @@ VolumeCounts VolumeCaster::start_frame(const Camera& camera,
 
 namespace {
 
+// Adaptive sampling's transfer bounds for a frame of `options`, made in `bounds`, or null where
+// adaptive sampling does not apply: its bounds hold for DVR of a Shepard-normalised field (a
+// convex combination of the particles' values); otherwise every sample, as at tolerance 0.
+const TransferBounds* adaptive_bounds(const VolumeOptions& options,
+                                      std::optional<TransferBounds>& bounds) {
+  if (!(options.adaptive.error_tolerance > 0 && options.mode == VolumeMode::dvr && options.shepard))
+    return nullptr;
+  return &bounds.emplace(options);
+}
+
 // f(march, tile rect, tile index, its supports) for every tile of the frame, in parallel, with
 // the march of kernel K (of a rank's part with kPart) on this thread.
 template <bool kPart, class F>
@@ -976,13 +1005,8 @@ VolumeCounts VolumeCaster::run(const Camera& camera, std::span<const VolumeParti
   VolumeCounts counts = start_frame(camera, particles, options, lap);
   Work& w = *work_;
   out.reset(camera.width, camera.height);
-  // Adaptive sampling's bounds hold for DVR of a Shepard-normalised field (a convex combination of
-  // the particles' values); otherwise every sample, as at tolerance 0.
-  const bool adaptive =
-      options.adaptive.error_tolerance > 0 && options.mode == VolumeMode::dvr && options.shepard;
-  if (adaptive) w.transfer_bounds.emplace(options);
   each_tile<false>(w.samples, w.options, w.frame, w.tile_bins, w.tile_lists, w.scratch, counts,
-                   nullptr, adaptive ? &*w.transfer_bounds : nullptr, w.cull_tiles,
+                   nullptr, adaptive_bounds(w.options, w.transfer_bounds), w.cull_tiles,
                    [&](auto& march, const PixelRect& rect, std::size_t, auto list) {
                      march.run(rect, list, w.supports, out);
                    });
@@ -1015,7 +1039,7 @@ VolumeCounts VolumeCaster::run_part(const PixelRanges& shared, VolumePart& out) 
   w.tile_parts.resize(screen.count());
   VolumeCounts counts;
   each_tile<true>(w.samples, w.options, w.frame, w.tile_bins, w.tile_lists, w.scratch, counts,
-                  &shared, nullptr, w.cull_tiles,
+                  &shared, adaptive_bounds(w.options, w.transfer_bounds), w.cull_tiles,
                   [&](auto& march, const PixelRect& rect, std::size_t t, auto list) {
                     march.run_part(rect, list, w.supports, w.tile_parts[t]);
                   });

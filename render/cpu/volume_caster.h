@@ -87,8 +87,9 @@ class VolumeCaster {
   // This rank's part of a frame cast over several ranks (render/volume_parts.h). cover() starts
   // the frame as run() does and gives per pixel the hull of the samples these particles reach;
   // run_part() marches it given the samples other ranks reach too (`shared`, per pixel), into
-  // `out`; field_sums() adds these particles' sums at the merge's iso hits (appended to `out`,
-  // one per query). The last two read the frame cover() started.
+  // `out` (adaptive sampling with options.adaptive.share of the tolerance, the cells holding
+  // shared samples at full rate); field_sums() adds these particles' sums at the merge's iso hits
+  // (appended to `out`, one per query). The last two read the frame cover() started.
   VolumeCounts cover(const Camera& camera, std::span<const VolumeParticle> particles,
                      const VolumeOptions& options, std::vector<SampleRange>& hulls);
   VolumeCounts run_part(const PixelRanges& shared, VolumePart& out);
