@@ -251,7 +251,7 @@ template <SphKernel K> void add_field_sums(glm::dvec3 x, const Support& s, Field
 template <SphKernel K, bool kPart> class TileMarch {
  public:
   // `tf`: adaptive sampling's transfer bounds (null: every sample, as always); `cull`: whether
-  // a tile whose rays are all opaque stops (VolumeCaster::set_tile_culling).
+  // the supports behind opaque tiles and bundles are left out (VolumeCaster::set_tile_culling).
   TileMarch(const Samples& s, const VolumeOptions& o, const ViewFrame& f, model::VolumeHost& host,
             TileScratch& scratch, VolumeCounts& tallies, const PixelRanges* shared,
             const TransferBounds* tf, bool cull)
