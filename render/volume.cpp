@@ -48,6 +48,8 @@ void validate(const VolumeOptions& o) {
     throw make_error("volume adaptive error_tolerance = ", a.error_tolerance, " must be in [0, 1]");
   if (!(a.relax >= 0 && a.relax <= 1))
     throw make_error("volume adaptive relax = ", a.relax, " must be in [0, 1]");
+  if (!(a.share > 0 && a.share <= 1))
+    throw make_error("volume adaptive share = ", a.share, " must be in (0, 1]");
   ShadeOptions shade;
   shade.environment = o.environment;
   validate(shade);

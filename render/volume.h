@@ -78,6 +78,10 @@ struct IsoSurface {
 struct AdaptiveOptions {
   double error_tolerance = 0;  // in [0, 1]: largest change of a pixel's channel
   double relax = 0;            // in [0, 1]
+  // In (0, 1]: the share of the tolerance one rank's cells may spend when several ranks each
+  // march their own particles and their segments are composited (insitu/views/
+  // volume_compositor.cpp gives each 1 / ranks; render/cpu/volume_adaptive.h says why that holds).
+  double share = 1;
   bool operator==(const AdaptiveOptions&) const = default;
 };
 
@@ -213,6 +217,11 @@ struct VolumeCounts {
   std::int64_t cells_coarse = 0;
   std::int64_t cells_super_pixel = 0;
   std::int64_t cells_surface = 0;
+  // Occlusion culling ([FAW10] sec. 5.2; CPU caster): screen tiles whose rays all stopped
+  // before their last supports; supports not walked, behind those tiles or behind bundles of
+  // rays that all stopped.
+  std::int64_t tiles_culled = 0;
+  std::int64_t supports_culled = 0;
 };
 
 // Each count with the name a stats record gives it.
@@ -233,7 +242,9 @@ inline constexpr VolumeCountName kVolumeCountNames[] = {
     {"volume.samples_skipped", &VolumeCounts::samples_skipped},
     {"volume.cells_coarse", &VolumeCounts::cells_coarse},
     {"volume.cells_super_pixel", &VolumeCounts::cells_super_pixel},
-    {"volume.cells_surface", &VolumeCounts::cells_surface}};
+    {"volume.cells_surface", &VolumeCounts::cells_surface},
+    {"volume.tiles_culled", &VolumeCounts::tiles_culled},
+    {"volume.supports_culled", &VolumeCounts::supports_culled}};
 
 inline VolumeCounts& operator+=(VolumeCounts& a, const VolumeCounts& b) {
   for (const VolumeCountName& c : kVolumeCountNames) a.*c.member += b.*c.member;

@@ -191,8 +191,14 @@ bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,
   const std::size_t band_first = std::size_t(mine.begin) * width;
   std::string failure;
   VolumeCounts counts;
+  // Adaptive sampling: each rank's cells may change the composited picture by their share of the
+  // tolerance; the shares add up to it (render/cpu/volume_adaptive.h: front to back, a cell's
+  // change is at most its term whatever the other ranks' samples around it, so the ranks' terms
+  // add).
+  VolumeOptions mine_options = options;
+  mine_options.adaptive.share = options.adaptive.share / double(ranks);
 
-  agree(attempt([&] { counts = renderer.cover(camera, particles, options, recorder, hulls_); },
+  agree(attempt([&] { counts = renderer.cover(camera, particles, mine_options, recorder, hulls_); },
                 failure),
         failure);
   {

@@ -8,7 +8,9 @@
 //   3. parts: each rank sends each owner its sums at those samples and its segments;
 //   4. (iso and mixed modes) hits: the owner merges its band and sends every rank the iso hits
 //      found at the joins; each rank sends back its field sums there (those not zero);
-// then the owners light their bands' hits and the root gathers the bands.
+// then the owners light their bands' hits and the root gathers the bands. Adaptive sampling
+// (VolumeOptions::adaptive) gives each rank 1 / ranks of the tolerance: the composited picture
+// stays within it of the full-rate composite.
 // A rank that fails in any of its steps fails the step on every rank (Communicator::agree),
 // before the next exchange: no rank waits for one that threw.
 // Times: pass::volume (this rank's rendering), pass::composite (the exchanges and the merge);

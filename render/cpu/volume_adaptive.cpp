@@ -97,6 +97,7 @@ void TilePlanner::start(const PixelRect& tile, std::int64_t lo, std::int64_t hi,
     depth_[k] = lattice.depth((c0_ << kCellShift) + std::int64_t(k));
     extent_[k] = lattice.extent(depth_[k]);
   }
+  held_.assign(std::size_t(bundles_) * std::size_t(cells_), 0);
   q_lo_.assign(n * std::size_t(bundles_), kInf);
   q_hi_.assign(q_lo_.size(), -kInf);
   w_lo_.assign(n * std::size_t(blocks_), 0.0);
@@ -122,6 +123,13 @@ void TilePlanner::start(const PixelRect& tile, std::int64_t lo, std::int64_t hi,
       }
     scales_[std::size_t(b)] = {s_lo, s_hi};
   }
+}
+
+void TilePlanner::hold(int bundle, std::int64_t first, std::int64_t last) {
+  const std::int64_t c_first = std::max(first >> kCellShift, c0_);
+  const std::int64_t c_last = std::min(last >> kCellShift, c0_ + cells_ - 1);
+  for (std::int64_t c = c_first; c <= c_last; ++c)
+    held_[std::size_t(bundle) * std::size_t(cells_) + std::size_t(c - c0_)] = 1;
 }
 
 PixelRect TilePlanner::bundle_rect(int b) const {
@@ -160,7 +168,8 @@ TilePlanner::Bounds TilePlanner::level_bounds(int b, std::int64_t cell, int leve
 }
 
 void TilePlanner::plan_bundle(int b, const VolumeOptions& o, const TransferBounds& tf,
-                              const std::array<double, 3>& behind, VolumeCounts& counts) {
+                              const std::array<double, 3>& behind, bool part,
+                              VolumeCounts& counts) {
   const std::size_t n = std::size_t(cells_);
   cell_bounds_.resize(n);
   most_.resize(n);
@@ -183,6 +192,11 @@ void TilePlanner::plan_bundle(int b, const VolumeOptions& o, const TransferBound
       proven = proven && proven_[std::size_t(((cell - c0_) << kCellShift) + j)] != 0;
     }
     auto& bounds = cell_bounds_[c];
+    if (held_[std::size_t(b) * n + c] != 0) {  // another rank's sums there: any value
+      most_[c] = 0;
+      bounds.fill(Bounds{{0, 0, 0}, {tf.brightest(0), tf.brightest(1), tf.brightest(2)}, 0, 1});
+      continue;
+    }
     most_[c] = reached && proven ? kSuperPixel : 0;
     if (!reached) {
       bounds.fill(Bounds{{0, 0, 0}, {0, 0, 0}, 1, 1});
@@ -213,14 +227,18 @@ void TilePlanner::plan_bundle(int b, const VolumeOptions& o, const TransferBound
   };
   double t_end_lo = 1;
   for (std::size_t c = 0; c < n; ++c) t_end_lo *= loosest(c).t_lo;
-  const bool may_stop = o.termination > 0 && t_end_lo < o.termination;
+  // A part's ray may stop at another rank's sample.
+  const bool may_stop = o.termination > 0 && (part || t_end_lo < o.termination);
   const double tol = o.adaptive.error_tolerance - kRoundingReserve;
+  const double share = o.adaptive.share;
+  std::array<double, 3> brightest{};  // M per channel
+  for (int ch = 0; ch < 3; ++ch)
+    brightest[std::size_t(ch)] = std::max(tf.brightest(ch), behind[std::size_t(ch)]);
   std::array<double, 4> budget{};  // per channel, alpha last (no background: 1 - T)
   for (int ch = 0; ch < 3; ++ch)
     budget[std::size_t(ch)] =
-        tol -
-        (may_stop ? 2 * o.termination * std::max(tf.brightest(ch), behind[std::size_t(ch)]) : 0);
-  budget[3] = o.background ? kInf : tol - (may_stop ? 2 * o.termination : 0);
+        share * (tol - (may_stop ? 2 * o.termination * brightest[std::size_t(ch)] : 0));
+  budget[3] = o.background ? kInf : share * (tol - (may_stop ? 2 * o.termination : 0));
   if (std::min({budget[0], budget[1], budget[2], budget[3]}) <= 0) return;
 
   // Back to front ([HOK16] sec. 4.4). The light behind a cell bounded as the full-rate picture
@@ -231,7 +249,7 @@ void TilePlanner::plan_bundle(int b, const VolumeOptions& o, const TransferBound
     front_[c] = front;
     front *= loosest(c).t_hi;
   }
-  std::array<double, 3> back = behind;
+  std::array<double, 3> back = part ? brightest : behind;
   std::array<double, 4> spent{};
   for (std::size_t c = n; c-- > 0;) {
     const Bounds& full = cell_bounds_[c][0];
@@ -273,8 +291,9 @@ void TilePlanner::plan_bundle(int b, const VolumeOptions& o, const TransferBound
         break;
       }
     }
-    for (int ch = 0; ch < 3; ++ch)
-      back[std::size_t(ch)] = full.i_hi[ch] + full.t_hi * back[std::size_t(ch)];
+    if (!part)
+      for (int ch = 0; ch < 3; ++ch)
+        back[std::size_t(ch)] = full.i_hi[ch] + full.t_hi * back[std::size_t(ch)];
   }
 }
 

@@ -40,6 +40,19 @@
 // relax r in (0, 1] subtracts r times the full-rate bound widths from the coarse levels' ([HOK16]
 // sec. 5.1: the full-rate width is the bundle's lateral spread, not a sampling error); super-pixels
 // are never relaxed (sec. 5.2: their error is the lateral spread). r = 0: the guarantee.
+//
+// A rank's part (render/volume_parts.h: its segments, composited with other ranks' segments and
+// the shared samples by the merge). The argument above holds over the cells of all ranks taken
+// together, front to back along the composited ray, if each cell's term bounds its own exchange
+// there: the transmittance in front is at most the product of the rank's own cells' (the others'
+// samples only lower it), and the light behind any cell, a composite of samples and background
+// whose weights sum to at most 1, is at most M = max(brightest light of the transfer function,
+// brightest background) per channel, which the part's plan takes as R_back for every cell. The
+// cells holding a sample another rank reaches too (its sums are not this rank's alone, so its
+// bounds are not these) are held at full rate. The ranks' terms then add up: each rank spends
+// at most `share` (1 / ranks) of the tolerance less the reserves, and the rounding and the early
+// stop (which may end the composited ray at any rank's sample: always reserved) are reserved
+// once, so the composited picture moves from the full-rate composite by at most the tolerance.
 #pragma once
 
 #include <algorithm>
@@ -109,15 +122,18 @@ class TilePlanner {
   void start(const PixelRect& tile, std::int64_t lo, std::int64_t hi, const ViewFrame& f,
              const VolumeLattice& lattice, double weight_floor);
 
+  // A rank's part: the cells of `bundle` holding samples [first, last] stay at full rate.
+  void hold(int bundle, std::int64_t first, std::int64_t last);
+
   // One support: centre c (view space), 1 / h, weight v, value q, samples [first, last], pixels.
   template <SphKernel K>
   void add(const glm::dvec3& c, double inv_h, double v, double q, std::int64_t first,
            std::int64_t last, const PixelRect& rect);
 
   // Every bundle's cells planned; background(x, y): pixel (x, y)'s light behind the fluid, per
-  // channel (none: zeros). Counts the cells' choices.
+  // channel (none: zeros); `part`: a rank's part of the frame (above). Counts the cells' choices.
   template <class Background>
-  void plan(const VolumeOptions& o, const TransferBounds& tf, Background&& background,
+  void plan(const VolumeOptions& o, const TransferBounds& tf, Background&& background, bool part,
             VolumeCounts& counts) {
     plans_.assign(std::size_t(bundles_) * std::size_t(cells_), CellPlan{});
     for (int b = 0; b < bundles_; ++b) {
@@ -130,7 +146,7 @@ class TilePlanner {
             for (int ch = 0; ch < 3; ++ch)
               behind[std::size_t(ch)] = std::max(behind[std::size_t(ch)], c[ch]);
           }
-      plan_bundle(b, o, tf, behind, counts);
+      plan_bundle(b, o, tf, behind, part, counts);
     }
   }
 
@@ -179,7 +195,7 @@ class TilePlanner {
   Bounds level_bounds(int b, std::int64_t cell, int level, const TransferBounds& tf,
                       double scale_lo, double scale_hi) const;
   void plan_bundle(int b, const VolumeOptions& o, const TransferBounds& tf,
-                   const std::array<double, 3>& behind, VolumeCounts& counts);
+                   const std::array<double, 3>& behind, bool part, VolumeCounts& counts);
 
   PixelRect tile_;
   int width_ = 0, bundles_x_ = 0, bundles_ = 0, blocks_x_ = 0, blocks_ = 0;
@@ -193,6 +209,7 @@ class TilePlanner {
   std::vector<double> q_lo_, q_hi_, w_lo_;
   std::vector<std::uint8_t> proven_;
   std::vector<CellPlan> plans_;
+  std::vector<std::uint8_t> held_;  // per bundle and cell: held at full rate (hold())
   // Per proof block its corner rays (view_ray of its corner pixels); per bundle its rays'
   // scales' range.
   std::vector<std::array<glm::dvec3, 4>> corners_;

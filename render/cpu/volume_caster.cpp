@@ -29,6 +29,10 @@ constexpr int kTilePixels = kTile * kTile;
 // per pixel of a tile in flight (16 bytes each). A support larger than that (a particle around
 // the eye at a fine lattice) is refused with the reason.
 constexpr std::int64_t kMaxSupportSamples = std::int64_t(1) << 16;
+// Occlusion culling: how far (samples of depth) a tile's supports advance between two looks at
+// whether all its rays are opaque. Each look walks the tile's rays once; a support walks its
+// chords' samples.
+constexpr std::int64_t kSweepSamples = 8;
 
 // TileScratch::bundle's mark of a pixel whose bundle is at full rate in every cell.
 constexpr std::uint8_t kFullRate = 0xff;
@@ -97,7 +101,8 @@ struct TileScratch {
   std::vector<std::uint8_t> bundle;
   std::array<std::int32_t, (kTile / kBundle) * (kTile / kBundle)> sparse{}, sparse_end{};
   std::vector<std::int64_t> needed;
-  std::vector<double> a, inv_a;  // |view_ray|^2 and its inverse per pixel
+  std::vector<std::uint32_t> walked;  // the supports the march walked (occlusion culling)
+  std::vector<double> a, inv_a;       // |view_ray|^2 and its inverse per pixel
   // One row of one support (chord_row): per pixel the depth nearest the centre, the squared
   // distance of the ray from the centre there, and the chord's half length in depth squared.
   double zc[kTile], m2[kTile], h2[kTile];
@@ -120,6 +125,7 @@ struct VolumeCaster::Work {
   Samples samples;
   tbb::enumerable_thread_specific<TileScratch> scratch;
   std::optional<TransferBounds> transfer_bounds;  // adaptive sampling's, of the frame
+  bool cull_tiles = true;                         // set_tile_culling
   // The frame the last start_frame() began, for run_part() and field_sums().
   Camera camera;
   VolumeOptions options;
@@ -129,6 +135,7 @@ struct VolumeCaster::Work {
 
 VolumeCaster::VolumeCaster() : work_(std::make_unique<Work>()) {}
 VolumeCaster::~VolumeCaster() = default;
+void VolumeCaster::set_tile_culling(bool on) { work_->cull_tiles = on; }
 
 namespace {
 
@@ -243,11 +250,20 @@ template <SphKernel K> void add_field_sums(glm::dvec3 x, const Support& s, Field
 // rank's part of it, given `shared` (per pixel, the samples other ranks reach too).
 template <SphKernel K, bool kPart> class TileMarch {
  public:
-  // `tf`: adaptive sampling's transfer bounds (null: every sample, as always).
+  // `tf`: adaptive sampling's transfer bounds (null: every sample, as always); `cull`: whether
+  // the supports behind opaque tiles and bundles are left out (VolumeCaster::set_tile_culling).
   TileMarch(const Samples& s, const VolumeOptions& o, const ViewFrame& f, model::VolumeHost& host,
             TileScratch& scratch, VolumeCounts& tallies, const PixelRanges* shared,
-            const TransferBounds* tf)
-      : s_(s), o_(o), f_(f), host_(host), w_(scratch), t_(tallies), shared_(shared), tf_(tf) {}
+            const TransferBounds* tf, bool cull)
+      : s_(s),
+        o_(o),
+        f_(f),
+        host_(host),
+        w_(scratch),
+        t_(tallies),
+        shared_(shared),
+        tf_(tf),
+        cull_(cull) {}
 
   void run(const PixelRect& tile, std::span<const std::uint32_t> list,
            const std::vector<Support>& supports, VolumeFrame& out) {
@@ -288,10 +304,7 @@ template <SphKernel K, bool kPart> class TileMarch {
     start(tile, list, supports);
     plan_ = nullptr;
     if (tf_ != nullptr && !list.empty()) plan(list, supports);
-    for (std::uint32_t k : list) {
-      add(supports[k]);
-      if (done_ == pixels_) break;  // every ray opaque: the supports behind are not read
-    }
+    add_until_opaque(list, supports);
     for (int p = 0; p < pixels_; ++p) {
       // Up to its last sample, or past its bundle's last super-pixel.
       std::int64_t end = w_.rays[std::size_t(p)].last + 1;
@@ -300,7 +313,63 @@ template <SphKernel K, bool kPart> class TileMarch {
       flush(p, end);
       if constexpr (kPart) close(p);
     }
-    if (has_hits_) light(list, supports);
+    if (has_hits_) light(w_.walked, supports);
+  }
+
+  // The tile's supports into its rays in order, those behind opaque rays left out ([FAW10] sec.
+  // 5.2's occlusion culling, at the grain of the tile and of its bundles of kBundle^2 rays): once
+  // all the tile's rays are opaque its remaining supports, and a support whose pixels' bundles
+  // are all opaque, are not walked (each would add to no ray); the walked ones into
+  // w_.walked, for the light. Nor are they needed there: a ray composites its samples before
+  // the next support's first, and each later support starts at or after that, so none reaches
+  // a composited sample or an iso hit between two of them. A ray is composited only when a
+  // support crossing it comes, so every kSweepSamples of depth all are brought up to the next
+  // support (the same samples in the same order, whenever), for the opaque ones to be seen.
+  void add_until_opaque(std::span<const std::uint32_t> list, const std::vector<Support>& supports) {
+    w_.walked.clear();
+    std::int64_t sweep_at = std::numeric_limits<std::int64_t>::min();
+    for (std::size_t n = 0; n < list.size(); ++n) {
+      const Support& s = supports[list[n]];
+      if (cull_ && s.first >= sweep_at) {
+        sweep(s.first);
+        sweep_at = s.first + kSweepSamples;
+      }
+      if (cull_ && done_ == pixels_) {
+        ++t_.tiles_culled;
+        t_.supports_culled += std::int64_t(list.size() - n);
+        return;
+      }
+      if (cull_ && behind_opaque_bundles(s)) {
+        ++t_.supports_culled;
+        continue;
+      }
+      add(s);
+      w_.walked.push_back(list[n]);
+    }
+  }
+
+  // Whether every bundle of the tile that support s's pixels touch has only opaque rays.
+  bool behind_opaque_bundles(const Support& s) const {
+    const int x0 = std::max(s.rect.x0, tile_.x0) - tile_.x0,
+              x1 = std::min(s.rect.x1, tile_.x1) - tile_.x0;
+    const int y0 = std::max(s.rect.y0, tile_.y0) - tile_.y0,
+              y1 = std::min(s.rect.y1, tile_.y1) - tile_.y0;
+    for (int by = y0 / kBundle; by <= y1 / kBundle; ++by)
+      for (int bx = x0 / kBundle; bx <= x1 / kBundle; ++bx) {
+        const std::size_t b = std::size_t(bx + by * kBundlesX);
+        if (bundle_done_[b] < bundle_pixels_[b]) return false;
+      }
+    return true;
+  }
+  // The bundle of pixel p of the tile (row-major in the tile), kBundlesX to a row.
+  int bundle_at(int p) const {
+    return (p % width()) / kBundle + (p / width()) / kBundle * kBundlesX;
+  }
+
+  // Every ray that some support has reached composited up to sample `upto`.
+  void sweep(std::int64_t upto) {
+    for (int p = 0; p < pixels_; ++p)
+      if (w_.rays[std::size_t(p)].front != std::numeric_limits<std::int64_t>::min()) flush(p, upto);
   }
 
   // Adaptive sampling: the tile's cells' plans from its supports (render/cpu/volume_adaptive.h).
@@ -317,7 +386,8 @@ template <SphKernel K, bool kPart> class TileMarch {
     const auto behind = [&](int x, int y) {
       return glm::dvec3(host_.pixel_color(host_.vx_ray_start(), model::vec3(0.0f), true, f_, x, y));
     };
-    planner.plan(o_, *tf_, behind, t_);
+    if constexpr (kPart) hold_shared(planner);
+    planner.plan(o_, *tf_, behind, kPart, t_);
     // A pixel's bundle, or kFullRate where all its cells are at full rate: the march as without
     // a plan there, and without one at all where that holds for the whole tile.
     w_.bundle.resize(std::size_t(pixels_));
@@ -331,11 +401,22 @@ template <SphKernel K, bool kPart> class TileMarch {
     if (any) plan_ = &planner;
   }
 
+  // A rank's part: the cells holding samples other ranks reach too stay at full rate (their
+  // sums are sent, not composited here; render/cpu/volume_adaptive.h).
+  void hold_shared(TilePlanner& planner) const {
+    for (int p = 0; p < pixels_; ++p)
+      for (const SampleRange& r : shared_->of(global_pixel(p)))
+        planner.hold(planner.bundle_of(p), r.first, r.last);
+  }
+
   void start(const PixelRect& tile, std::span<const std::uint32_t> list,
              const std::vector<Support>& supports) {
     tile_ = tile;
     pixels_ = width() * (tile_.y1 - tile_.y0 + 1);
     done_ = 0;
+    bundle_done_.fill(0);
+    bundle_pixels_.fill(0);
+    for (int p = 0; p < pixels_; ++p) ++bundle_pixels_[std::size_t(bundle_at(p))];
     has_hits_ = false;
     std::int64_t span = 1;
     for (std::uint32_t k : list) span = std::max(span, supports[k].last - supports[k].first + 1);
@@ -595,6 +676,9 @@ template <SphKernel K, bool kPart> class TileMarch {
       if (r.front > r.last) {  // no support reaches the samples up to `upto`
         const std::int64_t next = next_super_pixel(r.front);
         if (next < upto) {
+          // A part's segment ends before the samples passed over: other ranks' may lie there.
+          if constexpr (kPart)
+            if (next > r.front) close(p);
           r.front = next;
         } else {  // the ray leaves the field
           r.ray.defined = 0u;
@@ -611,22 +695,24 @@ template <SphKernel K, bool kPart> class TileMarch {
         if (w > 0) w_.raws[std::size_t(p)].push_back({std::int32_t(r.front), s, w});
         continue;
       }
+      const CellPlan* cell = plan != nullptr ? &plan->cell(bundle, r.front) : nullptr;
+      const bool super = cell != nullptr && cell->level == kSuperPixel;
       if (kPart && r.open < 0) {
         // A segment starts at a sample some particle reaches: one before this rank's first on
         // the ray (the march starts at its supports' first samples over their whole spheres)
-        // may lie among another rank's samples, and no particle reaches it.
-        if (!(w > 0)) continue;
+        // may lie among another rank's samples, and no particle reaches it. A super-pixel cell
+        // holds no other rank's sample and is defined at every ray of its bundle.
+        if (!(w > 0) && !super) continue;
         open(p, r.front);
       }
       std::int64_t span = 1;
-      if (plan != nullptr) {
-        const CellPlan& cell = plan->cell(bundle, r.front);
-        if (cell.level == kSuperPixel) {
-          super_pixel(r, cell);
+      if (cell != nullptr) {
+        if (super) {
+          super_pixel(p, r, *cell);
           if (r.done) return;
           continue;
         }
-        span = std::int64_t(1) << cell.level;
+        span = std::int64_t(1) << cell->level;
         if ((r.front & (span - 1)) != 0) {
           ++t_.samples_skipped;  // its run's first sample stood for it
           continue;
@@ -703,16 +789,16 @@ template <SphKernel K, bool kPart> class TileMarch {
       if (seg.half_depth == 0 && half) seg.half_depth = float(z * r.scale);
     }
     if (r.ray.transmittance < o_.termination) {
-      r.done = true;
-      ++done_;
-      ++t_.rays_stopped;
+      stop(p);
       if constexpr (kPart) close(p);
     }
   }
 
   // Ray r enters a super-pixel cell: its light and transmittance, once.
-  void super_pixel(RayState& r, const CellPlan& cell) {
+  void super_pixel(int p, RayState& r, const CellPlan& cell) {
     ++t_.samples_skipped;
+    if constexpr (kPart)
+      w_.segments[std::size_t(p)][std::size_t(r.open)].out.last = std::int32_t(r.front);
     const std::int64_t at = r.front >> kCellShift;
     if (r.super_cell == at) return;
     r.super_cell = at;
@@ -723,10 +809,17 @@ template <SphKernel K, bool kPart> class TileMarch {
     if (r.first_depth == 0 && before >= 0.5f && r.ray.transmittance < 0.5f)
       r.first_depth = float(s_.lattice.depth((at << kCellShift) + kCellSamples / 2) * r.scale);
     if (r.ray.transmittance < o_.termination) {
-      r.done = true;
-      ++done_;
-      ++t_.rays_stopped;
+      stop(p);
+      if constexpr (kPart) close(p);
     }
+  }
+
+  // Pixel p's ray is opaque: it takes no more samples.
+  void stop(int p) {
+    w_.rays[std::size_t(p)].done = true;
+    ++done_;
+    ++bundle_done_[std::size_t(bundle_at(p))];
+    ++t_.rays_stopped;
   }
 
   // The iso hits' gradients from the tile's supports, then their light.
@@ -803,9 +896,13 @@ template <SphKernel K, bool kPart> class TileMarch {
   VolumeCounts& t_;
   const PixelRanges* shared_;
   const TransferBounds* tf_;
+  static constexpr int kBundlesX = kTile / kBundle;
+  const bool cull_;
   const TilePlanner* plan_ = nullptr;
   PixelRect tile_;
-  int pixels_ = 0, done_ = 0;
+  int pixels_ = 0, done_ = 0;  // the tile's pixels, and its rays that stopped
+  // Per bundle of the tile (kBundlesX to a row): its pixels, and its rays that stopped.
+  std::array<int, kBundlesX * kBundlesX> bundle_pixels_{}, bundle_done_{};
   std::int64_t window_ = 1, mask_ = 0;
   bool has_hits_ = false;
 };
@@ -860,13 +957,23 @@ VolumeCounts VolumeCaster::start_frame(const Camera& camera,
 
 namespace {
 
+// Adaptive sampling's transfer bounds for a frame of `options`, made in `bounds`, or null where
+// adaptive sampling does not apply: its bounds hold for DVR of a Shepard-normalised field (a
+// convex combination of the particles' values); otherwise every sample, as at tolerance 0.
+const TransferBounds* adaptive_bounds(const VolumeOptions& options,
+                                      std::optional<TransferBounds>& bounds) {
+  if (!(options.adaptive.error_tolerance > 0 && options.mode == VolumeMode::dvr && options.shepard))
+    return nullptr;
+  return &bounds.emplace(options);
+}
+
 // f(march, tile rect, tile index, its supports) for every tile of the frame, in parallel, with
 // the march of kernel K (of a rank's part with kPart) on this thread.
 template <bool kPart, class F>
 void each_tile(const Samples& s, const VolumeOptions& options, const ViewFrame& frame,
                const Bins& bins, const std::vector<std::uint32_t>& lists,
                tbb::enumerable_thread_specific<TileScratch>& scratch, VolumeCounts& counts,
-               const PixelRanges* shared, const TransferBounds* tf, F&& f) {
+               const PixelRanges* shared, const TransferBounds* tf, bool cull, F&& f) {
   const Tiles screen(frame.width, frame.height, kTile);
   tbb::enumerable_thread_specific<model::VolumeHost> hosts(options);
   tbb::combinable<VolumeCounts> tallies;
@@ -874,7 +981,7 @@ void each_tile(const Samples& s, const VolumeOptions& options, const ViewFrame& 
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, screen.count(), 1),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         TileMarch<K, kPart> march(s, options, frame, hosts.local(), scratch.local(),
-                                                  tallies.local(), shared, tf);
+                                                  tallies.local(), shared, tf, cull);
                         for (std::size_t t = range.begin(); t != range.end(); ++t) {
                           const std::span<const std::uint32_t> list(
                               lists.data() + bins.start[t], lists.data() + bins.start[t + 1]);
@@ -898,13 +1005,8 @@ VolumeCounts VolumeCaster::run(const Camera& camera, std::span<const VolumeParti
   VolumeCounts counts = start_frame(camera, particles, options, lap);
   Work& w = *work_;
   out.reset(camera.width, camera.height);
-  // Adaptive sampling's bounds hold for DVR of a Shepard-normalised field (a convex combination of
-  // the particles' values); otherwise every sample, as at tolerance 0.
-  const bool adaptive =
-      options.adaptive.error_tolerance > 0 && options.mode == VolumeMode::dvr && options.shepard;
-  if (adaptive) w.transfer_bounds.emplace(options);
   each_tile<false>(w.samples, w.options, w.frame, w.tile_bins, w.tile_lists, w.scratch, counts,
-                   nullptr, adaptive ? &*w.transfer_bounds : nullptr,
+                   nullptr, adaptive_bounds(w.options, w.transfer_bounds), w.cull_tiles,
                    [&](auto& march, const PixelRect& rect, std::size_t, auto list) {
                      march.run(rect, list, w.supports, out);
                    });
@@ -924,7 +1026,7 @@ VolumeCounts VolumeCaster::cover(const Camera& camera, std::span<const VolumePar
   hulls.assign(std::size_t(camera.width) * std::size_t(camera.height), SampleRange{});
   VolumeCounts unused;
   each_tile<false>(w.samples, w.options, w.frame, w.tile_bins, w.tile_lists, w.scratch, unused,
-                   nullptr, nullptr,
+                   nullptr, nullptr, w.cull_tiles,
                    [&](auto& march, const PixelRect& rect, std::size_t, auto list) {
                      march.cover(rect, list, w.supports, hulls);
                    });
@@ -937,7 +1039,7 @@ VolumeCounts VolumeCaster::run_part(const PixelRanges& shared, VolumePart& out) 
   w.tile_parts.resize(screen.count());
   VolumeCounts counts;
   each_tile<true>(w.samples, w.options, w.frame, w.tile_bins, w.tile_lists, w.scratch, counts,
-                  &shared, nullptr,
+                  &shared, adaptive_bounds(w.options, w.transfer_bounds), w.cull_tiles,
                   [&](auto& march, const PixelRect& rect, std::size_t t, auto list) {
                     march.run_part(rect, list, w.supports, w.tile_parts[t]);
                   });

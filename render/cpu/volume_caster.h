@@ -14,8 +14,13 @@
 //            samples of the rays it crosses; a ray's samples are composited as soon as no later
 //            support can reach them (every later one starts at or after this one's first
 //            sample), the ray stops when its transmittance falls under the termination and the
-//            tile when all its rays have; then the iso hits' gradients from the same supports,
-//            the hits lit, and the background behind what is left of each ray's transmittance.
+//            tile when all its rays have, a support when all the rays of the bundles it
+//            touches have ([FAW10] sec. 5.2's occlusion culling, at tile and bundle grain: every
+//            so many samples of depth all the tile's rays are composited up to the next support,
+//            so that the opaque ones are seen; the supports behind are not walked, here nor for
+//            the iso hits' light, and counted); then the iso hits' gradients from the same
+//            supports, the hits lit, and the background behind what is left of each ray's
+//            transmittance.
 //            With adaptive sampling (render/cpu/volume_adaptive.h) a support whose samples lie in
 //            coarse cells of a bundle adds its kernel at the samples those take only, without
 //            its chords' ends, one that reaches only super-pixels is not read, and each ray takes
@@ -82,12 +87,18 @@ class VolumeCaster {
   // This rank's part of a frame cast over several ranks (render/volume_parts.h). cover() starts
   // the frame as run() does and gives per pixel the hull of the samples these particles reach;
   // run_part() marches it given the samples other ranks reach too (`shared`, per pixel), into
-  // `out`; field_sums() adds these particles' sums at the merge's iso hits (appended to `out`,
-  // one per query). The last two read the frame cover() started.
+  // `out` (adaptive sampling with options.adaptive.share of the tolerance, the cells holding
+  // shared samples at full rate); field_sums() adds these particles' sums at the merge's iso hits
+  // (appended to `out`, one per query). The last two read the frame cover() started.
   VolumeCounts cover(const Camera& camera, std::span<const VolumeParticle> particles,
                      const VolumeOptions& options, std::vector<SampleRange>& hulls);
   VolumeCounts run_part(const PixelRanges& shared, VolumePart& out);
   void field_sums(std::span<const HitQuery> queries, std::vector<FieldSums>& out) const;
+
+  // Whether supports behind opaque tiles and bundles are left out (default: yes). Off, every
+  // ray still stops on its own and the picture is the same bit for bit: a switch for tests and
+  // benchmarks.
+  void set_tile_culling(bool on);
 
   // The frame run() would march, for another march (`out`'s storage reused).
   VolumeCounts setup(const Camera& camera, std::span<const VolumeParticle> particles,

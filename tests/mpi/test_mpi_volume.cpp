@@ -25,6 +25,7 @@
 namespace voxspan {
 namespace {
 
+using test::first_ranks;
 using test::world_rank;
 using test::world_size;
 
@@ -117,13 +118,6 @@ Frame one_process(const Cloud& cloud, const std::string& name, const std::string
   Adapter a = adapter_from_config_text(config(name, keys), options());
   EXPECT_TRUE(a.execute(0, 0, all.view()).ok());
   return frame_of(a);
-}
-
-// The first `ranks` ranks of the job, or MPI_COMM_NULL on the others.
-MPI_Comm first_ranks(int ranks) {
-  MPI_Comm comm = MPI_COMM_NULL;
-  MPI_Comm_split(MPI_COMM_WORLD, world_rank() < ranks ? 0 : MPI_UNDEFINED, world_rank(), &comm);
-  return comm;
 }
 
 using test::largest_difference;

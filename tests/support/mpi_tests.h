@@ -20,6 +20,13 @@ inline int world_size() {
   return n;
 }
 
+// The first `ranks` ranks of the job, or MPI_COMM_NULL on the others (collective).
+inline MPI_Comm first_ranks(int ranks) {
+  MPI_Comm comm = MPI_COMM_NULL;
+  MPI_Comm_split(MPI_COMM_WORLD, world_rank() < ranks ? 0 : MPI_UNDEFINED, world_rank(), &comm);
+  return comm;
+}
+
 // main()'s body: MPI_Init, the tests, MPI_Finalize; the exit status of the job's worst rank.
 inline int run_mpi_tests(int argc, char** argv) {
   MPI_Init(&argc, &argv);

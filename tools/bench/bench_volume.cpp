@@ -15,13 +15,16 @@
 // --particles fluid particles, state cached in --state (or --ritter, the Ritter-profile scene).
 // The field: the volume fraction (--quantity fraction, the view's default) or the height above
 // the floor (--quantity height), h = 1.3 spacings, the view's default transfer function (viridis
-// and its default opacity points), iso surfaces at 0.5 (fraction) or the middle of the range.
-// Milliseconds are medians over --frames frames after one warm-up.
+// and its default opacity points, or with --opacity one opacity per spacing for every value: 0.9
+// is an opaque fluid, where occlusion culling pays: `culled` counts the screen tiles whose rays
+// all stopped and the supports behind them not walked; --no-tile-culling turns it off), iso
+// surfaces at 0.5 (fraction) or the middle
+// of the range. Milliseconds are medians over --frames frames after one warm-up.
 //
 //   bench_volume [--particles N] [--time T] [--state FILE] [--ritter] [--size WxH] [--frames F]
 //                [--modes dvr,iso,mixed] [--sampling S,...] [--quantity fraction|height]
 //                [--convergence] [--check] [--csv FILE] [--gl [--platform P]]
-//                [--tolerances E,... [--relax R]]
+//                [--tolerances E,... [--relax R]] [--opacity A] [--no-tile-culling]
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -53,6 +56,8 @@ struct Args : tools::BenchArgs, tools::StateFlags {
   std::string csv;  // each row also as CSV (tools/plots/plot_volume_accuracy.py charts it)
   std::vector<double> tolerances;  // adaptive sampling's, DVR rows
   double relax = 0;
+  double opacity = -1;  // --opacity: every value's opacity per spacing (< 0: the view's default)
+  bool no_tile_culling = false;  // VolumeCaster::set_tile_culling(false): rays stop one by one
 };
 
 constexpr char kUsage[] =
@@ -60,7 +65,7 @@ constexpr char kUsage[] =
     "         [--frames F] [--modes dvr,iso,mixed] [--sampling S,...]\n"
     "         [--quantity fraction|height] [--convergence] [--check] [--csv FILE]\n"
     "         [--gl [--platform auto|nvidia|device|surfaceless]]\n"
-    "         [--tolerances E,... [--relax R]]\n";
+    "         [--tolerances E,... [--relax R]] [--opacity A] [--no-tile-culling]\n";
 
 bool read_flag(tools::Arg& arg, Args& a) {
   if (const char* v = arg.value("--modes")) return tools::read_names(v, kVolumeModeNames, a.modes);
@@ -75,6 +80,10 @@ bool read_flag(tools::Arg& arg, Args& a) {
     return std::all_of(a.tolerances.begin(), a.tolerances.end(),
                        [](double e) { return e > 0 && e <= 1; });
   }
+  if (const char* v = arg.value("--opacity")) {
+    a.opacity = std::atof(v);
+    return a.opacity >= 0 && a.opacity <= 1;
+  }
   if (const char* v = arg.value("--relax")) {
     a.relax = std::atof(v);
     return a.relax >= 0 && a.relax <= 1;
@@ -85,7 +94,8 @@ bool read_flag(tools::Arg& arg, Args& a) {
   }
   return tools::read_state_flag(arg, a) || arg.value("--csv", a.csv) ||
          arg.flag("--convergence", a.convergence) || arg.flag("--gl", a.gl) ||
-         arg.flag("--check", a.check) || tools::read_bench_flag(arg, a);
+         arg.flag("--check", a.check) || arg.flag("--no-tile-culling", a.no_tile_culling) ||
+         tools::read_bench_flag(arg, a);
 }
 
 bool parse(int argc, char** argv, Args& a) { return tools::read_args(argc, argv, a, read_flag); }
@@ -102,7 +112,7 @@ std::vector<VolumeParticle> particles_of(const tools::DamBreakState& s, bool hei
 }
 
 VolumeOptions options_for(const tools::DamBreakState& s, const std::vector<VolumeParticle>& p,
-                          bool height, VolumeMode mode, double sampling) {
+                          bool height, double opacity, VolumeMode mode, double sampling) {
   VolumeOptions o;
   o.mode = mode;
   o.shepard = height;
@@ -112,7 +122,9 @@ VolumeOptions options_for(const tools::DamBreakState& s, const std::vector<Volum
     for (const VolumeParticle& q : p)
       lo = std::min(lo, double(q.value)), hi = std::max(hi, double(q.value));
   }
-  o.transfer = transfer_table(ColorMap::viridis, VolumeSettings{}.opacity, lo, hi);
+  const std::vector<std::array<double, 2>> constant{{0.0, opacity}, {1.0, opacity}};
+  o.transfer =
+      transfer_table(ColorMap::viridis, opacity < 0 ? VolumeSettings{}.opacity : constant, lo, hi);
   o.opacity_length = s.spacing;
   if (mode != VolumeMode::dvr) o.isos = {IsoSurface{0.5 * (lo + hi), {0.8, 0.85, 0.95}, 0.6}};
   o.sampling = sampling;
@@ -213,8 +225,9 @@ int run(const Args& a) {
   const std::vector<VolumeParticle> particles = particles_of(s, a.height_field);
   std::printf("scene: %s; %dx%d, %zu particles, field %s\n", s.description.c_str(), a.width,
               a.height, particles.size(), a.height_field ? "height (Shepard)" : "volume fraction");
-  std::printf("%-5s %8s | %8s %8s %8s %8s %8s | %10s %12s %9s %9s", "mode", "sampling", "project",
-              "sort", "bin", "march", "total", "samples", "evaluations", "stopped", "iso hits");
+  std::printf("%-5s %8s | %8s %8s %8s %8s %8s | %10s %12s %9s %9s %15s", "mode", "sampling",
+              "project", "sort", "bin", "march", "total", "samples", "evaluations", "stopped",
+              "iso hits", "culled");
   if (a.convergence) std::printf(" | %9s %9s %5s", "max err", "p99 err", "dbl");
   if (a.check) std::printf(" | %9s", "vs ref");
   if (a.gl) std::printf(" | %8s %9s", "GL ms", "GL vs CPU");
@@ -224,6 +237,7 @@ int run(const Args& a) {
   if (csv != nullptr)
     std::fprintf(csv, "scene,particles,width,height,mode,sampling,ms,samples,max_err,p99_err\n");
   VolumeCaster caster;
+  caster.set_tile_culling(!a.no_tile_culling);
   std::optional<gl::Context> context;
   std::optional<gl::ShaderLibrary> shaders;
   std::unique_ptr<VolumeRenderer> gl_renderer;
@@ -239,12 +253,12 @@ int run(const Args& a) {
     VolumeFrame converged;
     int doublings = 0;
     if (a.convergence) {
-      VolumeOptions exact = options_for(s, particles, a.height_field, mode, 1);
+      VolumeOptions exact = options_for(s, particles, a.height_field, a.opacity, mode, 1);
       exact.termination = 0;
       converged = converged_volume(s.camera, particles, exact, 1e-4, 8, &doublings);
     }
     for (double sampling : a.samplings) {
-      const VolumeOptions o = options_for(s, particles, a.height_field, mode, sampling);
+      const VolumeOptions o = options_for(s, particles, a.height_field, a.opacity, mode, sampling);
       std::array<std::vector<double>, kVolumeCastPhaseNames.size() + 1> ms;
       VolumeFrame frame;
       VolumeCounts counts;
@@ -259,10 +273,12 @@ int run(const Args& a) {
       }
       std::printf("%-5s %8g |", name_of(kVolumeModeNames, mode).data(), sampling);
       for (const std::vector<double>& m : ms) std::printf(" %8.1f", tools::median(m));
-      std::printf(" | %10lld %12lld %9lld %9lld", static_cast<long long>(counts.samples),
-                  static_cast<long long>(counts.kernel_evaluations),
-                  static_cast<long long>(counts.rays_stopped),
-                  static_cast<long long>(counts.iso_hits));
+      std::printf(
+          " | %10lld %12lld %9lld %9lld %5lld/%9lld", static_cast<long long>(counts.samples),
+          static_cast<long long>(counts.kernel_evaluations),
+          static_cast<long long>(counts.rays_stopped), static_cast<long long>(counts.iso_hits),
+          static_cast<long long>(counts.tiles_culled),
+          static_cast<long long>(counts.supports_culled));
       std::array<double, 2> e{0, 0};
       if (a.convergence) {
         e = errors(frame.picture, converged.picture);

@@ -2,7 +2,8 @@
 // ranks' parts, the merge and its field sums, as insitu/parallel/volume_exchange.h runs them
 // over MPI) against one process's frame of all the particles: slab, interleaved and uneven
 // splits of 2 to 4 ranks, every mode, the picture (and the iso hits' depths) equal up to
-// rounding with termination 0, and within the termination with it on.
+// rounding with termination 0, and within the termination with it on; adaptive sampling over
+// ranks within the tolerance of the merged full-rate picture.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include "render/cpu/volume_renderer.h"
 #include "render/volume_merge.h"
 #include "tests/support/volume_cloud.h"
+#include "tools/scenes/scenes.h"
 #include "tests/support/image_difference.h"
 
 namespace voxspan {
@@ -27,6 +29,7 @@ using Split = std::function<int(std::size_t i, std::size_t n, const VolumePartic
 struct Merged {
   VolumeFrame frame;
   std::int64_t raws = 0, segments = 0;
+  VolumeCounts counts;  // the ranks' parts'
 };
 
 // The frame of `particles` cast by `ranks` casters, each over its share, and merged.
@@ -59,7 +62,7 @@ Merged split_frame(const Camera& camera, const std::vector<VolumeParticle>& part
   std::vector<VolumePart> parts(ranks);
   Merged out;
   for (std::size_t r = 0; r < ranks; ++r) {
-    casters[r].run_part(shared[r], parts[r]);
+    out.counts += casters[r].run_part(shared[r], parts[r]);
     out.raws += std::int64_t(parts[r].raws.size());
     out.segments += std::int64_t(parts[r].segments.size());
   }
@@ -154,6 +157,60 @@ TEST(VolumeParts, WithEarlyTerminationTheyDifferByAtMostTheTermination) {
       split_frame(c.camera, c.particles, o, 3,
                   [](std::size_t i, std::size_t, const VolumeParticle&) { return int(i % 3); });
   EXPECT_LT(largest_difference(m.frame.picture.rgba, one.picture.rgba), o.termination);
+}
+
+TEST(VolumeParts, AdaptiveSamplingOverRanksStaysWithinTheTolerance) {
+  // A block of two concentrations, one per half (flat: super-pixels), split over 1 and 3 ranks,
+  // each rank with 1 / ranks of the tolerance (as insitu/views/volume_compositor.cpp gives it):
+  // the merged picture within the tolerance of the merged full-rate picture, every channel, with
+  // and without early termination and background. Interleaved, every sample is shared: nothing
+  // to skip, and nothing moves.
+  const double s = 0.05;
+  const test::Particles block = test::lattice_block({0, 0, 0}, {20, 20, 20}, s, s);
+  std::vector<VolumeParticle> particles;
+  for (const ParticleSphere& b : block)
+    particles.push_back(
+        {b.x, b.y, b.z, float(1.3 * s), float(1 / std::pow(1.3, 3)), b.y < 10 * s ? 0.3f : 0.7f});
+  const Camera camera = test::frame_scene(block, {-0.4, -0.5, -1}, 240, 160);
+  VolumeOptions base = test::cloud_options(VolumeMode::dvr, s);
+  base.transfer.lo = 0;
+  base.transfer.hi = 1;
+  for (int k = 0; k < kTransferEntries; ++k) {
+    const float u = float(k) / (kTransferEntries - 1);
+    base.transfer.rgba[std::size_t(k)] = {u, 0.6f - 0.4f * u, 1 - u, 0.03f + 0.15f * u};
+  }
+  std::int64_t skipped_on_3 = 0;
+  for (int ranks : {1, 3})
+    for (const NamedSplit& split : splits(ranks, 0, 20 * s)) {
+      if (split.name == "uneven" || (split.name == "interleaved" && ranks == 1)) continue;
+      for (double termination : {0.0, 1e-3})
+        for (bool background : {true, false}) {
+          VolumeOptions o = base;
+          o.termination = termination;
+          o.background = background;
+          const Merged exact = split_frame(camera, particles, o, ranks, split.split);
+          for (double tolerance : {0.004, 0.01}) {
+            o.adaptive = {tolerance, 0, 1.0 / ranks};
+            const Merged adaptive = split_frame(camera, particles, o, ranks, split.split);
+            std::size_t over = 0;
+            for (std::size_t i = 0; i < exact.frame.picture.rgba.size(); ++i)
+              over += std::abs(adaptive.frame.picture.rgba[i] - exact.frame.picture.rgba[i]) >
+                              tolerance + 1e-6
+                          ? 1
+                          : 0;
+            std::printf(
+                "%d ranks %-11s termination %g %-5s tolerance %.3f: largest %.2e, %zu channels "
+                "over; %lld super-pixel cells, %lld samples skipped\n",
+                ranks, split.name.c_str(), termination, background ? "sky" : "none", tolerance,
+                largest_difference(adaptive.frame.picture.rgba, exact.frame.picture.rgba), over,
+                static_cast<long long>(adaptive.counts.cells_super_pixel),
+                static_cast<long long>(adaptive.counts.samples_skipped));
+            EXPECT_EQ(over, 0u) << ranks << " ranks " << split.name << " tolerance " << tolerance;
+            if (ranks == 3) skipped_on_3 += adaptive.counts.samples_skipped;
+          }
+        }
+    }
+  EXPECT_GT(skipped_on_3, 0);
 }
 
 TEST(VolumeParts, ARankWithNoParticlesChangesNothing) {
