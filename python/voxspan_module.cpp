@@ -314,10 +314,13 @@ class PyAdapter {
       const std::vector<py::ssize_t> shape{p.height, p.width, 4};
       if (linear) out[py::str(std::string(v.name))] = owning_array(p.rgba, shape);
       else
-        out[py::str(std::string(v.name))] =
-            owning_array(linear_to_srgb8(p.rgba, p.width, p.height).pixels, shape);
+        out[py::str(std::string(v.name))] = owning_array(v.shared_picture->srgb8()->pixels, shape);
     }
     return out;
+  }
+
+  void keep_linear_pictures() {
+    dynamic_cast<InsituPipeline&>(*adapter_.pipeline()).keep_linear_pictures();
   }
 
   const Adapter& adapter() const { return adapter_; }
@@ -529,6 +532,10 @@ PYBIND11_MODULE(_voxspan, m) {
       .def("pictures", &PyAdapter::pictures, py::arg("linear") = false,
            "The latest render step's pictures: {view name: (height, width, 4) array}, uint8 "
            "sRGB as the PNG files (linear=True: float32 linear RGBA).")
+      .def("keep_linear_pictures", &PyAdapter::keep_linear_pictures,
+           "From the next render step on, pictures(linear=True) are the shading's floats; "
+           "otherwise a step whose pictures only PNG files and the live page take has them made "
+           "8-bit sRGB on the GPU, and its floats are those bytes decoded.")
       .def("is_render_step", [](const PyAdapter& a, std::int64_t step,
                                 double time) { return a.adapter().is_render_step(step, time); })
       .def_property_readonly(

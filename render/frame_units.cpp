@@ -140,6 +140,15 @@ class FrameUnitsRenderer final : public SurfaceRenderer {
     return inner_->shade_later(units_.options(surfaces), units_.options(shade), recorder, picture,
                                when);
   }
+  bool packs_srgb8(ReadLater when) const override { return inner_->packs_srgb8(when); }
+  PendingPicture* shade_srgb8_later(const SurfaceOptions& surfaces, const ShadeOptions& shade,
+                                    Recorder& recorder, ImageRGBA8& picture,
+                                    ReadLater when) override {
+    if (!units_.scaled())
+      return inner_->shade_srgb8_later(surfaces, shade, recorder, picture, when);
+    return inner_->shade_srgb8_later(units_.options(surfaces), units_.options(shade), recorder,
+                                     picture, when);
+  }
   // Given after the frame's spans, whose units it takes.
   void use_backdrop(const Backdrop* backdrop, Recorder& recorder) override {
     if (!units_.scaled() || backdrop == nullptr) return inner_->use_backdrop(backdrop, recorder);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "render/float_image.h"
+#include "render/srgb8_image.h"
 
 namespace voxspan {
 
@@ -14,6 +15,9 @@ class PendingPicture {
   // Waits until the pixels have landed, then copies them into `out` (resized to the picture:
   // no allocation when it held a picture this size). Throws voxspan::Error when the read failed.
   virtual void copy_into(FloatImage& out) = 0;
+  // The same for a picture read as 8-bit sRGB (render/gl/passes/srgb8_pack.h). Each read is
+  // copied into the kind it was issued as; the other throws voxspan::Error.
+  virtual void copy_into(ImageRGBA8& out) = 0;
   // Done with it, read or not: the renderer may reuse its memory. Any thread, once.
   virtual void release() noexcept = 0;
 };

@@ -26,6 +26,8 @@ inline constexpr StatName deep_ao{"deep_ao"};
 inline constexpr StatName shade{"shade"};
 // The fluid's spans cut where a backdrop's walls begin (render/backdrop.h; both).
 inline constexpr StatName scenery_cut{"scenery_cut"};
+// The picture as 8-bit sRGB on the GPU, for pictures only 8-bit readers take (GL).
+inline constexpr StatName srgb8_pack{"srgb8_pack"};
 // Into host memory (the GL renderer's read-backs; the CPU renderer's images are there).
 inline constexpr StatName readback{"readback"};            // the picture
 inline constexpr StatName first_hit{"first_hit"};          // the first-hit distances

@@ -18,7 +18,9 @@
 #include "render/recorder.h"
 #include "render/shade_options.h"
 #include "render/span_image.h"
+#include "render/srgb8_image.h"
 #include "voxspan/cell_states.h"
+#include "voxspan/error.h"
 
 namespace voxspan {
 
@@ -62,6 +64,20 @@ class SurfaceRenderer {
                                       Recorder& recorder, FloatImage& picture, ReadLater /*when*/) {
     shade(surfaces, shading, recorder, picture);
     return nullptr;
+  }
+  // Whether shade_srgb8_later() with `when` converts on the renderer's device, for a picture only
+  // 8-bit readers take. The GL renderer does on a GPU, and with ReadLater::always anywhere (to
+  // run that path on llvmpipe); on a software renderer the conversion is the CPU's work on the
+  // solver's thread and costs it more than the read it saves (docs/benchmarks.md), and the CPU
+  // renderer's float picture is in host memory already.
+  virtual bool packs_srgb8(ReadLater /*when*/) const { return false; }
+  // shade_later() with the picture as 8-bit sRGB (linear_to_srgb8's bytes, render/srgb8_image.h)
+  // in `picture`: a quarter of the bytes read back. Throws voxspan::Error where the renderer
+  // cannot (packs_srgb8() false for every `when`).
+  virtual PendingPicture* shade_srgb8_later(const SurfaceOptions& /*surfaces*/,
+                                            const ShadeOptions& /*shading*/, Recorder& /*recorder*/,
+                                            ImageRGBA8& /*picture*/, ReadLater /*when*/) {
+    throw make_error("this renderer does not convert pictures to 8-bit sRGB");
   }
   // The backdrop shade() shows behind the fluid (render/backdrop.h; null: the environment), the
   // image's size, kept alive by the caller while in use; the frame's span image (made or

@@ -101,6 +101,8 @@ const Section<RendererConfig>& renderer_section() {
                       "when the GL renderer's pictures are read back: `later` (the solver's "
                       "thread issues the read, a file's job waits for it), `wait` (at once), "
                       "`auto` = later on a GPU, at once on a software renderer (faster there); "
+                      "pictures only PNG files and the live page take come as 8-bit sRGB made "
+                      "on the GPU (4 bytes a pixel), except at once on a software renderer; "
                       "docs/design.md"),
        schema::number_or_auto("host_memory_mib", &R::host_memory_mib, schema::above(0),
                               "host memory the views may take, checked at start-up from their "

@@ -168,8 +168,9 @@ void LiveFeed::take(Handed& work) {
     SharedPicture& p = work.pictures[i];
     if (!p) continue;
     try {
-      h.pictures[i] = std::make_shared<const std::string>(encode_picture_png(*p));
-      h.views[i] = {work.step, p->width, p->height};
+      const ImageRGBA8& picture = *p.srgb8();
+      h.pictures[i] = std::make_shared<const std::string>(encode_png(picture));
+      h.views[i] = {work.step, picture.width, picture.height};
     } catch (const std::exception& e) {
       log_warning("live page: view ", names_[i], ": ", e.what());
     }

@@ -160,6 +160,7 @@ struct InsituPipeline::Impl {
   std::vector<ViewResult> results;           // per view, this step's products for the outputs
   std::vector<OrbitPicture> orbit_pictures;  // this step's, for the outputs that asked
   PipelineTotals totals;
+  bool linear_pictures = false;  // keep_linear_pictures()
 
   Impl(const Config& c, double particle_spacing, Communicator* communicator)
       : config(with_log_level(c)),
@@ -348,11 +349,13 @@ struct InsituPipeline::Impl {
     gl_thread = std::this_thread::get_id();
   }
 
-  // What the outputs due on this step want from the views.
+  // What the outputs due on this step, the live page and the caller want from the views.
   ViewNeeds needs(const StepPlan& p) const {
     ViewNeeds n;
     for (std::size_t i = 0; i < outputs.size(); ++i)
       if (p.outputs[i]) n |= outputs[i].kind->needs;
+    n.picture |= live_feed != nullptr;  // it shows every render step's, as 8-bit sRGB
+    n.linear_picture |= linear_pictures;
     return n;
   }
 
@@ -415,12 +418,16 @@ struct InsituPipeline::Impl {
     if (!pattern.empty()) expand_caption(pattern, {data.step, data.time, v.name}, v.caption);
     const PictureFinish finish{std::exchange(products.pending_picture, nullptr),
                                pattern.empty() ? std::string_view() : v.caption, data.step};
-    SharedPicture picture = v.pictures->take(products.picture, finish);
     // With the live page, its mailbox's picture and the one its encoder reads may both be held
     // when the next is taken: three buffers, made at the first picture rather than on the step
     // where the encoder first lags.
-    if (live_feed) v.pictures->reserve(*picture.target(), 3);
-    return picture;
+    const std::size_t reserved = live_feed ? 3 : 0;
+    if (std::exchange(products.picture_is_srgb8, false)) {
+      v.pictures->reserve(products.srgb8_picture, reserved);
+      return v.pictures->take(products.srgb8_picture, finish);
+    }
+    v.pictures->reserve(products.picture, reserved);
+    return v.pictures->take(products.picture, finish);
   }
 
   // A failed frame's read, if it issued one, goes back unread.
@@ -744,6 +751,8 @@ PipelineTotals InsituPipeline::totals() const {
 }
 
 const Config& InsituPipeline::config() const { return impl_->config; }
+
+void InsituPipeline::keep_linear_pictures(bool keep) { impl_->linear_pictures = keep; }
 
 std::span<const ViewResult> InsituPipeline::latest_views() const {
   impl_->finish_latest();

@@ -81,7 +81,12 @@ class InsituPipeline final : public Pipeline {
   // The latest render step's views (name and picture; the picture is null where the view
   // failed, its read-back failed (said in the log) or, in an MPI job, on every rank but the
   // root), valid until the next step. Waits for pictures still on their way from the GPU.
+  // A picture only 8-bit readers took (PNG files, the live page) came as 8-bit sRGB from a GL
+  // renderer; its floats are those bytes decoded unless the caller keeps linear pictures.
   std::span<const ViewResult> latest_views() const;
+  // From the next render step on, every picture comes as the shading's linear floats, for a
+  // caller that reads them (latest_views(); Python's pictures(linear=True)).
+  void keep_linear_pictures(bool keep = true);
   // One line: the GL platform and renderer, the views and the enabled outputs.
   std::string description() const;
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <span>
 
+#include "render/srgb8_image.h"
+
 namespace voxspan {
 namespace {
 
@@ -28,14 +30,9 @@ std::span<const std::uint32_t> stops(ColorMap map) {
   return kGray;
 }
 
-float srgb_to_linear(std::uint32_t byte) {
-  const float c = float(byte) / 255.0f;
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
 glm::vec3 linear_rgb(std::uint32_t hex) {
-  return {srgb_to_linear((hex >> 16) & 0xff), srgb_to_linear((hex >> 8) & 0xff),
-          srgb_to_linear(hex & 0xff)};
+  return {srgb8_to_linear((hex >> 16) & 0xff), srgb8_to_linear((hex >> 8) & 0xff),
+          srgb8_to_linear(hex & 0xff)};
 }
 
 }  // namespace

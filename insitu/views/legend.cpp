@@ -123,15 +123,28 @@ static_assert(in_order(), "kFont holds every printable character, in order");
 
 const FontChar* glyph(char c) { return c >= kFirst && c <= kLast ? &kFont[c - kFirst] : nullptr; }
 
-void fill(FloatImage& p, int x0, int y0, int size, glm::vec3 colour) {
+// A colour as each kind of picture stores it: the 8-bit one's bytes are linear_to_srgb8 of the
+// float one's, so that text drawn on either is the same once encoded
+// (tests/insitu/views/test_shared_picture.cpp).
+glm::vec4 stored(const FloatImage&, glm::vec3 colour) { return glm::vec4(colour, 1.0f); }
+std::array<std::uint8_t, 4> stored(const ImageRGBA8&, glm::vec3 colour) {
+  return {linear_to_srgb8(colour.r), linear_to_srgb8(colour.g), linear_to_srgb8(colour.b), 255};
+}
+void put(FloatImage& p, int x, int y, glm::vec4 c) { p.set(x, y, c); }
+void put(ImageRGBA8& p, int x, int y, const std::array<std::uint8_t, 4>& c) {
+  std::copy(c.begin(), c.end(),
+            p.pixels.begin() + (std::ptrdiff_t(x) + std::ptrdiff_t(y) * p.width) * 4);
+}
+
+template <class Image> void fill(Image& p, int x0, int y0, int size, glm::vec3 colour) {
+  const auto c = stored(p, colour);
   for (int y = std::max(0, y0); y < std::min(p.height, y0 + size); ++y)
-    for (int x = std::max(0, x0); x < std::min(p.width, x0 + size); ++x)
-      p.set(x, y, glm::vec4(colour, 1.0f));
+    for (int x = std::max(0, x0); x < std::min(p.width, x0 + size); ++x) put(p, x, y, c);
 }
 
 // One pass of the text in one colour, each font pixel grown by `grow` screen pixels per side.
-void stamp(FloatImage& p, int x, int y, std::string_view text, int scale, glm::vec3 colour,
-           int grow) {
+template <class Image>
+void stamp(Image& p, int x, int y, std::string_view text, int scale, glm::vec3 colour, int grow) {
   for (std::size_t n = 0; n < text.size(); ++n) {
     const FontChar* g = glyph(text[n]);
     if (g == nullptr) continue;
@@ -143,6 +156,19 @@ void stamp(FloatImage& p, int x, int y, std::string_view text, int scale, glm::v
   }
 }
 
+template <class Image>
+void draw_text_on(Image& picture, int x, int y, std::string_view text, int scale,
+                  glm::vec3 colour) {
+  // A dark outline first, so that the text reads on any colour.
+  stamp(picture, x, y, text, scale, glm::vec3(0.0f), std::max(1, scale / 2));
+  stamp(picture, x, y, text, scale, colour, 0);
+}
+
+template <class Image> void draw_caption_on(Image& picture, std::string_view text) {
+  const int s = text_scale(picture.height);
+  draw_text_on(picture, 3 * s, 3 * s, text, s, kTextColour);
+}
+
 }  // namespace
 
 int text_scale(int image_height) { return std::max(1, image_height / 360); }
@@ -151,9 +177,7 @@ int text_width(std::string_view text, int scale) { return int(text.size()) * 6 *
 
 void draw_text(FloatImage& picture, int x, int y, std::string_view text, int scale,
                glm::vec3 colour) {
-  // A dark outline first, so that the text reads on any colour.
-  stamp(picture, x, y, text, scale, glm::vec3(0.0f), std::max(1, scale / 2));
-  stamp(picture, x, y, text, scale, colour, 0);
+  draw_text_on(picture, x, y, text, scale, colour);
 }
 
 LegendMargins legend_margins(int width, int height) {
@@ -167,10 +191,9 @@ LegendMargins legend_margins(int width, int height) {
   return m;
 }
 
-void draw_caption(FloatImage& picture, std::string_view text) {
-  const int s = text_scale(picture.height);
-  draw_text(picture, 3 * s, 3 * s, text, s);
-}
+void draw_caption(FloatImage& picture, std::string_view text) { draw_caption_on(picture, text); }
+
+void draw_caption(ImageRGBA8& picture, std::string_view text) { draw_caption_on(picture, text); }
 
 std::string legend_number(double value) {
   char text[32];

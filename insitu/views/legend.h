@@ -12,6 +12,7 @@
 
 #include "insitu/views/color_map.h"
 #include "render/float_image.h"
+#include "render/srgb8_image.h"
 
 namespace voxspan {
 
@@ -19,12 +20,16 @@ namespace voxspan {
 int text_scale(int image_height);
 // Width in pixels of `text` at `scale` (6 font pixels per character, the last one's gap kept).
 int text_width(std::string_view text, int scale);
+// The text's colour (linear), unless told.
+inline const glm::vec3 kTextColour(0.9f);
 // Draws `text` with its top-left corner at (x, y), clipped to the picture; characters outside
 // the font show as blanks.
 void draw_text(FloatImage& picture, int x, int y, std::string_view text, int scale,
-               glm::vec3 colour = glm::vec3(0.9f));
-// A view's caption (insitu/config/caption.h) at the picture's top left.
+               glm::vec3 colour = kTextColour);
+// A view's caption (insitu/config/caption.h) at the picture's top left; on an 8-bit sRGB
+// picture the bytes linear_to_srgb8 gives the float one's caption (the same once encoded).
 void draw_caption(FloatImage& picture, std::string_view text);
+void draw_caption(ImageRGBA8& picture, std::string_view text);
 // A value as the legend prints it: three significant digits ("0.125", "-3.5e+04").
 std::string legend_number(double value);
 enum class BarSide : std::uint8_t { right, left };

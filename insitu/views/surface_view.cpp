@@ -263,9 +263,15 @@ class SurfaceView final : public View {
       backdrop = scenery_.backdrop(step.camera, s.spheres, s.version, s.box, o.shade, recorder);
     }
     renderer_->use_backdrop(backdrop, recorder);
-    // The pixels may land later unless this thread draws on them next (a slice, colours).
-    const ReadLater when = slice_ || colors_ ? ReadLater::never : read_later_;
-    out.pending_picture = renderer_->shade_later(o.surfaces, o.shade, recorder, out.picture, when);
+    // The pixels may land later unless this thread draws on them next (a slice, colours), and
+    // as 8-bit sRGB where that is all the step's readers take.
+    const bool draws = slice_ || colors_;
+    const ReadLater when = draws ? ReadLater::never : read_later_;
+    out.picture_is_srgb8 = !draws && needs.srgb8_picture() && renderer_->packs_srgb8(when);
+    out.pending_picture =
+        out.picture_is_srgb8
+            ? renderer_->shade_srgb8_later(o.surfaces, o.shade, recorder, out.srgb8_picture, when)
+            : renderer_->shade_later(o.surfaces, o.shade, recorder, out.picture, when);
     if (needs.first_hit_depth) renderer_->first_hit(recorder, out.first_hit_depth);
     // No copy here: the outputs copy what they keep.
     out.shaded_spans =

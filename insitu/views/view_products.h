@@ -11,6 +11,7 @@
 #include "render/float_image.h"
 #include "render/frame_stats.h"
 #include "render/span_image.h"
+#include "render/srgb8_image.h"
 #include "render/volume.h"
 #include "insitu/views/shared_picture.h"
 
@@ -18,14 +19,19 @@ namespace voxspan {
 
 // What an output wants the views to produce on a step where it is due.
 struct ViewNeeds {
-  bool picture = false;          // the shaded picture (linear RGBA)
+  bool picture = false;          // the shaded picture (as 8-bit sRGB unless asked as floats)
+  bool linear_picture = false;   // its linear floats (an EXR file's, a caller's)
   bool first_hit_depth = false;  // distance from the eye to the first span entry per pixel
   bool spans = false;            // the span image the picture was shaded from, in host memory
   bool field = false;            // a 2D view's raw values (a slice's), with their world mapping
   bool deep = false;             // a volume view's deep image (render/volume.h)
+  // Whether 8-bit sRGB is all the step's readers take of the picture (PNG files, the live page):
+  // then a renderer that converts on its device reads back a quarter of the bytes.
+  bool srgb8_picture() const { return picture && !linear_picture; }
   bool any() const { return picture || first_hit_depth || spans || field || deep; }
   ViewNeeds& operator|=(const ViewNeeds& o) {
     picture |= o.picture;
+    linear_picture |= o.linear_picture;
     first_hit_depth |= o.first_hit_depth;
     spans |= o.spans;
     field |= o.field;
@@ -69,6 +75,7 @@ struct ViewResult {
 struct KeptImage {
   SharedPicture shared;
   FloatImage copy;
+  ImageRGBA8 copy_srgb8;  // srgb8() of a copy
 
   void keep(const FloatImage& image, const SharedPicture* same, std::size_t reserve_floats = 0) {
     if (same != nullptr && same->refers_to(image)) {
@@ -82,6 +89,12 @@ struct KeptImage {
     copy.rgba.assign(image.rgba.begin(), image.rgba.end());
   }
   const FloatImage& image() const { return shared ? *shared : copy; }
+  // The image as 8-bit sRGB (a PNG frame's): a referenced picture's own, a copy's encoded here.
+  const ImageRGBA8& srgb8() {
+    if (shared) return *shared.srgb8();
+    linear_to_srgb8(copy, copy_srgb8);
+    return copy_srgb8;
+  }
   // Gives a referenced picture back to its view (once written).
   void release() { shared.reset(); }
 };
@@ -89,6 +102,10 @@ struct KeptImage {
 // A view's products of one step, kept from step to step (their storage is reused).
 struct ViewProducts {
   FloatImage picture;  // linear RGBA, row 0 at the top
+  // Where the step's picture came as 8-bit sRGB (ViewNeeds::srgb8_picture, from a renderer that
+  // converts on its device), it is here instead and `picture` is not this step's.
+  ImageRGBA8 srgb8_picture;
+  bool picture_is_srgb8 = false;
   // Where the picture's pixels are still on their way from the GPU (sized, not yet filled),
   // their read: the pipeline hands it to the picture's pool (PictureFinish). Null otherwise.
   PendingPicture* pending_picture = nullptr;

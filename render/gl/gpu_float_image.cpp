@@ -24,4 +24,9 @@ void GpuFloatImage::download(FloatImage& out) const {
   if (!out.rgba.empty()) buffer_.download(out.rgba.data(), out.rgba.size() * sizeof(float));
 }
 
+void GpuFloatImage::upload(const FloatImage& image) {
+  resize(image.width, image.height);
+  if (!image.rgba.empty()) buffer_.upload(image.rgba.data(), image.rgba.size() * sizeof(float));
+}
+
 }  // namespace voxspan

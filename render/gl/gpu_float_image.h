@@ -17,6 +17,8 @@ class GpuFloatImage {
   FloatImage download() const;
   // Into `out`, reusing its storage (no allocation once it has held an image this size).
   void download(FloatImage& out) const;
+  // `image` to the GPU, sized to it (a picture made on the host: tests, tools).
+  void upload(const FloatImage& image);
 
  private:
   int width_ = 0, height_ = 0;

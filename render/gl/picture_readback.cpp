@@ -59,16 +59,17 @@ class PictureReadback::Slot final : public PendingPicture {
 
   bool held() const { return held_.load(std::memory_order_acquire); }
 
-  // GL thread: the copy of `image` behind a fence.
-  void issue(const GpuFloatImage& image) {
+  // GL thread: the copy of `source`'s first width x height pixels behind a fence; the writes
+  // to it (a shader's) made visible first.
+  void issue(const gl::Buffer& source, int width, int height, int pixel_bytes) {
     drop_fence();  // one left by an issue that failed
-    const std::size_t bytes = std::size_t(image.width()) * std::size_t(image.height()) * 16;
+    const std::size_t bytes = std::size_t(width) * std::size_t(height) * std::size_t(pixel_bytes);
     reserve(bytes);
-    width_ = image.width();
-    height_ = image.height();
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the shade pass wrote it in a shader
+    width_ = width;
+    height_ = height;
+    pixel_bytes_ = pixel_bytes;
     if (bytes != 0)
-      glCopyNamedBufferSubData(image.buffer().id(), id_, 0, 0, static_cast<GLsizeiptr>(bytes));
+      glCopyNamedBufferSubData(source.id(), id_, 0, 0, static_cast<GLsizeiptr>(bytes));
     fence_ = fences_.create(fences_.display, EGL_SYNC_FENCE_KHR, nullptr);
     if (fence_ == EGL_NO_SYNC_KHR)
       throw make_error("cannot make a fence for the picture's read-back (EGL error 0x", std::hex,
@@ -80,17 +81,19 @@ class PictureReadback::Slot final : public PendingPicture {
   }
 
   void copy_into(FloatImage& out) override {
-    EGLint waited = EGL_TIMEOUT_EXPIRED_KHR;
-    if (fence_ != EGL_NO_SYNC_KHR) waited = fences_.wait(fences_.display, fence_, 0, kWaitNs);
-    if (waited == EGL_TIMEOUT_EXPIRED_KHR)
-      throw make_error("the GPU did not finish the frame within ", kWaitNs / 1'000'000'000, " s");
-    if (waited != EGL_CONDITION_SATISFIED_KHR)
-      throw make_error("waiting for the GPU failed (EGL error 0x", std::hex, eglGetError(), ")");
+    const void* pixels = landed(16, "linear floats");
     out.width = width_;
     out.height = height_;
     out.rgba.resize(std::size_t(width_) * std::size_t(height_) * 4);
-    // Coherent mapping: the copy is visible to the host once its fence has signalled.
-    if (!out.rgba.empty()) std::memcpy(out.rgba.data(), mapped_, out.rgba.size() * sizeof(float));
+    if (!out.rgba.empty()) std::memcpy(out.rgba.data(), pixels, out.rgba.size() * sizeof(float));
+  }
+
+  void copy_into(ImageRGBA8& out) override {
+    const void* pixels = landed(4, "8-bit sRGB");
+    out.width = width_;
+    out.height = height_;
+    out.pixels.resize(std::size_t(width_) * std::size_t(height_) * 4);
+    if (!out.pixels.empty()) std::memcpy(out.pixels.data(), pixels, out.pixels.size());
   }
 
   void release() noexcept override {
@@ -117,6 +120,20 @@ class PictureReadback::Slot final : public PendingPicture {
     ticket_ = MemoryTicket(static_cast<std::int64_t>(bytes));
   }
 
+  // The mapping once the read's fence has signalled (coherent: the copy is visible then), for a
+  // reader of a picture of `pixel_bytes` a pixel (`kind`, named when the read was the other).
+  const void* landed(int pixel_bytes, const char* kind) const {
+    if (pixel_bytes != pixel_bytes_)
+      throw make_error("a picture read back at ", pixel_bytes_, " bytes a pixel copied as ", kind);
+    EGLint waited = EGL_TIMEOUT_EXPIRED_KHR;
+    if (fence_ != EGL_NO_SYNC_KHR) waited = fences_.wait(fences_.display, fence_, 0, kWaitNs);
+    if (waited == EGL_TIMEOUT_EXPIRED_KHR)
+      throw make_error("the GPU did not finish the frame within ", kWaitNs / 1'000'000'000, " s");
+    if (waited != EGL_CONDITION_SATISFIED_KHR)
+      throw make_error("waiting for the GPU failed (EGL error 0x", std::hex, eglGetError(), ")");
+    return mapped_;
+  }
+
   void drop_fence() noexcept {
     if (fence_ != EGL_NO_SYNC_KHR) fences_.destroy(fences_.display, fence_);
     fence_ = EGL_NO_SYNC_KHR;
@@ -126,7 +143,7 @@ class PictureReadback::Slot final : public PendingPicture {
   GLuint id_ = 0;
   std::size_t size_ = 0;
   void* mapped_ = nullptr;
-  int width_ = 0, height_ = 0;
+  int width_ = 0, height_ = 0, pixel_bytes_ = 0;
   EGLSyncKHR fence_ = EGL_NO_SYNC_KHR;
   std::atomic<bool> held_{false};
   MemoryTicket ticket_;
@@ -137,9 +154,19 @@ PictureReadback::PictureReadback() : fences_(Fences::of_current()) {}
 PictureReadback::~PictureReadback() = default;
 
 PendingPicture& PictureReadback::issue(const GpuFloatImage& image) {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the shade pass wrote it in a shader
+  return issue(image.buffer(), image.width(), image.height(), 16);
+}
+
+PendingPicture& PictureReadback::issue_srgb8(const gl::Buffer& packed, int width, int height) {
+  return issue(packed, width, height, 4);
+}
+
+PendingPicture& PictureReadback::issue(const gl::Buffer& source, int width, int height,
+                                       int pixel_bytes) {
   if (!available()) throw make_error("no EGL fences here: read the picture synchronously");
   Slot& slot = free_slot();
-  slot.issue(image);
+  slot.issue(source, width, height, pixel_bytes);
   return slot;
 }
 

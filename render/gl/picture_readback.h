@@ -34,6 +34,9 @@ class PictureReadback {
   // Issues the read of `image` (the shade pass's writes made visible first). The read is the
   // caller's until it calls release(). Throws voxspan::Error when no buffer or fence can be made.
   PendingPicture& issue(const GpuFloatImage& image);
+  // The same for a picture packed as 8-bit sRGB in `packed` (4 bytes a pixel, its writes made
+  // visible: render/gl/passes/srgb8_pack.h): a quarter of the bytes.
+  PendingPicture& issue_srgb8(const gl::Buffer& packed, int width, int height);
   // Buffers made so far (the pictures once in flight together).
   std::size_t buffers() const { return slots_.size(); }
 
@@ -41,6 +44,7 @@ class PictureReadback {
   class Slot;
   struct Fences;
   Slot& free_slot();
+  PendingPicture& issue(const gl::Buffer& source, int width, int height, int pixel_bytes);
 
   std::unique_ptr<const Fences> fences_;  // null: EGL has none here
   std::vector<std::unique_ptr<Slot>> slots_;

@@ -3,6 +3,7 @@
 #include "render/gl/gpu_float_image.h"
 #include "render/gl/passes/cut_at_walls.h"
 #include "render/gl/passes/first_hit.h"
+#include "render/gl/passes/srgb8_pack.h"
 #include "render/gl/picture_readback.h"
 #include "render/gl/renderer.h"
 #include "render/stat_names.h"
@@ -14,7 +15,11 @@ namespace {
 class GlSurfaceRenderer final : public SurfaceRenderer {
  public:
   GlSurfaceRenderer(const gl::ShaderLibrary& shaders, const VoxelizeOptions& voxelize)
-      : renderer_(shaders), first_hit_(shaders), cut_(shaders), voxelize_(voxelize) {}
+      : renderer_(shaders),
+        first_hit_(shaders),
+        cut_(shaders),
+        pack_(shaders),
+        voxelize_(voxelize) {}
 
   void make_spans(const Camera& camera, std::span<const ParticleSphere> particles,
                   const CellStatesView& cells, const SpanOptions& options,
@@ -64,6 +69,28 @@ class GlSurfaceRenderer final : public SurfaceRenderer {
     return &read;
   }
 
+  bool packs_srgb8(ReadLater when) const override { return when == ReadLater::always || on_gpu(); }
+
+  PendingPicture* shade_srgb8_later(const SurfaceOptions& surfaces, const ShadeOptions& shading,
+                                    Recorder& recorder, ImageRGBA8& picture,
+                                    ReadLater when) override {
+    const GpuFloatImage& image = renderer_.shade(spans(), surfaces, shading, recorder);
+    {
+      auto t = recorder.device(pass::srgb8_pack);
+      pack_.run(image, packed_);
+    }
+    picture.width = image.width();
+    picture.height = image.height();
+    picture.pixels.resize(std::size_t(image.width()) * std::size_t(image.height()) * 4);
+    if (!reads_later(when)) {
+      auto t = recorder.device(pass::readback);
+      if (!picture.pixels.empty()) packed_.download(picture.pixels.data(), picture.pixels.size());
+      return nullptr;
+    }
+    auto t = recorder.host(pass::readback);  // as in shade_later
+    return &readback_.issue_srgb8(packed_, image.width(), image.height());
+  }
+
   void use_backdrop(const Backdrop* backdrop, Recorder& recorder) override {
     renderer_.use_backdrop(backdrop);
     if (backdrop == nullptr) return;
@@ -80,10 +107,14 @@ class GlSurfaceRenderer final : public SurfaceRenderer {
 
  private:
   // A GPU is told apart from a software renderer as the staging does it (render/gl/objects.h).
+  static bool on_gpu() {
+    const gl::ReadbackStaging* staging = gl::current_staging();
+    return staging != nullptr && staging->in_use();
+  }
+
   bool reads_later(ReadLater when) const {
     if (when == ReadLater::never || !readback_.available()) return false;
-    const gl::ReadbackStaging* staging = gl::current_staging();
-    return when == ReadLater::always || (staging != nullptr && staging->in_use());
+    return when == ReadLater::always || on_gpu();
   }
 
   const GpuSpanImage& spans() const {
@@ -94,6 +125,8 @@ class GlSurfaceRenderer final : public SurfaceRenderer {
   Renderer renderer_;
   FirstHitPass first_hit_;
   CutAtWallsPass cut_;
+  Srgb8PackPass pack_;
+  gl::Buffer packed_;  // the picture as 8-bit sRGB (shade_srgb8_later)
   VoxelizeOptions voxelize_;
   const GpuSpanImage* spans_ = nullptr;  // the frame's: the voxelizer's or uploaded_
   GpuSpanImage uploaded_;

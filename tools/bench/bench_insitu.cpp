@@ -9,7 +9,10 @@
 //
 //   bench_insitu [--config FILE] [--particles N] [--tank-length L] [--start T] [--steps S]
 //                [--render-every K] [--vdb-every V] [--non-render-steps M] [--skip-runs]
-//                [--size WxH] [--view NAME]...
+//                [--size WxH] [--view NAME]... [--linear-pictures]
+// --linear-pictures: the pictures stay linear floats, read back at 16 bytes a pixel and encoded
+// to sRGB on the writer's thread (InsituPipeline::keep_linear_pictures), as before the GL
+// renderer made them 8-bit on the GPU where only PNG files take them.
 // Defaults: examples/dambreak/main-job.yaml, 100000 particles, the main job's 3a tank, runs
 // from the flowing state at T = 1.5 (the solver advances there once, untimed, and every run
 // starts from a copy), 300 steps, K = 10, V = 100.
@@ -56,6 +59,7 @@ struct Options {
   bool runs = true;
   int width = 0, height = 0;       // 0: the config's view sizes
   std::vector<std::string> views;  // keep only these views (all when empty)
+  bool linear_pictures = false;
 };
 
 using voxspan::tools::fluid_grid;
@@ -110,13 +114,16 @@ struct RunFigures {
   voxspan::PipelineTotals totals;
 };
 
-RunFigures run(const dambreak::DamBreak& start, long steps, const voxspan::Config* config) {
+RunFigures run(const dambreak::DamBreak& start, long steps, const voxspan::Config* config,
+               bool linear_pictures = false) {
   dambreak::DamBreak sim = start;
   RunFigures f;
   std::unique_ptr<voxspan::Adapter> adapter;
   if (config)
     adapter = std::make_unique<voxspan::Adapter>(
         voxspan::make_insitu_adapter(*config, adapter_options(sim)));
+  if (adapter && linear_pictures)
+    std::static_pointer_cast<voxspan::InsituPipeline>(adapter->pipeline())->keep_linear_pictures();
   const auto t0 = Clock::now();
   const std::int64_t first = sim.steps();
   for (long i = 1; i <= steps; ++i) {
@@ -166,7 +173,7 @@ void report(const char* name, const RunFigures& f, const RunFigures& alone, long
 constexpr char kUsage[] =
     "usage: bench_insitu [--config FILE] [--particles N] [--tank-length L] [--start T]\n"
     "                    [--steps S] [--render-every K] [--vdb-every V] [--non-render-steps M]\n"
-    "                    [--skip-runs] [--size WxH] [--view NAME]...\n";
+    "                    [--skip-runs] [--size WxH] [--view NAME]... [--linear-pictures]\n";
 
 bool parse(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
@@ -188,6 +195,7 @@ bool parse(int argc, char** argv, Options& o) {
     else if (a == "--vdb-every") o.vdb_every = std::atol(value());
     else if (a == "--non-render-steps") o.non_render_steps = std::atol(value());
     else if (a == "--skip-runs") o.runs = false;
+    else if (a == "--linear-pictures") o.linear_pictures = true;
     else if (a == "--view") o.views.push_back(value());
     else if (a == "--size") {
       if (std::sscanf(value(), "%dx%d", &o.width, &o.height) != 2) {
@@ -255,10 +263,10 @@ int main(int argc, char** argv) {
     std::printf("%-34s wall %7.1f s  solver %6.1f s (%.1f ms per step)\n", "solver alone",
                 alone.wall, alone.solver, 1e3 * alone.solver / double(o.steps));
     std::fflush(stdout);
-    const RunFigures rendered = run(start, o.steps, &config);
+    const RunFigures rendered = run(start, o.steps, &config, o.linear_pictures);
     report("render, no snapshots", rendered, alone, o.steps);
     std::fflush(stdout);
-    const RunFigures snapshots = run(start, o.steps, &with_vdb);
+    const RunFigures snapshots = run(start, o.steps, &with_vdb, o.linear_pictures);
     report("render + VDB snapshots", snapshots, alone, o.steps);
     std::filesystem::remove_all(config.output_folder);
   } catch (const std::exception& e) {

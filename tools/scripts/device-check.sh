@@ -21,6 +21,8 @@
 #   insitu_640x360       the same at the main job's 640x360, 50 steps;
 #   insitu_1080p_wait    insitu_1080p with `renderer: {readback: wait}`: the pictures read back
 #                        at once, as before reading later (the default on a GPU) existed;
+#   insitu_1080p_linear  insitu_1080p with --linear-pictures: floats read back and encoded on the
+#                        writer's thread, as before the GPU made the PNG pictures 8-bit sRGB;
 #   shading_16.3m        as shading_8.5m with --particles 13.35e6 --budget-mib 2048, translucent
 #                        and refractive;
 #   shading_8.5m_4k      as shading_8.5m at 3840x2160, translucent and refractive;
@@ -154,6 +156,8 @@ if [[ -x $bin/bench_insitu ]]; then
   { cat "$repo/examples/dambreak/main-job.yaml"; echo "renderer: {readback: wait}"; } >"$wait_config"
   step 60 insitu_1080p_wait "$bin/bench_insitu" "${insitu[@]}" --config "$wait_config" \
     --steps "$insitu_steps" --size "$hd"
+  step 60 insitu_1080p_linear "$bin/bench_insitu" "${insitu[@]}" --steps "$insitu_steps" \
+    --size "$hd" --linear-pictures
 else
   echo "device-check: insitu steps skipped: the bundle has no bench_insitu"
 fi

@@ -18,30 +18,6 @@
 namespace voxspan {
 namespace {
 
-double srgb_encode(double c) {
-  return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-}
-
-// 2^16 steps of linear light: fine enough that the dark end (slope 12.92) still rounds to the
-// exact 8-bit value, and ~50x faster than pow per channel.
-constexpr int kLutBits = 16;
-const std::array<std::uint8_t, (1 << kLutBits) + 1>& srgb_lut() {
-  static const auto lut = [] {
-    std::array<std::uint8_t, (1 << kLutBits) + 1> t{};
-    for (std::size_t i = 0; i < t.size(); ++i)
-      t[i] = static_cast<std::uint8_t>(
-          std::lround(255.0 * srgb_encode(double(i) / double(1 << kLutBits))));
-    return t;
-  }();
-  return lut;
-}
-
-std::uint8_t to_unorm8(float v) {
-  if (!(v > 0)) return 0;
-  if (v >= 1) return 255;
-  return static_cast<std::uint8_t>(std::lround(v * 255.0f));
-}
-
 void put_u32(std::uint8_t* at, std::uint32_t v) {
   at[0] = std::uint8_t(v >> 24), at[1] = std::uint8_t(v >> 16), at[2] = std::uint8_t(v >> 8),
   at[3] = std::uint8_t(v);
@@ -119,31 +95,6 @@ libdeflate_compressor* compressor_at(int level) {
 }
 
 }  // namespace
-
-std::uint8_t linear_to_srgb8(float linear) {
-  if (!(linear > 0)) return 0;  // also NaN
-  if (linear >= 1) return 255;
-  return srgb_lut()[static_cast<std::size_t>(linear * float(1 << kLutBits) + 0.5f)];
-}
-
-ImageRGBA8 linear_to_srgb8(std::span<const float> rgba, int width, int height, bool bottom_up) {
-  std::size_t count = std::size_t(width) * std::size_t(height);
-  if (width <= 0 || height <= 0 || rgba.size() != count * 4)
-    throw make_error("linear_to_srgb8: ", rgba.size(), " floats for a ", width, "x", height,
-                     " RGBA image (expected ", count * 4, ")");
-  ImageRGBA8 out{width, height, std::vector<std::uint8_t>(count * 4)};
-  for (int y = 0; y < height; ++y) {
-    const float* src = rgba.data() + std::size_t(bottom_up ? height - 1 - y : y) * width * 4;
-    std::uint8_t* dst = out.pixels.data() + std::size_t(y) * width * 4;
-    for (int x = 0; x < width; ++x, src += 4, dst += 4) {
-      dst[0] = linear_to_srgb8(src[0]);
-      dst[1] = linear_to_srgb8(src[1]);
-      dst[2] = linear_to_srgb8(src[2]);
-      dst[3] = to_unorm8(src[3]);
-    }
-  }
-  return out;
-}
 
 std::string encode_png(std::span<const std::uint8_t> rgba, int width, int height, bool bottom_up,
                        PngEncoding encoding) {

@@ -14,19 +14,9 @@
 #include <vector>
 
 #include "render/float_image.h"
+#include "render/srgb8_image.h"  // ImageRGBA8, linear_to_srgb8
 
 namespace voxspan {
-
-struct ImageRGBA8 {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> pixels;  // width * height * 4, top row first
-};
-
-// Linear RGB in [0, 1] (clamped; NaN reads as 0) to 8-bit sRGB; alpha stays linear.
-std::uint8_t linear_to_srgb8(float linear);
-ImageRGBA8 linear_to_srgb8(std::span<const float> rgba, int width, int height,
-                           bool bottom_up = false);
 
 // How a frame is compressed: each row filtered (PNG's filter types; `adaptive` picks one per
 // row by libpng's heuristic, the least sum of absolute differences), then one deflate stream at

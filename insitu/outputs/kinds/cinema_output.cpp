@@ -89,7 +89,7 @@ class CinemaOutput final : public Output {
       const std::string name =
           view_names_[p.view] + "_p" + std::to_string(p.phi) + "_t" + std::to_string(p.theta);
       const std::string png = folder + "/" + name + ".png";
-      write_picture_png(folder_ / png, *p.picture, sync_);
+      write_png(folder_ / png, *p.picture.srgb8(), sync_);
       std::string exr;
       if (depth_ && p.depth) {
         exr = folder + "/" + name + ".exr";

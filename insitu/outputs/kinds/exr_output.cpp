@@ -90,7 +90,8 @@ class ExrOutput final : public Output {
 OutputKind exr_output_kind() {
   return output_kind<ExrSettings, ExrOutput>(
       "exr", "deep EXR images", exr_section(),
-      {.picture = true, .spans = true, .field = true, .deep = true}, false, true);
+      {.picture = true, .linear_picture = true, .spans = true, .field = true, .deep = true}, false,
+      true);
 }
 
 }  // namespace voxspan

@@ -1,6 +1,7 @@
 // outputs.png: every rendered view as an 8-bit sRGB PNG, <folder>/<view>_<step>.png. The job
 // holds the view's picture by reference (no copy on the solver's thread); the sRGB conversion
-// and the encoding, at the `compression_level` chosen, run on the writer's
+// (none where the GL renderer made the picture 8-bit sRGB on the GPU: ViewNeeds) and the
+// encoding, at the `compression_level` chosen, run on the writer's
 // (insitu/outputs/formats/png_image.h).
 #include "insitu/outputs/kinds/png_output.h"
 
@@ -27,8 +28,8 @@ class PngOutput final : public Output {
   PngOutput(const PngSettings& s, const OutputContext& c)
       : jobs_(c, "png", "PNG frame",
               [encoding = PngEncoding{s.compression_level, PngFilter::sub}, sync = c.fsync](
-                  const std::filesystem::path& path, const FloatImage& picture) {
-                write_picture_png(path, picture, sync, encoding);
+                  const std::filesystem::path& path, KeptImage& picture) {
+                write_png(path, picture.srgb8(), sync, encoding);
               }) {}
   void write(const OutputStep& step) override { jobs_.submit(step, &ViewResult::picture); }
   OutputTally tally() const override { return jobs_.tally(); }

@@ -20,7 +20,8 @@ namespace voxspan {
 
 class ViewImageJobs {
  public:
-  using Write = std::function<void(const std::filesystem::path&, const FloatImage&)>;
+  // Writes the kept image (a picture readable as floats or as 8-bit sRGB: KeptImage) to a file.
+  using Write = std::function<void(const std::filesystem::path&, KeptImage&)>;
 
   ViewImageJobs(const OutputContext& c, std::string extension, const char* label, Write write)
       : folder_(c.folder),
@@ -63,7 +64,7 @@ class ViewImageJobs {
   }
 
   void run(Slot& s) const {
-    write_(folder_ / step_file_name(view_names_[s.view], s.step, extension_), s.image.image());
+    write_(folder_ / step_file_name(view_names_[s.view], s.step, extension_), s.image);
     s.image.release();  // the picture's buffer back to its view as soon as it is written
   }
 
@@ -91,8 +92,8 @@ class ViewImageOutput final : public Output {
       : product_(format.product),
         jobs_(c, format.extension, format.label,
               [write = format.write, sync = c.fsync](const std::filesystem::path& path,
-                                                     const FloatImage& image) {
-                write(path, image, sync);
+                                                     KeptImage& image) {
+                write(path, image.image(), sync);
               }) {}
   void write(const OutputStep& step) override { jobs_.submit(step, product_); }
   OutputTally tally() const override { return jobs_.tally(); }

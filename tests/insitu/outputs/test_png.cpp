@@ -42,6 +42,13 @@ TEST(Png, LinearToSrgbMatchesTheStandardCurve) {
   EXPECT_LT(off, 500);
 }
 
+// What a picture that came as 8-bit sRGB gives a reader of floats (insitu/views/shared_picture.h)
+// encodes to the same bytes: a PNG written from either is the same file.
+TEST(Png, EachByteDecodedEncodesBackToItself) {
+  for (std::uint32_t byte = 0; byte < 256; ++byte)
+    EXPECT_EQ(linear_to_srgb8(srgb8_to_linear(byte)), byte) << byte;
+}
+
 TEST(Png, RoundTripsPixelsAndFlipsBottomUpImages) {
   const int w = 5, h = 3;
   std::vector<float> linear(w * h * 4);

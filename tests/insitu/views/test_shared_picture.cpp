@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -130,6 +132,13 @@ struct FakeRead final : PendingPicture {
     out = FloatImage(width, height);
     std::fill(out.rgba.begin(), out.rgba.end(), value);
   }
+  void copy_into(ImageRGBA8& out) override {
+    ++copies;
+    if (fails) throw std::runtime_error("the fence was lost");
+    const std::uint8_t byte = linear_to_srgb8(value);
+    out = {width, height, std::vector<std::uint8_t>(std::size_t(width) * height * 4, byte)};
+    for (std::size_t i = 3; i < out.pixels.size(); i += 4) out.pixels[i] = linear_to_unorm8(value);
+  }
   void release() noexcept override { ++releases; }
 };
 
@@ -151,6 +160,38 @@ TEST(SharedPicture, PixelsOnTheirWayLandAtTheFirstReadOnAnyThreadWithTheCaption)
   draw_caption(expected, "step 7");
   EXPECT_NE(expected.rgba, std::vector<float>(expected.rgba.size(), 0.75f));  // text drawn
   EXPECT_EQ(picture->rgba, expected.rgba);
+}
+
+// A picture that came as 8-bit sRGB (render/gl/passes/srgb8_pack.h) with a caption is the float
+// picture with its caption, encoded: the caption's bytes too (the largest difference: none).
+// Each kind is made from the other once, by its first reader.
+TEST(SharedPicture, APictureThatCameAs8BitIsTheFloatOneEncodedCaptionIncluded) {
+  PicturePool pool(2, "main");
+  FakeRead read;
+  read.width = 64, read.height = 32;
+  ImageRGBA8 view{64, 32, std::vector<std::uint8_t>(64 * 32 * 4)};
+  const SharedPicture picture = pool.take(view, {&read, "step 7", 7});
+  EXPECT_TRUE(picture.came_as_srgb8());
+  FloatImage expected(64, 32);
+  std::fill(expected.rgba.begin(), expected.rgba.end(), 0.75f);
+  draw_caption(expected, "step 7");
+  const ImageRGBA8 want = linear_to_srgb8(expected.rgba, 64, 32);
+  const ImageRGBA8* bytes = picture.srgb8();
+  ASSERT_NE(bytes, nullptr);
+  int largest = 0;
+  for (std::size_t i = 0; i < want.pixels.size(); ++i)
+    largest = std::max(largest, std::abs(int(bytes->pixels[i]) - int(want.pixels[i])));
+  EXPECT_EQ(largest, 0);
+  // Its floats are those bytes decoded: encoded again, the same bytes.
+  EXPECT_EQ(linear_to_srgb8(picture->rgba, 64, 32).pixels, want.pixels);
+  EXPECT_EQ(picture.get(), picture.get());  // decoded once
+  EXPECT_EQ(read.copies, 1);
+  // A float picture's bytes, made once for every 8-bit reader.
+  FloatImage linear = expected;
+  const SharedPicture floats = pool.take(linear);
+  EXPECT_FALSE(floats.came_as_srgb8());
+  EXPECT_EQ(floats.srgb8()->pixels, want.pixels);
+  EXPECT_EQ(floats.srgb8(), floats.srgb8());
 }
 
 TEST(SharedPicture, AReadNeverMadeGoesBackWhenThePictureIsDropped) {

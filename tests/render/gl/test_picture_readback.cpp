@@ -1,6 +1,7 @@
 // The picture read back without waiting (render/gl/picture_readback.h): the pixels that land are
 // the synchronous read's bit for bit, read on another thread, two reads in flight at once and
-// read in either order; the host buffers are made once (two: double buffering) and reused.
+// read in either order; the host buffers are made once (two: double buffering) and reused; read
+// as 8-bit sRGB, the float picture encoded.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -11,8 +12,10 @@
 #include "render/gl/gpu_recorder.h"
 #include "render/gl/objects.h"
 #include "render/gl/picture_readback.h"
+#include "render/srgb8_image.h"
 #include "render/stat_names.h"
 #include "tests/render/gl/shading_fixture.h"
+#include "voxspan/error.h"
 
 namespace voxspan {
 namespace {
@@ -97,6 +100,40 @@ TEST(PictureReadback, TwoBuffersServeReadsThatAreReleasedBeforeTheNextButOne) {
   }
   previous->release();
   EXPECT_EQ(readback.buffers(), 2u);
+}
+
+// Read as 8-bit sRGB (render/gl/passes/srgb8_pack.h), at once or later, the picture is the
+// float one encoded on the host, bit for bit; a read is copied only as the kind it was issued.
+TEST(PictureReadback, ThePictureReadAsBytesIsTheFloatOneEncoded) {
+  const gl::Context& context = test::context();
+  const std::unique_ptr<SurfaceRenderer> renderer =
+      make_surface_renderer(RenderBackend::gl, test::shaders(), std::size_t(64) << 20);
+  EXPECT_TRUE(renderer->packs_srgb8(ReadLater::always));
+  gl::GpuRecorder recorder(context.has_gpu_timers());
+  const SpanImage spans = block_scene();
+  renderer->use_spans(spans, pass::upload, recorder);
+  const SurfaceOptions surfaces;
+  for (const ShadeMode mode : {ShadeMode::opaque, ShadeMode::translucent}) {
+    const ShadeOptions shading = test::test_shading(mode);
+    FloatImage linear;
+    renderer->shade(surfaces, shading, recorder, linear);
+    const ImageRGBA8 want = linear_to_srgb8(linear.rgba, linear.width, linear.height);
+    ImageRGBA8 now, later;
+    EXPECT_EQ(renderer->shade_srgb8_later(surfaces, shading, recorder, now, ReadLater::never),
+              nullptr);
+    EXPECT_EQ(now.pixels, want.pixels);
+    PendingPicture* read =
+        renderer->shade_srgb8_later(surfaces, shading, recorder, later, ReadLater::always);
+    ASSERT_NE(read, nullptr);    // llvmpipe has EGL fences
+    EXPECT_EQ(later.width, 48);  // sized for the pixels to come
+    FloatImage wrong_kind;
+    EXPECT_THROW(read->copy_into(wrong_kind), Error);
+    read->copy_into(later);
+    read->release();
+    EXPECT_EQ(later.pixels, want.pixels);
+    EXPECT_EQ(later.height, 32);
+  }
+  recorder.collect();
 }
 
 }  // namespace
