@@ -157,8 +157,8 @@ class FrameUnitsRenderer final : public SurfaceRenderer {
     frame_backdrop_.version = kOwnVersions | ++conversions_;
     inner_->use_backdrop(&frame_backdrop_, recorder);
   }
-  void first_hit(Recorder& recorder, FloatImage& out) override {
-    inner_->first_hit(recorder, out);
+  void first_hit(Recorder& recorder, FloatImage& out, HitSurface surface) override {
+    inner_->first_hit(recorder, out, surface);
     if (!units_.scaled()) return;
     for (std::size_t k = 0; k < out.rgba.size(); k += 4)
       out.rgba[k] = static_cast<float>(double(out.rgba[k]) * units_.unit);

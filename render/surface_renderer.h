@@ -24,6 +24,9 @@
 
 namespace voxspan {
 
+// Which first surface SurfaceRenderer::first_hit measures.
+enum class HitSurface { cast, shaded };
+
 enum class RenderBackend { automatic, gl, cpu };
 inline constexpr EnumName<RenderBackend> kRenderBackendNames[] = {
     {"auto", RenderBackend::automatic}, {"gl", RenderBackend::gl}, {"cpu", RenderBackend::cpu}};
@@ -84,8 +87,10 @@ class SurfaceRenderer {
   // given before) is cut where its walls begin, timed as pass::scenery_cut.
   virtual void use_backdrop(const Backdrop* backdrop, Recorder& recorder) = 0;
   // Per pixel the distance along its ray to the frame's first span entry, 0 where there is
-  // none, in the first channel (what depth images are made of), timed as pass::first_hit.
-  virtual void first_hit(Recorder& recorder, FloatImage& out) = 0;
+  // none, in the first channel, timed as pass::first_hit: of the spans as cast (what depth
+  // images are made of), or of the surface the last shade drew (filtered: its positions give
+  // the smooth normals a colouring of the surface needs, where the spheres' bumps would show).
+  virtual void first_hit(Recorder& recorder, FloatImage& out, HitSurface surface) = 0;
 };
 
 }  // namespace voxspan

@@ -240,10 +240,12 @@ class SurfaceView final : public View {
       if (comm_ == nullptr) throw;
       failure = e.what();
     }
+    // The colours sit on the surface the picture shows: its filtered depths give them smooth
+    // normals (the cast's first entries are the spheres' bumps: a lattice of dots).
+    if (shown) renderer_->first_hit(recorder, shaded_hits_, HitSurface::shaded);
     {
       auto t = recorder.host(pass::color_sum);
-      colors_->sample(*step.data.particles, step.camera, shown ? &out.first_hit_depth : nullptr,
-                      failure);
+      colors_->sample(*step.data.particles, step.camera, shown ? &shaded_hits_ : nullptr, failure);
     }
     if (!shown) return false;
     auto t = recorder.host(pass::color_draw);
@@ -272,7 +274,8 @@ class SurfaceView final : public View {
         out.picture_is_srgb8
             ? renderer_->shade_srgb8_later(o.surfaces, o.shade, recorder, out.srgb8_picture, when)
             : renderer_->shade_later(o.surfaces, o.shade, recorder, out.picture, when);
-    if (needs.first_hit_depth) renderer_->first_hit(recorder, out.first_hit_depth);
+    if (needs.first_hit_depth)
+      renderer_->first_hit(recorder, out.first_hit_depth, HitSurface::cast);
     // No copy here: the outputs copy what they keep.
     out.shaded_spans =
         needs.spans ? &renderer_->host_spans(pass::span_readback, recorder) : nullptr;
@@ -314,6 +317,7 @@ class SurfaceView final : public View {
   std::optional<SliceLayer> slice_;
   std::optional<SurfaceColors> colors_;
   std::vector<float> depth_;  // the surface's view depth per pixel, then the slice's
+  FloatImage shaded_hits_;    // color_by: the shaded surface's first-hit distances
   SceneryLayer scenery_;
 };
 

@@ -40,9 +40,11 @@ class CpuSurfaceRenderer final : public SurfaceRenderer {
     clip_at_walls(*own_, *backdrop);
   }
 
-  void first_hit(Recorder& recorder, FloatImage& out) override {
+  void first_hit(Recorder& recorder, FloatImage& out, HitSurface surface) override {
     auto t = recorder.host(pass::first_hit);
-    CpuRenderer::first_hit(spans(), out);
+    CpuRenderer::first_hit(
+        spans(), out,
+        surface == HitSurface::shaded ? renderer_.surface_depths() : std::span<const glm::vec2>());
   }
 
  private:

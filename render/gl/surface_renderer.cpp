@@ -99,9 +99,12 @@ class GlSurfaceRenderer final : public SurfaceRenderer {
     host_ = nullptr;  // a copy in host memory is uncut
   }
 
-  void first_hit(Recorder& recorder, FloatImage& out) override {
+  void first_hit(Recorder& recorder, FloatImage& out, HitSurface surface) override {
     auto t = recorder.device(pass::first_hit);
-    first_hit_.run(spans(), depth_);
+    first_hit_.run(
+        spans(),
+        surface == HitSurface::shaded ? renderer_.surfaces().depths(spans()) : spans().spans(),
+        depth_);
     depth_.download(out);
   }
 

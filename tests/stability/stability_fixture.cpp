@@ -82,7 +82,7 @@ Frame render_as_view(const Scene& scene, RenderBackend backend) {
   renderer->make_spans(scene.camera, scene.particles, scene.cells, scene.voxelize, *recorder);
   for (std::size_t m = 0; m < kModes.size(); ++m)
     renderer->shade(scene.surfaces, shading(scene, kModes[m]), *recorder, f.images[m]);
-  renderer->first_hit(*recorder, f.first_hit);
+  renderer->first_hit(*recorder, f.first_hit, HitSurface::cast);
   f.spans = renderer->host_spans(pass::span_readback, *recorder);
   recorder->collect();
   return f;

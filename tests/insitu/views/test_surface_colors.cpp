@@ -2,10 +2,14 @@
 // first surface of a block whose attribute is its x coordinate gives each pixel its hit point's
 // x; through the runtime the GL and the CPU renderer colour alike, the map's ends where the
 // attribute's are, an empty color_by changes nothing, a missing attribute fails the step by
-// name and bad keys are refused with their line. Under MPI: tests/mpi/views.yaml.
+// name and bad keys are refused with their line; colouring adds no texture to the surface.
+// Under MPI: tests/mpi/views.yaml.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "insitu/views/surface_colors.h"
@@ -92,6 +96,45 @@ TEST(SurfaceColors, BothRenderersColourAlikeWithTheMapsEndsAtTheAttributes) {
       EXPECT_GT(right.g, right.b) << shading;
       EXPECT_GT(right.r, left.r) << shading;
     }
+  }
+}
+
+// Pixels of `p` more than `by` off the median of their 3x3 neighbourhood in some channel.
+int rough_pixels(const FloatImage& p, float by) {
+  int count = 0;
+  for (int y = 1; y + 1 < p.height; ++y)
+    for (int x = 1; x + 1 < p.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        std::array<float, 9> n;
+        for (int k = 0; k < 9; ++k) n[std::size_t(k)] = p.at(x + k % 3 - 1, y + k / 3 - 1)[c];
+        std::nth_element(n.begin(), n.begin() + 4, n.end());
+        if (std::abs(p.at(x, y)[c] - n[4]) > by) {
+          ++count;
+          break;
+        }
+      }
+  return count;
+}
+
+// The colours' Fresnel blend reads the normals of the surface the picture shows (filtered), not
+// the cast's first entries, whose spheres' bumps made a lattice of dots on a calm top: colouring
+// adds no texture to the water's surface, on either renderer.
+TEST(SurfaceColors, ColouringAddsNoTextureToTheSurface) {
+  const test::ParticleBlock b = block();
+  // Twice the other tests' size: a particle a few pixels wide.
+  const auto larger = [](std::string c) {
+    return c.replace(c.find("width: 96, height: 64"), 21, "width: 192, height: 128");
+  };
+  for (const char* backend : {"cpu", "gl"}) {
+    const std::string keys = "shading: translucent";
+    const int plain = rough_pixels(test::first_picture(larger(config(keys, backend)), b), 0.02f);
+    const int colored = rough_pixels(
+        test::first_picture(larger(config(keys + ", color_by: x, legend: false", backend)), b),
+        0.02f);
+    std::printf("%s: %d rough pixels plain, %d coloured\n", backend, plain, colored);
+    // The map's hues add edges against the ground (443 -> 583 on the CPU); the bumps' lattice
+    // of dots added more than the plain picture's own (958).
+    EXPECT_LT(colored, plain * 3 / 2) << backend;
   }
 }
 
