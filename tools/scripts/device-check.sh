@@ -301,8 +301,9 @@ summary() {
     "$(figures insitu_1080p "" "$(with "$sh" %)" \
       "$(with "$(share insitu_1080p "render + VDB snapshots")" %)" "$(with "$ms" ms)")" \
     "share $(goal "$sh" 3 %); per render step $(goal "$ms" 15 ms)"
-  r "the same, solver thread per render step: pictures read later (\`readback: auto\`) / at once (\`wait\`)" \
-    "$(figures insitu_1080p_wait "" "$(with "$ms" ms)" "$(with "$(thread_ms insitu_1080p_wait)" ms)")"
+  r "the same, solver thread per render step: pictures read later (\`readback: auto\`) / at once (\`wait\`) / as floats (\`--linear-pictures\`)" \
+    "$(figures insitu_1080p_wait "" "$(with "$ms" ms)" "$(with "$(thread_ms insitu_1080p_wait)" ms)" \
+      "$(with "$(thread_ms insitu_1080p_linear)" ms)")"
   local w=0 where="" s c
   for s in "${steps[@]}"; do
     c=$(grep -ci "performance warning" "$(outfile "$s")" 2>/dev/null) || true
