@@ -8,6 +8,8 @@
 //     rounding) is a bug; the tool prints where and exits 1.
 //   - relax > 0 trades the guarantee for speed: the tool prints [HOK16]'s Table 3 for it, the
 //     share of rays (pixels) and of frames over the tolerance and the largest error.
+// Each view's mean render time over the run and its speed-up over the full rate's follow (the
+// views render one after the other in each step, under the same load).
 //
 //   check_adaptive [--particles N] [--tank-length L] [--frames F] [--every K] [--size WxH]
 //                  [--tolerances E,...] [--relax R,...] [--quantity NAME]
@@ -47,6 +49,7 @@ struct Tally {
   long long rays = 0, rays_over = 0;  // pixels compared, pixels with a channel past
   long frames_over = 0;
   double largest = 0;
+  double ms = 0;  // the view's render time, summed over the run
 };
 
 std::vector<double> numbers(const char* text) {
@@ -142,6 +145,7 @@ int run(const Options& o) {
       "full rate, %ld render steps every %ld steps\n",
       sim.fluid().size(), tallies.size(), o.quantity.c_str(), o.width, o.height, o.frames, o.every);
   long frames = 0;
+  double full_ms = 0;
   while (frames < o.frames) {
     sim.step();
     const long step = long(sim.steps());
@@ -153,19 +157,23 @@ int run(const Options& o) {
     }
     if (step % o.every != 0) continue;
     const auto views = pipeline.latest_views();
-    for (std::size_t k = 0; k < tallies.size(); ++k)
+    full_ms += views[0].stats->total_ms();
+    for (std::size_t k = 0; k < tallies.size(); ++k) {
       tally(*views[0].picture, *views[k + 1].picture, step, tallies[k]);
+      tallies[k].ms += views[k + 1].stats->total_ms();
+    }
     if (++frames % 100 == 0)
       std::printf("  %ld render steps (step %ld, T %.2f)\n", frames, step,
                   sim.nondimensional_time());
   }
-  std::printf("\n%9s %5s | %12s %14s %12s %10s\n", "tolerance", "relax", "rays over",
-              "share of rays", "frames over", "largest");
+  std::printf("\nfull rate: %.1f ms a frame\n%9s %5s | %12s %14s %12s %10s | %8s %8s\n",
+              full_ms / double(frames), "tolerance", "relax", "rays over", "share of rays",
+              "frames over", "largest", "ms", "speed-up");
   bool violated = false;
   for (const Tally& t : tallies) {
-    std::printf("%9g %5g | %12lld %13.5f%% %6ld/%-5ld %10.3e\n", t.tolerance, t.relax, t.rays_over,
-                100.0 * double(t.rays_over) / double(std::max(1LL, t.rays)), t.frames_over, frames,
-                t.largest);
+    std::printf("%9g %5g | %12lld %13.5f%% %6ld/%-5ld %10.3e | %8.1f %8.2f\n", t.tolerance, t.relax,
+                t.rays_over, 100.0 * double(t.rays_over) / double(std::max(1LL, t.rays)),
+                t.frames_over, frames, t.largest, t.ms / double(frames), full_ms / t.ms);
     violated = violated || (t.relax == 0 && t.rays_over > 0);
   }
   return violated ? 1 : 0;
