@@ -5,7 +5,8 @@
 // --every steps through the runtime for --frames render steps; each adaptive picture is held
 // against the full-rate one of its step.
 //   - relax 0 is a guarantee: a channel off by more than the tolerance (plus 1e-6 for float
-//     rounding) is a bug; the tool prints where and exits 1.
+//     rounding) is a bug; the tool prints where and exits 1 (3 when relax 0 skipped no sample
+//     at all: then nothing was checked).
 //   - relax > 0 trades the guarantee for speed: the tool prints [HOK16]'s Table 3 for it, the
 //     share of rays (pixels) and of frames over the tolerance and the largest error.
 // Each view's mean render time over the run and its speed-up over the full rate's follow (the
@@ -49,7 +50,8 @@ struct Tally {
   long long rays = 0, rays_over = 0;  // pixels compared, pixels with a channel past
   long frames_over = 0;
   double largest = 0;
-  double ms = 0;  // the view's render time, summed over the run
+  double ms = 0;                       // the view's render time, summed over the run
+  long long samples = 0, skipped = 0;  // composited and skipped samples, summed
 };
 
 std::vector<double> numbers(const char* text) {
@@ -160,21 +162,33 @@ int run(const Options& o) {
     full_ms += views[0].stats->total_ms();
     for (std::size_t k = 0; k < tallies.size(); ++k) {
       tally(*views[0].picture, *views[k + 1].picture, step, tallies[k]);
-      tallies[k].ms += views[k + 1].stats->total_ms();
+      const voxspan::FrameStats& stats = *views[k + 1].stats;
+      tallies[k].ms += stats.total_ms();
+      tallies[k].samples += stats.count("volume.samples");
+      tallies[k].skipped += stats.count("volume.samples_skipped");
     }
     if (++frames % 100 == 0)
       std::printf("  %ld render steps (step %ld, T %.2f)\n", frames, step,
                   sim.nondimensional_time());
   }
-  std::printf("\nfull rate: %.1f ms a frame\n%9s %5s | %12s %14s %12s %10s | %8s %8s\n",
+  std::printf("\nfull rate: %.1f ms a frame\n%9s %5s | %12s %14s %12s %10s | %8s %8s %8s\n",
               full_ms / double(frames), "tolerance", "relax", "rays over", "share of rays",
-              "frames over", "largest", "ms", "speed-up");
+              "frames over", "largest", "ms", "speed-up", "skipped");
   bool violated = false;
+  long long skipped_at_relax_0 = 0;
   for (const Tally& t : tallies) {
-    std::printf("%9g %5g | %12lld %13.5f%% %6ld/%-5ld %10.3e | %8.1f %8.2f\n", t.tolerance, t.relax,
-                t.rays_over, 100.0 * double(t.rays_over) / double(std::max(1LL, t.rays)),
-                t.frames_over, frames, t.largest, t.ms / double(frames), full_ms / t.ms);
+    std::printf("%9g %5g | %12lld %13.5f%% %6ld/%-5ld %10.3e | %8.1f %8.2f %7.1f%%\n", t.tolerance,
+                t.relax, t.rays_over, 100.0 * double(t.rays_over) / double(std::max(1LL, t.rays)),
+                t.frames_over, frames, t.largest, t.ms / double(frames), full_ms / t.ms,
+                100.0 * double(t.skipped) / double(std::max(1LL, t.samples + t.skipped)));
     violated = violated || (t.relax == 0 && t.rays_over > 0);
+    if (t.relax == 0) skipped_at_relax_0 += t.skipped;
+  }
+  // A guarantee that skipped nothing proved nothing: the scene or the tolerances are wrong.
+  if (!violated && skipped_at_relax_0 == 0 &&
+      std::any_of(tallies.begin(), tallies.end(), [](const Tally& t) { return t.relax == 0; })) {
+    std::printf("check_adaptive: relax 0 skipped no sample: nothing was checked\n");
+    return 3;
   }
   return violated ? 1 : 0;
 }
