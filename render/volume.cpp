@@ -50,6 +50,8 @@ void validate(const VolumeOptions& o) {
     throw make_error("volume adaptive relax = ", a.relax, " must be in [0, 1]");
   if (!(a.share > 0 && a.share <= 1))
     throw make_error("volume adaptive share = ", a.share, " must be in (0, 1]");
+  if (!(o.level_of_detail >= 0) || !std::isfinite(o.level_of_detail))
+    throw make_error("volume level_of_detail = ", o.level_of_detail, " must be >= 0");
   ShadeOptions shade;
   shade.environment = o.environment;
   validate(shade);
@@ -63,6 +65,8 @@ namespace model {
 namespace {
 
 ShadeUniforms environment_uniforms(const VolumeOptions& o) {
+  if (!(o.level_of_detail >= 0) || !std::isfinite(o.level_of_detail))
+    throw make_error("volume level_of_detail = ", o.level_of_detail, " must be >= 0");
   ShadeOptions shade;
   shade.environment = o.environment;
   return shade_uniforms(shade);

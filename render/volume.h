@@ -52,6 +52,13 @@ struct VolumeParticle {
 };
 static_assert(sizeof(VolumeParticle) == 24);
 
+// Whether the renderers draw a particle: finite, h and weight > 0 (the others are counted as
+// invalid and skipped).
+inline bool drawable(const VolumeParticle& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.h) &&
+         std::isfinite(p.weight) && std::isfinite(p.value) && p.h > 0 && p.weight > 0;
+}
+
 // The transfer function as a table: kTransferEntries linear RGB + opacity entries evenly over
 // [lo, hi], looked up with linear interpolation, clamped at the ends.
 inline constexpr int kTransferEntries = 256;
@@ -102,6 +109,11 @@ struct VolumeOptions {
   Environment environment;
   double ambient = 0.3;  // iso surfaces' light from everywhere
   AdaptiveOptions adaptive;
+  // Particle level of detail ([FAW10] sec. 4.1; render/cpu/volume_lod.h): 0 draws every
+  // particle; above 0, those whose h is under this many pixel spacings at their depth are
+  // merged, per world grid cell, into coarser particles at least that large. The adaptive
+  // sampling and a rank's part march the merged particles as they would the given ones.
+  double level_of_detail = 0;
 };
 
 // Throws voxspan::Error naming the option that is out of range.
@@ -202,7 +214,12 @@ struct VolumeCounts {
   std::int64_t particles = 0;          // given
   std::int64_t particles_invalid = 0;  // NaN or infinite position, value or weight; h, weight <= 0
   std::int64_t particles_culled = 0;   // support wholly outside the view or behind the eye
-  std::int64_t samples = 0;            // composited (non-empty)
+  // Level of detail (VolumeOptions::level_of_detail): given particles merged into coarser ones,
+  // and those coarser ones. The frame draws particles - particles_merged + particles_coarse
+  // (the invalid and culled counted among those).
+  std::int64_t particles_merged = 0;
+  std::int64_t particles_coarse = 0;
+  std::int64_t samples = 0;  // composited (non-empty)
   std::int64_t kernel_evaluations = 0;
   std::int64_t rays_stopped = 0;  // transmittance under `termination` before the last sample
   std::int64_t iso_hits = 0;
@@ -233,6 +250,8 @@ inline constexpr VolumeCountName kVolumeCountNames[] = {
     {"volume.particles", &VolumeCounts::particles},
     {"volume.particles_invalid", &VolumeCounts::particles_invalid},
     {"volume.particles_culled", &VolumeCounts::particles_culled},
+    {"volume.particles_merged", &VolumeCounts::particles_merged},
+    {"volume.particles_coarse", &VolumeCounts::particles_coarse},
     {"volume.samples", &VolumeCounts::samples},
     {"volume.kernel_evaluations", &VolumeCounts::kernel_evaluations},
     {"volume.rays_stopped", &VolumeCounts::rays_stopped},

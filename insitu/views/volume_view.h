@@ -63,6 +63,7 @@ struct VolumeSettings : CloneAs<VolumeSettings, ViewSettings> {
   double ambient = 0.3;
   VolumeBackground background = VolumeBackground::sky;
   VolumeAdaptiveSettings adaptive;
+  double level_of_detail = 0;  // VolumeOptions::level_of_detail: 0 off
   bool legend = true;
   bool operator==(const VolumeSettings&) const = default;
 };

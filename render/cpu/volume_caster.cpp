@@ -15,6 +15,7 @@
 
 #include "render/cpu/screen_bins.h"
 #include "render/cpu/volume_adaptive.h"
+#include "render/cpu/volume_lod.h"
 #include "render/model/volume_host.h"
 #include "render/perspective_grid.h"
 #include "voxspan/error.h"
@@ -131,6 +132,7 @@ struct VolumeCaster::Work {
   VolumeOptions options;
   ViewFrame frame;
   std::vector<TilePart> tile_parts;
+  VolumeLod lod;  // level of detail: the particles drawn of those given
 };
 
 VolumeCaster::VolumeCaster() : work_(std::make_unique<Work>()) {}
@@ -138,11 +140,6 @@ VolumeCaster::~VolumeCaster() = default;
 void VolumeCaster::set_tile_culling(bool on) { work_->cull_tiles = on; }
 
 namespace {
-
-bool finite(const VolumeParticle& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.h) &&
-         std::isfinite(p.weight) && std::isfinite(p.value) && p.h > 0 && p.weight > 0;
-}
 
 // Project: each valid particle's support in view space, culled where it meets no pixel centre
 // or no sample; `counts` gets the invalid and the culled.
@@ -158,7 +155,7 @@ void project(const PerspectiveGrid& view_grid, const Samples& s,
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
                         const VolumeParticle& p = particles[i];
                         Support& o = out[i];
-                        if (!finite(p)) {
+                        if (!drawable(p)) {
                           ++t[0];
                           continue;
                         }
@@ -924,6 +921,12 @@ VolumeCounts VolumeCaster::start_frame(const Camera& camera,
   // The supports' pixel rectangles: PerspectiveGrid::sphere_pixels over any depth range.
   const PerspectiveGrid view_grid = PerspectiveGrid::over(camera, 1, 2, GridOptions{});
   w.frame = view_grid.view();
+  if (options.level_of_detail > 0) {
+    LodCounts lod;
+    particles = w.lod.run(w.frame, particles, options.level_of_detail, lod);
+    counts.particles_merged = lod.merged;
+    counts.particles_coarse = lod.coarse;
+  }
   Samples& s = w.samples;
   s.lattice = volume_lattice(w.frame.tan_half_y, w.frame.height, options);
   s.near =

@@ -5,7 +5,8 @@
 // supports and the pixels.
 //
 // Phases (VolumeCastPhase, each timed):
-//   project  each particle's support to view space: its pixel rectangle and its first and last
+//   project  with level of detail first the far particles merged (render/cpu/volume_lod.h);
+//            each particle's support to view space: its pixel rectangle and its first and last
 //            samples (culled where it reaches no pixel centre or no sample);
 //   sort     the supports nearest first (by first sample, then by index: one order whatever the
 //            threads);

@@ -4,12 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include <tbb/global_control.h>
+
 #include <cmath>
 #include <cstdint>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "render/cpu/volume_caster.h"
 #include "render/sph_kernel.h"
 #include "render/volume.h"
 #include "tools/scenes/scenes.h"
@@ -76,6 +79,19 @@ template <class F> void each_kernel(double spacing, F fn) {
     VolumeOptions o = cloud_options(VolumeMode::mixed, spacing);
     o.kernel = kernel;
     fn(o, name);
+  }
+}
+
+// The CPU caster's picture of `c` under `o` on 1, 2 and 7 threads: the same bit for bit.
+inline void expect_same_on_any_threads(const Cloud& c, const VolumeOptions& o) {
+  std::vector<float> first;
+  for (int threads : {1, 2, 7}) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    VolumeCaster caster;
+    VolumeFrame frame;
+    caster.run(c.camera, c.particles, o, frame);
+    if (first.empty()) first = frame.picture.rgba;
+    else EXPECT_EQ(frame.picture.rgba, first) << threads << " threads";
   }
 }
 

@@ -9,7 +9,10 @@
 // tolerance (VolumeOptions::adaptive, --relax): its time and speed-up over the full-rate frame
 // (the two timed in turn, the median of the pairs' ratios),
 // its largest change from it and the share of channels past the tolerance, the share of samples
-// skipped (and with --convergence its error against the converged integral).
+// skipped (and with --convergence its error against the converged integral). --lod adds, per
+// row, particle level of detail at each level (VolumeOptions::level_of_detail, [FAW10] Fig. 8):
+// the particles drawn, the time and speed-up (paired as the tolerances'), and the largest and
+// 99th-percentile channel error against the frame of every particle (and the converged one).
 //
 // The scene is bench_renderers': the WCSPH dam break at Martin & Moyce's T (--time), about
 // --particles fluid particles, state cached in --state (or --ritter, the Ritter-profile scene).
@@ -25,6 +28,7 @@
 //                [--modes dvr,iso,mixed] [--sampling S,...] [--quantity fraction|height]
 //                [--convergence] [--check] [--csv FILE] [--gl [--platform P]]
 //                [--tolerances E,... [--relax R]] [--opacity A] [--no-tile-culling]
+//                [--lod L,...]
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -33,6 +37,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <glm/gtc/type_ptr.hpp>
 
 #include "insitu/views/volume_view.h"
 #include "render/cpu/volume_caster.h"
@@ -55,6 +61,7 @@ struct Args : tools::BenchArgs, tools::StateFlags {
   bool gl = false;  // also the GL renderer's march (render/gl/volume_renderer.h)
   std::string csv;  // each row also as CSV (tools/plots/plot_volume_accuracy.py charts it)
   std::vector<double> tolerances;  // adaptive sampling's, DVR rows
+  std::vector<double> levels;      // --lod: VolumeOptions::level_of_detail, rows per frame
   double relax = 0;
   double opacity = -1;  // --opacity: every value's opacity per spacing (< 0: the view's default)
   bool no_tile_culling = false;  // VolumeCaster::set_tile_culling(false): rays stop one by one
@@ -65,7 +72,8 @@ constexpr char kUsage[] =
     "         [--frames F] [--modes dvr,iso,mixed] [--sampling S,...]\n"
     "         [--quantity fraction|height] [--convergence] [--check] [--csv FILE]\n"
     "         [--gl [--platform auto|nvidia|device|surfaceless]]\n"
-    "         [--tolerances E,... [--relax R]] [--opacity A] [--no-tile-culling]\n";
+    "         [--tolerances E,... [--relax R]] [--opacity A] [--no-tile-culling]\n"
+    "         [--lod L,...]\n";
 
 bool read_flag(tools::Arg& arg, Args& a) {
   if (const char* v = arg.value("--modes")) return tools::read_names(v, kVolumeModeNames, a.modes);
@@ -79,6 +87,10 @@ bool read_flag(tools::Arg& arg, Args& a) {
     for (const std::string& e : tools::comma_list(v)) a.tolerances.push_back(std::atof(e.c_str()));
     return std::all_of(a.tolerances.begin(), a.tolerances.end(),
                        [](double e) { return e > 0 && e <= 1; });
+  }
+  if (const char* v = arg.value("--lod")) {
+    for (const std::string& l : tools::comma_list(v)) a.levels.push_back(std::atof(l.c_str()));
+    return std::all_of(a.levels.begin(), a.levels.end(), [](double l) { return l > 0; });
   }
   if (const char* v = arg.value("--opacity")) {
     a.opacity = std::atof(v);
@@ -170,28 +182,41 @@ double flat_bundles(const VolumeFrame& f, double spread) {
   return fluid == 0 ? 0 : 100.0 * flat / fluid;
 }
 
-// Per tolerance: adaptive sampling's frame against the full-rate one (`exact`). The two are
-// timed in turn, frame by frame, and the speed-up is the median of the pairs' ratios: the
-// machine's load drifts between rows.
+// Two frames timed in turn, frame by frame, after one warm-up pair: the second's median
+// milliseconds and the median of the pairs' ratios (its speed-up over the first; the machine's
+// load drifts between rows).
+struct Paired {
+  double ms = 0, speed_up = 0;
+};
+template <class Base, class Variant>
+Paired paired_frames(int frames, Base&& base, Variant&& variant) {
+  std::vector<double> ms, ratios;
+  for (int f = -1; f < frames; ++f) {
+    const Stopwatch base_watch;
+    base();
+    const double base_ms = base_watch.ms();
+    const Stopwatch watch;
+    variant();
+    if (f < 0) continue;  // the warm-up
+    ms.push_back(watch.ms());
+    ratios.push_back(base_ms / ms.back());
+  }
+  return {tools::median(ms), tools::median(ratios)};
+}
+
+// Per tolerance: adaptive sampling's frame against the full-rate one (`exact`), paired.
 void adaptive_rows(const Args& a, const Camera& camera,
                    const std::vector<VolumeParticle>& particles, VolumeOptions o,
                    const VolumeFrame& exact, const VolumeFrame* converged, VolumeCaster& caster) {
   for (double tolerance : a.tolerances) {
-    std::vector<double> ms, ratios;
     VolumeFrame frame, full_rate;
     VolumeCounts c;
-    for (int f = -1; f < a.frames; ++f) {
-      o.adaptive = {};
-      const Stopwatch exact_watch;
-      caster.run(camera, particles, o, full_rate);
-      const double exact_ms = exact_watch.ms();
-      o.adaptive = {tolerance, a.relax};
-      const Stopwatch watch;
-      c = caster.run(camera, particles, o, frame);
-      if (f < 0) continue;  // the warm-up
-      ms.push_back(watch.ms());
-      ratios.push_back(exact_ms / ms.back());
-    }
+    VolumeOptions exact_options = o;
+    exact_options.adaptive = {};
+    o.adaptive = {tolerance, a.relax};
+    const Paired timed = paired_frames(
+        a.frames, [&] { caster.run(camera, particles, exact_options, full_rate); },
+        [&] { c = caster.run(camera, particles, o, frame); });
     std::size_t over = 0;
     double largest = 0;
     for (std::size_t i = 0; i < frame.picture.rgba.size(); ++i) {
@@ -199,13 +224,12 @@ void adaptive_rows(const Args& a, const Camera& camera,
       largest = std::max(largest, d);
       over += d > tolerance + 1e-6 ? 1 : 0;
     }
-    const double t = tools::median(ms);
     std::printf(
         "  tolerance %-6g relax %g: %8.1f ms, speed-up %5.2f (paired) | vs full rate: largest "
         "%.2e, "
         "%.4f %% of channels past | skipped %5.1f %% of samples, %lld coarse and %lld "
         "super-pixel cells, %lld at the surface | fluid bundles flat within 2x: %.1f %%",
-        tolerance, a.relax, t, tools::median(ratios), largest,
+        tolerance, a.relax, timed.ms, timed.speed_up, largest,
         100.0 * double(over) / double(frame.picture.rgba.size()),
         100.0 * double(c.samples_skipped) / double(c.samples + c.samples_skipped),
         static_cast<long long>(c.cells_coarse), static_cast<long long>(c.cells_super_pixel),
@@ -213,6 +237,70 @@ void adaptive_rows(const Args& a, const Camera& camera,
     if (converged != nullptr) {
       const std::array<double, 2> e = errors(frame.picture, converged->picture);
       std::printf(" | vs converged: max %.2e p99 %.2e", e[0], e[1]);
+    }
+    std::printf("\n");
+  }
+}
+
+// The frame of `o` at twice the width and height, each 2x2 block of pixels averaged: what a
+// pixel's area shows rather than its centre, which particles under a pixel alias.
+FloatImage supersampled(const Camera& camera, const std::vector<VolumeParticle>& particles,
+                        const VolumeOptions& o, VolumeCaster& caster) {
+  Camera fine = camera;
+  fine.width *= 2;
+  fine.height *= 2;
+  VolumeFrame f;
+  caster.run(fine, particles, o, f);
+  FloatImage out(camera.width, camera.height);
+  const auto at = [&](int x, int y) {
+    return glm::make_vec4(
+        &f.picture.rgba[4 * (std::size_t(x) + std::size_t(y) * std::size_t(fine.width))]);
+  };
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x)
+      out.set(x, y,
+              0.25f * (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) +
+                       at(2 * x + 1, 2 * y + 1)));
+  return out;
+}
+
+// Per level (VolumeOptions::level_of_detail, [FAW10] Fig. 8): the frame of the merged particles
+// against the one of all of them (`all`), paired: the particles drawn, its time (and its project
+// phase's, the merging included), and its largest and 99th-percentile channel error against
+// `all`, against all of them 2x2 supersampled (`all`'s own error there first) and against the
+// converged integral.
+void lod_rows(const Args& a, const Camera& camera, const std::vector<VolumeParticle>& particles,
+              VolumeOptions o, const VolumeFrame& all, const VolumeFrame* converged,
+              VolumeCaster& caster) {
+  if (a.levels.empty()) return;
+  const FloatImage fine = supersampled(camera, particles, o, caster);
+  const std::array<double, 2> e_all = errors(all.picture, fine);
+  std::printf("  every particle vs 2x2 supersampled: max %.2e p99 %.2e\n", e_all[0], e_all[1]);
+  const VolumeOptions all_options = o;
+  for (double level : a.levels) {
+    VolumeFrame frame, every;
+    VolumeCounts c;
+    o.level_of_detail = level;
+    std::vector<double> project_ms;
+    const Paired timed = paired_frames(
+        a.frames, [&] { caster.run(camera, particles, all_options, every); },
+        [&] {
+          std::array<double, kVolumeCastPhaseNames.size()> phase{};
+          c = caster.run(camera, particles, o, frame, &phase);
+          project_ms.push_back(phase[std::size_t(VolumeCastPhase::project)]);
+        });
+    const std::array<double, 2> e = errors(frame.picture, all.picture);
+    std::printf(
+        "  level of detail %-4g: %9lld particles drawn (%lld merged into %lld) | %8.1f ms "
+        "(project %.1f), speed-up %5.2f (paired) | vs all: max %.2e p99 %.2e",
+        level, static_cast<long long>(c.particles - c.particles_merged + c.particles_coarse),
+        static_cast<long long>(c.particles_merged), static_cast<long long>(c.particles_coarse),
+        timed.ms, tools::median(project_ms), timed.speed_up, e[0], e[1]);
+    const std::array<double, 2> e_fine = errors(frame.picture, fine);
+    std::printf(" | vs 2x2 supersampled: max %.2e p99 %.2e", e_fine[0], e_fine[1]);
+    if (converged != nullptr) {
+      const std::array<double, 2> ec = errors(frame.picture, converged->picture);
+      std::printf(" | vs converged: max %.2e p99 %.2e", ec[0], ec[1]);
     }
     std::printf("\n");
   }
@@ -307,6 +395,7 @@ int run(const Args& a) {
       if (mode == VolumeMode::dvr)
         adaptive_rows(a, s.camera, particles, o, frame, a.convergence ? &converged : nullptr,
                       caster);
+      lod_rows(a, s.camera, particles, o, frame, a.convergence ? &converged : nullptr, caster);
       if (csv != nullptr)
         std::fprintf(csv, "%s,%zu,%d,%d,%s,%g,%.2f,%lld,%.4g,%.4g\n",
                      a.ritter ? "ritter" : "solver", particles.size(), a.width, a.height,

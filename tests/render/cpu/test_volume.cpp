@@ -9,8 +9,6 @@
 // Broken input (NaN particles, no particle, every scale): tests/stability/test_volume.cpp.
 #include <gtest/gtest.h>
 
-#include <tbb/global_control.h>
-
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -202,16 +200,7 @@ TEST(VolumeCaster, EveryKernelIsTheReferences) {
 
 TEST(VolumeCaster, ThePictureDoesNotDependOnTheThreads) {
   const test::Cloud c = test::cloud(10, 3);
-  const VolumeOptions o = test::cloud_options(VolumeMode::mixed, c.spacing);
-  std::vector<float> first;
-  for (int threads : {1, 2, 7}) {
-    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    VolumeCaster caster;
-    VolumeFrame frame;
-    caster.run(c.camera, c.particles, o, frame);
-    if (first.empty()) first = frame.picture.rgba;
-    else EXPECT_EQ(frame.picture.rgba, first) << threads << " threads";
-  }
+  test::expect_same_on_any_threads(c, test::cloud_options(VolumeMode::mixed, c.spacing));
 }
 
 TEST(VolumeCaster, OcclusionCullingChangesNoPixel) {

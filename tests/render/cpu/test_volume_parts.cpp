@@ -3,7 +3,8 @@
 // over MPI) against one process's frame of all the particles: slab, interleaved and uneven
 // splits of 2 to 4 ranks, every mode, the picture (and the iso hits' depths) equal up to
 // rounding with termination 0, and within the termination with it on; adaptive sampling over
-// ranks within the tolerance of the merged full-rate picture.
+// ranks within the tolerance of the merged full-rate picture; level of detail merging each
+// rank's particles.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "render/cpu/volume_caster.h"
+#include "render/cpu/volume_lod.h"
 #include "render/cpu/volume_renderer.h"
 #include "render/volume_merge.h"
 #include "tests/support/volume_cloud.h"
@@ -141,6 +143,45 @@ TEST(VolumeParts, MergedFramesAreOneProcesssUpToRounding) {
         for (std::size_t i = 0; i < one.depth.size(); ++i)
           EXPECT_NEAR(m.frame.depth[i], one.depth[i], 1e-5 * one.depth[i] + 1e-7) << i;
       }
+  }
+}
+
+TEST(VolumeParts, WithLevelOfDetailEachRankDrawsItsOwnMergedParticles) {
+  // Far particles, every h under half a pixel, merged at level 1 (render/cpu/volume_lod.h) on
+  // each rank from its own: the merged frame is one process's frame of the ranks' merged
+  // particles up to rounding. (Against one process merging all of them, the cells a split cuts
+  // are merged on each side: a picture within level of detail's own error, not the same.)
+  test::Cloud c = test::cloud(30, 13);
+  const double mid = 0.5 * 29 * c.spacing;
+  c.camera = test::look_at({mid + 6, mid + 8, mid + 30}, {mid, mid, mid}, 80, 60, 30);
+  VolumeOptions o = test::cloud_options(VolumeMode::mixed, c.spacing);
+  o.termination = 0;
+  o.level_of_detail = 1;
+  for (const NamedSplit& s : splits(2, 0, 29 * c.spacing)) {
+    if (s.name == "uneven") continue;
+    SCOPED_TRACE(s.name);
+    std::vector<VolumeParticle> merged;
+    VolumeLod lod;
+    for (int r = 0; r < 2; ++r) {
+      std::vector<VolumeParticle> share;
+      for (std::size_t i = 0; i < c.particles.size(); ++i)
+        if (s.split(i, c.particles.size(), c.particles[i]) == r) share.push_back(c.particles[i]);
+      LodCounts counts;
+      const std::span<const VolumeParticle> drawn =
+          lod.run(ViewFrame(c.camera), share, o.level_of_detail, counts);
+      merged.insert(merged.end(), drawn.begin(), drawn.end());
+    }
+    VolumeOptions off = o;
+    off.level_of_detail = 0;
+    VolumeCaster whole;
+    VolumeFrame one;
+    whole.run(c.camera, merged, off, one);
+    const Merged m = split_frame(c.camera, c.particles, o, 2, s.split);
+    const double d = largest_difference(m.frame.picture.rgba, one.picture.rgba);
+    std::printf("%-11s: %zu particles drawn of %zu; largest channel difference %.1e\n",
+                s.name.c_str(), merged.size(), c.particles.size(), d);
+    EXPECT_LT(merged.size() * 20, c.particles.size());
+    EXPECT_LT(d, 1e-5);
   }
 }
 
