@@ -2,8 +2,8 @@
 # tools/scripts/make-bundle.sh [OUT_DIR] - a lean Release build of the command-line tools, with the
 # non-system shared libraries they need, in one folder that runs on a GPU machine without a
 # package manager:  OUT_DIR/bin/<tool>  (RPATH $ORIGIN/../lib)  and  OUT_DIR/lib/*.so*,
-# and the same folder as OUT_DIR.tar.gz, one file to copy (about 30 MB; the folder is about
-# 120 MB, half of it OpenVDB). tools/scripts/device-check.sh runs from either.
+# and the same folder as OUT_DIR.tar.gz, one file to copy. Only the tools device-check.sh runs go
+# in (see below). tools/scripts/device-check.sh runs from either.
 #
 # Left out on purpose, because the target machine must provide its own:
 #   glibc (libc, libm, ld-linux...), libstdc++ and libgcc_s (a newer system copy is backward
@@ -25,6 +25,12 @@ cmake --build "$build" -j"$(nproc)"
 rm -rf "$out"
 cmake --install "$build" --prefix "$out" --strip >/dev/null
 rm -rf "$out/include" "$out/lib/cmake"
+# Only the tools tools/scripts/device-check.sh runs (read from it, so the list is written once)
+# and their libraries: the others carry Embree and VTK, which took the archive past 64 MiB.
+keep=$(grep -o '\$bin/[A-Za-z_-]*' tools/scripts/device-check.sh | sed 's/^\$bin\///' | sort -u)
+for exe in "$out"/bin/*; do
+  grep -qx "$(basename "$exe")" <<<"$keep" || rm -f "$exe"
+done
 
 system_lib='^(linux-vdso|ld-linux|libc|libm|libdl|libpthread|librt|libresolv|libstdc\+\+|libgcc_s|libEGL|libGL|libGLX|libOpenGL|libGLdispatch)\.so'
 for exe in "$out"/bin/*; do
