@@ -119,12 +119,13 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
     ++start[bin[k] + 1];
   }
   for (std::size_t b = 0; b < bins; ++b) start[b + 1] += start[b];
+  // The terms themselves in bin order: a pixel reads each row of its bins as one run.
   std::vector<std::uint32_t>& fill = out.bin_fill;
-  std::vector<std::uint32_t>& sorted = out.sorted;
+  std::vector<SphTerm>& sorted = out.sorted;
   fill.assign(start.begin(), start.end() - 1);
   sorted.resize(start[bins]);
   for (std::size_t k = 0; k < near.size(); ++k)
-    if (bin[k] < bins) sorted[fill[bin[k]]++] = std::uint32_t(k);
+    if (bin[k] < bins) sorted[fill[bin[k]]++] = near[k];
 
   out.width = width;
   out.height = height;
@@ -138,13 +139,13 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
       int cx, cy;
       bin_of(x, cx, cy);
       SphSum sum;
-      for (int y = cy - 1; y <= cy + 1; ++y)
-        for (int xb = cx - 1; xb <= cx + 1; ++xb) {
-          if (xb < -1 || xb > bx || y < -1 || y > by) continue;
-          const std::size_t b = std::size_t(xb + 1) + std::size_t(bx + 2) * std::size_t(y + 1);
-          for (std::uint32_t s = start[b]; s < start[b + 1]; ++s)
-            sum.add(near[sorted[s]], x, q.kernel, h);
-        }
+      const int x0 = std::max(cx - 1, -1), x1 = std::min(cx + 1, bx);
+      for (int y = std::max(cy - 1, -1); y <= std::min(cy + 1, by) && x0 <= x1; ++y) {
+        const std::size_t row = std::size_t(bx + 2) * std::size_t(y + 1);
+        for (std::uint32_t s = start[row + std::size_t(x0 + 1)];
+             s < start[row + std::size_t(x1 + 2)]; ++s)
+          sum.add(sorted[s], x, q.kernel, h);
+      }
       const std::size_t pixel = std::size_t(i) + std::size_t(width) * std::size_t(j);
       out.sum[pixel] = sum.sum;
       out.weight[pixel] = sum.weight;

@@ -88,7 +88,8 @@ struct SliceImage {
 
   // Working storage, kept from step to step (a step with stable sizes allocates nothing).
   std::vector<SphTerm> near;
-  std::vector<std::uint32_t> bin_start, bin_fill, bin_of, sorted;
+  std::vector<std::uint32_t> bin_start, bin_fill, bin_of;
+  std::vector<SphTerm> sorted;  // the near terms in bin order
 };
 
 // Interpolates `q` on `plane` into a width x height image, reusing out's storage. Throws
