@@ -15,7 +15,6 @@ namespace voxspan {
 namespace {
 
 constexpr int kPollMs = 50;  // how often the feed's thread looks for a step handed over
-constexpr int kNice = 10;    // the feed's thread's niceness
 
 }  // namespace
 
@@ -112,9 +111,12 @@ std::shared_ptr<const LiveSnapshot> LiveFeed::snapshot() const {
   return snapshot_;
 }
 
+void LiveFeed::lower_priority() {
+  setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kThreadNice);
+}
+
 void LiveFeed::run() {
-  // Below the solver's threads: the encoding waits for a core they leave free.
-  setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kNice);
+  lower_priority();
   Handed work;
   work.pictures.resize(names_.size());
   bool finished = false;

@@ -46,6 +46,12 @@ class LiveFeed {
  public:
   // Steps kept for the chart: older ones are dropped first.
   static constexpr std::size_t kHistorySteps = 1000;
+  // The niceness of the page's threads (the feed's and the server's): below the solver's, so
+  // that encoding pictures and answering clients, hostile ones included, wait for a core the
+  // solver leaves free.
+  static constexpr int kThreadNice = 10;
+  // Lowers the calling thread to kThreadNice.
+  static void lower_priority();
 
   // `interactive`: the state says the page may turn the cameras (POST /camera).
   explicit LiveFeed(std::vector<std::string> view_names, bool interactive = false);
