@@ -199,8 +199,10 @@ class SurfaceView final : public View {
     if (!slice_ && !colors_) return render_surfaces(step, step.needs, recorder, out);
     if (step.data.particles == nullptr)
       throw make_error(slice_ ? "slice" : "color_by", ": the step has no particles");
+    // The slice stands in front of the cast's first surface; the colours read the shaded one
+    // (render_colored), so without a slice only the depth output asks for the cast's.
     ViewNeeds with_depth = step.needs;
-    with_depth.first_hit_depth = true;
+    with_depth.first_hit_depth = step.needs.first_hit_depth || slice_.has_value();
     if (!slice_) return render_colored(step, with_depth, recorder, out);
     {
       auto t = recorder.host(pass::slice_sum);  // collective: before anything that may fail
@@ -226,9 +228,8 @@ class SurfaceView final : public View {
   }
 
  private:
-  // render_surfaces (which must give the first-hit distances), then with color_by the first
-  // surface coloured: the sums are collective, so a process that failed to shade still takes
-  // part and all ranks throw together.
+  // render_surfaces, then with color_by the shaded first surface coloured: the sums are
+  // collective, so a process that failed to shade still takes part and all ranks throw together.
   bool render_colored(const ViewStep& step, const ViewNeeds& needs, Recorder& recorder,
                       ViewProducts& out) {
     if (!colors_) return render_surfaces(step, needs, recorder, out);

@@ -26,6 +26,7 @@
 
 #include "insitu/runtime/pipeline.h"
 #include "tools/common/dambreak_views.h"
+#include "tools/common/tool_args.h"
 #include "tools/common/usage.h"
 #include "voxspan/insitu.h"
 
@@ -56,12 +57,8 @@ struct Tally {
 
 std::vector<double> numbers(const char* text) {
   std::vector<double> out;
-  std::string s(text);
-  for (std::size_t at = 0; at <= s.size();) {
-    const std::size_t comma = std::min(s.find(',', at), s.size());
-    out.push_back(std::atof(s.substr(at, comma - at).c_str()));
-    at = comma + 1;
-  }
+  for (const std::string& item : voxspan::tools::comma_list(text))
+    out.push_back(std::atof(item.c_str()));
   return out;
 }
 
@@ -75,7 +72,7 @@ bool parse(int argc, char** argv, Options& o) {
     else if (a == "--frames") o.frames = std::atol(v);
     else if (a == "--every") o.every = std::atol(v);
     else if (a == "--size") {
-      if (std::sscanf(v, "%dx%d", &o.width, &o.height) != 2) return false;
+      if (!voxspan::tools::parse_size(v, o.width, o.height)) return false;
     } else if (a == "--tolerances") o.tolerances = numbers(v);
     else if (a == "--relax") o.relaxes = numbers(v);
     else if (a == "--quantity") o.quantity = v;
