@@ -73,6 +73,8 @@ inline constexpr StatName grid_near{"grid.near"};
 inline constexpr StatName grid_far{"grid.far"};
 inline constexpr StatName grid_k_d{"grid.k_d"};
 inline constexpr StatName grid_alpha_degrees{"grid.alpha_degrees"};
+// A volume frame's VolumeCounts::error_bound.
+inline constexpr StatName volume_error_bound{"volume.error_bound"};
 }  // namespace figure
 
 }  // namespace voxspan

@@ -20,6 +20,7 @@
 // gradient there), or both; a ray stops when its transmittance falls under `termination`.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -239,6 +240,11 @@ struct VolumeCounts {
   // rays that all stopped.
   std::int64_t tiles_culled = 0;
   std::int64_t supports_culled = 0;
+  // Adaptive sampling's own bound: with relax 0, the most its plans let any channel of any pixel
+  // move from the full-rate picture, besides the reserve for rounding and early stops (the
+  // largest over the bundles of the terms spent; of a rank's own cells in an MPI job, where the
+  // ranks' bounds add up). Not a count: frames' parts take the largest.
+  double error_bound = 0;
 };
 
 // Each count with the name a stats record gives it.
@@ -267,6 +273,7 @@ inline constexpr VolumeCountName kVolumeCountNames[] = {
 
 inline VolumeCounts& operator+=(VolumeCounts& a, const VolumeCounts& b) {
   for (const VolumeCountName& c : kVolumeCountNames) a.*c.member += b.*c.member;
+  a.error_bound = std::max(a.error_bound, b.error_bound);
   return a;
 }
 

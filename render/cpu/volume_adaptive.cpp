@@ -295,6 +295,9 @@ void TilePlanner::plan_bundle(int b, const VolumeOptions& o, const TransferBound
       for (int ch = 0; ch < 3; ++ch)
         back[std::size_t(ch)] = full.i_hi[ch] + full.t_hi * back[std::size_t(ch)];
   }
+  // The picture's alpha moves by the transmittance's change (no background), else not at all.
+  const double spent_alpha = o.background ? 0 : spent[3];
+  counts.error_bound = std::max({counts.error_bound, spent[0], spent[1], spent[2], spent_alpha});
 }
 
 }  // namespace voxspan

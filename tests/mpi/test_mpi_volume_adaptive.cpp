@@ -3,7 +3,9 @@
 // more than the tolerance (1e-6 of slack for rounding) from the job's full-rate picture, each
 // rank spending 1 / ranks of it (insitu/views/volume_compositor.cpp), with and without early
 // termination and background; the ranks' super-pixels counted so that the check proves
-// something. Only rank 0 prints.
+// something. The ranks' own bounds (volume.error_bound) add up to at most the tolerance: each
+// spends its share, where the whole tolerance each would let three ranks' errors reach three
+// times it on one pixel. Only rank 0 prints.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -59,6 +61,7 @@ std::string config(const std::string& name, const std::string& keys) {
 struct Frame {
   std::vector<float> rgba;
   std::int64_t super_pixels = 0, skipped = 0;  // this rank's
+  double error_bound = 0;                      // this rank's
 };
 
 // The view's frame of this rank's slab in a job on `comm`.
@@ -78,6 +81,7 @@ Frame render(MPI_Comm comm, const std::string& name, const std::string& keys) {
   if (r.stats) {
     f.super_pixels = r.stats->count("volume.cells_super_pixel");
     f.skipped = r.stats->count("volume.samples_skipped");
+    f.error_bound = r.stats->figure("volume.error_bound");
   }
   a.finish();
   return f;
@@ -99,6 +103,8 @@ TEST(MpiVolumeAdaptive, NoChannelMovesByMoreThanTheToleranceOn1And3Ranks) {
         const Frame adaptive = render(comm, name + "-" + std::to_string(tolerance), keys);
         std::int64_t counts[2] = {adaptive.super_pixels, adaptive.skipped}, total[2] = {0, 0};
         MPI_Reduce(counts, total, 2, MPI_INT64_T, MPI_SUM, 0, comm);
+        double bound = 0;
+        MPI_Reduce(&adaptive.error_bound, &bound, 1, MPI_DOUBLE, MPI_SUM, 0, comm);
         if (rank != 0) continue;
         ASSERT_EQ(adaptive.rgba.size(), exact.rgba.size());
         std::size_t over = 0;
@@ -109,11 +115,12 @@ TEST(MpiVolumeAdaptive, NoChannelMovesByMoreThanTheToleranceOn1And3Ranks) {
           over += d > tolerance + 1e-6 ? 1 : 0;
         }
         std::printf(
-            "%d rank(s), %-31s tolerance %.3f: largest %.2e, %zu channels over; %lld "
-            "super-pixel cells, %lld samples skipped\n",
-            ranks, ending, tolerance, largest, over, static_cast<long long>(total[0]),
+            "%d rank(s), %-31s tolerance %.3f: largest %.2e, %zu channels over, ranks' bounds "
+            "%.2e; %lld super-pixel cells, %lld samples skipped\n",
+            ranks, ending, tolerance, largest, over, bound, static_cast<long long>(total[0]),
             static_cast<long long>(total[1]));
         EXPECT_EQ(over, 0u) << ranks << " ranks, " << ending << ", tolerance " << tolerance;
+        EXPECT_LE(bound, tolerance) << ranks << " ranks, " << ending << ", tolerance " << tolerance;
         if (ranks == 3) super_pixels_on_3 += total[0];
       }
     }

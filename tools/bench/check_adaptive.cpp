@@ -11,9 +11,14 @@
 //     share of rays (pixels) and of frames over the tolerance and the largest error.
 // Each view's mean render time over the run and its speed-up over the full rate's follow (the
 // views render one after the other in each step, under the same load).
+//   - --converged S adds a full-rate view sampled S times as densely along the rays, the
+//     stand-in for the converged integral (DVR's error halves with each doubling of the sampling:
+//     docs/benchmarks.md, "Sampling against error"): the full rate's and each adaptive view's
+//     largest and mean error against it, so that what adaptivity adds is seen beside the
+//     sampling's own error.
 //
 //   check_adaptive [--particles N] [--tank-length L] [--frames F] [--every K] [--size WxH]
-//                  [--tolerances E,...] [--relax R,...] [--quantity NAME]
+//                  [--tolerances E,...] [--relax R,...] [--quantity NAME] [--converged S]
 // Defaults: 20000 particles, the main job's 3a tank, 1000 render steps every 3 solver steps,
 // 320x180, tolerances 0.001, 0.004, 0.01, relax 0 and 1, the speed (`velocity`).
 #include <algorithm>
@@ -43,6 +48,16 @@ struct Options {
   std::vector<double> tolerances = {0.001, 0.004, 0.01};
   std::vector<double> relaxes = {0, 1};
   std::string quantity = "velocity";
+  double converged = 0;  // the converged stand-in's sampling; 0: none
+};
+
+// How far one view's pictures lie from the converged stand-in's over the run (the worst channel
+// of each pixel).
+struct Deviation {
+  double largest = 0, sum = 0;
+  long long rays = 0;
+  void add(const voxspan::FloatImage& picture, const voxspan::FloatImage& converged);
+  double mean() const { return sum / double(std::max(1LL, rays)); }
 };
 
 // One adaptive view's tally over the run.
@@ -53,6 +68,7 @@ struct Tally {
   double largest = 0;
   double ms = 0;                       // the view's render time, summed over the run
   long long samples = 0, skipped = 0;  // composited and skipped samples, summed
+  Deviation from_converged;
 };
 
 std::vector<double> numbers(const char* text) {
@@ -76,6 +92,7 @@ bool parse(int argc, char** argv, Options& o) {
     } else if (a == "--tolerances") o.tolerances = numbers(v);
     else if (a == "--relax") o.relaxes = numbers(v);
     else if (a == "--quantity") o.quantity = v;
+    else if (a == "--converged") o.converged = std::atof(v);
     else return false;
     ++i;
   }
@@ -83,10 +100,12 @@ bool parse(int argc, char** argv, Options& o) {
   return o.particles > 0 && o.frames > 0 && o.every > 0 && o.width > 0 && o.height > 0 &&
          std::all_of(o.tolerances.begin(), o.tolerances.end(),
                      [](double e) { return e > 0 && e <= 1; }) &&
-         std::all_of(o.relaxes.begin(), o.relaxes.end(), in_unit);
+         std::all_of(o.relaxes.begin(), o.relaxes.end(), in_unit) &&
+         (o.converged == 0 || (o.converged >= 1 && o.converged <= 16));
 }
 
-// The views: `full` first, then one per (tolerance, relax) in the tallies' order.
+// The views: `full` first, then one per (tolerance, relax) in the tallies' order, then the
+// converged stand-in if asked.
 std::string config_text(const Options& o, const std::vector<Tally>& tallies) {
   const std::string common = "kind: volume, width: " + std::to_string(o.width) +
                              ", height: " + std::to_string(o.height) + ", quantity: " + o.quantity +
@@ -100,11 +119,32 @@ std::string config_text(const Options& o, const std::vector<Tally>& tallies) {
     text += "  - {name: adaptive" + std::to_string(k) + ", " + common +
             ", adaptive: {error_tolerance: " + std::to_string(tallies[k].tolerance) +
             ", relax: " + std::to_string(tallies[k].relax) + "}}\n";
+  if (o.converged > 0)
+    text +=
+        "  - {name: converged, " + common + ", sampling: " + std::to_string(o.converged) + "}\n";
   return text;
 }
 
 using voxspan::tools::fluid_grid;
 using voxspan::tools::fluid_view;
+
+// The worst channel of pixel (x, y) between two pictures.
+double worst_channel(const voxspan::FloatImage& a, const voxspan::FloatImage& b, int x, int y) {
+  const glm::vec4 p = a.at(x, y), q = b.at(x, y);
+  double worst = 0;
+  for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(double(p[c]) - double(q[c])));
+  return worst;
+}
+
+void Deviation::add(const voxspan::FloatImage& picture, const voxspan::FloatImage& converged) {
+  for (int y = 0; y < picture.height; ++y)
+    for (int x = 0; x < picture.width; ++x) {
+      const double e = worst_channel(picture, converged, x, y);
+      largest = std::max(largest, e);
+      sum += e;
+      ++rays;
+    }
+}
 
 // Adds one step's adaptive picture against its full-rate one; prints a relax-0 violation.
 void tally(const voxspan::FloatImage& full, const voxspan::FloatImage& adaptive, long step,
@@ -112,9 +152,7 @@ void tally(const voxspan::FloatImage& full, const voxspan::FloatImage& adaptive,
   bool frame_over = false;
   for (int y = 0; y < full.height; ++y)
     for (int x = 0; x < full.width; ++x) {
-      const glm::vec4 a = full.at(x, y), b = adaptive.at(x, y);
-      double worst = 0;
-      for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(double(a[c]) - double(b[c])));
+      const double worst = worst_channel(full, adaptive, x, y);
       t.largest = std::max(t.largest, worst);
       ++t.rays;
       if (worst <= t.tolerance + kRounding) continue;
@@ -130,7 +168,10 @@ void tally(const voxspan::FloatImage& full, const voxspan::FloatImage& adaptive,
 int run(const Options& o) {
   std::vector<Tally> tallies;
   for (double relax : o.relaxes)
-    for (double tolerance : o.tolerances) tallies.push_back({tolerance, relax});
+    for (double tolerance : o.tolerances) {
+      Tally& t = tallies.emplace_back();
+      t.tolerance = tolerance, t.relax = relax;
+    }
   dambreak::Config scene;
   scene.particles = o.particles;
   scene.tank_length = o.tank_length;
@@ -145,6 +186,7 @@ int run(const Options& o) {
       sim.fluid().size(), tallies.size(), o.quantity.c_str(), o.width, o.height, o.frames, o.every);
   long frames = 0;
   double full_ms = 0;
+  Deviation full_from_converged;
   while (frames < o.frames) {
     sim.step();
     const long step = long(sim.steps());
@@ -157,8 +199,11 @@ int run(const Options& o) {
     if (step % o.every != 0) continue;
     const auto views = pipeline.latest_views();
     full_ms += views[0].stats->total_ms();
+    const voxspan::FloatImage* converged = o.converged > 0 ? views.back().picture : nullptr;
+    if (converged != nullptr) full_from_converged.add(*views[0].picture, *converged);
     for (std::size_t k = 0; k < tallies.size(); ++k) {
       tally(*views[0].picture, *views[k + 1].picture, step, tallies[k]);
+      if (converged != nullptr) tallies[k].from_converged.add(*views[k + 1].picture, *converged);
       const voxspan::FrameStats& stats = *views[k + 1].stats;
       tallies[k].ms += stats.total_ms();
       tallies[k].samples += stats.count("volume.samples");
@@ -181,6 +226,16 @@ int run(const Options& o) {
     violated = violated || (t.relax == 0 && t.rays_over > 0);
     if (t.relax == 0) skipped_at_relax_0 += t.skipped;
   }
+  if (o.converged > 0) {
+    std::printf(
+        "\nagainst the full rate sampled %g times as densely (worst channel per pixel)\n"
+        "%9s %5s | %10s %10s\n%15s | %10.3e %10.3e\n",
+        o.converged, "tolerance", "relax", "largest", "mean", "full rate",
+        full_from_converged.largest, full_from_converged.mean());
+    for (const Tally& t : tallies)
+      std::printf("%9g %5g | %10.3e %10.3e\n", t.tolerance, t.relax, t.from_converged.largest,
+                  t.from_converged.mean());
+  }
   // A guarantee that skipped nothing proved nothing: the scene or the tolerances are wrong.
   if (!violated && skipped_at_relax_0 == 0 &&
       std::any_of(tallies.begin(), tallies.end(), [](const Tally& t) { return t.relax == 0; })) {
@@ -195,7 +250,8 @@ int run(const Options& o) {
 int main(int argc, char** argv) {
   constexpr char kUsage[] =
       "usage: check_adaptive [--particles N] [--tank-length L] [--frames F] [--every K]\n"
-      "         [--size WxH] [--tolerances E,...] [--relax R,...] [--quantity NAME]\n";
+      "         [--size WxH] [--tolerances E,...] [--relax R,...] [--quantity NAME]\n"
+      "         [--converged S]\n";
   if (voxspan::tools::asks_for_help(argc, argv)) return voxspan::tools::print_usage(stdout, kUsage);
   Options o;
   if (!parse(argc, argv, o)) return voxspan::tools::print_usage(stderr, kUsage);
