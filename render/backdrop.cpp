@@ -21,6 +21,14 @@ bool cut_by_walls(const PixelSpans& p, std::span<const Span> spans, float wall) 
 
 }  // namespace
 
+glm::vec4 over_backdrop(const Backdrop& backdrop, int x, int y, glm::vec3 c, float t,
+                        bool background) {
+  const glm::vec4 b =
+      backdrop.pixels[std::size_t(x) + std::size_t(y) * std::size_t(backdrop.width)];
+  if (!background && b.a == Backdrop::kNoWall) return glm::vec4(c, 1.0f - t);
+  return glm::vec4(c + t * glm::vec3(b), 1.0f);
+}
+
 std::int64_t clip_at_walls(SpanImage& spans, const Backdrop& backdrop) {
   check_size(spans, backdrop);
   const int width = spans.width(), height = spans.height();

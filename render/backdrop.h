@@ -31,6 +31,12 @@ struct Backdrop {
   }
 };
 
+// Light `c` with transmittance `t` (a volume view's, premultiplied) over pixel (x, y) of the
+// backdrop: its colour behind them where a wall stands, or everywhere with `background` (the
+// environment's where none stands); elsewhere transparent, alpha 1 - t.
+glm::vec4 over_backdrop(const Backdrop& backdrop, int x, int y, glm::vec3 c, float t,
+                        bool background);
+
 // Cuts every span of `spans` where its pixel's walls begin, in place (those past them dropped,
 // the one across them ended there: the rule of render/gl/passes/cut_at_walls.comp). A cut pixel
 // keeps its offset, its count and total become the spans kept, its `inside` their length; a pixel

@@ -30,6 +30,7 @@
 
 #include <glm/glm.hpp>
 
+#include "render/backdrop.h"
 #include "render/enum_names.h"
 #include "render/float_image.h"
 #include "render/shade_options.h"
@@ -115,6 +116,10 @@ struct VolumeOptions {
   // merged, per world grid cell, into coarser particles at least that large. The adaptive
   // sampling and a rank's part march the merged particles as they would the given ones.
   double level_of_detail = 0;
+  // The solver's walls (render/backdrop.h; null: none), the frame's size: each ray ends at its
+  // pixel's walls (no sample behind them), and their colour (or the environment's, where none
+  // stands) lies behind the fluid instead of the environment. Not owned.
+  const Backdrop* backdrop = nullptr;
 };
 
 // Throws voxspan::Error naming the option that is out of range.
@@ -225,8 +230,8 @@ struct VolumeCounts {
   std::int64_t rays_stopped = 0;  // transmittance under `termination` before the last sample
   std::int64_t iso_hits = 0;
   std::int64_t iso_hits_unlit = 0;  // past kMaxIsoHits on their ray: ambient light only
-  // GL renderer on llvmpipe: frames drawn by the CPU caster because a bundle's march ran past
-  // the loop iterations llvmpipe allows an invocation
+  // GL renderer: frames drawn by the CPU caster, because a bundle's march ran past the loop
+  // iterations llvmpipe allows an invocation or because the view has walls
   std::int64_t gl_frames_on_cpu = 0;
   // Adaptive sampling (VolumeOptions::adaptive): samples a full-rate march would composite that
   // this one skipped, and cells (a ray bundle by a run of samples) sampled sparsely, drawn as

@@ -169,7 +169,10 @@ void VolumeMerge::finish(std::span<const FieldSums> sums, std::vector<glm::vec4>
       }
     }
     if (m.first_is_hit) m.first_depth = m.hits.hit[0].depth * m.scale;
-    colors[k] = host_.pixel_color(m.ray, m.hits.unlit, options_.background, frame_, x, y);
+    colors[k] = options_.backdrop != nullptr
+                    ? over_backdrop(*options_.backdrop, x, y, m.ray.color + m.hits.unlit,
+                                    m.ray.transmittance, options_.background)
+                    : host_.pixel_color(m.ray, m.hits.unlit, options_.background, frame_, x, y);
     depths[k] = m.first_depth;
     counts_.iso_hits_unlit += m.hits.unlit_count;
     if (deep_ && deep != nullptr && deep_counts != nullptr) {

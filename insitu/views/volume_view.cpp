@@ -152,7 +152,11 @@ std::vector<schema::Key<VolumeSettings>> volume_keys() {
               "that h ([FAW10] sec. 4.1): far fewer particles, a smoother picture, silhouettes "
               "about a pixel wider (docs/benchmarks.md); with `adaptive` its tolerance holds "
               "against the merged particles' picture; over MPI each rank merges its own"),
-          schema::flag("legend", &S::legend, "the colour bar with the range's values")});
+          schema::flag("legend", &S::legend, "the colour bar with the range's values"),
+          schema::map<S, ScenerySettings>(
+              "scenery", &S::scenery, scenery_section(),
+              "the solver's walls and obstacles as opaque solids: rays end at them and the "
+              "fluid glows in front of them")});
 }
 
 const schema::Section<VolumeSettings>& volume_section() {
@@ -168,7 +172,8 @@ class VolumeView final : public View {
       : settings_(s),
         spacing_(c.particle_spacing),
         renderer_(make_volume_renderer(c.backend, c.shaders)),
-        comm_(c.comm != nullptr && c.comm->size() > 1 ? c.comm : nullptr) {
+        comm_(c.comm != nullptr && c.comm->size() > 1 ? c.comm : nullptr),
+        scenery_(s.scenery, spacing_) {
     if (comm_ != nullptr) compositor_.emplace(*comm_);
     if (!(spacing_ > 0) || !std::isfinite(spacing_))
       throw make_error("view ", s.name,
@@ -180,7 +185,8 @@ class VolumeView final : public View {
   bool render(const ViewStep& step, Recorder& recorder, ViewProducts& out) override {
     if (step.data.particles == nullptr) throw make_error("volume: the step has no particles");
     const std::array<double, 2> range = gathered_range(*step.data.particles);
-    const VolumeOptions o = options(step, range);
+    VolumeOptions o = options(step, range);
+    o.backdrop = walls(step, o.environment, recorder);
     const bool deep = step.needs.deep;
     if (compositor_) {
       if (!compositor_->render(*renderer_, step.camera, particles_, o, deep, recorder, frame_))
@@ -205,6 +211,8 @@ class VolumeView final : public View {
     return true;
   }
 
+  bool draws_scenery() const override { return settings_.scenery.draw; }
+
   std::string description() const override {
     return "volume " + std::string(name_of(kVolumeModeNames, settings_.mode)) + " of " +
            (settings_.quantity.empty() ? std::string("the volume fraction") : settings_.quantity) +
@@ -212,6 +220,44 @@ class VolumeView final : public View {
   }
 
  private:
+  // The step's walls (null: none), lit under `environment`: made on the root, whose scenery holds
+  // every rank's spheres, and in an MPI job sent to the other ranks (when they change), whose
+  // rays end at them too. A failure on the root fails every rank.
+  const Backdrop* walls(const ViewStep& step, const Environment& environment, Recorder& recorder) {
+    const Backdrop* made = nullptr;
+    std::string failure;
+    if (comm_ == nullptr || comm_->root()) {
+      try {
+        if (step.scenery != nullptr) {
+          const Scenery& s = *step.scenery;
+          ShadeOptions shade;
+          shade.environment = environment;
+          made = scenery_.backdrop(step.camera, s.spheres, s.version, s.box, shade, recorder);
+        }
+      } catch (const std::exception& e) {
+        if (comm_ == nullptr) throw;
+        failure = e.what();
+      }
+    }
+    if (comm_ == nullptr) return made;
+    const Agreement agreed = comm_->agree(failure.empty(), failure);
+    if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
+    std::array<std::uint64_t, 2> header{made != nullptr ? 1u : 0u,
+                                        made != nullptr ? made->version : 0};
+    comm_->broadcast(std::as_writable_bytes(std::span(header)));
+    if (header[0] == 0) return nullptr;
+    if (header[1] != sent_version_) {  // every rank holds the same sent_version_
+      received_.width = step.camera.width;
+      received_.height = step.camera.height;
+      received_.pixels.resize(std::size_t(received_.width) * std::size_t(received_.height));
+      if (made != nullptr) received_.pixels = made->pixels;
+      comm_->broadcast(std::as_writable_bytes(std::span(received_.pixels)));
+      received_.version = header[1];
+      sent_version_ = header[1];
+    }
+    return comm_->root() ? made : &received_;
+  }
+
   // gather() on every rank, the failure of any failing all (before the collectives that follow);
   // the colour map's range: the settings', or that of every rank's values.
   std::array<double, 2> gathered_range(const ParticleView& particles) {
@@ -322,6 +368,9 @@ class VolumeView final : public View {
   std::unique_ptr<VolumeRenderer> renderer_;
   Communicator* const comm_;                    // null in one process
   std::optional<VolumeCompositor> compositor_;  // in an MPI job
+  SceneryLayer scenery_;
+  Backdrop received_;               // an MPI job's walls, on the ranks but the root
+  std::uint64_t sent_version_ = 0;  // the walls' version last sent to them
   std::vector<VolumeParticle> particles_;
   VolumeFrame frame_;
 };

@@ -18,6 +18,7 @@
 
 #include "insitu/config/settings.h"
 #include "insitu/views/color_map.h"
+#include "insitu/views/scenery.h"
 #include "render/sph_kernel.h"
 #include "render/volume.h"
 
@@ -65,6 +66,7 @@ struct VolumeSettings : CloneAs<VolumeSettings, ViewSettings> {
   VolumeAdaptiveSettings adaptive;
   double level_of_detail = 0;  // VolumeOptions::level_of_detail: 0 off
   bool legend = true;
+  ScenerySettings scenery;
   bool operator==(const VolumeSettings&) const = default;
 };
 

@@ -125,11 +125,13 @@ void TilePlanner::start(const PixelRect& tile, std::int64_t lo, std::int64_t hi,
   }
 }
 
-void TilePlanner::hold(int bundle, std::int64_t first, std::int64_t last) {
+void TilePlanner::hold(int bundle, std::int64_t first, std::int64_t last, Hold why) {
   const std::int64_t c_first = std::max(first >> kCellShift, c0_);
   const std::int64_t c_last = std::min(last >> kCellShift, c0_ + cells_ - 1);
-  for (std::int64_t c = c_first; c <= c_last; ++c)
-    held_[std::size_t(bundle) * std::size_t(cells_) + std::size_t(c - c0_)] = 1;
+  for (std::int64_t c = c_first; c <= c_last; ++c) {
+    std::uint8_t& h = held_[std::size_t(bundle) * std::size_t(cells_) + std::size_t(c - c0_)];
+    h = std::max(h, std::uint8_t(why));
+  }
 }
 
 PixelRect TilePlanner::bundle_rect(int b) const {
@@ -192,7 +194,14 @@ void TilePlanner::plan_bundle(int b, const VolumeOptions& o, const TransferBound
       proven = proven && proven_[std::size_t(((cell - c0_) << kCellShift) + j)] != 0;
     }
     auto& bounds = cell_bounds_[c];
-    if (held_[std::size_t(b) * n + c] != 0) {  // another rank's sums there: any value
+    const std::uint8_t held = held_[std::size_t(b) * n + c];
+    if (held == std::uint8_t(Hold::wall) && reached) {  // a ray ends inside: part of the cell
+      most_[c] = 0;
+      const Bounds full = level_bounds(b, cell, 0, tf, scale_lo, scale_hi);
+      bounds.fill(Bounds{{0, 0, 0}, {full.i_hi[0], full.i_hi[1], full.i_hi[2]}, full.t_lo, 1});
+      continue;
+    }
+    if (held == std::uint8_t(Hold::shared)) {  // another rank's sums there: any value
       most_[c] = 0;
       bounds.fill(Bounds{{0, 0, 0}, {tf.brightest(0), tf.brightest(1), tf.brightest(2)}, 0, 1});
       continue;

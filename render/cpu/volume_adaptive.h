@@ -53,6 +53,13 @@
 // at most `share` (1 / ranks) of the tolerance less the reserves, and the rounding and the early
 // stop (which may end the composited ray at any rank's sample: always reserved) are reserved
 // once, so the composited picture moves from the full-rate composite by at most the tolerance.
+//
+// Walls (VolumeOptions::backdrop): a ray ends at its pixel's walls, inside some cell. That cell
+// stays at full rate for the whole bundle (a coarse sample or a super-pixel would stand for
+// samples behind the walls), with bounds I in [0, I_hi], T in [T_lo, 1] (from none of its samples
+// to all of them): the light behind an earlier cell, that cell's then the walls' colour (at most
+// the background's brightest), stays within the recurrence's bound; the cells behind the walls
+// add nothing to that pixel in either picture.
 #pragma once
 
 #include <algorithm>
@@ -122,8 +129,12 @@ class TilePlanner {
   void start(const PixelRect& tile, std::int64_t lo, std::int64_t hi, const ViewFrame& f,
              const VolumeLattice& lattice, double weight_floor);
 
-  // A rank's part: the cells of `bundle` holding samples [first, last] stay at full rate.
-  void hold(int bundle, std::int64_t first, std::int64_t last);
+  // The cells of `bundle` holding samples [first, last] stay at full rate: a rank's part's cells
+  // that other ranks reach too (shared: any light and transmittance, for the cells around them),
+  // or those where some ray of the bundle ends at its walls (wall: between none of the cell's
+  // samples and all of them).
+  enum class Hold : std::uint8_t { wall = 1, shared = 2 };  // the larger the looser
+  void hold(int bundle, std::int64_t first, std::int64_t last, Hold why);
 
   // One support: centre c (view space), 1 / h, weight v, value q, samples [first, last], pixels.
   template <SphKernel K>

@@ -64,7 +64,9 @@ struct Samples {
 // A ray's state in the march.
 struct RayState {
   model::VolumeHost::VolumeRay ray;
-  std::int64_t front = 0;     // the next sample to composite
+  std::int64_t front = 0;  // the next sample to composite
+  // The first sample behind the pixel's walls (VolumeOptions::backdrop): the ray ends there.
+  std::int64_t wall = std::numeric_limits<std::int64_t>::max();
   std::int64_t last = -1;     // the last sample some support added to
   float scale = 1;            // world length per unit of depth
   float first_depth = 0;      // VolumeFrame::depth
@@ -381,9 +383,10 @@ template <SphKernel K, bool kPart> class TileMarch {
       planner.add<K>(s.c, s.inv_h, s.v, s.vq / s.v, s.first, s.last, s.rect);
     }
     const auto behind = [&](int x, int y) {
-      return glm::dvec3(host_.pixel_color(host_.vx_ray_start(), model::vec3(0.0f), true, f_, x, y));
+      return glm::dvec3(background(host_.vx_ray_start(), model::vec3(0.0f), true, x, y));
     };
     if constexpr (kPart) hold_shared(planner);
+    if (o_.backdrop != nullptr) hold_walls(planner);
     planner.plan(o_, *tf_, behind, kPart, t_);
     // A pixel's bundle, or kFullRate where all its cells are at full rate: the march as without
     // a plan there, and without one at all where that holds for the whole tile.
@@ -398,12 +401,30 @@ template <SphKernel K, bool kPart> class TileMarch {
     if (any) plan_ = &planner;
   }
 
+  // The cells where rays end at their walls stay at full rate: a coarse sample or a super-pixel
+  // there would stand for samples behind the walls.
+  void hold_walls(TilePlanner& planner) const {
+    for (int p = 0; p < pixels_; ++p) {
+      const std::int64_t wall = w_.rays[std::size_t(p)].wall;
+      if (wall != std::numeric_limits<std::int64_t>::max())
+        planner.hold(planner.bundle_of(p), wall, wall, TilePlanner::Hold::wall);
+    }
+  }
+
+  // Pixel (x, y)'s colour: the ray's light over the backdrop, or over the environment.
+  glm::vec4 background(const model::VolumeHost::VolumeRay& ray, model::vec3 hits, bool environment,
+                       int x, int y) const {
+    if (o_.backdrop != nullptr)
+      return over_backdrop(*o_.backdrop, x, y, ray.color + hits, ray.transmittance, environment);
+    return host_.pixel_color(ray, hits, environment, f_, x, y);
+  }
+
   // A rank's part: the cells holding samples other ranks reach too stay at full rate (their
   // sums are sent, not composited here; render/cpu/volume_adaptive.h).
   void hold_shared(TilePlanner& planner) const {
     for (int p = 0; p < pixels_; ++p)
       for (const SampleRange& r : shared_->of(global_pixel(p)))
-        planner.hold(planner.bundle_of(p), r.first, r.last);
+        planner.hold(planner.bundle_of(p), r.first, r.last, TilePlanner::Hold::shared);
   }
 
   void start(const PixelRect& tile, std::span<const std::uint32_t> list,
@@ -438,6 +459,10 @@ template <SphKernel K, bool kPart> class TileMarch {
       r.ray = host_.vx_ray_start();
       r.scale = float(glm::length(w_.dirs[std::size_t(p)]));
       r.front = std::numeric_limits<std::int64_t>::min();
+      if (o_.backdrop != nullptr) {
+        const float wall = o_.backdrop->wall_depth(x, y);
+        if (wall != Backdrop::kNoWall) r.wall = s_.lattice.last_at_or_before(double(wall)) + 1;
+      }
       if constexpr (kPart) {
         w_.raws[std::size_t(p)].clear();
         w_.segments[std::size_t(p)].clear();
@@ -670,6 +695,10 @@ template <SphKernel K, bool kPart> class TileMarch {
     double* weight = &w_.weight[std::size_t(p) * std::size_t(window_)];
     host_.record_into(&r.hits);
     for (; r.front < upto; ++r.front) {
+      if (r.front >= r.wall) {
+        end_at_wall(p);
+        return;
+      }
       if (r.front > r.last) {  // no support reaches the samples up to `upto`
         const std::int64_t next = next_super_pixel(r.front);
         if (next < upto) {
@@ -785,10 +814,7 @@ template <SphKernel K, bool kPart> class TileMarch {
       seg.last = std::int32_t(i);
       if (seg.half_depth == 0 && half) seg.half_depth = float(z * r.scale);
     }
-    if (r.ray.transmittance < o_.termination) {
-      stop(p);
-      if constexpr (kPart) close(p);
-    }
+    if (r.ray.transmittance < o_.termination) stop(p);
   }
 
   // Ray r enters a super-pixel cell: its light and transmittance, once.
@@ -805,18 +831,27 @@ template <SphKernel K, bool kPart> class TileMarch {
     r.ray.defined = 1u;
     if (r.first_depth == 0 && before >= 0.5f && r.ray.transmittance < 0.5f)
       r.first_depth = float(s_.lattice.depth((at << kCellShift) + kCellSamples / 2) * r.scale);
-    if (r.ray.transmittance < o_.termination) {
-      stop(p);
-      if constexpr (kPart) close(p);
-    }
+    if (r.ray.transmittance < o_.termination) stop(p);
   }
 
-  // Pixel p's ray is opaque: it takes no more samples.
+  // Pixel p's ray is opaque: it takes no more samples (its segment closed as stopped, which
+  // ends the composited ray there).
   void stop(int p) {
+    end_ray(p);
+    ++t_.rays_stopped;
+    if constexpr (kPart) close(p);
+  }
+
+  // Pixel p's ray is at its walls: no rank has samples behind them.
+  void end_at_wall(int p) {
+    if constexpr (kPart) close(p);
+    end_ray(p);
+  }
+
+  void end_ray(int p) {
     w_.rays[std::size_t(p)].done = true;
     ++done_;
     ++bundle_done_[std::size_t(bundle_at(p))];
-    ++t_.rays_stopped;
   }
 
   // The iso hits' gradients from the tile's supports, then their light.
@@ -863,7 +898,7 @@ template <SphKernel K, bool kPart> class TileMarch {
     for (int p = 0; p < pixels_; ++p) {
       const RayState& r = w_.rays[std::size_t(p)];
       const int x = tile_.x0 + p % width(), y = tile_.y0 + p / width();
-      out.picture.set(x, y, host_.pixel_color(r.ray, r.hits.unlit, o_.background, f_, x, y));
+      out.picture.set(x, y, background(r.ray, r.hits.unlit, o_.background, x, y));
       out.depth[std::size_t(x) + std::size_t(y) * std::size_t(out.picture.width)] = r.first_depth;
       t_.iso_hits_unlit += r.hits.unlit_count;
     }
@@ -912,6 +947,10 @@ VolumeCounts VolumeCaster::start_frame(const Camera& camera,
                                        const VolumeOptions& options, Lap&& lap) {
   validate(camera);
   validate(options);
+  if (const Backdrop* b = options.backdrop;
+      b != nullptr && (b->width != camera.width || b->height != camera.height))
+    throw make_error("the walls' backdrop is ", b->width, "x", b->height, ", the view ",
+                     camera.width, "x", camera.height);
   Work& w = *work_;
   w.camera = camera;
   w.options = options;

@@ -3,7 +3,7 @@
 // end on the walls behind the water; the water's surface goes on behind a wall in front of it
 // (no dotted line along the walls); both renderers draw the same tank, at any scale; the keys read
 // and refused as documented; particles with NaN positions left out and counted; particles views
-// show the tank too. Under MPI:
+// show the tank too, and volume views end their rays at its walls. Under MPI:
 // tests/mpi/test_mpi_scenery.cpp.
 #include <gtest/gtest.h>
 
@@ -167,6 +167,27 @@ TEST(Scenery, ParticleViewsShowTheTankAroundTheirGlyphs) {
               100 * walls, 100 * shown);
   EXPECT_GT(walls, 0.2);
   EXPECT_GT(shown, 0.05);
+}
+
+TEST(Scenery, VolumeViewsEndTheirRaysAtTheWalls) {
+  // A closed tank hides the water's glow; cut away, its far walls and floor stand behind it.
+  const std::string closed = config("kind: volume, legend: false, scenery: {cutaway: false}");
+  const FloatImage hidden = picture(closed, true), empty = picture(closed, false);
+  EXPECT_LT(test::largest_difference(hidden.rgba, empty.rgba), 1e-6);
+  const std::string cut = config("kind: volume, legend: false");
+  const FloatImage glow = picture(cut, true), tank = picture(cut, false);
+  const double shown = share(differing(glow, tank, 0.02));
+  const FloatImage plain =
+      picture(config("kind: volume, legend: false, scenery: {draw: false}"), false);
+  const double walls = share(differing(tank, plain, 0.02));
+  std::printf("volume view: the walls cover %.1f %% of the picture, the water changes %.1f %%\n",
+              100 * walls, 100 * shown);
+  EXPECT_GT(walls, 0.2);
+  EXPECT_GT(shown, 0.05);
+  // The GL renderer's volume view draws its frames with walls on the CPU caster.
+  EXPECT_LT(test::largest_difference(
+                glow.rgba, picture(config("kind: volume, legend: false", "gl"), true).rgba),
+            1e-5);
 }
 
 TEST(Scenery, DrawFalseLeavesThePictureAsWithoutScenery) {

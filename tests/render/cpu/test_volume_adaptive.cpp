@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "render/backdrop.h"
 #include "render/cpu/volume_caster.h"
 #include "tools/scenes/scenes.h"
 #include "tests/support/image_difference.h"
@@ -132,6 +133,40 @@ TEST(VolumeAdaptive, NoPixelMovesByMoreThanTheTolerance) {
   // The bound must leave something to skip, or the test above proves nothing.
   EXPECT_GT(skipped, 0);
   EXPECT_GT(super_pixels + coarse, 0);
+}
+
+TEST(VolumeAdaptive, NoPixelMovesByMoreThanTheToleranceWhereWallsEndTheRays) {
+  // A wall slanting through each scene from in front of its middle to behind it
+  // (render/backdrop.h): rays end at every depth of the cells around the middle.
+  std::int64_t skipped = 0;
+  for (const Scene& scene : scenes()) {
+    const Camera& camera = scene.camera;
+    const double middle = glm::length(camera.target - camera.eye);
+    Backdrop wall;
+    wall.width = camera.width;
+    wall.height = camera.height;
+    for (int y = 0; y < camera.height; ++y)
+      for (int x = 0; x < camera.width; ++x)
+        wall.pixels.push_back(
+            glm::vec4(0.9f, 0.8f, 0.2f, float(middle * (0.85 + 0.3 * x / camera.width))));
+    VolumeOptions o = scene.options;
+    o.backdrop = &wall;
+    VolumeCaster caster;
+    VolumeFrame exact;
+    caster.run(camera, scene.particles, o, exact);
+    for (double tolerance : {0.001, 0.004, 0.01}) {
+      SCOPED_TRACE(scene.name + ", tolerance " + std::to_string(tolerance));
+      o.adaptive = {tolerance, 0};
+      VolumeFrame adaptive;
+      const VolumeCounts c = caster.run(camera, scene.particles, o, adaptive);
+      const double d = largest_difference(adaptive.picture, exact.picture);
+      std::printf("%-32s walls, tolerance %.3f: largest %.2e, skipped %lld\n", scene.name.c_str(),
+                  tolerance, d, static_cast<long long>(c.samples_skipped));
+      EXPECT_LE(d, tolerance + 1e-6);
+      skipped += c.samples_skipped;
+    }
+  }
+  EXPECT_GT(skipped, 0);
 }
 
 TEST(VolumeAdaptive, EveryRayTakesItsBundlesSuperPixels) {

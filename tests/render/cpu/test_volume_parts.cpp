@@ -146,6 +146,35 @@ TEST(VolumeParts, MergedFramesAreOneProcesssUpToRounding) {
   }
 }
 
+TEST(VolumeParts, WallsEndEveryRanksRaysWhereOneProcessEndsThem) {
+  // A wall through the block on the left half of the view (render/backdrop.h), none on the
+  // right: each rank's rays end at it and the merge shows its colour behind the fluid.
+  const test::Cloud c = test::cloud(10, 11);
+  double lo = 1e30, hi = -1e30;
+  for (const VolumeParticle& p : c.particles)
+    lo = std::min(lo, double(p.x)), hi = std::max(hi, double(p.x));
+  Backdrop walls;
+  walls.width = c.camera.width;
+  walls.height = c.camera.height;
+  for (int y = 0; y < walls.height; ++y)
+    for (int x = 0; x < walls.width; ++x)
+      walls.pixels.push_back(x < walls.width / 2 ? glm::vec4(0.8f, 0.1f, 0.1f, 2.3f)
+                                                 : glm::vec4(0.1f, 0.2f, 0.7f, Backdrop::kNoWall));
+  for (VolumeMode mode : {VolumeMode::dvr, VolumeMode::mixed}) {
+    VolumeOptions o = test::cloud_options(mode, c.spacing);
+    o.termination = 0;
+    o.backdrop = &walls;
+    VolumeCaster whole;
+    VolumeFrame one;
+    whole.run(c.camera, c.particles, o, one);
+    for (const NamedSplit& s : splits(3, lo, hi)) {
+      SCOPED_TRACE(std::string(name_of(kVolumeModeNames, mode)) + " " + s.name);
+      const Merged m = split_frame(c.camera, c.particles, o, 3, s.split);
+      EXPECT_LT(largest_difference(m.frame.picture.rgba, one.picture.rgba), 1e-5);
+    }
+  }
+}
+
 TEST(VolumeParts, WithLevelOfDetailEachRankDrawsItsOwnMergedParticles) {
   // Far particles, every h under half a pixel, merged at level 1 (render/cpu/volume_lod.h) on
   // each rank from its own: the merged frame is one process's frame of the ranks' merged
