@@ -41,7 +41,7 @@ void SurfacePasses::run(const PerspectiveGrid& grid, bool has_spans, const Surfa
   }
   {
     auto t = time(recorder, pass::normals);
-    normals();
+    normals(surfaces);
   }
   if (shade.deep_ao) {
     auto t = time(recorder, pass::deep_ao);

@@ -54,7 +54,7 @@ class SurfacePasses {
   virtual std::int64_t connect(const SurfaceOptions& options) = 0;
   // `iterations` 0: no filter, the span depths are the surface's.
   virtual void filter(int iterations, const SurfaceOptions& options) = 0;
-  virtual void normals() = 0;
+  virtual void normals(const SurfaceOptions& options) = 0;
   virtual void deep_ao() = 0;
   virtual RefractTally shade(const ShadeOptions& options) = 0;  // a tally in refractive mode
 };

@@ -18,8 +18,8 @@ class Renderer::Passes final : public SurfacePasses {
   void filter(int iterations, const SurfaceOptions& options) override {
     r_.filter_.run(spans_, r_.surfaces_, options, iterations);
   }
-  void normals() override {
-    r_.normals_.run(spans_, r_.surfaces_, r_.backdrop_, r_.backdrop_in_use_);
+  void normals(const SurfaceOptions& options) override {
+    r_.normals_.run(spans_, r_.surfaces_, r_.backdrop_, r_.backdrop_in_use_, options.fold_step);
   }
   void deep_ao() override { r_.deep_ao_.run(spans_, r_.surfaces_, uniforms_); }
   RefractTally shade(const ShadeOptions& options) override {

@@ -12,10 +12,10 @@
 // cross product of the two Sobel tangents, turned to face the eye at an entry and away from it
 // at an exit (so every stored normal points out of the fluid), in world space.
 //
-// Host needs: links.glsl and its needs, vec2 sd_depths(uint) (the surface depths the normals are
-// built on: filtered or not), float sd_wall_depth(ivec2) (the view depth where the pixel's walls
-// begin, render/backdrop.h; 3e38 where none or without walls), u_image, u_tan_half, u_right,
-// u_up, u_forward.
+// Host needs: links.glsl and its needs (u_fold_step also marks crests, on_crest), vec2
+// sd_depths(uint) (the surface depths the normals are built on: filtered or not), float
+// sd_wall_depth(ivec2) (the view depth where the pixel's walls begin, render/backdrop.h; 3e38
+// where none or without walls), u_image, u_tan_half, u_right, u_up, u_forward.
 #ifndef VX_MODEL_SURFACE_GEOMETRY
 #define VX_MODEL_SURFACE_GEOMETRY
 
@@ -135,10 +135,45 @@ vec3 sobel_normal_view(SurfacePoint v) {
   return dot(n, c) * facing >= 0.0f ? n : -n;
 }
 
+// Whether v lies on a crest: a link cut at a fold, or one that steps more than
+// VX_CREST_STEP_SHARE fold steps in depth (2 particle spacings in the views). At a wave's crest
+// the rays that graze its lip meet either a particle's cap on the lip or the crest's back just
+// behind it, from pixel to pixel along the crest: the lip is beaded at the particle scale, finer
+// than a pixel. The Sobel normal takes each such step for a slope, so along the crest grazing
+// normals (bright: the sky's reflection) alternate with the caps' (dark): a dotted line.
+#define VX_CREST_STEP_SHARE 0.8f
+bool on_crest(SurfacePoint v) {
+  if (!(u_fold_step > 0.0f)) return false;
+  float z = point_depth(v);
+  for (int dir = 0; dir < 4; ++dir) {
+    uint b = link_byte(link_word(v), dir);
+    if (b == VX_LINK_FOLD) return true;
+    if (b <= VX_LINK_MAX_INDEX &&
+        abs(point_depth(follow_link(v, dir)) - z) > VX_CREST_STEP_SHARE * u_fold_step)
+      return true;
+  }
+  return false;
+}
+
+// Outward unit normal at v, view space: the Sobel normal, except on a crest, where the step
+// between pixels is below the picture's resolution and the mean of the Sobel normals of v's
+// linked neighbours off the crest stands for it (v's own where none is).
+vec3 surface_normal_view(SurfacePoint v) {
+  vec3 own = sobel_normal_view(v);
+  if (!on_crest(v)) return own;
+  vec3 sum = vec3(0.0f);
+  for (int dir = 0; dir < 4; ++dir) {
+    if (!link_is_across(v, dir)) continue;
+    SurfacePoint w = follow_link(v, dir);
+    if (!on_crest(w)) sum += sobel_normal_view(w);
+  }
+  return length(sum) > 1e-30f ? normalize(sum) : own;
+}
+
 // The encoded world-space normals (entry, exit) of span `span` of pixel p.
 uvec2 span_normal_words(ivec2 p, uint span) {
-  vec3 in_normal = view_to_world_direction(sobel_normal_view(surface_point(p, span, 0u)));
-  vec3 out_normal = view_to_world_direction(sobel_normal_view(surface_point(p, span, 1u)));
+  vec3 in_normal = view_to_world_direction(surface_normal_view(surface_point(p, span, 0u)));
+  vec3 out_normal = view_to_world_direction(surface_normal_view(surface_point(p, span, 1u)));
   return uvec2(encode_normal(in_normal), encode_normal(out_normal));
 }
 

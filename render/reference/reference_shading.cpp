@@ -14,9 +14,10 @@ std::vector<glm::uvec2> reference_links(const SpanImage& spans, double fold_step
 }
 
 std::vector<glm::uvec2> reference_normals(const SpanImage& spans,
-                                          const std::vector<glm::uvec2>& links) {
+                                          const std::vector<glm::uvec2>& links, double fold_step) {
   model::Host host(spans, model::ShadeUniforms{});
   host.links_ = links;
+  host.u_fold_step = float(fold_step);
   return host.per_span([&](model::ivec2 p, model::uint s) { return host.span_normal_words(p, s); });
 }
 

@@ -24,10 +24,12 @@ namespace voxspan {
 // span the (entry, exit) link words, as ConnectPass writes them.
 std::vector<glm::uvec2> reference_links(const SpanImage& spans, double fold_step = 0);
 
-// Sobel normals along those links on the span depths: per span the (entry, exit) octahedral
-// words of the outward world normals, as NormalsPass writes them.
+// Sobel normals along those links on the span depths (at crests, by `fold_step`, their
+// neighbours'): per span the (entry, exit) octahedral words of the outward world normals, as
+// NormalsPass writes them.
 std::vector<glm::uvec2> reference_normals(const SpanImage& spans,
-                                          const std::vector<glm::uvec2>& links);
+                                          const std::vector<glm::uvec2>& links,
+                                          double fold_step = 0);
 
 // The same words from exact normals (world space; a zero normal, e.g. a boundary from a cell or
 // the near plane, falls back to the Sobel word in `sobel`).

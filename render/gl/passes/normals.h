@@ -3,8 +3,8 @@
 // operator along the links on the surface depths (filtered or not), outward world normals,
 // octahedral in 32 bits each. Reads: the span image, GpuSurfaces owners, links, depths, the
 // backdrop's depths (where the fluid is cut at walls). Writes: GpuSurfaces normals. Cost: one
-// thread per span, 9 linked depths per end; 8 bytes written per span (the paper's GTX 970: 8 ms
-// at 1080p).
+// thread per span, 9 linked depths per end (5 Sobel normals at a crest); 8 bytes written per span
+// (the paper's GTX 970: 8 ms at 1080p).
 #pragma once
 
 #include "render/gl/gpu_span_image.h"
@@ -18,9 +18,10 @@ class NormalsPass {
  public:
   explicit NormalsPass(const gl::ShaderLibrary& shaders);
   // `backdrop`: render/backdrop.h's pixels, whose depths the normals read where `walls` says
-  // (the fluid's spans cut at the walls: render/model/surface_geometry.glsl).
+  // (the fluid's spans cut at the walls: render/model/surface_geometry.glsl); `fold_step`
+  // (SurfaceOptions) also marks the crests whose normals come from their neighbours.
   void run(const GpuSpanImage& image, const GpuSurfaces& surfaces, const gl::Buffer& backdrop,
-           bool walls);
+           bool walls, double fold_step);
 
  private:
   gl::Program program_;

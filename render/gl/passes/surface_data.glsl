@@ -9,7 +9,8 @@
 //   pixel_ao[pixel]      deep ambient occlusion of the front surface
 //   wall_pixels[pixel]   the backdrop (render/backdrop.h), whose depths sd_wall_depth reads where
 //                        u_walls_cut is set (the normals pass: render/gl/passes/normals.h)
-// and u_fold_step, the depth step at which links.glsl sees a fold (set by the connect pass).
+// and u_fold_step, the depth step at which links.glsl sees a fold (set by the connect pass, and
+// by the normals pass, where it marks crests).
 // Include after render/gl/span_image.glsl.
 
 layout(std430, binding = SPAN_OWNERS_BINDING) buffer SpanOwners { uint span_owner[]; };
@@ -19,7 +20,7 @@ layout(std430, binding = SPAN_NORMALS_BINDING) buffer SpanNormals { uvec2 span_n
 layout(std430, binding = PIXEL_AO_BINDING) buffer PixelAo { float pixel_ao[]; };
 layout(std430, binding = WALL_DEPTHS_BINDING) readonly buffer WallPixels { vec4 wall_pixels[]; };
 uniform int u_walls_cut;  // 0 (the default): no walls
-uniform float u_fold_step;  // the connect pass's (render/model/links.glsl); 0: no folds
+uniform float u_fold_step;  // render/model/links.glsl's; 0: no folds
 
 uint sd_count(ivec2 p) { return span_pixels[span_pixel_index(p)].count; }
 uint sd_offset(ivec2 p) { return span_pixels[span_pixel_index(p)].offset; }

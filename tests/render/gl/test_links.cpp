@@ -2,8 +2,10 @@
 // worked out by hand on hand-made span images: a bubble, two touching blobs, an overhang, image
 // borders and a column with more spans than a link byte can name; and the CPU's implementation
 // of the rule (the reference's) against the GPU's on voxelized scenes.
+#include <algorithm>
 #include <cstdio>
 
+#include "render/model/host.h"
 #include "render/reference/reference_shading.h"
 #include "tests/render/gl/render_fixture.h"
 #include "tests/render/gl/shading_fixture.h"
@@ -135,13 +137,44 @@ TEST(Links, AFoldIsNotLinkedAcrossAndItsTwoSheetsKeepTheirNormals) {
   EXPECT_EQ(byte_of(cut.links[span_at(4)].y, kUp), 0u);
   EXPECT_EQ(reference_links(spans), linked.links) << "the CPU's rule disagrees with the GPU's";
   EXPECT_EQ(reference_links(spans, 2), cut.links) << "the CPU's rule disagrees with the GPU's";
-  EXPECT_EQ(reference_normals(spans, cut.links), cut.normals);
+  EXPECT_EQ(reference_normals(spans, cut.links, 2), cut.normals);
   // Both sheets are flat and face the eye: the rows beside the fold take their sheet's normal
   // (a one-sided difference), where the step, linked, tilted them.
   EXPECT_EQ(cut.normals[span_at(3)].x, cut.normals[span_at(2)].x);
   EXPECT_EQ(cut.normals[span_at(4)].x, cut.normals[span_at(5)].x);
   EXPECT_NE(linked.normals[span_at(3)].x, linked.normals[span_at(2)].x);
   EXPECT_NE(linked.normals[span_at(4)].x, linked.normals[span_at(5)].x);
+}
+
+TEST(Links, APointBesideACapUnderTheFoldStepTakesItsNeighboursNormals) {
+  // A flat sheet (entries at depth 4) with one particle's cap at pixel (3, 3) standing 1.8 in
+  // front of it: under the fold step of 2 it is linked all round, but past the crest's share of
+  // it (0.8) the step is finer than a pixel, as where a wave's lip is beaded with caps. The
+  // Sobel normal of the point above the cap took the step for a slope (turned away from the
+  // sheet's: a bright dot at grazing angles); on the crest it is the mean of its neighbours' off
+  // the crest.
+  std::vector<std::vector<Span>> columns;
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 7; ++x) columns.push_back({{x == 3 && y == 3 ? 2.2f : 4.0f, 6.0f}});
+  const SpanImage spans = test::hand_made(7, 7, columns);
+  SurfaceOptions folds;
+  folds.fold_step = 2;
+  const test::GpuResult plain = test::shade_on_gpu(spans, {}, ShadeOptions{});
+  const test::GpuResult crest = test::shade_on_gpu(spans, folds, ShadeOptions{});
+  EXPECT_EQ(crest.links, plain.links);
+  EXPECT_EQ(reference_normals(spans, crest.links, 2), crest.normals);
+  model::Host host(spans, {});
+  const auto degrees_off_sheet = [&](const test::GpuResult& r, int x, int y) {
+    const auto normal = [&](int px, int py) {
+      return host.decode_normal(r.normals[spans.pixel(px, py).offset].x);
+    };
+    const double cosine = std::clamp(double(glm::dot(normal(x, y), normal(1, 5))), -1.0, 1.0);
+    return glm::degrees(std::acos(cosine));
+  };
+  std::printf("above the cap: %.1f degrees off the sheet, %.1f on the crest\n",
+              degrees_off_sheet(plain, 3, 2), degrees_off_sheet(crest, 3, 2));
+  EXPECT_GT(degrees_off_sheet(plain, 3, 2), 40);  // 43.6
+  EXPECT_LT(degrees_off_sheet(crest, 3, 2), 20);  // 16.5: its neighbours' corners see the cap
 }
 
 TEST(Links, CpuRuleMatchesGpuOnVoxelizedScenes) {
