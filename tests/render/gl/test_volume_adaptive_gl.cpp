@@ -4,7 +4,8 @@
 // the CPU's test (tests/render/cpu/test_volume_adaptive.cpp); and the GL adaptive picture is the
 // CPU caster's adaptive one to float sums' rounding, with super-pixels (relax 0) and with coarse
 // cells (relax 1), where that picture lies far from the full rate's: a march that ignored the
-// plans, took the wrong samples or let one stand for the wrong length would miss it.
+// plans, took the wrong samples or let one stand for the wrong length would miss it. Past
+// llvmpipe's loop budget the adaptive frame is the caster's.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -13,6 +14,7 @@
 
 #include "gl_fixture.h"
 #include "render/cpu/volume_caster.h"
+#include "render/gl/info.h"
 #include "render/gl/volume_renderer.h"
 #include "tests/support/adaptive_scenes.h"
 #include "tests/support/image_difference.h"
@@ -36,9 +38,7 @@ VolumeCounts render_gl(const test::AdaptiveScene& scene, const VolumeOptions& o,
   test::context();
   static const std::unique_ptr<VolumeRenderer> renderer = make_gl_volume_renderer(test::shaders());
   Recorder recorder;
-  const VolumeCounts counts = renderer->render(scene.camera, scene.particles, o, recorder, out);
-  EXPECT_EQ(counts.gl_frames_on_cpu, 0);  // the GL march's frame, not the caster's
-  return counts;
+  return renderer->render(scene.camera, scene.particles, o, recorder, out);
 }
 
 // The scene under `adaptive` on GL against GL's full rate and the caster's adaptive frame;
@@ -51,11 +51,12 @@ struct Against {
 VolumeCounts compare(const test::AdaptiveScene& scene, VolumeOptions o, AdaptiveOptions adaptive,
                      Against& out) {
   VolumeFrame gl_full, gl, cpu_full, cpu;
-  render_gl(scene, o, gl_full);
+  EXPECT_EQ(render_gl(scene, o, gl_full).gl_frames_on_cpu, 0);  // the GL march's, not the caster's
   VolumeCaster caster;
   caster.run(scene.camera, scene.particles, o, cpu_full);
   o.adaptive = adaptive;
   const VolumeCounts counts = render_gl(scene, o, gl);
+  EXPECT_EQ(counts.gl_frames_on_cpu, 0);
   const VolumeCounts cpu_counts = caster.run(scene.camera, scene.particles, o, cpu);
   out = {largest_difference(gl.picture, gl_full.picture),
          largest_difference(gl.picture, cpu.picture),
@@ -109,6 +110,23 @@ TEST(VolumeAdaptiveGl, CoarseCellsAreTheCastersSampleForSample) {
     EXPECT_GT(c.samples_skipped, 0);
     EXPECT_LE(d.caster, kFloatSums);
   }
+}
+
+// llvmpipe ends an invocation's loops silently after 65535 passes: an adaptive frame whose
+// bundles would run past that is the caster's adaptive frame, counted, skipped samples and all.
+TEST(VolumeAdaptiveGl, PastTheSoftwareLoopBudgetTheFrameIsTheCasters) {
+  test::context();
+  if (!gl::software_renderer()) GTEST_SKIP() << "a GPU has no loop budget";
+  const test::AdaptiveScene scene = test::adaptive_scenes(kWidth, kHeight)[3];  // 20^3, radial
+  VolumeOptions o = scene.options;
+  o.adaptive = {0.05, 0};
+  VolumeFrame gl, cpu;
+  const VolumeCounts counts = render_gl(scene, o, gl);
+  const VolumeCounts cpu_counts = VolumeCaster().run(scene.camera, scene.particles, o, cpu);
+  EXPECT_EQ(counts.gl_frames_on_cpu, 1);
+  EXPECT_EQ(counts.samples_skipped, cpu_counts.samples_skipped);
+  EXPECT_GT(counts.samples_skipped, 0);
+  EXPECT_EQ(gl.picture.rgba, cpu.picture.rgba);
 }
 
 }  // namespace
