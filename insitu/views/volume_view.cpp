@@ -68,9 +68,9 @@ const schema::Section<VolumeAdaptiveSettings>& adaptive_section() {
       "views[i].adaptive",
       {schema::number("error_tolerance", &A::error_tolerance, schema::between(0, 1),
                       "the most any channel of any pixel may move from the full-rate picture "
-                      "([HOK16]'s E_I; DVR of a Shepard-normalised `quantity`, CPU renderer; in "
-                      "an MPI job, of the composited picture: each rank spends 1 / ranks of it); "
-                      "0: every sample"),
+                      "([HOK16]'s E_I; DVR of a Shepard-normalised `quantity`, either renderer; "
+                      "in an MPI job, of the composited picture: each rank spends 1 / ranks of "
+                      "it); 0: every sample"),
        schema::number("relax", &A::relax, schema::between(0, 1),
                       "the share of each cell's full-rate bound width left out of its coarser "
                       "ones ([HOK16]'s E_relax): faster; 0 keeps the tolerance a guarantee")}};

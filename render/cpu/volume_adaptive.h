@@ -168,6 +168,13 @@ class TilePlanner {
                        [](const CellPlan& c) { return c.level == 0; });
   }
 
+  // The tile's bundles of kBundle^2 pixels (row-major, bundles_x() to a row), and its cells per
+  // bundle: `cells()` from `first_cell()`, the cell of the tile's first sample.
+  int bundles() const { return bundles_; }
+  int bundles_x() const { return bundles_x_; }
+  std::int64_t first_cell() const { return c0_; }
+  std::int64_t cells() const { return cells_; }
+
   int bundle_of(int p) const {  // p: the pixel's index in the tile, row-major
     const int x = p % width_, y = p / width_;
     return x / kBundle + (y / kBundle) * bundles_x_;

@@ -38,6 +38,10 @@ constexpr std::int64_t kSweepSamples = 8;
 // TileScratch::bundle's mark of a pixel whose bundle is at full rate in every cell.
 constexpr std::uint8_t kFullRate = 0xff;
 static_assert((kTile / kBundle) * (kTile / kBundle) < kFullRate, "a tile's bundles in a byte");
+// Plans for a march summing in float (VolumeCaster::setup): a sample is proven defined where the
+// weight's lower bound is at least the floor times 1 + this, for the float sum of a few hundred
+// positive terms (a relative error of at most n 2^-24) to stay at or above the floor.
+constexpr double kFloatSumsMargin = 1e-4;
 
 // A particle's support in view space, as the march reads it.
 struct Support {
@@ -117,6 +121,16 @@ struct TileScratch {
   TilePlanner planner;  // adaptive sampling: the tile's cells' plans
 };
 
+// A tile's plans for another march (VolumeCaster::setup): its bundles not at full rate (their
+// positions in the frame, row-major) and their cells, `per_bundle` each, as GpuPlans' words
+// whose super-pixels count from the tile's first.
+struct TileCells {
+  std::vector<std::uint32_t> bundles;
+  std::vector<std::uint32_t> cells;
+  std::vector<std::array<float, 4>> super_pixels;
+  std::size_t per_bundle = 0;
+};
+
 }  // namespace
 
 struct VolumeCaster::Work {
@@ -134,7 +148,8 @@ struct VolumeCaster::Work {
   VolumeOptions options;
   ViewFrame frame;
   std::vector<TilePart> tile_parts;
-  VolumeLod lod;  // level of detail: the particles drawn of those given
+  std::vector<TileCells> tile_cells;  // setup()'s plans, per tile
+  VolumeLod lod;                      // level of detail: the particles drawn of those given
 };
 
 VolumeCaster::VolumeCaster() : work_(std::make_unique<Work>()) {}
@@ -276,6 +291,36 @@ template <SphKernel K, bool kPart> class TileMarch {
     finish_part(out);
   }
 
+  // The tile's plans for a march summing in float (VolumeCaster::setup), into `out`.
+  void plan_for_float_sums(const PixelRect& tile, std::span<const std::uint32_t> list,
+                           const std::vector<Support>& supports, TileCells& out) {
+    tile_ = tile;
+    out.bundles.clear();
+    out.cells.clear();
+    out.super_pixels.clear();
+    if (list.empty() || !plan_cells(list, supports, o_.weight_floor * (1 + kFloatSumsMargin)))
+      return;
+    const TilePlanner& planner = w_.planner;
+    const int frame_bundles_x = (f_.width + kBundle - 1) / kBundle;
+    out.per_bundle = std::size_t(planner.cells());
+    for (int b = 0; b < planner.bundles(); ++b) {
+      if (planner.full_rate(b)) continue;
+      const int x = tile.x0 / kBundle + b % planner.bundles_x();
+      const int y = tile.y0 / kBundle + b / planner.bundles_x();
+      out.bundles.push_back(std::uint32_t(x + y * frame_bundles_x));
+      for (std::int64_t c = 0; c < planner.cells(); ++c) {
+        const CellPlan& cell = planner.cell(b, (planner.first_cell() + c) << kCellShift);
+        std::uint32_t word = cell.level;
+        if (cell.level == kSuperPixel) {
+          word |= std::uint32_t(out.super_pixels.size()) << GpuPlans::kLevelBits;
+          out.super_pixels.push_back(
+              {cell.light[0], cell.light[1], cell.light[2], cell.transmittance});
+        }
+        out.cells.push_back(word);
+      }
+    }
+  }
+
   // Per pixel of the tile, the hull of the samples the supports reach, into hulls (the frame's).
   void cover(const PixelRect& tile, std::span<const std::uint32_t> list,
              const std::vector<Support>& supports, std::vector<SampleRange>& hulls) {
@@ -371,13 +416,16 @@ template <SphKernel K, bool kPart> class TileMarch {
       if (w_.rays[std::size_t(p)].front != std::numeric_limits<std::int64_t>::min()) flush(p, upto);
   }
 
-  // Adaptive sampling: the tile's cells' plans from its supports (render/cpu/volume_adaptive.h).
-  void plan(std::span<const std::uint32_t> list, const std::vector<Support>& supports) {
+  // Adaptive sampling: the tile's cells' plans from its (non-empty) list of supports into
+  // w_.planner (render/cpu/volume_adaptive.h), a sample proven defined where the weight's lower
+  // bound is at least `weight_floor`; false where the supports reach no sample.
+  bool plan_cells(std::span<const std::uint32_t> list, const std::vector<Support>& supports,
+                  double weight_floor) {
     std::int64_t hi = supports[list.front()].last;  // the list starts at its first sample
     for (std::uint32_t k : list) hi = std::max(hi, supports[k].last);
-    if (hi < supports[list.front()].first) return;
+    if (hi < supports[list.front()].first) return false;
     TilePlanner& planner = w_.planner;
-    planner.start(tile_, supports[list.front()].first, hi, f_, s_.lattice, o_.weight_floor);
+    planner.start(tile_, supports[list.front()].first, hi, f_, s_.lattice, weight_floor);
     for (std::uint32_t k : list) {
       const Support& s = supports[k];
       planner.add<K>(s.c, s.inv_h, s.v, s.vq / s.v, s.first, s.last, s.rect);
@@ -388,6 +436,13 @@ template <SphKernel K, bool kPart> class TileMarch {
     if constexpr (kPart) hold_shared(planner);
     if (o_.backdrop != nullptr) hold_walls(planner);
     planner.plan(o_, *tf_, behind, kPart, t_);
+    return true;
+  }
+
+  // Adaptive sampling: the tile's cells' plans for this march.
+  void plan(std::span<const std::uint32_t> list, const std::vector<Support>& supports) {
+    if (!plan_cells(list, supports, o_.weight_floor)) return;
+    const TilePlanner& planner = w_.planner;
     // A pixel's bundle, or kFullRate where all its cells are at full rate: the march as without
     // a plan there, and without one at all where that holds for the whole tile.
     w_.bundle.resize(std::size_t(pixels_));
@@ -1150,10 +1205,34 @@ void VolumeCaster::field_sums(std::span<const HitQuery> queries,
   });
 }
 
+namespace {
+
+// The tiles' plans into one GpuPlans for a frame of `bundles` bundles.
+void pack_plans(const std::vector<TileCells>& tiles, std::size_t bundles, GpuPlans& out) {
+  static_assert(kSuperPixel < (1u << GpuPlans::kLevelBits));
+  constexpr std::uint32_t kLevelMask = (1u << GpuPlans::kLevelBits) - 1;
+  out.bundle_cells.assign(bundles, GpuPlans::kFullRate);
+  out.cells.clear();
+  out.super_pixels.clear();
+  for (const TileCells& t : tiles) {
+    const std::uint32_t supers = std::uint32_t(out.super_pixels.size()) << GpuPlans::kLevelBits;
+    for (std::size_t k = 0; k < t.bundles.size(); ++k) {
+      out.bundle_cells[t.bundles[k]] = std::uint32_t(out.cells.size());
+      for (std::size_t c = k * t.per_bundle; c < (k + 1) * t.per_bundle; ++c) {
+        const std::uint32_t word = t.cells[c];
+        out.cells.push_back((word & kLevelMask) == kSuperPixel ? word + supers : word);
+      }
+    }
+    out.super_pixels.insert(out.super_pixels.end(), t.super_pixels.begin(), t.super_pixels.end());
+  }
+}
+
+}  // namespace
+
 VolumeCounts VolumeCaster::setup(const Camera& camera, std::span<const VolumeParticle> particles,
                                  const VolumeOptions& options, VolumeSetup& out) {
   VolumeCounts counts = start_frame(camera, particles, options, [](VolumeCastPhase) {});
-  const Work& w = *work_;
+  Work& w = *work_;
   // The supports in view in their sorted order, and the tiles' lists in those positions.
   std::vector<std::uint32_t> position(w.supports.size(), 0);
   out.supports.resize(w.sorted.size());
@@ -1186,6 +1265,23 @@ VolumeCounts VolumeCaster::setup(const Camera& camera, std::span<const VolumePar
   out.depths = w.samples.depths;
   out.near = w.samples.near;
   out.lattice = w.samples.lattice;
+  const TransferBounds* tf = adaptive_bounds(w.options, w.transfer_bounds);
+  out.adaptive = tf != nullptr;
+  out.plans.bundle_cells.clear();
+  out.plans.cells.clear();
+  out.plans.super_pixels.clear();
+  if (out.adaptive) {
+    const Tiles screen(camera.width, camera.height, kTile);
+    w.tile_cells.resize(screen.count());
+    each_tile<false>(w.samples, w.options, w.frame, w.tile_bins, w.tile_lists, w.scratch, counts,
+                     nullptr, tf, w.cull_tiles,
+                     [&](auto& march, const PixelRect& rect, std::size_t t, auto list) {
+                       march.plan_for_float_sums(rect, list, w.supports, w.tile_cells[t]);
+                     });
+    const std::size_t bundles = std::size_t((camera.width + kBundle - 1) / kBundle) *
+                                std::size_t((camera.height + kBundle - 1) / kBundle);
+    pack_plans(w.tile_cells, bundles, out.plans);
+  }
   return counts;
 }
 

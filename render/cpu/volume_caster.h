@@ -31,6 +31,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <vector>
@@ -58,6 +59,22 @@ struct GpuSupport {
 };
 static_assert(sizeof(GpuSupport) == 80);
 
+// Adaptive sampling's plans (render/cpu/volume_adaptive.h) as another march reads them. A bundle's
+// cells run from the cell of its tile's first sample (the first of the tile's list's first
+// support) to that of its last.
+struct GpuPlans {
+  // bundle_cells' mark of a bundle at full rate in every cell (no plan to read); an int, as
+  // GLSL's literals are.
+  static constexpr std::uint32_t kFullRate = 0x7fffffff;
+  // A cell's word: its CellPlan::level in the low kLevelBits, a super-pixel's index in
+  // super_pixels above them.
+  static constexpr std::uint32_t kLevelBits = 3;
+
+  std::vector<std::uint32_t> bundle_cells;  // per bundle (row-major over the frame): its first cell
+  std::vector<std::uint32_t> cells;
+  std::vector<std::array<float, 4>> super_pixels;  // light (premultiplied), transmittance
+};
+
 struct VolumeSetup {
   std::vector<GpuSupport> supports;
   std::vector<std::uint32_t> tile_start;  // per tile its first entry in tile_lists, then the total
@@ -67,6 +84,10 @@ struct VolumeSetup {
   std::vector<double> depths;  // depth of sample base + k
   double near = 0;
   VolumeLattice lattice;
+  // Where the options ask for adaptive sampling and it applies (DVR of a Shepard field), the
+  // plans, a weight proven at the weight floor with room for float sums' rounding.
+  bool adaptive = false;
+  GpuPlans plans;
 };
 
 // Holds its scratch (supports, bins, per-thread rings) from frame to frame.
@@ -101,7 +122,8 @@ class VolumeCaster {
   // benchmarks.
   void set_tile_culling(bool on);
 
-  // The frame run() would march, for another march (`out`'s storage reused).
+  // The frame run() would march, for another march summing in float (`out`'s storage reused);
+  // the counts include the plans' cells.
   VolumeCounts setup(const Camera& camera, std::span<const VolumeParticle> particles,
                      const VolumeOptions& options, VolumeSetup& out);
 

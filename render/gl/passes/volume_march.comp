@@ -5,6 +5,10 @@
 // the sums do not depend on the threads' order), then composites the slab through the shared
 // model (render/model/volume.glsl); the bundle stops when every ray is opaque. Then the iso hits'
 // gradients from the same supports, their light, and the background.
+// With adaptive sampling the bundle follows its cells' plans as the CPU caster's march does
+// (render/cpu/volume_adaptive.h): in a cell at level l the supports add their kernels at the
+// first sample of each 2^l only, which stands for the run's length; a super-pixel cell is
+// summed nowhere and every ray takes the cell's one light and transmittance.
 layout(local_size_x = 64) in;
 
 #include "render/gl/passes/shade_uniforms.glsl"
@@ -23,8 +27,15 @@ layout(std430, binding = VM_DEPTHS) readonly buffer Depths { double depths[]; };
 layout(std430, binding = VM_TRANSFER) readonly buffer Transfer { vec4 transfer[]; };
 layout(std430, binding = VM_PICTURE) writeonly buffer Picture { vec4 picture[]; };
 layout(std430, binding = VM_DEPTH) writeonly buffer FirstDepth { float first_depth[]; };
-// samples, kernel evaluations (low, high words), rays stopped, iso hits, unlit hits
+// samples, kernel evaluations (low, high words), rays stopped, iso hits, unlit hits, bundles
+// past the budget, samples skipped
 layout(std430, binding = VM_COUNTS) buffer Counts { uint counts[]; };
+// Adaptive sampling's plans (GpuPlans, render/cpu/volume_caster.h): per bundle its first cell's
+// word or VM_FULL_RATE; per cell its level in the low VM_LEVEL_BITS and a super-pixel's index
+// above them; per super-pixel its light (premultiplied) and transmittance.
+layout(std430, binding = VM_BUNDLE_CELLS) readonly buffer BundleCells { uint bundle_cells[]; };
+layout(std430, binding = VM_CELLS) readonly buffer Cells { uint cells[]; };
+layout(std430, binding = VM_SUPER_PIXELS) readonly buffer SuperPixels { vec4 super_pixels[]; };
 
 uniform ivec2 u_image;
 uniform int u_tiles_x;
@@ -42,6 +53,12 @@ uniform float u_termination;
 uniform double u_half_extent;  // VolumeLattice::half_extent
 uniform double u_lattice_k;
 uniform int u_background;
+uniform int u_adaptive;  // 1: the plans above apply
+// The first sample's lattice index mod 2^VM_CELL_SHIFT: (i + u_phase) >> VM_CELL_SHIFT numbers
+// sample i's cell, and a run of 2^l starts where i + u_phase is a multiple of 2^l.
+uniform int u_phase;
+// Per level l the depths of a run of 2^l samples over its first's.
+uniform double u_run_length[VM_CELL_SHIFT + 1];
 // Loop iterations a thread may spend, 0: no bound. llvmpipe stops an invocation silently after
 // 65535 (all its loops together, GPU-NOTES). It runs 8 threads in step under masks: a loop lasts
 // as long as its longest lane, and costs one more pass (its exit test) even where no lane enters
@@ -92,7 +109,7 @@ shared ivec4 sh_samples_rect[64];
 shared ivec2 sh_rect_end[64];
 shared uint sh_done;
 shared int sh_last;
-shared uint sh_counts[5];
+shared uint sh_counts[6];
 shared uint sh_overflow;
 shared int sh_max_hits;
 uint spent = 0u;  // the bundle's loop iterations, at most (the same in every thread)
@@ -127,6 +144,39 @@ int vm_first_at_or_after(int lo, int hi, double d) {
   return lo;
 }
 
+// Adaptive sampling: the bundle's first cell's word in `cells` (VM_FULL_RATE: none), and the
+// cell of its tile's first sample.
+uint plan_first = uint(VM_FULL_RATE);
+int cell_first = 0;
+
+const uint kLevelMask = (1u << VM_LEVEL_BITS) - 1u;
+
+uint cell_word(int i) {
+  return cells[plan_first + uint(((i + u_phase) >> VM_CELL_SHIFT) - cell_first)];
+}
+// Sample i's cell's level (CellPlan::level; 0 where the bundle has no plan).
+uint level_at(int i) { return plan_first == uint(VM_FULL_RATE) ? 0u : cell_word(i) & kLevelMask; }
+
+// Bits a..b of a word (none where a > b); 0 <= a, b <= 31 where a <= b.
+uint bits_between(int a, int b) {
+  return a > b ? 0u : (0xffffffffu >> uint(31 - b)) & (0xffffffffu << uint(a));
+}
+
+// The samples of [s0, s1] (fewer than 33) the bundle's plans take, bit i - s0 for sample i: all
+// at full rate, the first of each 2^l in a cell at level l, none in a super-pixel.
+uint taken_samples(int s0, int s1) {
+  if (plan_first == uint(VM_FULL_RATE)) return 0xffffffffu;
+  uint taken = 0u;
+  for (int c = (s0 + u_phase) >> VM_CELL_SHIFT; c <= (s1 + u_phase) >> VM_CELL_SHIFT; ++c) {
+    uint level = cells[plan_first + uint(c - cell_first)] & kLevelMask;
+    // Of the cell's 16 samples, bits 0, 2^l, 2 2^l, ...: 0xffff / (2^(2^l) - 1).
+    uint runs = level == VM_SUPER_PIXEL ? 0u : 0xffffu / ((1u << (1u << level)) - 1u);
+    int at = (c << VM_CELL_SHIFT) - u_phase - s0;
+    taken |= at >= 0 ? runs << uint(at) : runs >> uint(-at);
+  }
+  return taken;
+}
+
 bool covers(int j, ivec2 pixel) {
   ivec4 a = sh_samples_rect[j];
   ivec2 b = sh_rect_end[j];
@@ -153,7 +203,7 @@ void main() {
     sh_overflow = 0u;
     sh_last = -1;
     sh_max_hits = 0;
-    for (int c = 0; c < 5; ++c) sh_counts[c] = 0u;
+    for (int c = 0; c < 6; ++c) sh_counts[c] = 0u;
   }
   barrier();
   // The bundle's last sample: the largest `last` of its supports.
@@ -162,12 +212,17 @@ void main() {
   barrier();
   int last = sh_last;
   int first = list_begin < list_end ? supports[tile_lists[list_begin]].samples_rect.x : 0;
+  if (u_adaptive != 0) {
+    plan_first = bundle_cells[gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x];
+    cell_first = (first + u_phase) >> VM_CELL_SHIFT;
+  }
+  int super_cell = -1;  // the last super-pixel cell the ray took
 
   VolumeRay ray = vx_ray_start();
   float first_hit = 0.0;
   bool first_is_hit = false;
   bool done = !inside;
-  uint my_samples = 0u, my_evaluations = 0u;
+  uint my_samples = 0u, my_evaluations = 0u, my_skipped = 0u;
   float sums[VM_SLAB];
   float weights[VM_SLAB];
   // The list's supports before `start` end before the current slab (sorted by first sample, so
@@ -181,7 +236,9 @@ void main() {
   for (int s0 = first; s0 <= last; s0 += VM_SLAB) {
     for (int i = 0; i < VM_SLAB; ++i) sums[i] = weights[i] = 0.0;
     int s1 = min(s0 + VM_SLAB - 1, last);
-    spent += uint(VM_SLAB + 5) + uint(s1 - s0 + 1) * per_sample;
+    // The slab's setup, its plans' cells (at most 3) and its compositing.
+    spent += uint(VM_SLAB + 9) + uint(s1 - s0 + 1) * per_sample;
+    uint taken = taken_samples(s0, s1);
     for (; start < list_end && supports[tile_lists[start]].samples_rect.y < s0; ++start) ++spent;
     for (uint chunk = start; chunk < list_end; chunk += 64u) {
       if (supports[tile_lists[chunk]].samples_rect.x > s1) break;  // sorted: none further
@@ -198,6 +255,8 @@ void main() {
         int span = min(sr.y, s1) - max(sr.x, s0) + 1;
         spent += 3u + (span > 0 ? uint(span) + uint(findMSB(span)) + 1u : 0u);
         if (sr.y < s0 || done || !covers(j, pixel)) continue;
+        int hi = min(sr.y, s1);
+        if ((taken & bits_between(max(sr.x, s0) - s0, hi - s0)) == 0u) continue;  // none taken
         dvec3 c = sh_centre_radius[j].xyz;
         double radius = sh_centre_radius[j].w;
         double zc = (dir.x * c.x + dir.y * c.y + c.z) * inv_a;
@@ -208,8 +267,9 @@ void main() {
         double half_chord = sqrt(h2);
         double d0 = max(zc - half_chord, u_near), d1 = zc + half_chord;
         vec4 w = sh_weights[j];
-        int lo = vm_first_at_or_after(max(sr.x, s0), min(sr.y, s1) + 1, d0);
-        for (int i = lo; i <= min(sr.y, s1); ++i) {
+        int lo = vm_first_at_or_after(max(sr.x, s0), hi + 1, d0);
+        for (uint bits = taken & bits_between(lo - s0, hi - s0); bits != 0u; bits &= bits - 1u) {
+          int i = s0 + findLSB(bits);
           double z = depths[i];
           if (z > d1) break;
           double t = z - zc;
@@ -221,12 +281,33 @@ void main() {
       }
     }
     for (int i = s0; i <= s1 && !done; ++i) {
+      uint level = level_at(i);
+      if ((taken & (1u << uint(i - s0))) == 0u) {  // a run's first stood for it, or a super-pixel
+        ++my_skipped;
+        int cell = (i + u_phase) >> VM_CELL_SHIFT;
+        if (level != VM_SUPER_PIXEL || cell == super_cell) continue;
+        // The cell's light and transmittance, once, as render/cpu/volume_caster.cpp's.
+        super_cell = cell;
+        vec4 sp = super_pixels[cell_word(i) >> VM_LEVEL_BITS];
+        float before = ray.transmittance;
+        ray.color += before * sp.rgb;
+        ray.transmittance *= sp.a;
+        ray.defined = 1u;
+        int middle = (cell << VM_CELL_SHIFT) - u_phase + (1 << VM_CELL_SHIFT) / 2;
+        if (first_hit == 0.0 && before >= 0.5 && ray.transmittance < 0.5)
+          first_hit = float(depths[middle]) * scale;
+        if (ray.transmittance < u_termination) {
+          done = true;
+          atomicAdd(sh_counts[2], 1u);
+        }
+        continue;
+      }
       float sw = weights[i - s0];
       bool defined = sw > 0.0 && (u_shepard == 0 || sw >= u_weight_floor);
       float q = !defined ? 0.0 : (u_shepard != 0 ? sums[i - s0] / sw : sums[i - s0]);
       my_samples += defined ? 1u : 0u;
       double z = depths[i];
-      float len = float(z * u_half_extent) * scale;
+      float len = float(z * u_half_extent * u_run_length[level]) * scale;
       float before = ray.transmittance;
       int hits = hit_count;
       ray = vx_sample(ray, q, defined ? 1u : 0u, float(z), len);
@@ -306,6 +387,7 @@ void main() {
   atomicAdd(sh_counts[1], my_evaluations);
   atomicAdd(sh_counts[3], uint(hit_count) + unlit_count);
   atomicAdd(sh_counts[4], unlit_count);
+  atomicAdd(sh_counts[5], my_skipped);
   barrier();
   if (gl_LocalInvocationIndex == 0u) {
     atomicAdd(counts[0], sh_counts[0]);
@@ -315,6 +397,7 @@ void main() {
     atomicAdd(counts[4], sh_counts[3]);
     atomicAdd(counts[5], sh_counts[4]);
     if (sh_overflow != 0u) atomicAdd(counts[6], 1u);
+    atomicAdd(counts[7], sh_counts[5]);
   }
   if (!inside) return;
   uint p = uint(pixel.x) + uint(pixel.y) * uint(u_image.x);

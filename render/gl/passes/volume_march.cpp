@@ -1,8 +1,10 @@
 #include "render/gl/passes/volume_march.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
+#include "render/cpu/volume_adaptive.h"
 #include "render/gl/info.h"
 #include "render/gl/uniforms.h"
 
@@ -17,12 +19,15 @@ enum Binding : GLuint {
   kPicture,
   kDepth,
   kCounts,
+  kBundleCells,
+  kCells,
+  kSuperPixels,
 };
-constexpr std::size_t kCountWords = 7;
+constexpr std::size_t kCountWords = 8;
 // llvmpipe's 65535 loop passes per invocation, less what a thread may spend between two checks
 // of the budget (a chunk of 64 supports over a slab, 64 * 41, then a slab's compositing with 4
-// iso surfaces, 32 * 36 + 37).
-constexpr unsigned kSoftwareLoopBudget = 65535 - 64 * 41 - (32 * 36 + 37) - 512;
+// iso surfaces and its plans' cells, 32 * 36 + 41).
+constexpr unsigned kSoftwareLoopBudget = 65535 - 64 * 41 - (32 * 36 + 41) - 512;
 // The iso arrays' elements by name (GL sets an array uniform element by element).
 constexpr const char* kIsoValue[] = {"u_iso_value[0]", "u_iso_value[1]", "u_iso_value[2]",
                                      "u_iso_value[3]"};
@@ -31,6 +36,9 @@ constexpr const char* kIsoOpacity[] = {"u_iso_opacity[0]", "u_iso_opacity[1]", "
 constexpr const char* kIsoColor[] = {"u_iso_color[0]", "u_iso_color[1]", "u_iso_color[2]",
                                      "u_iso_color[3]"};
 static_assert(VX_MAX_ISO == 4);
+constexpr const char* kRunLength[] = {"u_run_length[0]", "u_run_length[1]", "u_run_length[2]",
+                                      "u_run_length[3]", "u_run_length[4]"};
+static_assert(kCellShift == 4, "the shader's runs of a cell are bits of a 16-bit word");
 
 // Uploads `values` into `buffer`, grown as needed (a buffer is never empty: GL binds none).
 template <class T> void upload(gl::Buffer& buffer, const std::vector<T>& values) {
@@ -50,6 +58,13 @@ VolumeMarchPass::VolumeMarchPass(const gl::ShaderLibrary& shaders)
                                             {"VM_PICTURE", kPicture},
                                             {"VM_DEPTH", kDepth},
                                             {"VM_COUNTS", kCounts},
+                                            {"VM_BUNDLE_CELLS", kBundleCells},
+                                            {"VM_CELLS", kCells},
+                                            {"VM_SUPER_PIXELS", kSuperPixels},
+                                            {"VM_FULL_RATE", GpuPlans::kFullRate},
+                                            {"VM_LEVEL_BITS", GpuPlans::kLevelBits},
+                                            {"VM_CELL_SHIFT", kCellShift},
+                                            {"VM_SUPER_PIXEL", kSuperPixel},
                                             {"VM_SLAB", kSlab},
                                             {"VX_TRANSFER_ENTRIES", VX_TRANSFER_ENTRIES},
                                             {"VX_MAX_ISO", VX_MAX_ISO}}))) {}
@@ -65,6 +80,9 @@ bool VolumeMarchPass::run(const Camera& camera, const VolumeSetup& setup,
   std::vector<glm::vec4> table(VX_TRANSFER_ENTRIES);
   for (int k = 0; k < VX_TRANSFER_ENTRIES; ++k) table[std::size_t(k)] = host.vx_transfer_entry(k);
   upload(transfer_, table);
+  upload(bundle_cells_, setup.plans.bundle_cells);
+  upload(cells_, setup.plans.cells);
+  upload(super_pixels_, setup.plans.super_pixels);
   picture_.reserve(pixels * sizeof(glm::vec4));
   depth_.reserve(std::max<std::size_t>(pixels * sizeof(float), 16));
   counts_.reserve(kCountWords * sizeof(std::uint32_t));
@@ -76,7 +94,10 @@ bool VolumeMarchPass::run(const Camera& camera, const VolumeSetup& setup,
                     {transfer_, kTransfer},
                     {picture_, kPicture},
                     {depth_, kDepth},
-                    {counts_, kCounts}});
+                    {counts_, kCounts},
+                    {bundle_cells_, kBundleCells},
+                    {cells_, kCells},
+                    {super_pixels_, kSuperPixels}});
 
   const gl::Program& p = program_;
   set_shade_uniforms(p, host);
@@ -98,6 +119,14 @@ bool VolumeMarchPass::run(const Camera& camera, const VolumeSetup& setup,
   p.set("u_half_extent", setup.lattice.half_extent);
   p.set("u_lattice_k", setup.lattice.k);
   p.set("u_background", options.background ? 1 : 0);
+  p.set("u_adaptive", setup.adaptive ? 1 : 0);
+  p.set("u_phase", int(setup.base & (kCellSamples - 1)));
+  // The depths of a run of 2^l samples over its first's, as the CPU march sums them.
+  for (int l = 0; l <= kCellShift; ++l) {
+    double length = 0;
+    for (int j = 0; j < 1 << l; ++j) length += std::exp(double(j) * setup.lattice.log_step);
+    p.set(kRunLength[l], length);
+  }
   p.set("u_budget", software_ ? kSoftwareLoopBudget : 0u);
   p.set("u_tf_lo", host.u_tf_lo);
   p.set("u_tf_scale", host.u_tf_scale);
@@ -123,6 +152,7 @@ bool VolumeMarchPass::run(const Camera& camera, const VolumeSetup& setup,
   counts.rays_stopped += c[3];
   counts.iso_hits += c[4];
   counts.iso_hits_unlit += c[5];
+  counts.samples_skipped += c[7];
   return c[6] == 0;
 }
 

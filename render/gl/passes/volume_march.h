@@ -4,7 +4,8 @@
 // shared memory, summing each sample in float in the list's order (no atomics: the same picture
 // whatever the threads), compositing through render/model/volume.glsl, lighting the iso hits.
 // Reads: the setup, the transfer table, the options. Writes: the picture (linear RGBA) and the
-// depth per pixel (VolumeFrame's), and the frame's counts.
+// depth per pixel (VolumeFrame's), and the frame's counts. With adaptive sampling, the setup's
+// plans (render/cpu/volume_adaptive.h) followed as the CPU caster's march follows them.
 // Cost: per pixel, every support of its tile whose first sample lies before each slab's end is
 // read once per slab of kSlab samples (a chord test each); kernel evaluations as the caster's.
 #pragma once
@@ -34,6 +35,7 @@ class VolumeMarchPass {
   bool software_;  // llvmpipe and the like: a loop budget per invocation
   gl::Program program_;
   gl::Buffer supports_, tile_start_, tile_lists_, depths_, transfer_, picture_, depth_, counts_;
+  gl::Buffer bundle_cells_, cells_, super_pixels_;  // adaptive sampling's plans
 };
 
 }  // namespace voxspan

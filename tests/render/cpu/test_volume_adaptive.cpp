@@ -10,84 +10,22 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <string>
 #include <vector>
 
 #include "render/backdrop.h"
 #include "render/cpu/volume_caster.h"
-#include "tools/scenes/scenes.h"
+#include "tests/support/adaptive_scenes.h"
 #include "tests/support/image_difference.h"
 
 namespace voxspan {
 namespace {
 
-struct Scene {
-  std::string name;
-  std::vector<VolumeParticle> particles;
-  Camera camera;
-  VolumeOptions options;
-};
+using Scene = test::AdaptiveScene;
+using test::smooth_tf;
+using test::with_values;
 
-// Spheres as Shepard particles of h = 1.3 spacings whose value is value(centre).
-std::vector<VolumeParticle> with_values(const test::Particles& spheres, double spacing,
-                                        const std::function<double(glm::dvec3)>& value) {
-  std::vector<VolumeParticle> out;
-  for (const ParticleSphere& s : spheres)
-    out.push_back({s.x, s.y, s.z, float(1.3 * spacing), float(1 / std::pow(1.3, 3)),
-                   float(value(glm::dvec3(s.x, s.y, s.z)))});
-  return out;
-}
-
-VolumeOptions options(double spacing, double lo, double hi,
-                      const std::function<glm::vec4(float)>& tf) {
-  VolumeOptions o;
-  o.anchor = spacing;
-  o.opacity_length = spacing;
-  o.transfer.lo = lo;
-  o.transfer.hi = hi;
-  for (int k = 0; k < kTransferEntries; ++k)
-    o.transfer.rgba[std::size_t(k)] = tf(float(k) / (kTransferEntries - 1));
-  return o;
-}
-
-glm::vec4 smooth_tf(float u) { return {u, 0.6f - 0.4f * u, 1 - u, 0.03f + 0.15f * u}; }
-
-std::vector<Scene> scenes() {
-  std::vector<Scene> out;
-  // The dam break's shape (Ritter's solution) at three times, its height as the concentration.
-  test::DamBreak shape;
-  shape.spacing = 0.02;
-  shape.radius = 0.02;
-  for (double t : {0.0, 0.3, 0.8}) {
-    const test::Particles p = test::dam_break(shape, t);
-    out.push_back({"dam break t = " + std::to_string(t).substr(0, 3),
-                   with_values(p, shape.spacing, [](glm::dvec3 x) { return x.y; }),
-                   test::frame_scene(p, {-0.3, -0.4, -1}, 240, 160),
-                   options(shape.spacing, 0, 0.6, smooth_tf)});
-  }
-  // A radial concentration through a transfer function with a narrow opacity spike ([HOK16]
-  // Fig. 3): the cells where the spike lies stay fine, the rest need not.
-  const double s = 0.05;
-  const test::Particles block = test::lattice_block({0, 0, 0}, {20, 20, 20}, s, s);
-  out.push_back({"radial, steep transfer function",
-                 with_values(block, s, [](glm::dvec3 x) { return glm::length(x); }),
-                 test::frame_scene(block, {-0.5, -0.6, -1}, 240, 160),
-                 options(s, 0, 1.8, [](float u) {
-                   const float spike = std::exp(-std::pow((u - 0.55f) / 0.02f, 2.0f));
-                   return glm::vec4(u, 0.3f + 0.6f * spike, 1 - u, 0.02f + 0.6f * spike);
-                 })});
-  // A 3D checkerboard of concentrations 0 and 1 in blocks of 5 spacings.
-  out.push_back({"checkerboard",
-                 with_values(block, s,
-                             [&](glm::dvec3 x) {
-                               const glm::ivec3 c(glm::floor(x / (5 * s)));
-                               return double((c.x + c.y + c.z) % 2);
-                             }),
-                 test::frame_scene(block, {-0.4, -0.5, -1}, 240, 160),
-                 options(s, 0, 1, smooth_tf)});
-  return out;
-}
+std::vector<Scene> scenes() { return test::adaptive_scenes(240, 160); }
 
 using test::largest_difference;
 
@@ -177,7 +115,7 @@ TEST(VolumeAdaptive, EveryRayTakesItsBundlesSuperPixels) {
   const test::Particles block = test::lattice_block({0, 0, 0}, {20, 20, 20}, s, s);
   const Scene scene{"uniform", with_values(block, s, [](glm::dvec3) { return 0.5; }),
                     test::frame_scene(block, {-0.4, -0.5, -1}, 240, 160),
-                    options(s, 0, 1, smooth_tf)};
+                    test::adaptive_options(s, 0, 1, smooth_tf)};
   VolumeFrame exact, adaptive;
   const VolumeCounts c = full_rate_and_adaptive(scene, {0.004, 0}, exact, adaptive);
   EXPECT_GT(c.cells_super_pixel, 0);
@@ -232,28 +170,12 @@ TEST(VolumeAdaptive, RelaxSkipsMoreAndReportsItsError) {
 }
 
 TEST(VolumeAdaptive, RelaxedCoarseCellsStayWithinTheToleranceWhereTheFieldIsFlatAlongTheRays) {
-  // A deep block whose value is the particle's image-plane slope x / z (a ramp across the view,
-  // the same all along each ray): every bundle's full-rate bounds are as wide as its lateral
-  // spread, too wide for a super-pixel, and a coarser level's are no wider. relax 1 leaves that
-  // spread out of the coarse levels' terms ([HOK16] sec. 5.1, volume_adaptive.h), so coarse
-  // cells are chosen; what they change is the field's variation along the ray inside a cell,
-  // near nothing here: the picture stays within the tolerance. A coarse march that took the
-  // wrong samples, or let one stand for the wrong length, misses by far more.
-  const double s = 0.05;
-  const test::Particles block = test::lattice_block({0, 0, 0}, {24, 24, 48}, s, s);
-  const Camera camera = test::frame_scene(block, {0, 0, -1}, 240, 160);
-  const ViewFrame view(camera);
-  const auto slope = [&](glm::dvec3 x) {
-    const glm::dvec3 v = view.to_view(x);
-    return 0.5 + 0.5 * v.x / (v.z * view.tan_half_x);
-  };
-  const std::vector<VolumeParticle> particles = with_values(block, s, slope);
-  const auto [lo, hi] = std::minmax_element(
-      particles.begin(), particles.end(),
-      [](const VolumeParticle& a, const VolumeParticle& b) { return a.value < b.value; });
-  const Scene scene{"slope ramp", particles, camera, options(s, lo->value, hi->value, [](float u) {
-                      return glm::vec4(u, 0.5f, 1 - u, 0.02f);
-                    })};
+  // test::slope_ramp: every bundle's full-rate bounds are as wide as its lateral spread, too
+  // wide for a super-pixel; relax 1 leaves that spread out of the coarse levels' terms ([HOK16]
+  // sec. 5.1, volume_adaptive.h), so coarse cells are chosen, and the picture stays within the
+  // tolerance. A coarse march that took the wrong samples, or let one stand for the wrong
+  // length, misses by far more.
+  const Scene scene = test::slope_ramp(240, 160, 24, 48);
   for (double tolerance : {0.002, 0.004}) {
     SCOPED_TRACE("tolerance " + std::to_string(tolerance));
     VolumeFrame exact, strict, relaxed;
