@@ -230,8 +230,8 @@ struct VolumeCounts {
   std::int64_t rays_stopped = 0;  // transmittance under `termination` before the last sample
   std::int64_t iso_hits = 0;
   std::int64_t iso_hits_unlit = 0;  // past kMaxIsoHits on their ray: ambient light only
-  // GL renderer: frames drawn by the CPU caster, because a bundle's march ran past the loop
-  // iterations llvmpipe allows an invocation or because the view has walls
+  // GL renderer on llvmpipe: frames drawn by the CPU caster because a bundle's march ran past
+  // the loop iterations llvmpipe allows an invocation
   std::int64_t gl_frames_on_cpu = 0;
   // Adaptive sampling (VolumeOptions::adaptive): samples a full-rate march would composite that
   // this one skipped, and cells (a ray bundle by a run of samples) sampled sparsely, drawn as

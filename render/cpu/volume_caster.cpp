@@ -459,11 +459,20 @@ template <SphKernel K, bool kPart> class TileMarch {
   // The cells where rays end at their walls stay at full rate: a coarse sample or a super-pixel
   // there would stand for samples behind the walls.
   void hold_walls(TilePlanner& planner) const {
-    for (int p = 0; p < pixels_; ++p) {
-      const std::int64_t wall = w_.rays[std::size_t(p)].wall;
-      if (wall != std::numeric_limits<std::int64_t>::max())
-        planner.hold(planner.bundle_of(p), wall, wall, TilePlanner::Hold::wall);
-    }
+    for (int y = tile_.y0; y <= tile_.y1; ++y)
+      for (int x = tile_.x0; x <= tile_.x1; ++x) {
+        const std::int64_t wall = wall_sample(x, y);
+        if (wall != std::numeric_limits<std::int64_t>::max())
+          planner.hold(planner.bundle_of((x - tile_.x0) + (y - tile_.y0) * width()), wall, wall,
+                       TilePlanner::Hold::wall);
+      }
+  }
+
+  // The first sample behind pixel (x, y)'s walls (none: the largest index).
+  std::int64_t wall_sample(int x, int y) const {
+    const float wall = o_.backdrop != nullptr ? o_.backdrop->wall_depth(x, y) : Backdrop::kNoWall;
+    return wall == Backdrop::kNoWall ? std::numeric_limits<std::int64_t>::max()
+                                     : s_.lattice.last_at_or_before(double(wall)) + 1;
   }
 
   // Pixel (x, y)'s colour: the ray's light over the backdrop, or over the environment.
@@ -514,10 +523,7 @@ template <SphKernel K, bool kPart> class TileMarch {
       r.ray = host_.vx_ray_start();
       r.scale = float(glm::length(w_.dirs[std::size_t(p)]));
       r.front = std::numeric_limits<std::int64_t>::min();
-      if (o_.backdrop != nullptr) {
-        const float wall = o_.backdrop->wall_depth(x, y);
-        if (wall != Backdrop::kNoWall) r.wall = s_.lattice.last_at_or_before(double(wall)) + 1;
-      }
+      r.wall = wall_sample(x, y);
       if constexpr (kPart) {
         w_.raws[std::size_t(p)].clear();
         w_.segments[std::size_t(p)].clear();

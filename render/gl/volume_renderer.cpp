@@ -18,15 +18,11 @@ class GlVolumeRenderer final : public CasterPartsVolumeRenderer {
     VolumeCounts counts;
     {
       auto t = recorder.host(pass::volume);
-      // The march does not end its rays at walls yet: with walls, the CPU caster's frame.
-      bool marched = false;
-      if (options.backdrop == nullptr) {
-        counts = caster_.setup(camera, particles, options, setup_);
-        VolumeCounts gl = counts;
-        marched = march_.run(camera, setup_, options, model::VolumeHost(options), out, gl);
-        if (marched) counts = gl;
-      }
-      if (!marched) {  // walls, or past llvmpipe's loop budget
+      counts = caster_.setup(camera, particles, options, setup_);
+      VolumeCounts marched = counts;
+      if (march_.run(camera, setup_, options, model::VolumeHost(options), out, marched)) {
+        counts = marched;
+      } else {  // past llvmpipe's loop budget: the CPU caster's frame
         counts = caster_.run(camera, particles, options, out);
         ++counts.gl_frames_on_cpu;
       }

@@ -27,6 +27,9 @@ layout(std430, binding = VM_DEPTHS) readonly buffer Depths { double depths[]; };
 layout(std430, binding = VM_TRANSFER) readonly buffer Transfer { vec4 transfer[]; };
 layout(std430, binding = VM_PICTURE) writeonly buffer Picture { vec4 picture[]; };
 layout(std430, binding = VM_DEPTH) writeonly buffer FirstDepth { float first_depth[]; };
+// With u_walls: per pixel the colour behind the fluid and, in alpha, the first sample behind its
+// walls (-1: no wall).
+layout(std430, binding = VM_WALLS) readonly buffer Walls { vec4 walls[]; };
 // samples, kernel evaluations (low, high words), rays stopped, iso hits, unlit hits, bundles
 // past the budget, samples skipped
 layout(std430, binding = VM_COUNTS) buffer Counts { uint counts[]; };
@@ -53,6 +56,7 @@ uniform float u_termination;
 uniform double u_half_extent;  // VolumeLattice::half_extent
 uniform double u_lattice_k;
 uniform int u_background;
+uniform int u_walls;
 uniform int u_adaptive;  // 1: the plans above apply
 // The first sample's lattice index mod 2^VM_CELL_SHIFT: (i + u_phase) >> VM_CELL_SHIFT numbers
 // sample i's cell, and a run of 2^l starts where i + u_phase is a multiple of 2^l.
@@ -218,6 +222,9 @@ void main() {
   }
   int super_cell = -1;  // the last super-pixel cell the ray took
 
+  uint p = uint(pixel.x) + uint(pixel.y) * uint(u_image.x);
+  vec4 wall = u_walls != 0 && inside ? walls[p] : vec4(0.0, 0.0, 0.0, -1.0);
+  int wall_end = wall.a >= 0.0 ? int(wall.a) : 0x7fffffff;
   VolumeRay ray = vx_ray_start();
   float first_hit = 0.0;
   bool first_is_hit = false;
@@ -281,6 +288,10 @@ void main() {
       }
     }
     for (int i = s0; i <= s1 && !done; ++i) {
+      if (i >= wall_end) {  // the ray ends at its walls
+        done = true;
+        break;
+      }
       uint level = level_at(i);
       if ((taken & (1u << uint(i - s0))) == 0u) {  // a run's first stood for it, or a super-pixel
         ++my_skipped;
@@ -400,9 +411,12 @@ void main() {
     atomicAdd(counts[7], sh_counts[5]);
   }
   if (!inside) return;
-  uint p = uint(pixel.x) + uint(pixel.y) * uint(u_image.x);
   vec3 c = ray.color + unlit;
-  picture[p] = u_background != 0 ? vec4(c + ray.transmittance * environment(u_eye, world_dir), 1.0)
-                                 : vec4(c, 1.0 - ray.transmittance);
+  if (u_walls != 0 && (u_background != 0 || wall.a >= 0.0))  // render/backdrop.h's over_backdrop
+    picture[p] = vec4(c + ray.transmittance * wall.rgb, 1.0);
+  else
+    picture[p] = u_background != 0
+                     ? vec4(c + ray.transmittance * environment(u_eye, world_dir), 1.0)
+                     : vec4(c, 1.0 - ray.transmittance);
   first_depth[p] = first_hit;
 }

@@ -22,6 +22,7 @@ enum Binding : GLuint {
   kBundleCells,
   kCells,
   kSuperPixels,
+  kWalls,
 };
 constexpr std::size_t kCountWords = 8;
 // llvmpipe's 65535 loop passes per invocation, less what a thread may spend between two checks
@@ -41,6 +42,25 @@ constexpr const char* kRunLength[] = {"u_run_length[0]", "u_run_length[1]", "u_r
 static_assert(kCellShift == 4, "the shader's runs of a cell are bits of a 16-bit word");
 
 // Uploads `values` into `buffer`, grown as needed (a buffer is never empty: GL binds none).
+template <class T> void upload(gl::Buffer& buffer, const std::vector<T>& values);
+
+// Per pixel the backdrop's colour and, in alpha, the first of the setup's samples behind its
+// walls (as the CPU caster finds it, VolumeLattice::last_at_or_before), -1 where none stands.
+std::vector<glm::vec4> wall_ends(const Backdrop& backdrop, const VolumeSetup& setup) {
+  std::vector<glm::vec4> out(backdrop.pixels.size());
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const glm::vec4 b = backdrop.pixels[k];
+    const std::int64_t end =
+        b.a == Backdrop::kNoWall
+            ? -1
+            : std::clamp<std::int64_t>(
+                  setup.lattice.last_at_or_before(double(b.a)) + 1 - setup.base, 0,
+                  std::int64_t(setup.depths.size()));
+    out[k] = glm::vec4(glm::vec3(b), float(end));
+  }
+  return out;
+}
+
 template <class T> void upload(gl::Buffer& buffer, const std::vector<T>& values) {
   buffer.reserve(std::max<std::size_t>(values.size() * sizeof(T), 16));
   if (!values.empty()) buffer.upload(values.data(), values.size() * sizeof(T));
@@ -63,6 +83,7 @@ VolumeMarchPass::VolumeMarchPass(const gl::ShaderLibrary& shaders)
                                             {"VM_SUPER_PIXELS", kSuperPixels},
                                             {"VM_FULL_RATE", GpuPlans::kFullRate},
                                             {"VM_LEVEL_BITS", GpuPlans::kLevelBits},
+                                            {"VM_WALLS", kWalls},
                                             {"VM_CELL_SHIFT", kCellShift},
                                             {"VM_SUPER_PIXEL", kSuperPixel},
                                             {"VM_SLAB", kSlab},
@@ -83,6 +104,8 @@ bool VolumeMarchPass::run(const Camera& camera, const VolumeSetup& setup,
   upload(bundle_cells_, setup.plans.bundle_cells);
   upload(cells_, setup.plans.cells);
   upload(super_pixels_, setup.plans.super_pixels);
+  upload(walls_, options.backdrop != nullptr ? wall_ends(*options.backdrop, setup)
+                                             : std::vector<glm::vec4>{});
   picture_.reserve(pixels * sizeof(glm::vec4));
   depth_.reserve(std::max<std::size_t>(pixels * sizeof(float), 16));
   counts_.reserve(kCountWords * sizeof(std::uint32_t));
@@ -97,7 +120,8 @@ bool VolumeMarchPass::run(const Camera& camera, const VolumeSetup& setup,
                     {counts_, kCounts},
                     {bundle_cells_, kBundleCells},
                     {cells_, kCells},
-                    {super_pixels_, kSuperPixels}});
+                    {super_pixels_, kSuperPixels},
+                    {walls_, kWalls}});
 
   const gl::Program& p = program_;
   set_shade_uniforms(p, host);
@@ -119,6 +143,7 @@ bool VolumeMarchPass::run(const Camera& camera, const VolumeSetup& setup,
   p.set("u_half_extent", setup.lattice.half_extent);
   p.set("u_lattice_k", setup.lattice.k);
   p.set("u_background", options.background ? 1 : 0);
+  p.set("u_walls", options.backdrop != nullptr ? 1 : 0);
   p.set("u_adaptive", setup.adaptive ? 1 : 0);
   p.set("u_phase", int(setup.base & (kCellSamples - 1)));
   // The depths of a run of 2^l samples over its first's, as the CPU march sums them.

@@ -5,7 +5,9 @@
 // whatever the threads), compositing through render/model/volume.glsl, lighting the iso hits.
 // Reads: the setup, the transfer table, the options. Writes: the picture (linear RGBA) and the
 // depth per pixel (VolumeFrame's), and the frame's counts. With adaptive sampling, the setup's
-// plans (render/cpu/volume_adaptive.h) followed as the CPU caster's march follows them.
+// plans (render/cpu/volume_adaptive.h) followed as the CPU caster's march follows them; with
+// walls (VolumeOptions::backdrop) each ray ends at the sample where the CPU caster's ends, over
+// the walls' colour.
 // Cost: per pixel, every support of its tile whose first sample lies before each slab's end is
 // read once per slab of kSlab samples (a chord test each); kernel evaluations as the caster's.
 #pragma once
@@ -36,6 +38,7 @@ class VolumeMarchPass {
   gl::Program program_;
   gl::Buffer supports_, tile_start_, tile_lists_, depths_, transfer_, picture_, depth_, counts_;
   gl::Buffer bundle_cells_, cells_, super_pixels_;  // adaptive sampling's plans
+  gl::Buffer walls_;  // VolumeOptions::backdrop: colours and the samples where rays end
 };
 
 }  // namespace voxspan

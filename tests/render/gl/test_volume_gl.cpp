@@ -2,8 +2,8 @@
 // reference at its samples (render/reference/volume_reference.h): every linear RGBA channel within
 // 1e-4 and the iso hits' depths within 1e-4 relative (float sums against double), in every mode,
 // with and without Shepard normalisation, every kernel; the same picture from run to run (no
-// atomics in the sums); the CPU caster's kernel evaluations, sample for sample; past llvmpipe's
-// loop budget, the caster's frame.
+// atomics in the sums); the CPU caster's kernel evaluations, sample for sample; rays ending at
+// walls where the caster's end; past llvmpipe's loop budget, the caster's frame.
 // (The comparison found the reference leaving out of an iso hit's gradient a particle whose chord
 // fell between two samples, which the renderers count: a 4e-4 difference with poly6.)
 #include <gtest/gtest.h>
@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "gl_fixture.h"
+#include "render/backdrop.h"
 #include "render/cpu/volume_caster.h"
 #include "render/gl/info.h"
 #include "render/gl/volume_renderer.h"
@@ -54,6 +55,34 @@ TEST(VolumeGl, PicturesAreTheReferencesAtTheirSamples) {
     for (std::size_t i = 0; i < mine.depth.size(); ++i)
       EXPECT_NEAR(mine.depth[i], reference.depth[i], 1e-4 * reference.depth[i] + 1e-6) << i;
   });
+}
+
+TEST(VolumeGl, RaysEndAtTheWallsWhereTheCastersEnd) {
+  // A wall slanting through the cloud (render/backdrop.h), with and without adaptive sampling:
+  // the march's picture the caster's, its rays ending at the same samples.
+  const test::Cloud c = test::cloud(9, 7);
+  Backdrop wall;
+  wall.width = c.camera.width;
+  wall.height = c.camera.height;
+  for (int y = 0; y < wall.height; ++y)
+    for (int x = 0; x < wall.width; ++x)
+      wall.pixels.push_back(x < wall.width / 5
+                                ? glm::vec4(0.1f, 0.2f, 0.7f, Backdrop::kNoWall)
+                                : glm::vec4(0.9f, 0.8f, 0.2f, float(2.0 + 0.8 * x / wall.width)));
+  for (double tolerance : {0.0, 0.01}) {  // adaptive sampling is DVR's
+    VolumeOptions o =
+        test::cloud_options(tolerance > 0 ? VolumeMode::dvr : VolumeMode::mixed, c.spacing);
+    o.backdrop = &wall;
+    o.adaptive = {tolerance, 0};
+    VolumeFrame mine, caster_frame;
+    EXPECT_EQ(on_gl(c, o, mine).gl_frames_on_cpu, 0);
+    VolumeCaster caster;
+    const VolumeCounts plain = caster.run(c.camera, c.particles, o, caster_frame);
+    const double d = largest_difference(mine.picture.rgba, caster_frame.picture.rgba);
+    std::printf("walls, tolerance %.2f: largest channel difference %.2e (%lld samples)\n",
+                tolerance, d, static_cast<long long>(plain.samples));
+    EXPECT_LT(d, 1e-4);
+  }
 }
 
 TEST(VolumeGl, EveryKernel) {
