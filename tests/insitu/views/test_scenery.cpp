@@ -152,42 +152,36 @@ TEST(Scenery, WaterAgainstTheWallsHasNoDotsAlongThem) {
   }
 }
 
-// A particles view shows the tank as a surface view does: a closed one hides every glyph, a cut
-// away one shows them inside it, and draw: false leaves the walls out.
-TEST(Scenery, ParticleViewsShowTheTankAroundTheirGlyphs) {
-  const std::string closed = config("kind: particles, scenery: {cutaway: false}");
+// A view of kind `keys` shows the tank as a surface view does: a closed one hides the water
+// wholly, a cut away one shows it inside (changing at least 5 % of the picture), the walls cover
+// at least 20 % of it (against draw: false). Returns the cut-away picture with the water.
+FloatImage expect_the_tank_around_the_water(const std::string& keys) {
+  const std::string closed = config(keys + ", scenery: {cutaway: false}");
   const FloatImage hidden = picture(closed, true), empty = picture(closed, false);
-  EXPECT_LT(test::largest_difference(hidden.rgba, empty.rgba), 1e-6);
-  const std::string cut = config("kind: particles");
-  const FloatImage glyphs = picture(cut, true), tank = picture(cut, false);
-  const double shown = share(differing(glyphs, tank, 0.02));
-  const FloatImage plain = picture(config("kind: particles, scenery: {draw: false}"), false);
+  EXPECT_LT(test::largest_difference(hidden.rgba, empty.rgba), 1e-6) << keys;
+  const std::string cut = config(keys);
+  const FloatImage water = picture(cut, true), tank = picture(cut, false);
+  const double shown = share(differing(water, tank, 0.02));
+  const FloatImage plain = picture(config(keys + ", scenery: {draw: false}"), false);
   const double walls = share(differing(tank, plain, 0.02));
-  std::printf("particles view: the walls cover %.1f %% of the picture, the glyphs change %.1f %%\n",
-              100 * walls, 100 * shown);
-  EXPECT_GT(walls, 0.2);
-  EXPECT_GT(shown, 0.05);
+  std::printf("%s: the walls cover %.1f %% of the picture, the water changes %.1f %%\n",
+              keys.c_str(), 100 * walls, 100 * shown);
+  EXPECT_GT(walls, 0.2) << keys;
+  EXPECT_GT(shown, 0.05) << keys;
+  return water;
 }
 
+TEST(Scenery, ParticleViewsShowTheTankAroundTheirGlyphs) {
+  expect_the_tank_around_the_water("kind: particles");
+}
+
+// Rays end at the walls: a closed tank hides the water's glow; cut away, its far walls and floor
+// stand behind it.
 TEST(Scenery, VolumeViewsEndTheirRaysAtTheWalls) {
-  // A closed tank hides the water's glow; cut away, its far walls and floor stand behind it.
-  const std::string closed = config("kind: volume, legend: false, scenery: {cutaway: false}");
-  const FloatImage hidden = picture(closed, true), empty = picture(closed, false);
-  EXPECT_LT(test::largest_difference(hidden.rgba, empty.rgba), 1e-6);
-  const std::string cut = config("kind: volume, legend: false");
-  const FloatImage glow = picture(cut, true), tank = picture(cut, false);
-  const double shown = share(differing(glow, tank, 0.02));
-  const FloatImage plain =
-      picture(config("kind: volume, legend: false, scenery: {draw: false}"), false);
-  const double walls = share(differing(tank, plain, 0.02));
-  std::printf("volume view: the walls cover %.1f %% of the picture, the water changes %.1f %%\n",
-              100 * walls, 100 * shown);
-  EXPECT_GT(walls, 0.2);
-  EXPECT_GT(shown, 0.05);
+  const std::string keys = "kind: volume, legend: false";
+  const FloatImage glow = expect_the_tank_around_the_water(keys);
   // The GL march ends its rays at the same samples (its sums in float).
-  EXPECT_LT(test::largest_difference(
-                glow.rgba, picture(config("kind: volume, legend: false", "gl"), true).rgba),
-            1e-4);
+  EXPECT_LT(test::largest_difference(glow.rgba, picture(config(keys, "gl"), true).rgba), 1e-4);
 }
 
 TEST(Scenery, DrawFalseLeavesThePictureAsWithoutScenery) {
