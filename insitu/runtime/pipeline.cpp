@@ -176,10 +176,12 @@ struct InsituPipeline::Impl {
     check_view_memory(config);
     const ViewContext view_context = make_view_context();
     views.reserve(config.views.size());
-    for (const ConfiguredView& v : config.views)
+    for (const ConfiguredView& v : config.views) {
+      std::unique_ptr<View> view = registered_view_kind(v.kind).make(*v.settings, view_context);
+      const LegendMargins clear = view->framing_margins();
       views.push_back({v.settings->name,
-                       registered_view_kind(v.kind).make(*v.settings, view_context),
-                       ViewFraming(*v.settings),
+                       std::move(view),
+                       ViewFraming(*v.settings, clear),
                        {},
                        std::make_unique<PicturePool>(pictures_per_view(config), v.settings->name),
                        {},
@@ -188,6 +190,7 @@ struct InsituPipeline::Impl {
                        {},
                        std::make_unique<PicturePool>(0),
                        {}});
+    }
     record.views.reserve(views.size());
     for (const ViewState& v : views) record.view(v.name);  // made once: their addresses stay
     results.resize(views.size());

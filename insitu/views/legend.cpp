@@ -10,6 +10,9 @@
 namespace voxspan {
 namespace {
 
+// The longest legend_number short of exponents of three digits ("%.3g": -0.000125).
+constexpr std::string_view kLongestNumber = "-0.000125";
+
 struct FontChar {
   char c;
   std::array<std::uint8_t, 7> rows;  // bit 4 is the leftmost pixel
@@ -182,7 +185,7 @@ void draw_text(FloatImage& picture, int x, int y, std::string_view text, int sca
 
 LegendMargins legend_margins(int width, int height) {
   const int s = text_scale(height), bar = std::max(4, width / 40);
-  const int label = text_width("-3.5e+04", s);  // the longest legend_number
+  const int label = text_width(kLongestNumber, s);
   LegendMargins m{.left = s + label + s,
                   .right = 2 * bar + bar / 2 + s + label + s,
                   .top = 3 * s + 7 * s + 2 * s,
@@ -201,17 +204,52 @@ std::string legend_number(double value) {
   return text;
 }
 
+namespace {
+
+// The colour bar's layout: the bar `bar` pixels wide, one bar's width from the picture's edge,
+// over rows [top, bottom); its values `gap` pixels from it on the side away from the edge.
+struct BarLayout {
+  int bar, top, bottom, gap, scale;
+  BarLayout(int w, int h)
+      : bar(std::max(4, w / 40)),
+        top(h / 10),
+        bottom(h - h / 10),
+        gap(bar / 2 + text_scale(h)),
+        scale(text_scale(h)) {}
+};
+
+}  // namespace
+
+int color_bar_columns(int width, int height) {
+  const BarLayout l(width, height);
+  return 2 * l.bar + l.gap + text_width(kLongestNumber, l.scale) + l.scale;  // + the outline
+}
+
+LegendMargins color_bar_margins(int width, int height, BarSide side) {
+  const int columns = color_bar_columns(width, height);
+  if (width - columns < width / 2) return {};
+  return side == BarSide::right ? LegendMargins{.right = columns} : LegendMargins{.left = columns};
+}
+
+LegendMargins covering(const LegendMargins& a, const LegendMargins& b) {
+  return {.left = std::max(a.left, b.left),
+          .right = std::max(a.right, b.right),
+          .top = std::max(a.top, b.top),
+          .bottom = std::max(a.bottom, b.bottom)};
+}
+
 void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi, std::string_view title,
                     BarSide side) {
   const int w = picture.width, h = picture.height;
-  const int bar = std::max(4, w / 40), top = h / 10, bottom = h - h / 10;
+  const BarLayout l(w, h);
+  const int bar = l.bar, top = l.top, bottom = l.bottom;
   const int x0 = side == BarSide::right ? w - 2 * bar : bar;
   if (x0 <= 0 || bottom - top < 2) return;
   for (int j = top; j < bottom; ++j)
     for (int i = x0; i < x0 + bar; ++i)
       picture.set(
           i, j, glm::vec4(map_color(map, double(bottom - 1 - j) / double(bottom - 1 - top)), 1.0f));
-  const int s = text_scale(h), gap = bar / 2 + s;
+  const int s = l.scale, gap = l.gap;
   const auto label = [&](double v, int centre_y) {
     const std::string t = legend_number(v);
     const int x = side == BarSide::right ? x0 - gap - text_width(t, s) : x0 + bar + gap;

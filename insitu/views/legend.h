@@ -39,6 +39,10 @@ enum class BarSide : std::uint8_t { right, left };
 void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi, std::string_view title,
                     BarSide side = BarSide::right);
 
+// The columns from its edge that draw_color_bar covers with the bar and its values (the title
+// above them is not counted: it sits over the top tenth of the picture, as wide as it is long).
+int color_bar_columns(int width, int height);
+
 // The pixels along each edge of a width x height picture that a 2D view's legend may cover:
 // the colour bar with its labels (right), the axes' labels (left, bottom), the caption (top).
 // All zero where they would leave the data less than half the picture each way (tiny pictures:
@@ -47,6 +51,12 @@ struct LegendMargins {
   int left = 0, right = 0, top = 0, bottom = 0;
 };
 LegendMargins legend_margins(int width, int height);
+// What a 3D view's colour bar at `side` covers (color_bar_columns at that edge), for automatic
+// framing to keep the fluid out of (view_framing.h); none where it would leave the fluid less
+// than half the picture's width.
+LegendMargins color_bar_margins(int width, int height, BarSide side);
+// Each side the larger of the two: the margins of every legend a view draws.
+LegendMargins covering(const LegendMargins& a, const LegendMargins& b);
 
 // An axis along an edge of a 2D picture: the world coordinate at its two ends (left to right,
 // bottom to top; `from` > `to` when the coordinate falls that way) and its name ("x").

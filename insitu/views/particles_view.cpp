@@ -170,16 +170,14 @@ class ParticlesView final : public View {
     draw_walls(step, recorder, out.picture);
     if (slice_) {
       auto ts = recorder.host(pass::slice_draw);
-      slice_->draw_in_view(step.camera, depth_, out.picture,
-                           settings_.legend && shading.by_value ? BarSide::left : BarSide::right);
+      slice_->draw_in_view(step.camera, depth_, out.picture, slice_bar_side());
     }
     if (trail_choice().any()) {
       const Vec3d& c = settings_.trails.colour;
       trails_.draw(step.camera, depth_, glm::vec3(c[0], c[1], c[2]), out.picture);
       recorder.count(kTrails, std::int64_t(trails_.count()));
     }
-    if (settings_.legend && shading.by_value)
-      draw_color_bar(out.picture, settings_.color_map, lo, hi, bar_title_);
+    if (glyph_bar()) draw_color_bar(out.picture, settings_.color_map, lo, hi, bar_title_);
     // The glyphs' or the slice's distance per pixel, as the depth output writes it.
     if (step.needs.first_hit_depth)
       distances_from_view_depth(step.camera, depth_, out.first_hit_depth);
@@ -189,6 +187,14 @@ class ParticlesView final : public View {
 
   bool draws_scenery() const override { return settings_.scenery.draw; }
 
+  LegendMargins framing_margins() const override {
+    const int w = settings_.width, h = settings_.height;
+    LegendMargins m;
+    if (glyph_bar()) m = color_bar_margins(w, h, BarSide::right);
+    if (slice_) m = covering(m, slice_->bar_margins(w, h, slice_bar_side()));
+    return m;
+  }
+
   std::string description() const override {
     return "particles" +
            (settings_.color_by.empty() ? std::string() : " by " + settings_.color_by) + " " +
@@ -196,6 +202,10 @@ class ParticlesView final : public View {
   }
 
  private:
+  // The glyphs' colour bar goes at the right, the slice's then at the left.
+  bool glyph_bar() const { return settings_.legend && !settings_.color_by.empty(); }
+  BarSide slice_bar_side() const { return glyph_bar() ? BarSide::left : BarSide::right; }
+
   GlyphSelection selection_for(const ParticleView& particles, const Camera& camera) const {
     GlyphSelection s;
     s.radius =

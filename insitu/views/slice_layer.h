@@ -99,6 +99,10 @@ class SliceLayer {
   const SliceImage& values() const { return values_; }
   std::array<double, 2> range() const;  // the colour map's ends on this step
   std::int64_t misses() const { return misses_; }
+  // What draw_in_view's colour bar at `side` covers in a width x height picture.
+  LegendMargins bar_margins(int width, int height, BarSide side) const {
+    return color_bar_margins(width, height, side);
+  }
 
  private:
   glm::vec3 colour(std::size_t k, double lo, double scale) const;

@@ -63,6 +63,10 @@ class SurfaceColors {
   void paint(const ShadeOptions& shade, FloatImage& picture, BarSide side) const;
 
   std::array<double, 2> range() const;  // the colour map's ends on this step
+  // What paint's colour bar at `side` covers in a width x height picture (none without one).
+  LegendMargins bar_margins(int width, int height, BarSide side) const {
+    return settings_.legend ? color_bar_margins(width, height, side) : LegendMargins{};
+  }
   // The value at pixel (x, y): NaN where no first hit has a particle within reach.
   double value(int x, int y) const;
 

@@ -221,6 +221,14 @@ class SurfaceView final : public View {
 
   bool draws_scenery() const override { return settings_.scenery.draw; }
 
+  LegendMargins framing_margins() const override {
+    const int w = settings_.width, h = settings_.height;
+    LegendMargins m;
+    if (slice_) m = slice_->bar_margins(w, h, BarSide::right);
+    if (colors_) m = covering(m, colors_->bar_margins(w, h, colors_bar_side()));
+    return m;
+  }
+
   std::string description() const override {
     return std::string(shade_mode_name(settings_.shading)) +
            (colors_ ? " by " + settings_.color_by : std::string()) + " " +
@@ -228,6 +236,9 @@ class SurfaceView final : public View {
   }
 
  private:
+  // The slice's colour bar goes at the right, the surface colours' then at the left.
+  BarSide colors_bar_side() const { return slice_ ? BarSide::left : BarSide::right; }
+
   // render_surfaces, then with color_by the shaded first surface coloured: the sums are
   // collective, so a process that failed to shade still takes part and all ranks throw together.
   bool render_colored(const ViewStep& step, const ViewNeeds& needs, Recorder& recorder,
@@ -250,7 +261,7 @@ class SurfaceView final : public View {
     }
     if (!shown) return false;
     auto t = recorder.host(pass::color_draw);
-    colors_->paint(step_options_.shade, out.picture, slice_ ? BarSide::left : BarSide::right);
+    colors_->paint(step_options_.shade, out.picture, colors_bar_side());
     return true;
   }
 

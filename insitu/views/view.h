@@ -15,6 +15,7 @@
 #include "insitu/config/config.h"
 #include "insitu/parallel/communicator.h"
 #include "insitu/parallel/span_merge.h"
+#include "insitu/views/legend.h"
 #include "insitu/views/scenery.h"
 #include "insitu/views/view_framing.h"
 #include "insitu/views/view_products.h"
@@ -92,6 +93,9 @@ class View {
   virtual std::string description() const = 0;
   // Whether the view draws the solver's scenery, so that automatic framing takes it in.
   virtual bool draws_scenery() const { return false; }
+  // What the view's legends cover along the picture's edges, which automatic framing keeps the
+  // fluid out of (a 2D view lays out its own picture: none).
+  virtual LegendMargins framing_margins() const { return {}; }
 };
 
 struct ViewKind {

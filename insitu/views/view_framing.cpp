@@ -194,7 +194,8 @@ Camera frame_camera(const ViewSettings& view, const Bounds& box) {
   return frame_camera(view.camera, view.width, view.height, box);
 }
 
-Camera frame_camera(const CameraConfig& c, int width, int height, const Bounds& box) {
+Camera frame_camera(const CameraConfig& c, int width, int height, const Bounds& box,
+                    const LegendMargins& clear) {
   Camera camera;
   camera.up = vec(c.up);
   camera.fov_y_degrees = c.fov_degrees;
@@ -217,22 +218,32 @@ Camera frame_camera(const CameraConfig& c, int width, int height, const Bounds& 
   const glm::dvec3 up = glm::cross(right, forward);
   const double tan_y = std::tan(0.5 * c.fov_degrees * kPi / 180.0);
   const double tan_x = tan_y * double(width) / double(height);
-  // A corner p (relative to the centre) at depth dist + p.forward is inside the pyramid when
-  // |p.right| <= tan_x depth and |p.up| <= tan_y depth: the distance is the largest bound.
+  // The space between the margins at depth 1: centred at (mid_x, mid_y), half extents
+  // (half_x, half_y) (at no margins (0, 0) and (tan_x, tan_y)).
+  const double per_x = 2 * tan_x / double(width), per_y = 2 * tan_y / double(height);
+  const double mid_x = 0.5 * per_x * double(clear.left - clear.right);
+  const double mid_y = 0.5 * per_y * double(clear.bottom - clear.top);
+  const double half_x = tan_x - 0.5 * per_x * double(clear.left + clear.right);
+  const double half_y = tan_y - 0.5 * per_y * double(clear.bottom + clear.top);
+  // The box's centre seen at (mid_x, mid_y): the eye at centre - dist (forward + mid_x right +
+  // mid_y up). A corner p (relative to the centre) is then at depth dist + p.forward, and inside
+  // the space when |p.right - mid_x p.forward| <= half_x depth (and so for up): the distance is
+  // the largest bound.
   const glm::dvec3 half = 0.5 * (hi - lo) * c.margin;
   double dist = 0;
   for (int corner = 0; corner < 8; ++corner) {
     const glm::dvec3 p((corner & 1) ? half.x : -half.x, (corner & 2) ? half.y : -half.y,
                        (corner & 4) ? half.z : -half.z);
     const double depth_offset = glm::dot(p, forward);
-    dist = std::max(dist, std::abs(glm::dot(p, right)) / tan_x - depth_offset);
-    dist = std::max(dist, std::abs(glm::dot(p, up)) / tan_y - depth_offset);
+    dist =
+        std::max(dist, std::abs(glm::dot(p, right) - mid_x * depth_offset) / half_x - depth_offset);
+    dist = std::max(dist, std::abs(glm::dot(p, up) - mid_y * depth_offset) / half_y - depth_offset);
   }
   // A box of zero size (one particle of radius 0 never gets here) still needs a distance; no
   // floor otherwise, in world units or relative to the origin: a 2e-9 m block was a dot.
   if (!(dist > 0)) dist = 1e-6 * std::max(1.0, glm::length(centre));
-  camera.target = centre;
-  camera.eye = centre - dist * forward;
+  camera.target = centre - dist * (mid_x * right + mid_y * up);
+  camera.eye = camera.target - dist * forward;
   return camera;
 }
 
@@ -261,7 +272,7 @@ Camera ViewFraming::update(const Bounds& now) {
     else if (!now.empty()) box_ = now;
   }
   jumped_ = camera_.automatic && before > 0 && largest_side(box_) > 4 * before;
-  return frame_camera(camera_, width_, height_, box_);
+  return frame_camera(camera_, width_, height_, box_, clear_);
 }
 
 void distances_from_view_depth(const Camera& camera, std::span<const float> view_depth,

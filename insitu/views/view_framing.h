@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "insitu/config/settings.h"
+#include "insitu/views/legend.h"
 #include "render/camera.h"
 #include "render/float_image.h"
 #include "voxspan/cell_states.h"
@@ -75,7 +76,11 @@ BulkBox::Split bulk_box(std::span<const ParticleSphere> spheres);
 
 // The camera that frames `box` as the view says (automatic framing), or the manual camera.
 // An empty box (no particle yet) gives a camera that looks at the origin from 1 unit away.
-Camera frame_camera(const CameraConfig& camera, int width, int height, const Bounds& box);
+// Automatic framing fits the box between the picture's `clear` margins (what the view's
+// legends cover): the box's centre at the middle of the space between them, the camera moved
+// sideways rather than turned, so that it still looks along `direction`.
+Camera frame_camera(const CameraConfig& camera, int width, int height, const Bounds& box,
+                    const LegendMargins& clear = {});
 Camera frame_camera(const ViewSettings& view, const Bounds& box);
 
 // Depths per pixel (row 0 at the top, 0: nothing there) two ways: along the camera's axis (view
@@ -89,8 +94,9 @@ void view_depth_from_distances(const Camera& camera, const FloatImage& distances
 // Keeps the box a view's framing follows from step to step.
 class ViewFraming {
  public:
-  explicit ViewFraming(const ViewSettings& view)
-      : camera_(view.camera), width_(view.width), height_(view.height) {}
+  // `clear`: the margins the view's legends cover (View::legend_margins).
+  explicit ViewFraming(const ViewSettings& view, const LegendMargins& clear = {})
+      : camera_(view.camera), width_(view.width), height_(view.height), clear_(clear) {}
   // The camera for this render step's boundary spheres.
   Camera update(std::span<const ParticleSphere> boundary);
   // The same from this step's box of them (with MPI: the box of every rank's).
@@ -105,6 +111,7 @@ class ViewFraming {
  private:
   CameraConfig camera_;
   int width_, height_;
+  LegendMargins clear_;
   Bounds box_;
   bool jumped_ = false;
 };

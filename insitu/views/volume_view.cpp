@@ -198,7 +198,7 @@ class VolumeView final : public View {
     }
     out.shaded_deep = deep ? &frame_.deep : nullptr;
     std::swap(out.picture, frame_.picture);
-    if (settings_.legend && settings_.mode != VolumeMode::iso)
+    if (draws_bar())
       draw_color_bar(out.picture, settings_.color_map, range[0], range[1], bar_title_);
     if (step.needs.first_hit_depth) {
       FloatImage& d = out.first_hit_depth;
@@ -213,6 +213,11 @@ class VolumeView final : public View {
 
   bool draws_scenery() const override { return settings_.scenery.draw; }
 
+  LegendMargins framing_margins() const override {
+    return draws_bar() ? color_bar_margins(settings_.width, settings_.height, BarSide::right)
+                       : LegendMargins{};
+  }
+
   std::string description() const override {
     return "volume " + std::string(name_of(kVolumeModeNames, settings_.mode)) + " of " +
            (settings_.quantity.empty() ? std::string("the volume fraction") : settings_.quantity) +
@@ -220,6 +225,9 @@ class VolumeView final : public View {
   }
 
  private:
+  // An iso surface has no colour map: no bar.
+  bool draws_bar() const { return settings_.legend && settings_.mode != VolumeMode::iso; }
+
   // The step's walls (null: none), lit under `environment`: made on the root, whose scenery holds
   // every rank's spheres, and in an MPI job sent to the other ranks (when they change), whose
   // rays end at them too. A failure on the root fails every rank.

@@ -3,7 +3,11 @@
 // its line when it names a field that does not exist.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
+#include <utility>
+
+#include "insitu/views/legend.h"
 
 #include "insitu/config/caption.h"
 #include "tests/support/view_tests.h"
@@ -57,6 +61,50 @@ TEST(Annotations, TheCaptionIsDrawnAtTheTopLeftAndNowhereElse) {
     EXPECT_LT(d.x1, kWidth / 2) << keys;
     EXPECT_LT(d.y1, 16) << keys;
   }
+}
+
+// The colour bar's margins (what automatic framing keeps the fluid out of) cover every pixel
+// that the bar and its longest values draw, at either edge, below the title's rows.
+TEST(Annotations, TheColourBarsMarginsCoverTheBarAndItsValues) {
+  for (const auto& [width, height] : {std::pair{320, 180}, std::pair{1920, 1080}})
+    for (const BarSide side : {BarSide::right, BarSide::left}) {
+      FloatImage blank(width, height), bar(width, height);
+      draw_color_bar(bar, ColorMap::viridis, -35000, -0.000125, "a title", side);
+      const LegendMargins m = color_bar_margins(width, height, side);
+      const int s = text_scale(height), below_title = height / 10 - 7 * s / 2 - s;
+      int x0 = width, x1 = -1;
+      for (int y = below_title; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+          if (bar.at(x, y) != blank.at(x, y)) x0 = std::min(x0, x), x1 = std::max(x1, x);
+      ASSERT_LE(x0, x1);
+      if (side == BarSide::right) {
+        EXPECT_GE(x0, width - m.right) << width;
+        EXPECT_LT(x0, width - m.right + 3 * s) << width << ": margins wider than needed";
+      } else {
+        EXPECT_LT(x1, m.left) << width;
+        EXPECT_GE(x1, m.left - 3 * s) << width << ": margins wider than needed";
+      }
+    }
+}
+
+// With the fluid framed clear of the bar, the glyphs (the pixels that another colour map
+// changes, the bar's own rectangle left out) stop short of the bar's margin.
+TEST(Annotations, TheFluidIsFramedClearOfTheColourBar) {
+  const int bar = std::max(4, kWidth / 40);
+  const LegendMargins m = color_bar_margins(kWidth, kHeight, BarSide::right);
+  ASSERT_GT(m.right, 2 * bar);
+  const FloatImage a = picture("caption: '', color_map: viridis, units: m/s");
+  const FloatImage b = picture("caption: '', color_map: plasma, units: m/s");
+  int glyph_right = -1;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const bool in_bar = x >= kWidth - 2 * bar && x < kWidth - bar && y >= kHeight / 10 &&
+                          y < kHeight - kHeight / 10;
+      if (!in_bar && a.at(x, y) != b.at(x, y)) glyph_right = std::max(glyph_right, x);
+    }
+  ASSERT_GE(glyph_right, 0) << "no glyph";
+  EXPECT_LT(glyph_right, kWidth - m.right);
+  EXPECT_GT(glyph_right, kWidth - m.right - kWidth / 5) << "the fluid not framed up to it";
 }
 
 TEST(Annotations, CaptionFieldsAreFilledFromTheStep) {

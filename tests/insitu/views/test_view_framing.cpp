@@ -65,6 +65,36 @@ TEST(ViewFraming, TheFluidsBoxJustFitsTheView) {
   }
 }
 
+// Between a legend's margins: every corner of the grown box projects inside the space they
+// leave (one on its edge), the camera still looking along the configured direction.
+TEST(ViewFraming, TheFluidsBoxJustFitsBetweenTheLegendsMargins) {
+  const LegendMargins clear{.left = 40, .right = 150, .top = 30, .bottom = 10};
+  for (Vec3d direction : {Vec3d{0.3, 1, -0.45}, Vec3d{-1, 2, -0.8}, Vec3d{1, 0, 0}}) {
+    SurfaceSettings v = view_looking(direction);
+    const Bounds box = Bounds::of_spheres(block(0, 1, 0.5));
+    const Camera camera = frame_camera(v.camera, v.width, v.height, box, clear);
+    const ViewFrame frame(camera);
+    const glm::dvec3 lo(box.lo[0], box.lo[1], box.lo[2]), hi(box.hi[0], box.hi[1], box.hi[2]);
+    const glm::dvec3 c = 0.5 * (lo + hi), half = 0.5 * v.camera.margin * (hi - lo);
+    double inside = 1e300;  // the least distance in pixels from a corner to the space's edges
+    for (int k = 0; k < 8; ++k) {
+      const glm::dvec3 p =
+          frame.to_view(c + glm::dvec3(k & 1 ? half.x : -half.x, k & 2 ? half.y : -half.y,
+                                       k & 4 ? half.z : -half.z));
+      const double x = (0.5 + 0.5 * p.x / (frame.tan_half_x * p.z)) * v.width;
+      const double y = (0.5 - 0.5 * p.y / (frame.tan_half_y * p.z)) * v.height;
+      inside = std::min({inside, x - clear.left, v.width - clear.right - x, y - clear.top,
+                         v.height - clear.bottom - y});
+    }
+    EXPECT_NEAR(inside, 0, 1e-6) << direction[0];
+    const glm::dvec3 d = glm::normalize(glm::dvec3(direction[0], direction[1], direction[2]));
+    EXPECT_NEAR(glm::dot(glm::normalize(camera.target - camera.eye), d), 1, 1e-12);
+    // No margins: the camera at the box's centre, as without them.
+    const Camera plain = frame_camera(v.camera, v.width, v.height, box, {});
+    EXPECT_EQ(plain.target, c);
+  }
+}
+
 TEST(ViewFraming, GrowEachStepAndFirstFollowTheFluidDifferently) {
   const std::vector<ParticleSphere> column = block(0, 0.25, 0.5), spread = block(0, 1, 0.1);
   ViewFraming grow(view_looking({0.3, 1, -0.45}, Framing::grow));

@@ -5,7 +5,7 @@
 Runs the dam break twice at once with the same config: without the live page (the reference)
 and with it, while this script sends to the latter, one after another: no token, wrong tokens,
 the token in the wrong place, path traversals, other methods, a camera request (the page is not
-interactive), oversized requests, 300 requests in a row (over the rate limit), 200 simultaneous
+interactive), oversized requests, 300 requests at once (over the rate limit), 200 simultaneous
 connections, a client that sends a byte a second and one that reads a byte a second. Each must
 be refused or bounded with its status, and the job's in-situ time per render step (the 20th
 percentile over the run, from its stats lines) within TOLERANCE (VOXSPAN_LIVE_TOLERANCE, default
@@ -122,12 +122,36 @@ def oversized(job):
               f"{status}, closed after {seconds:.2f} s")
 
 
+# insitu/live/live_server.h: kBurst requests at once per address, kRequestsPerSecond after.
+BURST, PER_SECOND = 100, 50
+
+
 def rate_limit(job):
+    """300 requests from one address, from 10 threads so that they come faster than the limit
+    refills even on a loaded machine (one at a time, each took over 13 ms there: 300 within the
+    bucket's refill): some refused, and no more served than the limit allows in the time taken."""
     time.sleep(2.5)  # the bucket full again
-    statuses = [job.get("/state.json")[0] for _ in range(300)]
-    limited = statuses.count(429)
-    check("300 requests in a row from one address: the rate limit answers 429",
-          limited > 0 and set(statuses) <= {200, 429}, f"{limited} of 300 refused")
+    statuses = []
+    lock = threading.Lock()
+
+    def some(n):
+        for _ in range(n):
+            status = job.get("/state.json")[0]
+            with lock:
+                statuses.append(status)
+
+    start = time.time()
+    threads = [threading.Thread(target=some, args=(30,)) for _ in range(10)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    seconds = time.time() - start
+    limited, served = statuses.count(429), statuses.count(200)
+    most = BURST + PER_SECOND * seconds
+    check("300 requests from one address: 429 past the rate limit, no more served than it allows",
+          limited > 0 and served <= most + 1 and set(statuses) <= {200, 429},
+          f"{limited} of 300 refused in {seconds:.2f} s, {served} served (at most {most:.0f})")
     time.sleep(2.5)
 
 
