@@ -9,6 +9,7 @@
 // one rank) it is the serial solver, unchanged.
 //
 //   [mpiexec -n R] dambreak [--config FILE] [--particles N] [--steps S | --until T]
+//            [--stop-file PATH]
 //            [--render-every K] [--threads P] [--progress-every K] [--depth-particles D]
 //            [--rebalance-every K] [--validate] [--no-render]
 #include <mpi.h>
@@ -19,8 +20,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <voxspan/adapter.h>
@@ -37,7 +40,8 @@ struct Options {
   dambreak::Config config;
   std::string insitu_config;  // YAML file of the in-situ runtime; empty: classification only
   long steps = 1000;
-  double until = 0;  // non-dimensional end time; 0: use steps
+  double until = 0;       // non-dimensional end time; 0: use steps
+  std::string stop_file;  // the run ends once this file exists; empty: none
   long render_every = 10;
   long progress_every = 50;
   long rebalance_every = 50;
@@ -53,6 +57,8 @@ void usage() {
       "  --particles N        fluid particles (10000 to several million; default 100000)\n"
       "  --steps S            time steps to run (default 1000)\n"
       "  --until T            run until Martin & Moyce's T = t sqrt(2g/a) instead\n"
+      "  --stop-file PATH     end early, cleanly, at the first step that finds PATH there (the\n"
+      "                       last render step, its files written): touch it to stop the run\n"
       "  --render-every K     adapter render steps (default 10)\n"
       "  --no-render          call the adapter every step but never render (writes nothing)\n"
       "  --validate           have the adapter check the grid against the particles\n"
@@ -89,6 +95,7 @@ bool parse(int argc, char** argv, Options& o) {
     else if (a == "--particles") o.config.particles = std::size_t(number("--particles", 8, 1e9));
     else if (a == "--steps") o.steps = long(number("--steps", 0, 1e12));
     else if (a == "--until") o.until = number("--until", 0, 1e6);
+    else if (a == "--stop-file") o.stop_file = value("--stop-file");
     else if (a == "--render-every") o.render_every = long(number("--render-every", 1, 1e12));
     else if (a == "--no-render") o.render_every = 0;
     else if (a == "--validate") o.validate = true;
@@ -109,6 +116,15 @@ bool parse(int argc, char** argv, Options& o) {
     }
   }
   return true;
+}
+
+// Whether the stop file is there; in a distributed run the root looks for every rank (one
+// broadcast a step), so that all of them end at the same step.
+bool stop_asked(const std::string& stop_file, bool root, bool distributed) {
+  std::error_code unreadable;  // a folder it cannot look into: not there yet
+  int asked = root && std::filesystem::exists(stop_file, unreadable);
+  if (distributed) MPI_Bcast(&asked, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return asked != 0;
 }
 
 voxspan::GridGeometry adapter_geometry(const dambreak::GridShape& s) {
@@ -195,12 +211,15 @@ int run(const Options& o) {
   dambreak::CellOrder merged;
   std::vector<float> pressure;
   std::vector<double> ids;  // exact up to 2^53
+  bool stopped = false;     // the stop file was found: that step was the last
   for (long step = 1;; ++step) {
-    if (o.until > 0 ? sim.nondimensional_time() >= o.until : step > o.steps) break;
+    if (stopped || (o.until > 0 ? sim.nondimensional_time() >= o.until : step > o.steps)) break;
     const auto ts = Clock::now();
     sim.step();
     step_seconds.push_back(std::chrono::duration<double>(Clock::now() - ts).count());
-    const bool final_step = o.until > 0 ? sim.nondimensional_time() >= o.until : step == o.steps;
+    stopped = !o.stop_file.empty() && stop_asked(o.stop_file, root, domain != nullptr);
+    const bool final_step =
+        stopped || (o.until > 0 ? sim.nondimensional_time() >= o.until : step == o.steps);
     if (domain && dambreak::sum_over_ranks(sim.owned_count(), MPI_COMM_WORLD) != fluid_count) {
       if (root) std::fprintf(stderr, "dambreak: fluid particles lost at step %ld\n", step);
       return 1;

@@ -49,7 +49,9 @@ def config_text(folder, live, every=5, width=320, height=180):
 
 
 class LiveJob:
-    """The job, its live page's address and token, and what it wrote."""
+    """The job, its live page's address and token, and what it wrote. `steps` None: it runs
+    until stop() (the solver's --stop-file), so that a test takes the time its checks take on
+    any machine, the sanitizers' builds included, not a step count's."""
 
     def __init__(self, dambreak, folder, live, steps, particles=4000, every=5, size=(320, 180)):
         os.makedirs(folder, exist_ok=True)
@@ -60,8 +62,11 @@ class LiveJob:
         self.log = []
         self.url = None
         self._found = threading.Event()
+        self.stop_file = os.path.join(folder, "STOP")
+        ends = ["--steps", str(steps)] if steps is not None else \
+            ["--steps", str(10**9), "--stop-file", self.stop_file]
         self.process = subprocess.Popen(
-            [dambreak, "--config", path, "--particles", str(particles), "--steps", str(steps),
+            [dambreak, "--config", path, "--particles", str(particles), *ends,
              "--progress-every", "0"],
             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         threading.Thread(target=self._read_log, daemon=True).start()
@@ -109,6 +114,10 @@ class LiveJob:
                 return s
             time.sleep(0.2)
         raise RuntimeError("the live page's state never got there")
+
+    def stop(self):
+        """Asks a job started without `steps` to end: its next step is its last."""
+        open(self.stop_file, "w").close()
 
     def finish(self, timeout=300):
         rc = self.process.wait(timeout)

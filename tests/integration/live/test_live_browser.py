@@ -6,7 +6,8 @@ While the job runs, the page is loaded and left to poll; its DOM then must show 
 SHA-256 (which the page computes from the bytes it shows) is that of the job's own PNG frame of
 the step it claims, a step no older than the job's latest when the browser started, and the
 chart drawn. After the last step (the job keeps the page up: live.linger_seconds) the page must
-say that the job ended and show the last step's picture. The job's page is interactive: first a
+say that the job ended and show the last step's picture (the job runs until the test has seen
+the page during the run, then is stopped). The job's page is interactive: first a
 drag on the picture and a click on its reset button (through the DevTools protocol on a pipe)
 must reach the job, which logs both changes. SCREENSHOT: where the screenshot of the page during
 the run goes (default WORK_FOLDER/live_page.png). Exits 77 (skipped) without Chromium.
@@ -182,8 +183,7 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     job = LiveJob(dambreak, os.path.join(work, "job"),
                   {"enabled": "true", "port": 0, "linger_seconds": 25, "interactive": "true"},
-                  steps=1000,
-                  particles=6000, every=10, size=(480, 270))
+                  steps=None, particles=6000, every=10, size=(480, 270))
     url = job.wait_url()
     print("live page:", url, flush=True)
     job.wait_state(lambda s: s["render_steps"] >= 2)
@@ -203,6 +203,7 @@ def main():
     check("... and the progress", re.search(r'id="particles">[0-9,]+<', dom) is not None)
     check("... and says the job runs", 'data-ended="false"' in dom)
 
+    job.stop()
     final = job.wait_state(lambda s: not s["running"], timeout=300)
     dom = browse(browser, url, os.path.join(work, "profile"),
                  os.path.join(work, "live_page_ended.png"))
