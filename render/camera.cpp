@@ -65,4 +65,16 @@ Camera orbited(const Camera& camera, double phi_degrees, double theta_degrees) {
   return out;
 }
 
+Camera orbited(const Camera& camera, double phi_degrees, double theta_degrees, glm::dvec3 pivot) {
+  Camera out = orbited(camera, phi_degrees, theta_degrees);
+  if (out == camera) return camera;
+  // The target's place relative to the pivot, in the camera's axes before and after the turn.
+  const ViewFrame before(camera), after(out);
+  const glm::dvec3 o = camera.target - pivot;
+  out.target = pivot + glm::dot(o, before.right) * after.right + glm::dot(o, before.up) * after.up +
+               glm::dot(o, before.forward) * after.forward;
+  out.eye += out.target - camera.target;
+  return out;
+}
+
 }  // namespace voxspan

@@ -23,6 +23,9 @@ struct Camera {
 // `theta_degrees` towards it, at the same distance (0, 0: the camera itself). The elevation
 // stops 1 degree short of `up` (and of its opposite), where the camera would have no frame.
 Camera orbited(const Camera& camera, double phi_degrees, double theta_degrees);
+// The same turn with eye and target carried about `pivot` together, so that `pivot` stays where
+// the picture shows it (a camera framed beside a colour bar keeps the fluid clear of it).
+Camera orbited(const Camera& camera, double phi_degrees, double theta_degrees, glm::dvec3 pivot);
 
 // Throws voxspan::Error naming the field when the camera cannot form an image (non-finite
 // vectors, eye on target, up along the view direction, fov outside (0, 180), size < 1 or above

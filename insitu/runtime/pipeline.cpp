@@ -281,7 +281,8 @@ struct InsituPipeline::Impl {
             v.orbit_stats.zero();
             recorder->record_into(v.orbit_stats);
             try {
-              const Camera camera = orbited(v.camera, double(phi), double(theta));
+              const Camera camera =
+                  orbited(v.camera, double(phi), double(theta), v.framing.pivot());
               const bool shown =
                   v.view->render({data, camera, v.framing.box(), needs, true, &scenery}, *recorder,
                                  v.orbit_products);

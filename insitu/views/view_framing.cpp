@@ -259,6 +259,13 @@ double largest_side(const Bounds& b) {
 
 }  // namespace
 
+glm::dvec3 ViewFraming::pivot() const {
+  if (!camera_.automatic) return vec(camera_.target);
+  if (box_.empty()) return glm::dvec3(0);  // where frame_camera looks then
+  return 0.5 * (glm::dvec3(box_.lo[0], box_.lo[1], box_.lo[2]) +
+                glm::dvec3(box_.hi[0], box_.hi[1], box_.hi[2]));
+}
+
 Camera ViewFraming::update(const Bounds& now) {
   const double before = largest_side(box_);
   if (!camera_.bounds.empty()) {  // the user's box, whatever the fluid does

@@ -104,6 +104,9 @@ class ViewFraming {
   // The fluid's box as the framing follows it (the grown box under `grow`), kept for manual
   // cameras too (the ground plane of the environment goes under it).
   const Bounds& box() const { return box_; }
+  // The point the camera's turns (Cinema's angles) go about: the box's centre under automatic
+  // framing (the camera may stand beside it, clear of a legend), the target of a manual camera.
+  glm::dvec3 pivot() const;
   // Whether the last update grew the box's largest side over 4 times (a far particle joined
   // the fluid's bulk, or the fluid really spread): the views say so.
   bool jumped() const { return jumped_; }

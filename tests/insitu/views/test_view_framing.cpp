@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "insitu/views/surface_view.h"
@@ -92,6 +93,31 @@ TEST(ViewFraming, TheFluidsBoxJustFitsBetweenTheLegendsMargins) {
     // No margins: the camera at the box's centre, as without them.
     const Camera plain = frame_camera(v.camera, v.width, v.height, box, {});
     EXPECT_EQ(plain.target, c);
+  }
+}
+
+// Cinema's angles turn a camera framed beside a legend about the fluid's centre: the centre
+// stays where the picture shows it (not swung under the bar at phi 180); about its target, the
+// camera turns as before.
+TEST(ViewFraming, TurnsAboutThePivotKeepItWhereThePictureShowsIt) {
+  SurfaceSettings v = view_looking({-1, 2, -0.8});
+  ViewFraming framing(v, {.right = 150});
+  const Camera camera = framing.update(Bounds::of_spheres(block(0, 1, 0.5)));
+  const glm::dvec3 pivot = framing.pivot();
+  const auto seen = [&](const Camera& c) {
+    const glm::dvec3 p = ViewFrame(c).to_view(pivot);
+    return glm::dvec2(p.x / p.z, p.y / p.z);
+  };
+  ASSERT_LT(seen(camera).x, -0.05);  // left of the middle, clear of the bar
+  for (const auto& [phi, theta] :
+       {std::pair{90.0, 0.0}, std::pair{180.0, 0.0}, std::pair{-45.0, 30.0}}) {
+    const Camera turned = orbited(camera, phi, theta, pivot);
+    EXPECT_NEAR(glm::length(seen(turned) - seen(camera)), 0, 1e-9) << phi;
+    EXPECT_NEAR(glm::length(turned.eye - turned.target), glm::length(camera.eye - camera.target),
+                1e-9);
+    const Camera plain = orbited(camera, phi, theta, camera.target);
+    EXPECT_EQ(plain.target, camera.target);
+    EXPECT_EQ(plain.eye, orbited(camera, phi, theta).eye);
   }
 }
 
