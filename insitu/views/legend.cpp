@@ -184,10 +184,10 @@ void draw_text(FloatImage& picture, int x, int y, std::string_view text, int sca
 }
 
 LegendMargins legend_margins(int width, int height) {
-  const int s = text_scale(height), bar = std::max(4, width / 40);
+  const int s = text_scale(height);
   const int label = text_width(kLongestNumber, s);
   LegendMargins m{.left = s + label + s,
-                  .right = 2 * bar + bar / 2 + s + label + s,
+                  .right = color_bar_columns(width, height),
                   .top = 3 * s + 7 * s + 2 * s,
                   .bottom = 4 * s + s + 7 * s + 2 * s};
   if (width - m.left - m.right < width / 2 || height - m.top - m.bottom < height / 2) return {};
