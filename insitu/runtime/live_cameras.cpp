@@ -23,11 +23,11 @@ void LiveCameras::take() {
     comm_->broadcast(std::as_writable_bytes(std::span(changes_)));
 }
 
-Camera LiveCameras::camera(std::size_t view, const Camera& framed) {
+Camera LiveCameras::camera(std::size_t view, const Camera& framed, glm::dvec3 pivot) {
   CameraChange& change = changes_[view];
-  if (!change.any()) return offsets_[view].on(framed);
+  if (!change.any()) return offsets_[view].on(framed, pivot);
   offsets_[view].add(change, framed);
-  const Camera c = offsets_[view].on(framed);
+  const Camera c = offsets_[view].on(framed, pivot);
   const LogLevel level = comm_ == nullptr || comm_->root() ? LogLevel::warning : LogLevel::debug;
   log(level, "view ", names_[view], ": camera turned from the live page (", change.requests,
       change.requests == 1 ? " request" : " requests", change.reset != 0 ? ", reset" : "",

@@ -30,8 +30,9 @@ class LiveCameras {
 
   // Every rank, at the start of a render step: what was asked since the last one.
   void take();
-  // View `view`'s camera on this step: its framing's, with the user's offset.
-  Camera camera(std::size_t view, const Camera& framed);
+  // View `view`'s camera on this step: its framing's, with the user's offset (turned about
+  // `pivot`, ViewFraming::pivot()).
+  Camera camera(std::size_t view, const Camera& framed, glm::dvec3 pivot);
 
  private:
   const std::vector<std::string> names_;

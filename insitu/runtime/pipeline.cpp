@@ -378,7 +378,8 @@ struct InsituPipeline::Impl {
       recorder->record_into(stats);
       try {
         v.camera = v.framing.update(v.view->draws_scenery() ? with_scenery : step_box);
-        const Camera camera = live_cameras ? live_cameras->camera(i, v.camera) : v.camera;
+        const Camera camera =
+            live_cameras ? live_cameras->camera(i, v.camera, v.framing.pivot()) : v.camera;
         if (v.framing.jumped() && !v.jump_told && reports_here()) {
           v.jump_told = true;
           log_warning("view ", v.name, ": the automatic framing jumped (the fluid's box now ",

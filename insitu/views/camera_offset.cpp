@@ -44,7 +44,7 @@ void CameraOffset::add(const CameraChange& change, const Camera& framed) {
   const double base = elevation_degrees(framed);
   theta_ = std::clamp(theta_ + change.d_theta, -L::kMaxElevation - base, L::kMaxElevation - base);
   if (change.pan_x != 0 || change.pan_y != 0) {
-    const ViewFrame shown(on(framed));
+    const ViewFrame shown(on(framed, framed.target));  // a turn's axes are any pivot's
     const double aspect = double(framed.width) / double(framed.height);
     shift_ += (change.pan_x * aspect * shown.right + change.pan_y * shown.up) / zoom_;
     const double length = glm::length(shift_);
@@ -53,12 +53,13 @@ void CameraOffset::add(const CameraChange& change, const Camera& framed) {
   zoom_ = std::clamp(zoom_ * change.zoom, L::kMinZoom, L::kMaxZoom);
 }
 
-Camera CameraOffset::on(const Camera& framed) const {
+Camera CameraOffset::on(const Camera& framed, glm::dvec3 pivot) const {
   // The framing's camera bit for bit: an offset never asked for (or reset) changes no picture.
   if (phi_ == 0 && theta_ == 0 && zoom_ == 1 && shift_ == glm::dvec3(0)) return framed;
-  Camera c = orbited(framed, phi_, theta_);
-  c.target = framed.target + shift_ * view_height(framed);
-  c.eye = c.target + (c.eye - framed.target) / zoom_;
+  Camera c = orbited(framed, phi_, theta_, pivot);
+  const glm::dvec3 toward_eye = c.eye - c.target;
+  c.target += shift_ * view_height(framed);
+  c.eye = c.target + toward_eye / zoom_;
   return c;
 }
 

@@ -41,8 +41,9 @@ class CameraOffset {
  public:
   // Applies a change, seen on the camera `framed` gives with the offset so far.
   void add(const CameraChange& change, const Camera& framed);
-  // The camera the view renders with.
-  Camera on(const Camera& framed) const;
+  // The camera the view renders with: turned about `pivot` (the view's ViewFraming::pivot(), as
+  // Cinema's angles turn it), then panned and zoomed.
+  Camera on(const Camera& framed, glm::dvec3 pivot) const;
 
  private:
   double phi_ = 0, theta_ = 0, zoom_ = 1;

@@ -121,42 +121,61 @@ TEST(CameraOffset, OrbitsZoomsAndPansOnTopOfTheFramingUntilReset) {
   const Camera f = framed();
   CameraOffset offset;
   offset.add({.requests = 1, .d_phi = 90}, f);
-  Camera c = offset.on(f);
+  Camera c = offset.on(f, f.target);
   expect_near(c.target, f.target);
   expect_near(c.eye, {5, 2, 3});  // a quarter turn about +y: +z goes to +x
   offset.add({.requests = 1, .zoom = 2}, f);
-  expect_near(offset.on(f).eye, {3, 2, 3});
+  expect_near(offset.on(f, f.target).eye, {3, 2, 3});
   // Half the view's width to the right, as shown: the view at the target is 2 * 2 tan 30 high
   // after the zoom, twice as wide; looking along -x, right is -z.
   offset.add({.requests = 1, .pan_x = 0.5}, f);
-  c = offset.on(f);
+  c = offset.on(f, f.target);
   const double width = 2 * 2 * std::tan(glm::radians(30.0)) * 2;
   expect_near(c.target, {1, 2, 3 - 0.5 * width});
   expect_near(c.eye - c.target, {2, 0, 0});
   // The offset follows the framing: a framing twice as far keeps the same angles and zoom.
   Camera far = f;
   far.eye = {1, 2, 11};
-  expect_near(offset.on(far).eye - offset.on(far).target, {4, 0, 0});
+  expect_near(offset.on(far, far.target).eye - offset.on(far, far.target).target, {4, 0, 0});
 
   offset.add({.requests = 1, .reset = 1}, f);
-  c = offset.on(f);
+  c = offset.on(f, f.target);
   EXPECT_EQ(c.eye, f.eye);
   EXPECT_EQ(c.target, f.target);
+}
+
+// The live page's turns go about the framing's pivot as Cinema's angles do (a camera framed
+// beside a colour bar keeps the fluid's centre where the picture shows it); a zoom then moves the
+// eye towards the turned target.
+TEST(CameraOffset, TurnsAboutThePivotAsCinemasAnglesDo) {
+  const Camera f = framed();
+  const glm::dvec3 pivot = f.target + glm::dvec3(0.8, 0, -0.5);
+  CameraOffset offset;
+  offset.add({.requests = 1, .d_phi = 120, .d_theta = 25}, f);
+  const Camera turned = orbited(f, 120, 25, pivot);
+  Camera c = offset.on(f, pivot);
+  expect_near(c.target, turned.target);
+  expect_near(c.eye, turned.eye);
+  EXPECT_GT(glm::length(c.target - f.target), 0.5);  // not about the target
+  offset.add({.requests = 1, .zoom = 2}, f);
+  c = offset.on(f, pivot);
+  expect_near(c.target, turned.target);
+  expect_near(c.eye, turned.target + 0.5 * (turned.eye - turned.target));
 }
 
 TEST(CameraOffset, KeepsTheElevationShortOfThePoleWithoutStoringWhatGoesPast) {
   const Camera f = framed();
   CameraOffset offset;
   offset.add({.requests = 1, .d_theta = 300}, f);
-  Camera c = offset.on(f);
+  Camera c = offset.on(f, f.target);
   EXPECT_NEAR(glm::degrees(std::asin((c.eye.y - c.target.y) / 4)), 89, 1e-9);
   offset.add({.requests = 1, .d_theta = -89}, f);  // back at once, not after 211 degrees
-  c = offset.on(f);
+  c = offset.on(f, f.target);
   expect_near(c.eye, f.eye);
   offset.add({.requests = 1, .zoom = 0.1}, f);
   offset.add({.requests = 1, .zoom = 0.1}, f);
   offset.add({.requests = 1, .zoom = 0.1}, f);  // 1000 times: held at 100
-  EXPECT_NEAR(glm::length(offset.on(f).eye - f.target), 400, 1e-9);
+  EXPECT_NEAR(glm::length(offset.on(f, f.target).eye - f.target), 400, 1e-9);
 }
 
 }  // namespace
