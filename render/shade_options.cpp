@@ -31,8 +31,9 @@ int refract_dispatch_limit(int width, int height, std::uint32_t most_spans, cons
 void validate(const SurfaceOptions& o) {
   if (!std::isfinite(o.filter_radius) || o.filter_radius < 0)
     throw make_error("filter_radius = ", o.filter_radius, " must be a finite number >= 0");
-  if (o.max_iterations < 0 || o.max_iterations > 1000)
-    throw make_error("filter max_iterations = ", o.max_iterations, " is outside 0..1000");
+  if (!(o.max_screen_radius > 0 && o.max_screen_radius <= 0.5))
+    throw make_error("filter max_screen_radius = ", o.max_screen_radius,
+                     " is outside (0, 0.5] of the picture's height");
   if (!std::isfinite(o.fold_step) || o.fold_step < 0)
     throw make_error("fold_step = ", o.fold_step, " must be a finite number >= 0");
 }

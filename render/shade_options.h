@@ -15,13 +15,17 @@ namespace voxspan {
 // links. A surface point at depth z gets n(z) = ceil(2 (radius / pixel(z))^2) iterations
 // (pixel(z) = the pixel's width at depth z; n iterations of the kernel spread like a Gaussian of
 // sqrt(n / 2) pixels), so the smoothing radius is about `radius` in the world at every
-// distance, capped at max_iterations. Only points linked across (the same surface in the
-// neighbour pixel) are averaged, so silhouettes keep their depth and a lone droplet stays; no
-// point moves more than `radius`, spans of a column never cross, and a thin sheet's two sides
-// move alike (where they would cross, they meet), so spray and thin sheets survive.
+// distance, up to `max_screen_radius` of the picture's height. Only points linked across (the same
+// surface in the neighbour pixel) are averaged, so silhouettes keep their depth and a lone droplet
+// stays; no point moves more than `radius`, spans of a column never cross, and a thin sheet's two
+// sides move alike (where they would cross, they meet), so spray and thin sheets survive.
 struct SurfaceOptions {
   double filter_radius = 0;  // world units; 0 = no filter
-  int max_iterations = 32;   // the paper needed up to 20 at 1080p
+  // The cap on the filter's radius on the screen, as a share of the picture's height: it bounds
+  // the reads per pixel (about 8 radii in pixels per pass) where the surface comes close to the
+  // eye, and, being a share, smooths a picture alike at every size (a cap in pixels, or in
+  // iterations, leaves the particles' bumps at 1920x1080 that it smooths away at 640x360).
+  double max_screen_radius = 1.0 / 40;
   // Folds (render/model/links.glsl): neighbouring pixels' surface points linked across a
   // depth step longer than this (world units, along the view axis) lie on two sheets of a
   // folded surface, the nearer hiding the other, and are not linked; 0 = no folds.

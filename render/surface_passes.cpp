@@ -18,11 +18,17 @@ double filter_iterations_at(const PerspectiveGrid& grid, double radius, double d
   return std::ceil(filter_iteration_scale(grid, radius) / (depth * depth));
 }
 
+int filter_iteration_cap(const PerspectiveGrid& grid, const SurfaceOptions& options) {
+  const double pixels = options.max_screen_radius * grid.height();
+  return static_cast<int>(std::ceil(2 * pixels * pixels));
+}
+
 int filter_iterations(const PerspectiveGrid& grid, const SurfaceOptions& options) {
-  if (options.filter_radius <= 0 || options.max_iterations == 0) return 0;
+  if (options.filter_radius <= 0) return 0;
   // The nearest surface needs the most iterations.
-  return static_cast<int>(std::min<double>(
-      options.max_iterations, filter_iterations_at(grid, options.filter_radius, grid.near())));
+  return static_cast<int>(
+      std::min<double>(filter_iteration_cap(grid, options),
+                       filter_iterations_at(grid, options.filter_radius, grid.near())));
 }
 
 void SurfacePasses::run(const PerspectiveGrid& grid, bool has_spans, const SurfaceOptions& surfaces,

@@ -28,6 +28,8 @@ inline constexpr int kFilterPasses = 4;
 double filter_iteration_scale(const PerspectiveGrid& grid, double radius);
 // The iterations a point at `depth` gets, before the cap.
 double filter_iterations_at(const PerspectiveGrid& grid, double radius, double depth);
+// The most iterations a point gets: those of a radius of `max_screen_radius` of the height.
+int filter_iteration_cap(const PerspectiveGrid& grid, const SurfaceOptions& options);
 // The iterations a frame stands for: those of its nearest depth, capped; 0 with the filter off.
 int filter_iterations(const PerspectiveGrid& grid, const SurfaceOptions& options);
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 
 #include "insitu/views/view.h"
 #include "insitu/views/view_environment.h"
@@ -113,9 +114,12 @@ const schema::Section<SurfaceSettings>& surface_section() {
                   schema::integer("max_spans", &S::max_spans, 0, 1 << 20,
                                   "stored spans per pixel, 0: no cap; over the cap the last "
                                   "span is extended and its empty length recorded (sec. 3.1)"),
-                  schema::number_or_auto("filter_radius", &S::filter_radius, schema::at_least(0),
-                                         "world radius of the depth filter (sec. 3.4, "
-                                         "4.6); 0 = off; `auto` = the particle spacing"),
+                  schema::number_or_auto(
+                      "filter_radius", &S::filter_radius, schema::at_least(0),
+                      "world radius of the depth filter (sec. 3.4, 4.6), on the screen at most "
+                      "1/" +
+                          std::to_string(std::lround(1 / SurfaceOptions{}.max_screen_radius)) +
+                          " of the picture's height; 0 = off; `auto` = the particle spacing"),
                   schema::integer("max_layers", &S::max_layers, 32, 1 << 20,
                                   "cap on depth layers, a multiple of 32"),
                   schema::vec3_or_auto(

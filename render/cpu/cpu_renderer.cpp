@@ -88,7 +88,7 @@ class CpuRenderer::Passes final : public SurfacePasses {
     if (iterations <= 0) return;
     model::Host& host = host_;
     std::vector<model::vec2>& next = r_.next_depths_;
-    host.u_max_iterations = model::uint(options.max_iterations);
+    host.u_max_iterations = model::uint(filter_iteration_cap(spans_.grid, options));
     host.u_radius = float(options.filter_radius);
     host.u_iteration_scale = float(filter_iteration_scale(spans_.grid, options.filter_radius));
     for (int pass = 0; pass < kFilterPasses; ++pass) {

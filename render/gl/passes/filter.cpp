@@ -25,7 +25,8 @@ void FilterPass::run(const GpuSpanImage& image, GpuSurfaces& surfaces,
   for (int i = 0; i < 2; ++i) surfaces.filter_buffer(i).reserve(spans * 8);
   // Pass 0 reads the span depths; then the buffers alternate.
   set_grid_uniforms(program_, image.grid());
-  program_.set("u_max_iterations", static_cast<unsigned>(options.max_iterations));
+  program_.set("u_max_iterations",
+               static_cast<unsigned>(filter_iteration_cap(image.grid(), options)));
   program_.set("u_radius", float(options.filter_radius));
   program_.set("u_iteration_scale",
                float(filter_iteration_scale(image.grid(), options.filter_radius)));

@@ -1,7 +1,8 @@
 // The surface filter ([ZD15] sec. 3.4, 4.6): stable over 100 iterations on the dam break (no
 // NaN, no span lost or turned inside out, span order kept, no depth moved by more than the
 // radius) while it smooths the surface; a one-particle droplet and thin sheets survive;
-// silhouettes do not bleed into what lies behind them; the iteration count follows the depth.
+// silhouettes do not bleed into what lies behind them; the iteration count follows the depth,
+// and its cap the picture's size.
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -15,22 +16,30 @@
 namespace voxspan {
 namespace {
 
-// Median angle (degrees) between the entry normals of linked neighbours: the surface's
-// roughness (the median leaves out the true edges of the shape).
+// Median angle (degrees) between the entry normals of points `step` links apart along the rows
+// and the columns: the surface's roughness at that many pixels (the median leaves out the true
+// edges of the shape).
 double roughness(const SpanImage& spans, const std::vector<glm::uvec2>& links,
-                 const std::vector<glm::uvec2>& normals) {
+                 const std::vector<glm::uvec2>& normals, int step = 1) {
   model::Host host(spans, {});
   std::vector<double> angles;
-  for (int y = 0; y + 1 < spans.height(); ++y)
-    for (int x = 0; x + 1 < spans.width(); ++x)
+  for (int y = 0; y < spans.height(); ++y)
+    for (int x = 0; x < spans.width(); ++x)
       for (std::uint32_t k = 0; k < spans.pixel(x, y).count; ++k) {
         const std::uint32_t s = spans.pixel(x, y).offset + k;
         const glm::vec3 a = host.decode_normal(normals[s].x);
         for (int dir : {1, 3}) {
-          const std::uint32_t b = links[s].x >> (8 * dir) & 255;
-          if (b > 252) continue;
-          const PixelSpans& q = dir == 1 ? spans.pixel(x + 1, y) : spans.pixel(x, y + 1);
-          const glm::vec3 c = host.decode_normal(normals[q.offset + b].x);
+          glm::ivec2 q(x, y);
+          std::uint32_t t = s;
+          for (int i = 0; i < step && t != UINT32_MAX; ++i) {
+            const std::uint32_t b = links[t].x >> (8 * dir) & 255;
+            q += dir == 1 ? glm::ivec2(1, 0) : glm::ivec2(0, 1);
+            t = b > 252 || q.x >= spans.width() || q.y >= spans.height()
+                    ? UINT32_MAX
+                    : spans.pixel(q.x, q.y).offset + b;
+          }
+          if (t == UINT32_MAX) continue;
+          const glm::vec3 c = host.decode_normal(normals[t].x);
           angles.push_back(glm::degrees(std::acos(std::clamp(double(glm::dot(a, c)), -1.0, 1.0))));
         }
       }
@@ -38,6 +47,9 @@ double roughness(const SpanImage& spans, const std::vector<glm::uvec2>& links,
   std::nth_element(angles.begin(), angles.begin() + angles.size() / 2, angles.end());
   return angles[angles.size() / 2];
 }
+
+// The max_screen_radius that caps the filter at exactly n iterations on a picture `height` high.
+double cap_at(int n, int height) { return std::sqrt((n - 0.5) / 2) / height; }
 
 // One span per pixel of a w x h image, entry and exit each with independent uniform noise of
 // +-amplitude: a sheet linked all round.
@@ -63,7 +75,7 @@ TEST(Filter, HundredIterationsOnTheDamBreakStayStable) {
 
   SurfaceOptions filter;
   filter.filter_radius = 0.15;  // 2 (r / pixel)^2 > 100 at every depth of the frame
-  filter.max_iterations = 100;
+  filter.max_screen_radius = cap_at(100, spans.height());
   ASSERT_GT(filter_iterations_at(spans.grid, filter.filter_radius, spans.grid.grid_far()), 100);
   const ShadeOptions shade = test::test_shading(ShadeMode::translucent);
   const test::GpuResult before = test::shade_on_gpu(spans, {}, shade);
@@ -137,7 +149,7 @@ TEST(Filter, SilhouettesDoNotBleedAndFlatSurfacesStay) {
   const SpanImage spans = test::hand_made(w, h, columns);
   SurfaceOptions filter;
   filter.filter_radius = 1.0;
-  filter.max_iterations = 30;
+  filter.max_screen_radius = cap_at(30, h);
   const test::GpuResult r =
       test::shade_on_gpu(spans, filter, test::test_shading(ShadeMode::opaque));
   EXPECT_EQ(r.stats.count("filter.iterations"), 30);
@@ -153,7 +165,7 @@ TEST(Filter, ThinNoisySheetSurvives) {
   const SpanImage spans = noisy_sheet(32, 32, 3.0f, 3.004f, 0.0015f, 9);
   SurfaceOptions filter;
   filter.filter_radius = 0.5;
-  filter.max_iterations = 50;
+  filter.max_screen_radius = cap_at(50, 32);
   const test::GpuResult r =
       test::shade_on_gpu(spans, filter, test::test_shading(ShadeMode::translucent));
   double spread_before = 0, spread_after = 0;
@@ -173,7 +185,7 @@ TEST(Filter, EqualsTheIteratedKernelWhereTheSurfaceIsLinkedAllRound) {
   const SpanImage spans = noisy_sheet(w, h, 3.0f, 3.5f, 0.002f, 3);
   SurfaceOptions filter;
   filter.filter_radius = 1.0;  // far beyond the noise: the bounds do not act
-  filter.max_iterations = n;
+  filter.max_screen_radius = cap_at(n, h);
   const test::GpuResult r =
       test::shade_on_gpu(spans, filter, test::test_shading(ShadeMode::opaque));
   ASSERT_EQ(r.stats.count("filter.iterations"), n);
@@ -211,6 +223,39 @@ TEST(Filter, IterationsFollowTheDepth) {
   EXPECT_EQ(filter_iterations_at(spans.grid, 3 * pixel, 1.0), 18);
   EXPECT_EQ(filter_iterations_at(spans.grid, 3 * pixel, 2.0), std::ceil(18 / 4.0));
   EXPECT_EQ(filter_iterations_at(spans.grid, 3 * pixel, 3.0), 2);
+}
+
+TEST(Filter, ACapOnTheScreenSmoothsEverySizeAlike) {
+  // A flat slab of lattice spheres at 192x108 and at four times the size: the same world radius
+  // stands for 16 times the iterations in the larger picture, whose bumps are then no rougher
+  // in the world (normals the same world distance apart; measured 0.20 and 0.03 degrees). A
+  // fixed cap of 32 iterations, the old rule, smoothed the larger picture a third as far and
+  // left more than twice the bumps (0.07).
+  const double spacing = 0.02;
+  const test::Particles particles = test::lattice_block({0, 0, 0}, {40, 40, 3}, spacing, spacing);
+  VoxelizeOptions options;
+  options.gap_bridging = spacing;
+  SurfaceOptions filter;
+  filter.filter_radius = spacing;
+  const ShadeOptions shade = test::test_shading(ShadeMode::opaque);
+  double iterations[3], turn[3];
+  for (int k : {0, 1, 2}) {
+    const int scale = k == 0 ? 1 : 4;
+    const Camera camera = test::frame_scene(particles, {0.4, -0.5, -1}, 192 * scale, 108 * scale);
+    const SpanImage spans = test::voxelize(camera, particles, options);
+    SurfaceOptions o = filter;
+    if (k == 2) o.max_screen_radius = cap_at(32, spans.height());
+    const test::GpuResult r = test::shade_on_gpu(spans, o, shade);
+    iterations[k] = double(r.stats.count("filter.iterations"));
+    turn[k] = roughness(spans, r.links, r.normals, scale);
+  }
+  std::printf(
+      "iterations %.0f, %.0f (capped at 32: %.0f); neighbour normals %.2f, %.2f (%.2f) degrees "
+      "apart\n",
+      iterations[0], iterations[1], iterations[2], turn[0], turn[1], turn[2]);
+  EXPECT_NEAR(iterations[1], 16 * iterations[0], 16);
+  EXPECT_LT(turn[1], turn[0]);
+  EXPECT_LT(turn[1], 0.6 * turn[2]);
 }
 
 }  // namespace
