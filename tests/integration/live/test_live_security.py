@@ -13,6 +13,7 @@ percentile over the run, from its stats lines) within TOLERANCE (VOXSPAN_LIVE_TO
 machine's other work weighs on both alike.
 """
 import os
+import re
 import shutil
 import socket
 import statistics
@@ -122,8 +123,20 @@ def oversized(job):
               f"{status}, closed after {seconds:.2f} s")
 
 
-# insitu/live/live_server.h: kBurst requests at once per address, kRequestsPerSecond after.
-BURST, PER_SECOND = 100, 50
+def server_limit(name):
+    """A limit of insitu/live/live_server.h (`static constexpr ... name = value;`), read from the
+    header so that the test follows the server."""
+    header = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                          "insitu", "live", "live_server.h")
+    with open(header) as f:
+        match = re.search(r"\b" + name + r"\s*=\s*([0-9.]+)\s*;", f.read())
+    if not match:
+        raise SystemExit(f"{header}: no {name}")
+    return float(match.group(1))
+
+
+# kBurst requests at once per address, kRequestsPerSecond after.
+BURST, PER_SECOND = server_limit("kBurst"), server_limit("kRequestsPerSecond")
 
 
 def rate_limit(job):
