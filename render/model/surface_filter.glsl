@@ -13,9 +13,10 @@
 //           its exit (where they would cross, they meet halfway).
 // On a surface linked all round this is the iterated kernel exactly (n iterations of [1 2 1]
 // are the binomial of order 2n, and the kernel is a row kernel times a column kernel, its
-// corners reached through a row link, then a column link); where links end the weights are
-// those of the points present, and the bounds hold once at the end instead of after every
-// iteration. The rows come twice because a column whose column links break (a crease seen as
+// corners reached through a row link, then a column link); where links end on one side a line
+// is fitted instead of the mean taken (binomial_walk; the iterated kernel averages the points
+// present, which moves a sloping surface at its edges), and the bounds hold once at the end
+// instead of after every iteration. The rows come twice because a column whose column links break (a crease seen as
 // a staircase) would otherwise keep the rows' smoothing only, unlike its neighbours: vertical
 // streaks; the iterated kernel goes round such breaks. Work per end: about 8 sqrt(m / 2)
 // neighbour reads for a pass of m iterations (n = 32: 80) against 8 n (256).
@@ -31,26 +32,41 @@ int filter_iterations(float depth) {
   return int(min(ceil(u_iteration_scale / (depth * depth)), float(u_max_iterations)));
 }
 
-// The weighted mean of 1/z over the points linked across from v along directions dir_minus and
-// dir_plus, with binomial weights C(2n, n + k) / C(2n, n) at k steps; returns the depth.
+// 1/z at v of the line fitted by weighted least squares to 1/z over the points linked across
+// from v along directions dir_minus and dir_plus (binomial weights C(2n, n + k) / C(2n, n) at
+// k steps); returns the depth. Where the links go on equally far both ways the line's value at
+// v is the weighted mean, the binomial kernel itself; where they end on one side (a
+// silhouette, a crest, a fold) the fit still leaves a sloping surface (a plane: 1/z linear on
+// the screen) where it is, where the weighted mean would pull v towards the side that goes on:
+// a step along every edge that the normals saw as streaks and dots (docs/benchmarks.md). The
+// sums are of differences from v's own 1/z, which float holds at every scale.
 float binomial_walk(SurfacePoint v, int n, int dir_minus, int dir_plus) {
   if (n <= 0) return point_depth(v);
   int reach = min(n, int(ceil(4.0f * sqrt(0.5f * float(n)))));
-  float sum = 1.0f / point_depth(v);
-  float weight = 1.0f;
+  float f0 = 1.0f / point_depth(v);
+  float s0 = 1.0f, s1 = 0.0f, s2 = 0.0f, sg = 0.0f, skg = 0.0f;  // sums of w, wk, wk^2, wg, wkg
   for (int side = 0; side < 2; ++side) {
     int dir = side == 0 ? dir_minus : dir_plus;
+    float sign = side == 0 ? -1.0f : 1.0f;
     SurfacePoint w = v;
     float wk = 1.0f;
     for (int k = 0; k < reach; ++k) {
       if (!link_is_across(w, dir)) break;
       w = follow_link(w, dir);
       wk *= float(n - k) / float(n + k + 1);
-      sum += wk / point_depth(w);
-      weight += wk;
+      float t = sign * float(k + 1);
+      float g = 1.0f / point_depth(w) - f0;
+      s0 += wk;
+      s1 += wk * t;
+      s2 += wk * t * t;
+      sg += wk * g;
+      skg += wk * t * g;
     }
   }
-  return weight / sum;
+  // v itself is in the fit, so det > 0 once one neighbour is: (1 + sum w) sum wt^2 > (sum wt)^2.
+  float det = s0 * s2 - s1 * s1;
+  float inv = det > 0.0f ? f0 + (s2 * sg - s1 * skg) / det : f0;
+  return inv > 0.0f ? 1.0f / inv : point_depth(v);
 }
 
 // Pass 2: span s's smoothed depths within their bounds.

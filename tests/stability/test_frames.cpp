@@ -47,12 +47,19 @@ test::Scene dam_break_at(double scale) {
   return s;
 }
 
+// The least PSNR of a picture against the unit scene's, where only float rounding differs. A
+// refracted ray turns with the normals at the surface's edges, where the filter fits a line to
+// one side (render/model/surface_filter.glsl): its weights there are partly negative, so the
+// rounding grows a few times on its way into the picture: measured 49.6 to 55 dB refractive
+// (57 to 73 with the one-sided mean the filter took before), 85 to 96 dB in the other modes. A
+// scale bug shows far lower (25 dB: the normals' cross product out of float's range).
+double least_psnr(ShadeMode mode) { return mode == ShadeMode::refractive ? 45.0 : 50.0; }
+
 // At 1e-6 and 1e6 world units (and 1e-12 and 1e12, past where the Sobel normals' cross
 // product of world lengths used to under- and overflow floats: 25 dB then) the spans keep
 // their bounds against the reference, and the pictures, mode by mode and renderer by renderer,
 // match the unit scene's within a PSNR bound: only float rounding differs, so nothing
-// scale-dependent (an absolute epsilon, a fixed near distance) may show. Bound: 50 dB;
-// measured 57.4 dB (refractive, the longest paths) to 91 dB.
+// scale-dependent (an absolute epsilon, a fixed near distance) may show (least_psnr).
 TEST(Stability, ScenesAtTinyAndHugeScales) {
   const test::Checked unit = test::check_both(dam_break_at(1));
   for (double scale : {1e-12, 1e-6, 1e6, 1e12}) {
@@ -63,8 +70,8 @@ TEST(Stability, ScenesAtTinyAndHugeScales) {
       const double cpu = test::compare_images(c.cpu.images[m], unit.cpu.images[m]).psnr;
       std::printf("scale %g, %-11s: PSNR against unit scale GL %.1f dB, CPU %.1f dB\n", scale,
                   shade_mode_name(test::kModes[m]), gl, cpu);
-      EXPECT_GE(gl, 50.0) << shade_mode_name(test::kModes[m]);
-      EXPECT_GE(cpu, 50.0) << shade_mode_name(test::kModes[m]);
+      EXPECT_GE(gl, least_psnr(test::kModes[m])) << shade_mode_name(test::kModes[m]);
+      EXPECT_GE(cpu, least_psnr(test::kModes[m])) << shade_mode_name(test::kModes[m]);
     }
   }
 }
@@ -100,14 +107,16 @@ TEST(Stability, FramesBeyondTheFloatRangeAreRefused) {
   const test::Checked unit = test::check_both(dam_break_at(1));
   const test::Checked far = test::check_both(dam_break_at(1e16));
   for (std::size_t m = 0; m < test::kModes.size(); ++m) {
-    EXPECT_GE(test::compare_images(far.gl.images[m], unit.gl.images[m]).psnr, 50.0);
-    EXPECT_GE(test::compare_images(far.cpu.images[m], unit.cpu.images[m]).psnr, 50.0);
+    EXPECT_GE(test::compare_images(far.gl.images[m], unit.gl.images[m]).psnr,
+              least_psnr(test::kModes[m]));
+    EXPECT_GE(test::compare_images(far.cpu.images[m], unit.cpu.images[m]).psnr,
+              least_psnr(test::kModes[m]));
   }
 }
 
 // The views' renderers render a frame far from unit scale in units of the power of two nearest
 // its camera's distance (render/frame_units.h): from 1e-30 to 1e36 world units the pictures,
-// mode by mode and renderer by renderer, match the unit scene's within 50 dB as above, and
+// mode by mode and renderer by renderer, match the unit scene's as above (least_psnr), and
 // what leaves the renderer is in world units: the first-hit distances those of the unit scene
 // times the scale (99 % within 1e-5, float rounding of the scaled positions; measured: all on
 // the CPU renderer, all but 2 to 4 of 3171 on the GL one, whose splat rounds those few a layer
@@ -126,7 +135,7 @@ TEST(Stability, ViewsRenderFramesFarFromUnitScaleInTheirOwnUnits) {
         const double psnr = test::compare_images(f.images[m], unit.images[m]).psnr;
         std::printf("%s, scale %g, %-11s: PSNR against unit scale %.1f dB\n", name, scale,
                     shade_mode_name(test::kModes[m]), psnr);
-        EXPECT_GE(psnr, 50.0) << shade_mode_name(test::kModes[m]);
+        EXPECT_GE(psnr, least_psnr(test::kModes[m])) << shade_mode_name(test::kModes[m]);
       }
       ASSERT_EQ(f.first_hit.rgba.size(), unit.first_hit.rgba.size());
       std::size_t hits = 0, off = 0, missed = 0;
