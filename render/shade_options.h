@@ -16,7 +16,7 @@ namespace voxspan {
 // (pixel(z) = the pixel's width at depth z; n iterations of the kernel spread like a Gaussian of
 // sqrt(n / 2) pixels), so the smoothing radius is about `radius` in the world at every
 // distance, up to `max_screen_radius` of the picture's height. Only points linked across (the same
-// surface in the neighbour pixel) are averaged, so silhouettes keep their depth and a lone droplet
+// surface in the neighbour pixel) are used, so silhouettes keep their depth and a lone droplet
 // stays; no point moves more than `radius`, spans of a column never cross, and a thin sheet's two
 // sides move alike (where they would cross, they meet), so spray and thin sheets survive.
 struct SurfaceOptions {

@@ -16,10 +16,10 @@
 // corners reached through a row link, then a column link); where links end on one side a line
 // is fitted instead of the mean taken (binomial_walk; the iterated kernel averages the points
 // present, which moves a sloping surface at its edges), and the bounds hold once at the end
-// instead of after every iteration. The rows come twice because a column whose column links break (a crease seen as
-// a staircase) would otherwise keep the rows' smoothing only, unlike its neighbours: vertical
-// streaks; the iterated kernel goes round such breaks. Work per end: about 8 sqrt(m / 2)
-// neighbour reads for a pass of m iterations (n = 32: 80) against 8 n (256).
+// instead of after every iteration. The rows come twice because a column whose column links
+// break (a crease seen as a staircase) would otherwise keep the rows' smoothing only, unlike
+// its neighbours: vertical streaks; the iterated kernel goes round such breaks. Work per end:
+// about 8 sqrt(m / 2) neighbour reads for a pass of m iterations (n = 32: 80) against 8 n (256).
 //
 // Host needs: links.glsl, surface_geometry.glsl and their needs, vec2 sd_raw_depths(uint) (the
 // span depths), vec2 sd_depths(uint) (the previous pass's), u_filter_pass (0 .. 3),
