@@ -8,8 +8,8 @@ the token in the wrong place, path traversals, other methods, a camera request (
 interactive), oversized requests, 300 requests at once (over the rate limit), 200 simultaneous
 connections, a client that sends a byte a second and one that reads a byte a second. Each must
 be refused or bounded with its status, and the job's in-situ time per render step (the 20th
-percentile over the run, from its stats lines) within TOLERANCE (VOXSPAN_LIVE_TOLERANCE, default
-0.25; the goal, 0.05, is printed) of the reference's. Both jobs run side by side so that the
+percentile over the run, from its stats lines) at most TOLERANCE (VOXSPAN_LIVE_TOLERANCE, default
+0.25; the goal, 0.05, is printed) above the reference's. Both jobs run side by side so that the
 machine's other work weighs on both alike.
 """
 import os
@@ -26,8 +26,9 @@ from live_job import Checks, LiveJob  # noqa: E402
 
 # The goal is 5 %, but two identical jobs without the page, side by side on the shared 2-core
 # machine where this was written, differed by +9.7 and +15.0 % (the one started second slower);
-# with the page (started second): +2.6, +5.1, -1.5, +5.4 %. So the test fails only past 25 % (a
-# page that held the solver up would show far more) and prints where the run stood.
+# with the page (started second): +2.6, +5.1, -1.5, +5.4 %; on CI once -28.9 % (the reference
+# the slower). So the test fails only where the job with the page is over 25 % slower (a page that
+# held the solver up would show far more); a faster one is the machine, and is printed.
 GOAL = 0.05
 TOLERANCE = float(os.environ.get("VOXSPAN_LIVE_TOLERANCE", "0.25"))
 PARTICLES, EVERY = 4000, 5
@@ -291,8 +292,8 @@ def main():
     live_ms, live_steps = in_situ_ms(job)
     change = live_ms / ref_ms - 1
     goal = "within" if abs(change) <= GOAL else "NOT within"
-    check(f"in-situ time per render step within {TOLERANCE:.0%} of the run without the page "
-          f"({goal} the {GOAL:.0%} goal)", abs(change) <= TOLERANCE,
+    check(f"in-situ time per render step at most {TOLERANCE:.0%} over the run without the page "
+          f"({goal} the {GOAL:.0%} goal)", change <= TOLERANCE,
           f"20th percentile {live_ms:.3f} ms over {live_steps} steps, without {ref_ms:.3f} ms over "
           f"{ref_steps}: {change:+.1%}")
     return check.verdict()
