@@ -103,8 +103,7 @@ class CpuRenderer::Passes final : public SurfacePasses {
     model::Host& host = host_;
     host.u_fold_step = float(options.fold_step);
     host.use_backdrop(r_.backdrop_ != nullptr ? &r_.backdrop_->pixels : nullptr);
-    host.fill_per_span(host.normals_,
-                       [&](model::ivec2 p, model::uint s) { return host.span_normal_words(p, s); });
+    host.build_normals();
   }
 
   void deep_ao() override {

@@ -63,6 +63,7 @@ class Host : public GridUniforms, public ShadeUniforms {
   vec2 sd_depths(uint span) const { return depths_.empty() ? sd_raw_depths(span) : depths_[span]; }
   uvec2 sd_links(uint span) const { return links_[span]; }
   uvec2 sd_normals(uint span) const { return normals_[span]; }
+  uint sd_normal_word(uint span, uint end) const { return normals_[span][int(end)]; }
   float sd_ao(ivec2 p) const { return ao_[pixel_index(p)]; }
   vec2 sd_block_bounds(ivec2 block) const {
     return block_bounds_[std::size_t(block.x) + std::size_t(block.y) * std::size_t(blocks_x_)];
@@ -167,6 +168,19 @@ class Host : public GridUniforms, public ShadeUniforms {
   template <class T, class F> void fill_per_span(std::vector<T>& out, F&& f) {
     out.resize(spans_.spans.size());
     each_span([&](ivec2 p, uint s) { out[s] = f(p, s); });
+  }
+
+  // The normals pass (render/gl/passes/normals.h) into normals_: the Sobel normals of every span,
+  // then, where folds are on, the crests' from their neighbours in place, as its two dispatches do.
+  void build_normals() {
+    fill_per_span(normals_, [&](ivec2 p, uint s) { return span_normal_words(p, s); });
+    if (!(u_fold_step > 0.0f)) return;
+    each_span([&](ivec2 p, uint s) {
+      const SurfacePoint entry = surface_point(p, s, 0u);
+      const SurfacePoint exit = surface_point(p, s, 1u);
+      if (on_crest(entry)) normals_[s].x = crest_normal_word(entry);
+      if (on_crest(exit)) normals_[s].y = crest_normal_word(exit);
+    });
   }
 
   template <class F> void each_pixel(F&& f) {

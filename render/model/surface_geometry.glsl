@@ -12,7 +12,8 @@
 // cross product of the two Sobel tangents, turned to face the eye at an entry and away from it
 // at an exit (so every stored normal points out of the fluid), in world space.
 //
-// Host needs: links.glsl and its needs (u_fold_step also marks crests, on_crest), vec2
+// Host needs: links.glsl and its needs (u_fold_step also marks crests, on_crest), octahedral.glsl,
+// uint sd_normal_word(uint span, uint end) (the first dispatch's, for crest_normal_word), vec2
 // sd_depths(uint) (the surface depths the normals are built on: filtered or not), float
 // sd_wall_depth(ivec2) (the view depth where the pixel's walls begin, render/backdrop.h; 3e38
 // where none or without walls), u_image, u_tan_half, u_right, u_up, u_forward.
@@ -155,26 +156,29 @@ bool on_crest(SurfacePoint v) {
   return false;
 }
 
-// Outward unit normal at v, view space: the Sobel normal, except on a crest, where the step
-// between pixels is below the picture's resolution and the mean of the Sobel normals of v's
-// linked neighbours off the crest stands for it (v's own where none is).
-vec3 surface_normal_view(SurfacePoint v) {
-  vec3 own = sobel_normal_view(v);
-  if (!on_crest(v)) return own;
+// The encoded world-space Sobel normals (entry, exit) of span `span` of pixel p: the normals
+// pass's first dispatch.
+uvec2 span_normal_words(ivec2 p, uint span) {
+  vec3 in_normal = view_to_world_direction(sobel_normal_view(surface_point(p, span, 0u)));
+  vec3 out_normal = view_to_world_direction(sobel_normal_view(surface_point(p, span, 1u)));
+  return uvec2(encode_normal(in_normal), encode_normal(out_normal));
+}
+
+// The encoded normal of a crest point v (on_crest; the normals pass's second dispatch, which
+// writes these over the first's): on a crest the step between pixels is below the picture's
+// resolution, and the mean of the stored Sobel normals of v's linked neighbours off the crest
+// stands for it (v's own where none is). It reads only points off the crest, and the dispatch
+// writes only points on it, so the normals are rewritten in place.
+uint crest_normal_word(SurfacePoint v) {
   vec3 sum = vec3(0.0f);
   for (int dir = 0; dir < 4; ++dir) {
     if (!link_is_across(v, dir)) continue;
     SurfacePoint w = follow_link(v, dir);
-    if (!on_crest(w)) sum += sobel_normal_view(w);
+    if (on_crest(w)) continue;
+    sum += decode_normal(sd_normal_word(w.span, w.end));
   }
-  return length(sum) > 1e-30f ? normalize(sum) : own;
-}
-
-// The encoded world-space normals (entry, exit) of span `span` of pixel p.
-uvec2 span_normal_words(ivec2 p, uint span) {
-  vec3 in_normal = view_to_world_direction(surface_normal_view(surface_point(p, span, 0u)));
-  vec3 out_normal = view_to_world_direction(surface_normal_view(surface_point(p, span, 1u)));
-  return uvec2(encode_normal(in_normal), encode_normal(out_normal));
+  if (!(length(sum) > 1e-30f)) return sd_normal_word(v.span, v.end);
+  return encode_normal(normalize(sum));
 }
 
 #endif

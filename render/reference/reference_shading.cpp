@@ -1,6 +1,7 @@
 #include "render/reference/reference_shading.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "render/model/host.h"
 
@@ -18,7 +19,8 @@ std::vector<glm::uvec2> reference_normals(const SpanImage& spans,
   model::Host host(spans, model::ShadeUniforms{});
   host.links_ = links;
   host.u_fold_step = float(fold_step);
-  return host.per_span([&](model::ivec2 p, model::uint s) { return host.span_normal_words(p, s); });
+  host.build_normals();
+  return std::move(host.normals_);
 }
 
 std::vector<glm::uvec2> encode_exact_normals(const std::vector<SpanNormals>& normals,

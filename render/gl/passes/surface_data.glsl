@@ -29,6 +29,7 @@ vec2 sd_raw_depths(uint span) { return span_depths[span]; }
 vec2 sd_depths(uint span) { return surface_depths[span]; }
 uvec2 sd_links(uint span) { return span_links[span]; }
 uvec2 sd_normals(uint span) { return span_normals[span]; }
+uint sd_normal_word(uint span, uint end) { return span_normals[span][end]; }
 float sd_ao(ivec2 p) { return pixel_ao[span_pixel_index(p)]; }
 float sd_wall_depth(ivec2 p) { return u_walls_cut != 0 ? wall_pixels[span_pixel_index(p)].w : 3.0e38; }
 
