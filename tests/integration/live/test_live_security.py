@@ -138,6 +138,8 @@ def server_limit(name):
 
 # kBurst requests at once per address, kRequestsPerSecond after.
 BURST, PER_SECOND = server_limit("kBurst"), server_limit("kRequestsPerSecond")
+# What a request held up behind a slow client would wait: that client's write timeout.
+REQUEST_TIMEOUT = server_limit("kRequestTimeoutMs") / 1000
 
 
 def rate_limit(job):
@@ -254,9 +256,11 @@ def slow_reader(job):
     stop.set()
     other.join()
     s.close()
+    # A request held up behind it would wait out its write timeout; served beside it, each takes
+    # what the load allows (51 ms alone, 1.1 s beside two busy loops under the sanitizers).
     worst = max(t for _, t in latencies)
     check("a client reading a byte a second holds no one up: others served meanwhile",
-          all(st == 200 for st, _ in latencies) and worst < 1.0,
+          all(st == 200 for st, _ in latencies) and worst < REQUEST_TIMEOUT / 2,
           f"{len(latencies)} requests, slowest {worst * 1000:.0f} ms; it read {read} bytes")
 
 
