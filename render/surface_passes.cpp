@@ -7,11 +7,15 @@
 
 namespace voxspan {
 
+namespace {
+// n iterations of the kernel spread like a Gaussian of sqrt(n / 2) pixels.
+double iterations_for_pixels(double radius) { return 2 * radius * radius; }
+}  // namespace
+
 // pixel(z) = 2 tan(fov_y / 2) / height * z.
 double filter_iteration_scale(const PerspectiveGrid& grid, double radius) {
   const double pixel_at_unit_depth = 2 * grid.view().tan_half_y / grid.height();
-  const double r = radius / pixel_at_unit_depth;
-  return 2 * r * r;
+  return iterations_for_pixels(radius / pixel_at_unit_depth);
 }
 
 double filter_iterations_at(const PerspectiveGrid& grid, double radius, double depth) {
@@ -19,8 +23,8 @@ double filter_iterations_at(const PerspectiveGrid& grid, double radius, double d
 }
 
 int filter_iteration_cap(const PerspectiveGrid& grid, const SurfaceOptions& options) {
-  const double pixels = options.max_screen_radius * grid.height();
-  return static_cast<int>(std::ceil(2 * pixels * pixels));
+  return static_cast<int>(
+      std::ceil(iterations_for_pixels(options.max_screen_radius * grid.height())));
 }
 
 int filter_iterations(const PerspectiveGrid& grid, const SurfaceOptions& options) {

@@ -1,5 +1,8 @@
 #include "tests/render/gl/shading_fixture.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "render/gl/gpu_recorder.h"
 
 namespace voxspan::test {
@@ -50,6 +53,11 @@ GpuResult shade_on_gpu(const SpanImage& spans, const SurfaceOptions& surfaces,
   r.depths = s.download_depths(gpu);
   if (shade.deep_ao) r.ao = s.download_ao(spans.pixels.size());
   return r;
+}
+
+double degrees_between(glm::vec3 a, glm::vec3 b) {
+  const glm::dvec3 u = glm::normalize(glm::dvec3(a)), v = glm::normalize(glm::dvec3(b));
+  return glm::degrees(2 * std::asin(std::min(1.0, glm::length(u - v) / 2)));
 }
 
 }  // namespace voxspan::test

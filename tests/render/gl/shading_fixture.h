@@ -22,6 +22,10 @@ Renderer& renderer();
 SpanImage hand_made(int width, int height, const std::vector<std::vector<Span>>& columns,
                     double near = 0.5, double far = 10);
 
+// The angle between two directions, degrees, from their chord (acos of a float dot product
+// cannot resolve thousandths of a degree).
+double degrees_between(glm::vec3 a, glm::vec3 b);
+
 // What the GPU made of a span image, read back.
 struct GpuResult {
   FloatImage image;

@@ -40,7 +40,7 @@ double roughness(const SpanImage& spans, const std::vector<glm::uvec2>& links,
           }
           if (t == UINT32_MAX) continue;
           const glm::vec3 c = host.decode_normal(normals[t].x);
-          angles.push_back(glm::degrees(std::acos(std::clamp(double(glm::dot(a, c)), -1.0, 1.0))));
+          angles.push_back(test::degrees_between(a, c));
         }
       }
   if (angles.empty()) return 0;

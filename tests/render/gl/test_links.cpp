@@ -168,8 +168,7 @@ TEST(Links, APointBesideACapUnderTheFoldStepTakesItsNeighboursNormals) {
     const auto normal = [&](int px, int py) {
       return host.decode_normal(r.normals[spans.pixel(px, py).offset].x);
     };
-    const double cosine = std::clamp(double(glm::dot(normal(x, y), normal(1, 5))), -1.0, 1.0);
-    return glm::degrees(std::acos(cosine));
+    return test::degrees_between(normal(x, y), normal(1, 5));
   };
   std::printf("above the cap: %.1f degrees off the sheet, %.1f on the crest\n",
               degrees_off_sheet(plain, 3, 2), degrees_off_sheet(crest, 3, 2));
@@ -183,11 +182,9 @@ double worst_degrees(const std::vector<glm::uvec2>& a, const std::vector<glm::uv
   model::Host host(none, {});
   double worst = a.size() == b.size() ? 0 : 180;
   for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i)
-    for (int end = 0; end < 2; ++end) {
-      const double cosine =
-          double(glm::dot(host.decode_normal(a[i][end]), host.decode_normal(b[i][end])));
-      worst = std::max(worst, glm::degrees(std::acos(std::clamp(cosine, -1.0, 1.0))));
-    }
+    for (int end = 0; end < 2; ++end)
+      worst = std::max(worst, test::degrees_between(host.decode_normal(a[i][end]),
+                                                    host.decode_normal(b[i][end])));
   return worst;
 }
 

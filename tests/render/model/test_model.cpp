@@ -23,13 +23,6 @@ ShadeOptions uniform_environment(ShadeMode mode, glm::dvec3 c) {
   return o;
 }
 
-// Angle between two directions from their chord (acos of a float dot product cannot resolve
-// thousandths of a degree).
-double degrees_between(glm::vec3 a, glm::vec3 b) {
-  const glm::dvec3 u = glm::normalize(glm::dvec3(a)), v = glm::normalize(glm::dvec3(b));
-  return glm::degrees(2 * std::asin(std::min(1.0, glm::length(u - v) / 2)));
-}
-
 TEST(Model, OctahedralNormalsRoundTrip) {
   const SpanImage none = test::hand_made(1, 1, {{}});
   Host host(none, {});
@@ -44,7 +37,8 @@ TEST(Model, OctahedralNormalsRoundTrip) {
   double worst = 0;
   for (const glm::vec4& v : inputs)
     worst = std::max(
-        worst, degrees_between(host.decode_normal(host.encode_normal(glm::vec3(v))), glm::vec3(v)));
+        worst,
+        test::degrees_between(host.decode_normal(host.encode_normal(glm::vec3(v))), glm::vec3(v)));
   EXPECT_LT(worst, 0.01) << "degrees";
 
   // The GPU's compilation of the same file gives the same words, and decodes them alike.
@@ -67,7 +61,8 @@ TEST(Model, OctahedralNormalsRoundTrip) {
     const glm::ivec2 b(std::int16_t(gpu_words[i] & 0xFFFF), std::int16_t(gpu_words[i] >> 16));
     differing += a != b;
     ASSERT_LE(std::abs(a.x - b.x) + std::abs(a.y - b.y), 2) << "input " << i;
-    ASSERT_LT(degrees_between(glm::vec3(gpu_decoded[i]), host.decode_normal(gpu_words[i])), 1e-3);
+    ASSERT_LT(test::degrees_between(glm::vec3(gpu_decoded[i]), host.decode_normal(gpu_words[i])),
+              1e-3);
   }
   EXPECT_LT(differing, int(n) / 100) << "words differing by a rounding step";
 }
