@@ -31,6 +31,15 @@ struct Backdrop {
   }
 };
 
+// The backdrop's pyramid for refracted rays' lookups (render/model/column_march.glsl, wall_light):
+// level 0 the backdrop's pixels as they are, then levels 1 .. kBackdropLevels - 1, each
+// ceil(w / 2) x ceil(h / 2) of the one below, whose texels hold the mean colour of the wall
+// pixels under them times their share, and that share (0 where no wall stands), all in one
+// array, level after level, rows from the top. Into `out` (its capacity reused).
+inline constexpr int kBackdropLevels =
+    8;  // wall_light's trilinear reach: up to 64-pixel footprints
+void backdrop_pyramid(const Backdrop& backdrop, std::vector<glm::vec4>& out);
+
 // Light `c` with transmittance `t` (a volume view's, premultiplied) over pixel (x, y) of the
 // backdrop: its colour behind them where a wall stands, or everywhere with `background` (the
 // environment's where none stands); elsewhere transparent, alpha 1 - t.

@@ -120,20 +120,13 @@ class CpuRenderer::Passes final : public SurfacePasses {
     tally.dispatches =
         refract_dispatch_limit(spans.width(), spans.height(), tallies_.most_spans, options);
     host.use_backdrop(r_.backdrop_ != nullptr ? &r_.backdrop_->pixels : nullptr);
-    if (options.mode == ShadeMode::refractive) host.gather_block_bounds();
-    else if (r_.backdrop_ == nullptr) host.use_background(r_.background_);
+    if (options.mode == ShadeMode::refractive) {
+      if (r_.backdrop_ != nullptr) host.use_backdrop(&r_.refraction_pyramid());
+      host.gather_block_bounds();
+    } else if (r_.backdrop_ == nullptr) host.use_background(r_.background_);
     if (image.width != spans.width() || image.height != spans.height())
       image = FloatImage(spans.width(), spans.height());
-    const int dispatches = tally.dispatches;
-    std::atomic<std::int64_t> unfinished{0};
-    host.each_pixel([&](model::ivec2 p) {
-      bool left = false;
-      const model::vec3 c =
-          host.shade_pixel(p, options.mode, dispatches, options.march_budget, left);
-      if (left) ++unfinished;
-      image.set(p.x, p.y, glm::vec4(c, 1.0f));
-    });
-    tally.unfinished = unfinished.load();
+    tally.unfinished = host.shade(options.mode, tally.dispatches, options.march_budget, image);
     return tally;
   }
 
@@ -143,6 +136,16 @@ class CpuRenderer::Passes final : public SurfacePasses {
   const Tallies& tallies_;
   FloatImage& image_;
 };
+
+const std::vector<glm::vec4>& CpuRenderer::refraction_pyramid() {
+  const Backdrop& b = *backdrop_;
+  if (pyramid_of_ != &b || pyramid_version_ != b.version || b.version == 0) {
+    backdrop_pyramid(b, pyramid_);
+    pyramid_of_ = &b;
+    pyramid_version_ = b.version;
+  }
+  return pyramid_;
+}
 
 void CpuRenderer::shade(const SpanImage& spans, const SurfaceOptions& surfaces,
                         const ShadeOptions& shade, Recorder& recorder, FloatImage& image) {

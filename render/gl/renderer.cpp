@@ -57,9 +57,10 @@ Renderer::Renderer(const gl::ShaderLibrary& shaders)
 void Renderer::use_backdrop(const Backdrop* backdrop) {
   backdrop_in_use_ = backdrop != nullptr;
   if (backdrop == nullptr || backdrop->version == backdrop_version_) return;
-  const std::size_t bytes = backdrop->pixels.size() * sizeof(glm::vec4);
+  backdrop_pyramid(*backdrop, pyramid_);  // the refracted rays' (render/model/column_march.glsl)
+  const std::size_t bytes = pyramid_.size() * sizeof(glm::vec4);
   backdrop_.reserve(bytes);
-  backdrop_.upload(backdrop->pixels.data(), bytes);
+  backdrop_.upload(pyramid_.data(), bytes);
   backdrop_version_ = backdrop->version;
 }
 

@@ -15,6 +15,7 @@
 // elsewhere (e.g. one composited from several ranks).
 #pragma once
 
+#include <vector>
 #include <span>
 
 #include "render/gl/gpu_float_image.h"
@@ -79,6 +80,7 @@ class Renderer {
   GpuFloatImage image_;
   gl::Buffer backdrop_;
   std::uint64_t backdrop_version_ = 0;
+  std::vector<glm::vec4> pyramid_;  // the backdrop and its pyramid, as uploaded
   bool backdrop_in_use_ = false;
 };
 

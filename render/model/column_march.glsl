@@ -28,7 +28,8 @@
 // its nearest wall depth, or nearer entry, to 3e38, so that no ray skips a wall), and vec2
 // sd_block_inside(ivec2): the largest entry and the smallest exit of the columns' first spans
 // (x = 3e38 when a column has none), both over the surface depths; u_use_backdrop and, when it
-// is set, vec4 sd_backdrop(ivec2) (the colour, and in the last component the walls' depth).
+// is set, vec4 sd_backdrop(ivec2) (the colour, and in the last component the walls' depth) and
+// wall_light()'s needs (below).
 #ifndef VX_MODEL_COLUMN_MARCH
 #define VX_MODEL_COLUMN_MARCH
 
@@ -51,6 +52,7 @@ struct RayState {
   int bounces;      // hits left that bend the ray
   bool inside;
   bool marching;
+  bool on_wall;     // ended on the walls at `origin`: their light comes from wall_light()
   float occlusion;  // of the start pixel's front surface (deep AO), scales the scattering
 };
 
@@ -74,8 +76,7 @@ vec3 point_normal(SurfacePoint v) {
 vec3 boundary_normal(ivec2 q, uint i, vec3 hit) {
   SurfacePoint v = surface_point(q, sd_offset(q) + i / 2u, i & 1u);
   vec3 n = point_normal(v);
-  vec2 xy = vec2((hit.x / (hit.z * u_tan_half.x) + 1.0f) * 0.5f * float(u_image.x),
-                 (1.0f - hit.y / (hit.z * u_tan_half.y)) * 0.5f * float(u_image.y));
+  vec2 xy = image_position(hit);
   vec2 f = clamp(xy - vec2(q) - vec2(0.5f), vec2(-0.5f), vec2(0.5f));
   int dir_x = f.x >= 0.0f ? 1 : 0;
   int dir_y = f.y >= 0.0f ? 3 : 2;
@@ -123,6 +124,7 @@ RayState ray_start(ivec2 p) {
   s.bounces = u_bounces + 1;
   s.inside = false;
   s.marching = true;
+  s.on_wall = false;
   s.occlusion = pixel_occlusion(p);
   return s;
 }
@@ -141,8 +143,9 @@ float wall_depth(ivec2 q) { return u_use_backdrop != 0 ? sd_backdrop(q).w : 3.0e
 
 // Moves the ray to `point`, absorbing and scattering on the way when inside. The walls and the
 // ground are opaque: a ray that reaches its column's walls (the backdrop's depth there: in
-// screen space, as the fluid's own surfaces) ends on them and takes their colour; one that
-// reaches the ground, from inside or outside, ends there and takes its colour. Without this, a ray in water lying on the ground would reach the
+// screen space, as the fluid's own surfaces) ends on them (on_wall: wall_light() adds their colour
+// once the neighbouring pixels' rays have ended too); one that reaches the ground, from inside or
+// outside, ends there and takes its colour. Without this, a ray in water lying on the ground would reach the
 // union's bottom, just below the plane, and meet it as a free surface: past the critical angle
 // it reflects totally and runs on inside the thin layer (the refraction's speckles).
 RayState ray_advance(RayState s, vec3 point) {
@@ -161,7 +164,7 @@ RayState ray_advance(RayState s, vec3 point) {
   }
   s.origin = point;
   if (walled && !grounded) {
-    s.color += s.throughput * vec3(sd_backdrop(s.pixel));
+    s.on_wall = true;
     s.marching = false;
     return s;
   }
@@ -304,8 +307,7 @@ RayState skip_block(RayState s, PyramidExit e, ivec2 b0, ivec2 b1) {
   s = ray_advance(s, p);
   if (!s.marching) return s;
   if (e.side == 2) return ray_leave(s);
-  vec2 xy = vec2((p.x / (p.z * u_tan_half.x) + 1.0f) * 0.5f * float(u_image.x),
-                 (1.0f - p.y / (p.z * u_tan_half.y)) * 0.5f * float(u_image.y));
+  vec2 xy = image_position(p);
   ivec2 next;
   if (e.side == 0) next = ivec2(e.gx > 0 ? b1.x + 1 : b0.x - 1, clamp(int(floor(xy.y)), b0.y, b1.y));
   else next = ivec2(clamp(int(floor(xy.x)), b0.x, b1.x), e.gy > 0 ? b0.y - 1 : b1.y + 1);
@@ -401,6 +403,72 @@ RayState march_step(RayState s) {
   s.pixel = next_pixel;
   s.hint = VX_HINT_SIDE;
   return s;
+}
+
+// The walls' light where rays end on them. Water bends neighbouring pixels' rays apart, so that
+// one ray a pixel samples the walls' picture more sparsely than a pixel: where that picture has
+// edges finer than the rays' spread (a corner, a rim, the spheres' bumps) single pixels take the
+// colour from across the edge, the refracted picture's speckles. So each ray takes the mean of
+// the walls over its footprint, as a GPU picks a texture's level of detail from neighbouring
+// pixels' coordinates: the half width is half the largest distance to where the four
+// neighbours' rays ended on the walls, read from the backdrop's pyramid (render/backdrop.h,
+// backdrop_pyramid: level 0 the backdrop, each level above the 2x2 means of the one below,
+// premultiplied by the share of wall pixels, all in one array), trilinearly.
+//
+// Host needs: vec4 sd_backdrop_texel(uint) (the pyramid's entries), vec2 sd_landing(ivec2) (where
+// pixel q's ray ended on the walls, image_position of its origin; x < 0 where it did not).
+#define VX_WALL_MAX_RADIUS 32.0f  // pixels: wider footprints (a grazing ray) take this one
+
+ivec2 backdrop_level_size(int level) {
+  return ivec2((u_image.x + (1 << level) - 1) >> level, (u_image.y + (1 << level) - 1) >> level);
+}
+
+// Texel t of pyramid level `level`, clamped to the level: (rgb times the wall share, the share).
+vec4 backdrop_texel(int level, ivec2 t) {
+  uint offset = 0u;
+  for (int l = 0; l < level; ++l) {
+    ivec2 size = backdrop_level_size(l);
+    offset += uint(size.x) * uint(size.y);
+  }
+  ivec2 size = backdrop_level_size(level);
+  t = clamp(t, ivec2(0), size - ivec2(1));
+  vec4 b = sd_backdrop_texel(offset + uint(t.x) + uint(t.y) * uint(size.x));
+  if (level > 0) return b;
+  return b.w < 3.0e38f ? vec4(vec3(b), 1.0f) : vec4(0.0f);
+}
+
+// Bilinear between level `level`'s texels around image position xy (level 0 pixels).
+vec4 backdrop_bilinear(int level, vec2 xy) {
+  vec2 t = xy / float(1 << level) - vec2(0.5f);
+  ivec2 t0 = ivec2(floor(t));
+  vec2 f = t - floor(t);
+  vec4 top = mix(backdrop_texel(level, t0), backdrop_texel(level, t0 + ivec2(1, 0)), f.x);
+  vec4 bottom =
+      mix(backdrop_texel(level, t0 + ivec2(0, 1)), backdrop_texel(level, t0 + ivec2(1, 1)), f.x);
+  return mix(top, bottom, f.y);
+}
+
+// Half the footprint, in pixels, of the ray of pixel p that ended on the walls at `land`.
+float landing_radius(ivec2 p, vec2 land) {
+  float radius = 0.5f;
+  for (int k = 0; k < 4; ++k) {
+    ivec2 q = p + (k < 2 ? ivec2(2 * k - 1, 0) : ivec2(0, 2 * k - 5));  // left, right, up, down
+    if (!in_image(q)) continue;
+    vec2 other = sd_landing(q);
+    if (other.x >= 0.0f) radius = max(radius, 0.5f * length(other - land));
+  }
+  return min(radius, VX_WALL_MAX_RADIUS);
+}
+
+// The walls' colour seen by the ray of pixel p that ended on them at image position `land`.
+vec3 wall_light(ivec2 p, vec2 land) {
+  float lod = log2(2.0f * landing_radius(p, land));
+  int level = int(floor(lod));
+  vec4 c =
+      mix(backdrop_bilinear(level, land), backdrop_bilinear(level + 1, land), lod - float(level));
+  if (c.w > 0.0f) return vec3(c) / c.w;
+  ivec2 q = clamp(ivec2(floor(land)), ivec2(0), u_image - ivec2(1));
+  return vec3(sd_backdrop(q));
 }
 
 // At most `budget` events.

@@ -7,12 +7,15 @@
 // on it.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "render/float_image.h"
 #include "render/model/glsl_cpp.h"
 #include "render/model/shade_uniforms.h"
 #include "render/shade_options.h"
@@ -26,6 +29,8 @@ struct HostBuffers {
   std::vector<uvec2> links, normals;
   std::vector<float> ao;
   std::vector<vec2> depths, block_bounds, block_inside;
+  std::vector<vec2> landings;
+  std::vector<vec3> wall_weights;
 };
 
 // What lies behind every pixel (shade_modes.glsl's sd_background), which a caller keeps from
@@ -53,6 +58,10 @@ class Host : public GridUniforms, public ShadeUniforms {
   float u_radius = 0.0f, u_iteration_scale = 0.0f;
   // render/model/links.glsl's: 0, no folds.
   float u_fold_step = 0.0f;
+  // Refraction's, per pixel (shade fills them): where its ray ended on the walls (x < 0: it did
+  // not), and the throughput it arrived there with.
+  std::vector<vec2> landings_;
+  std::vector<vec3> wall_weights_;
 
   uint sd_count(ivec2 p) const { return record(p).count; }
   uint sd_offset(ivec2 p) const { return record(p).offset; }
@@ -76,6 +85,8 @@ class Host : public GridUniforms, public ShadeUniforms {
     return std::size_t(p.x) + std::size_t(p.y) * std::size_t(u_image.x);
   }
   vec4 sd_backdrop(ivec2 p) const { return (*backdrop_)[pixel_index(p)]; }
+  vec4 sd_backdrop_texel(uint i) const { return (*backdrop_)[i]; }
+  vec2 sd_landing(ivec2 p) const { return landings_[pixel_index(p)]; }
   float sd_wall_depth(ivec2 p) const {
     return backdrop_ != nullptr ? (*backdrop_)[pixel_index(p)].w : 3.0e38f;
   }
@@ -83,7 +94,8 @@ class Host : public GridUniforms, public ShadeUniforms {
     if (u_use_backdrop != 0) return vec3(sd_backdrop(p));
     return background_ != nullptr ? (*background_)[pixel_index(p)] : environment(u_eye, dir);
   }
-  // The frame's backdrop (render/backdrop.h; null: none), kept by the caller while it shades.
+  // The frame's backdrop with its pyramid (render/backdrop.h, backdrop_pyramid; null: none),
+  // kept by the caller while it shades.
   void use_backdrop(const std::vector<vec4>* pixels) {
     backdrop_ = pixels;
     u_use_backdrop = pixels != nullptr ? 1 : 0;
@@ -150,6 +162,8 @@ class Host : public GridUniforms, public ShadeUniforms {
     ao_.swap(b.ao);
     depths_.swap(b.depths);
     block_bounds_.swap(b.block_bounds);
+    landings_.swap(b.landings);
+    wall_weights_.swap(b.wall_weights);
     block_inside_.swap(b.block_inside);
   }
 
@@ -191,23 +205,43 @@ class Host : public GridUniforms, public ShadeUniforms {
                       });
   }
 
-  // The colour of pixel p in `mode`. Refraction runs the GPU's dispatches one after the other
-  // (at most `dispatches`, each `budget` column events); `unfinished` is set when the ray
-  // still marched after them and left to the environment.
-  vec3 shade_pixel(ivec2 p, ShadeMode mode, int dispatches, int budget, bool& unfinished) {
-    unfinished = false;
-    switch (mode) {
-      case ShadeMode::opaque: return shade_opaque(p);
-      case ShadeMode::translucent: return shade_translucent(p);
-      case ShadeMode::refractive: break;
+  // Every pixel's colour in `mode` into `image` (the span image's size). Refraction runs the
+  // GPU's dispatches one after the other (at most `dispatches`, each `budget` column events),
+  // then, as its resolve dispatch, adds the walls' light where rays ended on them (wall_light
+  // reads the neighbouring pixels' ends). Returns the rays still marching after the dispatches,
+  // sent to the environment.
+  std::int64_t shade(ShadeMode mode, int dispatches, int budget, FloatImage& image) {
+    if (mode != ShadeMode::refractive) {
+      each_pixel([&](ivec2 p) {
+        const vec3 c = mode == ShadeMode::opaque ? shade_opaque(p) : shade_translucent(p);
+        image.set(p.x, p.y, vec4(c, 1.0f));
+      });
+      return 0;
     }
-    RayState s = ray_start(p);
-    for (int d = 0; d < dispatches && s.marching; ++d) s = march(s, budget);
-    if (s.marching) {
-      unfinished = true;
-      s = ray_leave(s);
-    }
-    return s.color;
+    const std::size_t pixels = std::size_t(u_image.x) * std::size_t(u_image.y);
+    landings_.assign(pixels, vec2(-1.0f));
+    wall_weights_.resize(pixels);
+    std::atomic<std::int64_t> unfinished{0};
+    each_pixel([&](ivec2 p) {
+      RayState s = ray_start(p);
+      for (int d = 0; d < dispatches && s.marching; ++d) s = march(s, budget);
+      if (s.marching) {
+        ++unfinished;
+        s = ray_leave(s);
+      }
+      image.set(p.x, p.y, vec4(s.color, 1.0f));
+      if (!s.on_wall) return;
+      landings_[pixel_index(p)] = image_position(s.origin);
+      wall_weights_[pixel_index(p)] = s.throughput;
+    });
+    if (u_use_backdrop != 0)
+      each_pixel([&](ivec2 p) {
+        const vec2 land = landings_[pixel_index(p)];
+        if (land.x < 0.0f) return;
+        const vec3 light = wall_weights_[pixel_index(p)] * wall_light(p, land);
+        image.set(p.x, p.y, image.at(p.x, p.y) + vec4(light, 0.0f));
+      });
+    return unfinished.load();
   }
 
  private:

@@ -27,6 +27,12 @@ vec3 view_ray_at(vec2 xy) {
   return vec3(ndc.x * u_tan_half.x, ndc.y * u_tan_half.y, 1.0f);
 }
 
+// Image position in pixels of view-space point v (view_ray_at's inverse).
+vec2 image_position(vec3 v) {
+  return vec2((v.x / (v.z * u_tan_half.x) + 1.0f) * 0.5f * float(u_image.x),
+              (1.0f - v.y / (v.z * u_tan_half.y)) * 0.5f * float(u_image.y));
+}
+
 vec3 view_to_world_direction(vec3 v) { return v.x * u_right + v.y * u_up + v.z * u_forward; }
 vec3 world_to_view_direction(vec3 w) { return vec3(dot(w, u_right), dot(w, u_up), dot(w, u_forward)); }
 

@@ -57,12 +57,7 @@ FloatImage reference_shading(const SpanImage& spans, const ShadeOptions& options
   for (const PixelSpans& p : spans.pixels) most_spans = std::max(most_spans, p.count);
   const int dispatches = refract_dispatch_limit(spans.width(), spans.height(), most_spans, options);
   if (options.mode == ShadeMode::refractive) host.gather_block_bounds();
-  host.each_pixel([&](model::ivec2 p) {
-    bool unfinished = false;
-    const model::vec3 c =
-        host.shade_pixel(p, options.mode, dispatches, options.march_budget, unfinished);
-    image.set(p.x, p.y, glm::vec4(c, 1.0f));
-  });
+  host.shade(options.mode, dispatches, options.march_budget, image);
   return image;
 }
 

@@ -11,9 +11,11 @@
 #include "render/model/surface_geometry.glsl"
 #include "render/model/environment.glsl"
 #include "render/model/lighting.glsl"
-// The walls behind the fluid, when u_use_backdrop (render/backdrop.h): rgb, a = view depth.
+// The walls behind the fluid, when u_use_backdrop (render/backdrop.h): rgb, a = view depth; the
+// refractive pass's backdrop is followed by its pyramid (backdrop_pyramid).
 layout(std430, binding = BACKDROP_BINDING) readonly buffer Backdrop { vec4 backdrop[]; };
 vec4 sd_backdrop(ivec2 p) { return backdrop[p.x + p.y * u_image.x]; }
+vec4 sd_backdrop_texel(uint i) { return backdrop[i]; }
 // What lies behind a pixel: the backdrop, or the environment computed for every pixel of every
 // frame (each thread reads its own).
 vec3 sd_background(ivec2 p, vec3 dir) {

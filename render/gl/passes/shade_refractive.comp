@@ -3,7 +3,8 @@
 // REFRACT_BEGIN starts every ray at the eye and gathers the depth bounds of each 8 x 8 block
 // (for skipping empty space); REFRACT_MARCH advances each marching ray by at most
 // u_march_budget column events and counts the rays still marching; REFRACT_RESOLVE sends the rays
-// still marching to the environment and writes every pixel's colour.
+// still marching to the environment, adds the walls' light where rays ended on them (over the
+// footprint the neighbouring rays' ends give: wall_light) and writes every pixel's colour.
 layout(local_size_x = 64) in;
 
 #include "render/gl/passes/shade_common.glsl"
@@ -32,17 +33,23 @@ vec2 sd_block_inside(ivec2 block) {
   return vec2(uintBitsToFloat(block_bounds[i + 2u]), uintBitsToFloat(~exit_bits));
 }
 
-#include "render/model/column_march.glsl"
-
 struct RayRecord {
   vec4 origin;      // xyz; w: occlusion
   vec4 dir;         // xyz; w: anchor x
   vec4 throughput;  // xyz; w: anchor y
   vec4 color;       // xyz; w: anchor z
-  ivec4 ints;       // pixel x, pixel y, hint, bounces | inside << 16 | marching << 17
+  ivec4 ints;       // pixel x, pixel y, hint, bounces | inside << 16 | marching << 17 | on_wall << 18
   ivec4 last;       // last_pixel x, y, last_span, last_end
 };
 layout(std430, binding = RAYS_BINDING) buffer Rays { RayRecord rays[]; };
+
+// Where pixel q's ray ended on the walls (column_march.glsl's wall_light), x < 0 where it did not.
+vec2 sd_landing(ivec2 q) {
+  RayRecord r = rays[q.x + q.y * u_image.x];
+  return (r.ints.w & (1 << 18)) != 0 ? image_position(r.origin.xyz) : vec2(-1.0);
+}
+
+#include "render/model/column_march.glsl"
 layout(std430, binding = MARCH_TALLY_BINDING) buffer MarchTally {
   uint active_rays;  // still marching after this dispatch
   uint events;       // column events in this dispatch, all rays
@@ -59,7 +66,8 @@ RayRecord pack_ray(RayState s) {
   r.throughput = vec4(s.throughput, s.anchor.y);
   r.color = vec4(s.color, s.anchor.z);
   r.last = ivec4(s.last_pixel, s.last_span, int(s.last_end));
-  r.ints = ivec4(s.pixel, s.hint, s.bounces | (s.inside ? 1 << 16 : 0) | (s.marching ? 1 << 17 : 0));
+  r.ints = ivec4(s.pixel, s.hint,
+                 s.bounces | (s.inside ? 1 << 16 : 0) | (s.marching ? 1 << 17 : 0) | (s.on_wall ? 1 << 18 : 0));
   return r;
 }
 
@@ -79,6 +87,7 @@ RayState unpack_ray(RayRecord r) {
   s.bounces = r.ints.w & 0xFFFF;
   s.inside = (r.ints.w & (1 << 16)) != 0;
   s.marching = (r.ints.w & (1 << 17)) != 0;
+  s.on_wall = (r.ints.w & (1 << 18)) != 0;
   return s;
 }
 
@@ -118,6 +127,8 @@ void main() {
 #else
   RayState s = unpack_ray(rays[i]);
   if (s.marching) s = ray_leave(s);
-  shaded[i] = vec4(s.color, 1.0);
+  vec3 c = s.color;
+  if (s.on_wall && u_use_backdrop != 0) c += s.throughput * wall_light(thread_pixel(i), image_position(s.origin));
+  shaded[i] = vec4(c, 1.0);
 #endif
 }

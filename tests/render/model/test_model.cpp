@@ -1,10 +1,12 @@
 // The shared model files (render/model/*.glsl) as the CPU compiles them: octahedral normals
 // (and the GPU's compilation of the same file against the CPU's), Fresnel, Snell's law and
 // total internal reflection, the environment, Beer-Lambert over spans (exact past a span cap)
-// and a straight path through a flat slab, each against numbers worked out by hand.
+// and a straight path through a flat slab, each against numbers worked out by hand; the walls'
+// light for refracted rays over their footprints (the backdrop's pyramid).
 #include <cmath>
 #include <random>
 
+#include "render/backdrop.h"
 #include "render/model/host.h"
 #include "render/reference/reference_shading.h"
 #include "tests/render/gl/shading_fixture.h"
@@ -65,6 +67,65 @@ TEST(Model, OctahedralNormalsRoundTrip) {
               1e-3);
   }
   EXPECT_LT(differing, int(n) / 100) << "words differing by a rounding step";
+}
+
+// A 16 x 8 backdrop of one-pixel stripes, red and blue by column, whose right half stands no
+// wall (kNoWall pixels, coloured to show if they leaked in): rays ending on it at `spread`
+// pixels from their neighbours' ends see the mean of the walls over that footprint.
+glm::vec3 wall_light_with_spread(float spread, glm::vec2 land) {
+  Backdrop b;
+  b.width = 16;
+  b.height = 8;
+  b.version = 1;
+  for (int y = 0; y < b.height; ++y)
+    for (int x = 0; x < b.width; ++x)
+      b.pixels.push_back(x >= 8       ? glm::vec4(100, 100, 100, Backdrop::kNoWall)
+                         : x % 2 == 0 ? glm::vec4(1, 0, 0, 2)
+                                      : glm::vec4(0, 0, 1, 2));
+  std::vector<glm::vec4> pyramid;
+  backdrop_pyramid(b, pyramid);
+  const SpanImage none = test::hand_made(b.width, b.height, std::vector<std::vector<Span>>(128));
+  Host host(none, {});
+  host.use_backdrop(&pyramid);
+  // Every ray ends on the walls at its pixel's centre scaled by `spread` about pixel (4, 4).
+  host.landings_.resize(b.pixels.size());
+  for (int y = 0; y < b.height; ++y)
+    for (int x = 0; x < b.width; ++x)
+      host.landings_[host.pixel_index({x, y})] =
+          land + spread * glm::vec2(float(x - 4), float(y - 4));
+  return host.wall_light({4, 4}, land);
+}
+
+TEST(Model, RefractedRaysSeeTheWallsOverTheirFootprint) {
+  // Level 0 and each level above it: ceil halves of the one below, kBackdropLevels of them.
+  Backdrop b;
+  b.width = 5;
+  b.height = 3;
+  b.pixels.assign(15, glm::vec4(0.5f, 0.25f, 1.0f, 2.0f));
+  b.pixels[0].a = Backdrop::kNoWall;
+  std::vector<glm::vec4> pyramid;
+  backdrop_pyramid(b, pyramid);
+  std::size_t texels = 0;
+  for (int level = 0, w = 5, h = 3; level < kBackdropLevels;
+       ++level, w = (w + 1) / 2, h = (h + 1) / 2)
+    texels += std::size_t(w) * std::size_t(h);
+  ASSERT_EQ(pyramid.size(), texels);
+  EXPECT_EQ(pyramid[15], glm::vec4(0.375f, 0.1875f, 0.75f, 0.75f)) << "3 walls of 4, premultiplied";
+  EXPECT_EQ(pyramid[16], glm::vec4(0.5f, 0.25f, 1.0f, 1.0f));
+
+  // Neighbours ending one pixel apart: the pixel's own colour, at its centre or between two.
+  EXPECT_EQ(wall_light_with_spread(1, {4.5f, 4.5f}), glm::vec3(1, 0, 0));
+  EXPECT_EQ(wall_light_with_spread(1, {5.5f, 4.5f}), glm::vec3(0, 0, 1));
+  const glm::vec3 between = wall_light_with_spread(1, {5.0f, 4.5f});
+  EXPECT_NEAR(between.r, 0.5f, 1e-6);
+  EXPECT_NEAR(between.b, 0.5f, 1e-6);
+  // Spread over 4 and 8 pixels: the stripes' mean, and never the pixels with no wall.
+  for (float spread : {4.0f, 8.0f}) {
+    const glm::vec3 c = wall_light_with_spread(spread, {4.5f, 4.5f});
+    EXPECT_NEAR(c.r, 0.5f, 0.02f) << spread;
+    EXPECT_NEAR(c.b, 0.5f, 0.02f) << spread;
+    EXPECT_LE(c.r + c.g + c.b, 1.0f + 1e-5f) << spread;
+  }
 }
 
 TEST(Model, FresnelAndSnell) {
