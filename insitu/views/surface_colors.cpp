@@ -141,6 +141,23 @@ glm::dvec3 SurfaceColors::normal_at(int x, int y, glm::dvec3 dir) const {
   return glm::dot(n, dir) > 0 ? -n : n;
 }
 
+// The share pixel (x, y)'s first surface reflects, over its footprint as the shading takes it
+// (render/model/shade_modes.glsl, reflection_footprint): the mean of Schlick's term at the pixel's
+// normal and its hit neighbours' (a crest's rim otherwise beads into dots).
+double SurfaceColors::reflectance(int x, int y, double ior) const {
+  double sum = 0;
+  int n = 0;
+  for (int k = 0; k < 5; ++k) {
+    const int i = x + (k == 1) - (k == 2), j = y + (k == 3) - (k == 4);
+    if (i < 0 || j < 0 || i >= frame_.width || j >= frame_.height || std::isnan(value(i, j)))
+      continue;
+    const glm::dvec3 dir = glm::normalize(frame_.world_ray(i, j));
+    sum += fresnel(-glm::dot(dir, normal_at(i, j, dir)), ior);
+    ++n;
+  }
+  return sum / n;  // n >= 1: (x, y) itself is hit
+}
+
 // The luminance that shows the map's colours as they are: the albedo's for an opaque surface (the
 // map's colour times the lighting), else the mean of the coloured pixels' (the light the fluid
 // sends back varies with what lies behind it: so it keeps its variations and the map its
@@ -171,8 +188,7 @@ void SurfaceColors::paint(const ShadeOptions& shade, FloatImage& picture, BarSid
       if (shade.mode == ShadeMode::opaque) {
         out = with_hue(shaded, mapped, reference);
       } else {
-        const glm::dvec3 dir = glm::normalize(frame_.world_ray(x, y));
-        const float r = float(fresnel(-glm::dot(dir, normal_at(x, y, dir)), shade.material.ior));
+        const float r = float(reflectance(x, y, shade.material.ior));
         out = r * shaded + (1 - r) * with_hue(shaded, mapped, reference);
       }
       picture.set(x, y, glm::vec4(out, c.a));

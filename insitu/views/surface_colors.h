@@ -9,7 +9,8 @@
 // its luminance (the map's colour times the lighting); translucent and refractive, it replaces
 // the hue of the light the fluid sends back through its first surface, and the share the surface
 // reflects (Schlick's Fresnel term at the first hit's normal, from the neighbouring pixels'
-// first-hit points) keeps the shading's own colour, so the sky's highlights still read as water.
+// first-hit points, averaged over the pixel and its hit neighbours as the shading averages it)
+// keeps the shading's own colour, so the sky's highlights still read as water.
 //
 // Reads: the owned particles (positions, the attribute, mass and density when both are there),
 // the first-hit distances on the process that shades. In an MPI job rank 0 sends the distances
@@ -73,6 +74,7 @@ class SurfaceColors {
  private:
   void sum_ranks(const ParticleView& particles);
   glm::dvec3 normal_at(int x, int y, glm::dvec3 dir) const;
+  double reflectance(int x, int y, double ior) const;
   float reference_luminance(const ShadeOptions& shade, const FloatImage& picture) const;
 
   const ColorBySettings settings_;

@@ -29,22 +29,41 @@ float soft_square(float u) {
   return side * clamp(4.0f * sin(3.14159265f * f), -1.0f, 1.0f);
 }
 
-vec3 ground_color(vec3 hit, float distance) {
+// The square wave's mean over [u - w / 2, u + w / 2]: its integral, a triangle wave, differenced.
+// Past the soft edges' own width it is the edges' mean where neighbouring rays spread wider than
+// they: a checker seen over a footprint of w tiles, not one point of it.
+float square_integral(float u) {
+  float f = mod(u, 2.0f);
+  return f < 1.0f ? f : 2.0f - f;
+}
+float square_over(float u, float w) {
+  if (w <= 0.16f) return soft_square(u);  // 2 x 0.0804: soft_square's edges, which it matches
+  return (square_integral(u + 0.5f * w) - square_integral(u - 0.5f * w)) / w;
+}
+
+// The ground at `hit`, `distance` from where it is seen, over a footprint `width` wide (world).
+vec3 ground_color(vec3 hit, float distance, float width) {
   float a = dot(hit, u_env_axis_a) / u_ground_tile;
   float b = dot(hit, u_env_axis_b) / u_ground_tile;
-  float checker = 0.5f + 0.5f * soft_square(a) * soft_square(b);
+  float w = width / u_ground_tile;
+  float checker = 0.5f + 0.5f * square_over(a, w) * square_over(b, w);
   vec3 ground = mix(u_ground_dark, u_ground_light, checker);
   float fade = 1.0f - exp(-distance / u_ground_fade);
   return mix(ground, u_sky_horizon, fade);
 }
 
-// Radiance arriving at `origin` from direction `dir` (unit).
-vec3 environment(vec3 origin, vec3 dir) {
+// Radiance arriving at `origin` from the directions within `spread` radians of `dir` (unit), on
+// average: the ground's footprint 2 t spread wide, stretched by the grazing angle (up to 16
+// times: past that the horizon's fade has taken the pattern).
+vec3 environment_over(vec3 origin, vec3 dir, float spread) {
   float down = dot(dir, u_env_up);
   if (down >= 0.0f) return sky_color(dir);
   // Below the horizon: the ground, seen from above (from below the plane, where it lies).
   float t = max((u_ground_height - dot(origin, u_env_up)) / down, 0.0f);
-  return ground_color(origin + t * dir, t);
+  return ground_color(origin + t * dir, t, 2.0f * t * spread / max(-down, 0.0625f));
 }
+
+// Radiance arriving at `origin` from direction `dir` (unit).
+vec3 environment(vec3 origin, vec3 dir) { return environment_over(origin, dir, 0.0f); }
 
 #endif

@@ -20,6 +20,30 @@ vec3 pixel_direction(ivec2 p) { return normalize(view_to_world_direction(view_ra
 
 float pixel_occlusion(ivec2 p) { return u_use_ao != 0 ? sd_ao(p) : 1.0f; }
 
+// The reflection of pixel p's front surface (view direction `dir`, normal `normal`) over its
+// footprint, sampled by the pixels its first entry links to (the same surface): where the surface
+// curves fast, a crest's rim, neighbouring pixels reflect directions far apart and at far
+// different Fresnel factors, and one ray a pixel samples both more sparsely than a pixel. x: half
+// the largest angle between the reflected directions, over which the environment is averaged
+// (environment_over, as wall_light for refracted rays); y: the mean Fresnel reflectance.
+vec2 reflection_footprint(ivec2 p, vec3 dir, vec3 normal) {
+  vec3 r = reflect(dir, normal);
+  SurfacePoint v = surface_point(p, sd_offset(p), 0u);
+  float spread = 0.0f;
+  float reflectance = fresnel(-dot(dir, normal));
+  float samples = 1.0f;
+  for (int k = 0; k < 4; ++k) {
+    if (!link_is_across(v, k)) continue;
+    SurfacePoint w = follow_link(v, k);
+    vec3 n = decode_normal(sd_normals(w.span).x);
+    vec3 dw = pixel_direction(w.pixel);
+    spread = max(spread, 0.5f * acos(clamp(dot(r, reflect(dw, n)), -1.0f, 1.0f)));
+    reflectance += fresnel(-dot(dw, n));
+    samples += 1.0f;
+  }
+  return vec2(spread, reflectance / samples);
+}
+
 vec3 shade_opaque(ivec2 p) {
   vec3 dir = pixel_direction(p);
   if (sd_count(p) == 0u) return sd_background(p, dir);
@@ -36,8 +60,9 @@ vec3 shade_translucent(ivec2 p) {
   vec3 ray = view_to_world_direction(view_ray_at(vec2(p) + vec2(0.5f)));
   vec3 entry = u_eye + ray * sd_depths(base).x;
   vec3 normal = decode_normal(sd_normals(base).x);
-  float reflectance = fresnel(-dot(dir, normal));
-  vec3 reflected = environment(entry, reflect(dir, normal));
+  vec2 footprint = reflection_footprint(p, dir, normal);
+  float reflectance = footprint.y;
+  vec3 reflected = environment_over(entry, reflect(dir, normal), footprint.x);
 
   float scale = length(ray);
   float inside = sd_inside(p);
