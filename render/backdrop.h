@@ -36,9 +36,29 @@ struct Backdrop {
 // ceil(w / 2) x ceil(h / 2) of the one below, whose texels hold the mean colour of the wall
 // pixels under them times their share, and that share (0 where no wall stands), all in one
 // array, level after level, rows from the top. Into `out` (its capacity reused).
-inline constexpr int kBackdropLevels =
-    8;  // wall_light's trilinear reach: up to 64-pixel footprints
+// kBackdropLevels is column_march.glsl's VX_BACKDROP_LEVELS (render/model/host.h checks).
+inline constexpr int kBackdropLevels = 8;
 void backdrop_pyramid(const Backdrop& backdrop, std::vector<glm::vec4>& out);
+
+// A renderer's pyramid of the backdrop it uses, made again only when the backdrop or its version
+// changes (a hand-made one of version 0: every time), and only for a refractive frame.
+class BackdropPyramid {
+ public:
+  // Whether the pyramid was made again for `backdrop` (kept alive by the caller).
+  bool update(const Backdrop& backdrop) {
+    if (of_ == &backdrop && version_ == backdrop.version && version_ != 0) return false;
+    backdrop_pyramid(backdrop, texels_);
+    of_ = &backdrop;
+    version_ = backdrop.version;
+    return true;
+  }
+  const std::vector<glm::vec4>& texels() const { return texels_; }
+
+ private:
+  std::vector<glm::vec4> texels_;
+  const Backdrop* of_ = nullptr;
+  std::uint64_t version_ = 0;
+};
 
 // Light `c` with transmittance `t` (a volume view's, premultiplied) over pixel (x, y) of the
 // backdrop: its colour behind them where a wall stands, or everywhere with `background` (the

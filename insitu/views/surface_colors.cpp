@@ -141,21 +141,22 @@ glm::dvec3 SurfaceColors::normal_at(int x, int y, glm::dvec3 dir) const {
   return glm::dot(n, dir) > 0 ? -n : n;
 }
 
-// The share pixel (x, y)'s first surface reflects, over its footprint as the shading takes it
-// (render/model/shade_modes.glsl, reflection_footprint): the mean of Schlick's term at the pixel's
-// normal and its hit neighbours' (a crest's rim otherwise beads into dots).
-double SurfaceColors::reflectance(int x, int y, double ior) const {
+// The share pixel (x, y)'s first surface reflects over its footprint, as the shading averages its
+// Fresnel term over the pixels a surface point links to (render/model/shade_modes.glsl,
+// reflection_footprint): here the mean of fresnel_ at the pixel and its coloured neighbours (a
+// crest's rim otherwise beads into dots).
+double SurfaceColors::reflectance(int x, int y) const {
   double sum = 0;
   int n = 0;
   for (int k = 0; k < 5; ++k) {
     const int i = x + (k == 1) - (k == 2), j = y + (k == 3) - (k == 4);
     if (i < 0 || j < 0 || i >= frame_.width || j >= frame_.height || std::isnan(value(i, j)))
       continue;
-    const glm::dvec3 dir = glm::normalize(frame_.world_ray(i, j));
-    sum += fresnel(-glm::dot(dir, normal_at(i, j, dir)), ior);
+    sum += fresnel_[std::size_t(
+        point_of_[std::size_t(i) + std::size_t(frame_.width) * std::size_t(j)])];
     ++n;
   }
-  return sum / n;  // n >= 1: (x, y) itself is hit
+  return sum / n;  // n >= 1: (x, y) itself is coloured
 }
 
 // The luminance that shows the map's colours as they are: the albedo's for an opaque surface (the
@@ -177,6 +178,18 @@ void SurfaceColors::paint(const ShadeOptions& shade, FloatImage& picture, BarSid
   const auto [lo, hi] = range();
   const double scale = 1.0 / (hi - lo);
   const float reference = reference_luminance(shade, picture);
+  if (shade.mode != ShadeMode::opaque) {
+    fresnel_.resize(points_.size());
+    for (int y = 0; y < frame_.height; ++y)
+      for (int x = 0; x < frame_.width; ++x) {
+        const std::int64_t p =
+            point_of_[std::size_t(x) + std::size_t(frame_.width) * std::size_t(y)];
+        if (p < 0) continue;
+        const glm::dvec3 dir = glm::normalize(frame_.world_ray(x, y));
+        fresnel_[std::size_t(p)] =
+            fresnel(-glm::dot(dir, normal_at(x, y, dir)), shade.material.ior);
+      }
+  }
   for (int y = 0; y < picture.height; ++y)
     for (int x = 0; x < picture.width; ++x) {
       const double v = value(x, y);
@@ -188,7 +201,7 @@ void SurfaceColors::paint(const ShadeOptions& shade, FloatImage& picture, BarSid
       if (shade.mode == ShadeMode::opaque) {
         out = with_hue(shaded, mapped, reference);
       } else {
-        const float r = float(reflectance(x, y, shade.material.ior));
+        const float r = float(reflectance(x, y));
         out = r * shaded + (1 - r) * with_hue(shaded, mapped, reference);
       }
       picture.set(x, y, glm::vec4(out, c.a));

@@ -74,7 +74,7 @@ class SurfaceColors {
  private:
   void sum_ranks(const ParticleView& particles);
   glm::dvec3 normal_at(int x, int y, glm::dvec3 dir) const;
-  double reflectance(int x, int y, double ior) const;
+  double reflectance(int x, int y) const;
   float reference_luminance(const ShadeOptions& shade, const FloatImage& picture) const;
 
   const ColorBySettings settings_;
@@ -86,7 +86,8 @@ class SurfaceColors {
   std::vector<float> distances_;        // per pixel, from the shading process
   std::vector<std::int64_t> point_of_;  // per pixel: its index in points_, -1: no hit
   std::vector<glm::dvec3> points_;
-  std::vector<double> values_;  // per point; NaN where no particle reaches
+  std::vector<double> values_;           // per point; NaN where no particle reaches
+  mutable std::vector<double> fresnel_;  // per point, paint's: Schlick's term at its normal
   SphPoints sums_;
 };
 

@@ -119,11 +119,14 @@ class CpuRenderer::Passes final : public SurfacePasses {
     RefractTally tally;
     tally.dispatches =
         refract_dispatch_limit(spans.width(), spans.height(), tallies_.most_spans, options);
-    host.use_backdrop(r_.backdrop_ != nullptr ? &r_.backdrop_->pixels : nullptr);
-    if (options.mode == ShadeMode::refractive) {
-      if (r_.backdrop_ != nullptr) host.use_backdrop(&r_.refraction_pyramid());
-      host.gather_block_bounds();
-    } else if (r_.backdrop_ == nullptr) host.use_background(r_.background_);
+    const bool refractive = options.mode == ShadeMode::refractive;
+    const Backdrop* walls = r_.backdrop_;
+    if (walls != nullptr && refractive) r_.pyramid_.update(*walls);
+    host.use_backdrop(walls == nullptr ? nullptr
+                      : refractive     ? &r_.pyramid_.texels()
+                                       : &walls->pixels);
+    if (refractive) host.gather_block_bounds();
+    else if (walls == nullptr) host.use_background(r_.background_);
     if (image.width != spans.width() || image.height != spans.height())
       image = FloatImage(spans.width(), spans.height());
     tally.unfinished = host.shade(options.mode, tally.dispatches, options.march_budget, image);
@@ -136,16 +139,6 @@ class CpuRenderer::Passes final : public SurfacePasses {
   const Tallies& tallies_;
   FloatImage& image_;
 };
-
-const std::vector<glm::vec4>& CpuRenderer::refraction_pyramid() {
-  const Backdrop& b = *backdrop_;
-  if (pyramid_of_ != &b || pyramid_version_ != b.version || b.version == 0) {
-    backdrop_pyramid(b, pyramid_);
-    pyramid_of_ = &b;
-    pyramid_version_ = b.version;
-  }
-  return pyramid_;
-}
 
 void CpuRenderer::shade(const SpanImage& spans, const SurfaceOptions& surfaces,
                         const ShadeOptions& shade, Recorder& recorder, FloatImage& image) {

@@ -18,7 +18,6 @@
 // no layers.
 #pragma once
 
-#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -63,8 +62,7 @@ class CpuRenderer {
   std::span<const glm::vec2> surface_depths() const { return buffers_.depths; }
 
  private:
-  class Passes;                                        // this renderer's SurfacePasses
-  const std::vector<glm::vec4>& refraction_pyramid();  // of backdrop_, which is set
+  class Passes;  // this renderer's SurfacePasses
 
   SpanCaster caster_;
   SpanImage spans_;
@@ -73,11 +71,7 @@ class CpuRenderer {
   std::vector<model::vec2> next_depths_;  // the filter's other buffer
   model::BackgroundCache background_;     // behind the pixels, while the camera stays
   const Backdrop* backdrop_ = nullptr;
-  // backdrop_'s pyramid for the refracted rays (backdrop_pyramid), made again when the backdrop
-  // or its version changes (a hand-made one of version 0: every frame).
-  std::vector<glm::vec4> pyramid_;
-  const Backdrop* pyramid_of_ = nullptr;
-  std::uint64_t pyramid_version_ = 0;
+  BackdropPyramid pyramid_;  // backdrop_'s, for refracted rays
 };
 
 }  // namespace voxspan

@@ -19,7 +19,8 @@ class Renderer::Passes final : public SurfacePasses {
     r_.filter_.run(spans_, r_.surfaces_, options, iterations);
   }
   void normals(const SurfaceOptions& options) override {
-    r_.normals_.run(spans_, r_.surfaces_, r_.backdrop_, r_.backdrop_in_use_, options.fold_step);
+    r_.normals_.run(spans_, r_.surfaces_, r_.backdrop_, r_.backdrop_given_ != nullptr,
+                    options.fold_step);
   }
   void deep_ao() override { r_.deep_ao_.run(spans_, r_.surfaces_, uniforms_); }
   RefractTally shade(const ShadeOptions& options) override {
@@ -31,6 +32,7 @@ class Renderer::Passes final : public SurfacePasses {
         r_.translucent_.run(spans_, r_.surfaces_, uniforms_, r_.backdrop_, r_.image_);
         break;
       case ShadeMode::refractive:
+        r_.upload_pyramid();
         return r_.refractive_.run(spans_, r_.surfaces_, uniforms_, options, r_.backdrop_,
                                   r_.image_);
     }
@@ -55,13 +57,21 @@ Renderer::Renderer(const gl::ShaderLibrary& shaders)
 }
 
 void Renderer::use_backdrop(const Backdrop* backdrop) {
-  backdrop_in_use_ = backdrop != nullptr;
+  backdrop_given_ = backdrop;
   if (backdrop == nullptr || backdrop->version == backdrop_version_) return;
-  backdrop_pyramid(*backdrop, pyramid_);  // the refracted rays' (render/model/column_march.glsl)
-  const std::size_t bytes = pyramid_.size() * sizeof(glm::vec4);
+  const std::size_t bytes = backdrop->pixels.size() * sizeof(glm::vec4);
   backdrop_.reserve(bytes);
-  backdrop_.upload(pyramid_.data(), bytes);
+  backdrop_.upload(backdrop->pixels.data(), bytes);
   backdrop_version_ = backdrop->version;
+}
+
+// The pyramid after the pixels, in the same buffer (the other passes read only the pixels).
+void Renderer::upload_pyramid() {
+  if (backdrop_given_ == nullptr || !pyramid_.update(*backdrop_given_)) return;
+  const std::vector<glm::vec4>& texels = pyramid_.texels();
+  const std::size_t bytes = texels.size() * sizeof(glm::vec4);
+  backdrop_.reserve(bytes);
+  backdrop_.upload(texels.data(), bytes);
 }
 
 const GpuFloatImage& Renderer::render(const Camera& camera,
@@ -79,7 +89,7 @@ const GpuFloatImage& Renderer::shade(const GpuSpanImage& spans, const SurfaceOpt
                                      const ShadeOptions& shade, Recorder& recorder) {
   validate(surfaces);  // before the shading's options, as render() checks them
   model::ShadeUniforms uniforms = model::shade_uniforms(shade);
-  uniforms.u_use_backdrop = backdrop_in_use_ ? 1 : 0;
+  uniforms.u_use_backdrop = backdrop_given_ != nullptr ? 1 : 0;
   Passes passes(*this, spans, uniforms);
   passes.run(spans.grid(), spans.span_count() > 0, surfaces, shade, recorder);
   gl::check_error("shading a frame");

@@ -15,7 +15,6 @@
 // elsewhere (e.g. one composited from several ranks).
 #pragma once
 
-#include <vector>
 #include <span>
 
 #include "render/gl/gpu_float_image.h"
@@ -53,7 +52,8 @@ class Renderer {
                               Recorder& recorder);
 
   // The backdrop behind the fluid for the frames that follow (render/backdrop.h; null: the
-  // environment), the image's size; copied to the GPU when its version is new.
+  // environment), the image's size, kept alive by the caller while in use; copied to the GPU
+  // when its version is new, its pyramid too before a refractive frame.
   void use_backdrop(const Backdrop* backdrop);
   // The last backdrop's pixels on the GPU (one unused pixel before any).
   const gl::Buffer& backdrop_buffer() const { return backdrop_; }
@@ -67,7 +67,8 @@ class Renderer {
   Voxelizer& voxelizer() { return voxelizer_; }
 
  private:
-  class Passes;  // this renderer's SurfacePasses
+  class Passes;           // this renderer's SurfacePasses
+  void upload_pyramid();  // of backdrop_given_, after its pixels, where it is new
 
   Voxelizer voxelizer_;
   ConnectPass connect_;
@@ -80,8 +81,8 @@ class Renderer {
   GpuFloatImage image_;
   gl::Buffer backdrop_;
   std::uint64_t backdrop_version_ = 0;
-  std::vector<glm::vec4> pyramid_;  // the backdrop and its pyramid, as uploaded
-  bool backdrop_in_use_ = false;
+  const Backdrop* backdrop_given_ = nullptr;  // use_backdrop's, kept alive by the caller
+  BackdropPyramid pyramid_;                   // its, after its pixels in backdrop_ (refraction)
 };
 
 }  // namespace voxspan

@@ -417,34 +417,36 @@ RayState march_step(RayState s) {
 //
 // Host needs: vec4 sd_backdrop_texel(uint) (the pyramid's entries), vec2 sd_landing(ivec2) (where
 // pixel q's ray ended on the walls, image_position of its origin; x < 0 where it did not).
-#define VX_WALL_MAX_RADIUS 32.0f  // pixels: wider footprints (a grazing ray) take this one
+#define VX_BACKDROP_LEVELS 8  // render/backdrop.h's kBackdropLevels: footprints up to 64 pixels
 
 ivec2 backdrop_level_size(int level) {
   return ivec2((u_image.x + (1 << level) - 1) >> level, (u_image.y + (1 << level) - 1) >> level);
 }
 
-// Texel t of pyramid level `level`, clamped to the level: (rgb times the wall share, the share).
-vec4 backdrop_texel(int level, ivec2 t) {
-  uint offset = 0u;
-  for (int l = 0; l < level; ++l) {
-    ivec2 size = backdrop_level_size(l);
-    offset += uint(size.x) * uint(size.y);
-  }
-  ivec2 size = backdrop_level_size(level);
+// Texel t, clamped, of the level of `size` that starts at `offset` in the pyramid: (rgb times the
+// wall share, the share); level 0 holds the backdrop's (rgb, depth).
+vec4 backdrop_texel(uint offset, ivec2 size, ivec2 t) {
   t = clamp(t, ivec2(0), size - ivec2(1));
   vec4 b = sd_backdrop_texel(offset + uint(t.x) + uint(t.y) * uint(size.x));
-  if (level > 0) return b;
+  if (offset > 0u) return b;
   return b.w < 3.0e38f ? vec4(vec3(b), 1.0f) : vec4(0.0f);
 }
 
 // Bilinear between level `level`'s texels around image position xy (level 0 pixels).
 vec4 backdrop_bilinear(int level, vec2 xy) {
+  uint offset = 0u;
+  for (int l = 0; l < level; ++l) {
+    ivec2 below = backdrop_level_size(l);
+    offset += uint(below.x) * uint(below.y);
+  }
+  ivec2 size = backdrop_level_size(level);
   vec2 t = xy / float(1 << level) - vec2(0.5f);
   ivec2 t0 = ivec2(floor(t));
   vec2 f = t - floor(t);
-  vec4 top = mix(backdrop_texel(level, t0), backdrop_texel(level, t0 + ivec2(1, 0)), f.x);
-  vec4 bottom =
-      mix(backdrop_texel(level, t0 + ivec2(0, 1)), backdrop_texel(level, t0 + ivec2(1, 1)), f.x);
+  vec4 top = mix(backdrop_texel(offset, size, t0),
+                 backdrop_texel(offset, size, t0 + ivec2(1, 0)), f.x);
+  vec4 bottom = mix(backdrop_texel(offset, size, t0 + ivec2(0, 1)),
+                    backdrop_texel(offset, size, t0 + ivec2(1, 1)), f.x);
   return mix(top, bottom, f.y);
 }
 
@@ -457,12 +459,13 @@ float landing_radius(ivec2 p, vec2 land) {
     vec2 other = sd_landing(q);
     if (other.x >= 0.0f) radius = max(radius, 0.5f * length(other - land));
   }
-  return min(radius, VX_WALL_MAX_RADIUS);
+  return radius;
 }
 
-// The walls' colour seen by the ray of pixel p that ended on them at image position `land`.
+// The walls' colour seen by the ray of pixel p that ended on them at image position `land`;
+// wider footprints than the pyramid's top but one (a grazing ray) take that level's.
 vec3 wall_light(ivec2 p, vec2 land) {
-  float lod = log2(2.0f * landing_radius(p, land));
+  float lod = min(log2(2.0f * landing_radius(p, land)), float(VX_BACKDROP_LEVELS - 2));
   int level = int(floor(lod));
   vec4 c =
       mix(backdrop_bilinear(level, land), backdrop_bilinear(level + 1, land), lod - float(level));

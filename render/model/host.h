@@ -15,6 +15,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "render/backdrop.h"
 #include "render/float_image.h"
 #include "render/model/glsl_cpp.h"
 #include "render/model/shade_uniforms.h"
@@ -218,9 +219,12 @@ class Host : public GridUniforms, public ShadeUniforms {
       });
       return 0;
     }
-    const std::size_t pixels = std::size_t(u_image.x) * std::size_t(u_image.y);
-    landings_.assign(pixels, vec2(-1.0f));
-    wall_weights_.resize(pixels);
+    const bool walls = u_use_backdrop != 0;  // rays end on walls only where there are some
+    if (walls) {
+      const std::size_t pixels = std::size_t(u_image.x) * std::size_t(u_image.y);
+      landings_.assign(pixels, vec2(-1.0f));
+      wall_weights_.resize(pixels);
+    }
     std::atomic<std::int64_t> unfinished{0};
     each_pixel([&](ivec2 p) {
       RayState s = ray_start(p);
@@ -234,7 +238,7 @@ class Host : public GridUniforms, public ShadeUniforms {
       landings_[pixel_index(p)] = image_position(s.origin);
       wall_weights_[pixel_index(p)] = s.throughput;
     });
-    if (u_use_backdrop != 0)
+    if (walls)
       each_pixel([&](ivec2 p) {
         const vec2 land = landings_[pixel_index(p)];
         if (land.x < 0.0f) return;
@@ -252,5 +256,7 @@ class Host : public GridUniforms, public ShadeUniforms {
   std::vector<vec2> block_bounds_, block_inside_;
   int blocks_x_ = 1;
 };
+
+static_assert(VX_BACKDROP_LEVELS == kBackdropLevels, "render/backdrop.h and column_march.glsl");
 
 }  // namespace voxspan::model

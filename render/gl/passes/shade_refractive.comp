@@ -67,7 +67,8 @@ RayRecord pack_ray(RayState s) {
   r.color = vec4(s.color, s.anchor.z);
   r.last = ivec4(s.last_pixel, s.last_span, int(s.last_end));
   r.ints = ivec4(s.pixel, s.hint,
-                 s.bounces | (s.inside ? 1 << 16 : 0) | (s.marching ? 1 << 17 : 0) | (s.on_wall ? 1 << 18 : 0));
+                 s.bounces | (s.inside ? 1 << 16 : 0) | (s.marching ? 1 << 17 : 0) |
+                     (s.on_wall ? 1 << 18 : 0));
   return r;
 }
 
@@ -128,7 +129,7 @@ void main() {
   RayState s = unpack_ray(rays[i]);
   if (s.marching) s = ray_leave(s);
   vec3 c = s.color;
-  if (s.on_wall && u_use_backdrop != 0) c += s.throughput * wall_light(thread_pixel(i), image_position(s.origin));
+  if (s.on_wall) c += s.throughput * wall_light(thread_pixel(i), image_position(s.origin));
   shaded[i] = vec4(c, 1.0);
 #endif
 }
