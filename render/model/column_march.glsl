@@ -15,21 +15,25 @@
 // total internal reflection), is absorbed (Beer-Lambert) and lit by scattering along every
 // stretch inside, and leaves to the environment at the grid's boundary, or ends on the ground
 // (opaque, the fluid resting on it) where it reaches the ground plane. After `u_bounces` hits
-// past the first entry it goes straight on, still absorbed.
+// past the first entry it goes straight on, still absorbed. What a ray sees where it ends (the
+// environment or the walls) is added once the neighbouring pixels' rays have ended too
+// (environment_light, wall_light): water spreads their rays apart, and each takes the mean over
+// its footprint.
 //
 // One call of march_step() handles one event (a boundary crossed or a column left), so the
 // caller bounds the work per shader invocation (llvmpipe stops an invocation after 65535 loop
 // iterations) and resumes the RayState in a later dispatch.
 //
 // Host needs: links.glsl, surface_geometry.glsl, octahedral.glsl, lighting.glsl, shade_modes.glsl
-// and their needs; u_bounces, u_near, u_grid_far, u_log2_step, u_ground_contact, u_wall_contact; vec2
-// sd_block_bounds(ivec2): the nearest entry and farthest exit depth in a block of VX_BLOCK^2
-// columns ((3e38, -3e38) when it holds no span; with a backdrop, a block with walls reaches from
-// its nearest wall depth, or nearer entry, to 3e38, so that no ray skips a wall), and vec2
-// sd_block_inside(ivec2): the largest entry and the smallest exit of the columns' first spans
-// (x = 3e38 when a column has none), both over the surface depths; u_use_backdrop and, when it
-// is set, vec4 sd_backdrop(ivec2) (the colour, and in the last component the walls' depth) and
-// wall_light()'s needs (below).
+// and their needs; u_bounces, u_near, u_grid_far, u_log2_step, u_ground_contact,
+// u_wall_contact; vec2 sd_block_bounds(ivec2): the nearest entry and farthest exit depth in a
+// block of VX_BLOCK^2 columns ((3e38, -3e38) when it holds no span; with a backdrop, a block
+// with walls reaches from its nearest wall depth, or nearer entry, to 3e38, so that no ray skips
+// a wall), and vec2 sd_block_inside(ivec2): the largest entry and the smallest exit of the
+// columns' first spans (x = 3e38 when a column has none), both over the surface depths; vec4
+// sd_leaving(ivec2) (where pixel q's ray left to the environment: its direction in xyz, w = 1;
+// w = 0 where it did not); u_use_backdrop and, when it is set, vec4 sd_backdrop(ivec2) (the
+// colour, and in the last component the walls' depth) and wall_light()'s needs (below).
 #ifndef VX_MODEL_COLUMN_MARCH
 #define VX_MODEL_COLUMN_MARCH
 
@@ -52,7 +56,8 @@ struct RayState {
   int bounces;      // hits left that bend the ray
   bool inside;
   bool marching;
-  bool on_wall;     // ended on the walls at `origin`: their light comes from wall_light()
+  bool on_wall;     // ended on the walls at `origin`
+  bool left;        // left to the environment from `anchor` along `dir`
   float occlusion;  // of the start pixel's front surface (deep AO), scales the scattering
 };
 
@@ -125,12 +130,15 @@ RayState ray_start(ivec2 p) {
   s.inside = false;
   s.marching = true;
   s.on_wall = false;
+  s.left = false;
   s.occlusion = pixel_occlusion(p);
   return s;
 }
 
+// The ray leaves to the environment (or ends on the ground, which is part of it): its host adds
+// what it sees there (environment_light).
 RayState ray_leave(RayState s) {
-  s.color += s.throughput * environment(view_to_world_point(s.anchor), view_to_world_direction(s.dir));
+  s.left = true;
   s.marching = false;
   return s;
 }
@@ -143,9 +151,8 @@ float wall_depth(ivec2 q) { return u_use_backdrop != 0 ? sd_backdrop(q).w : 3.0e
 
 // Moves the ray to `point`, absorbing and scattering on the way when inside. The walls and the
 // ground are opaque: a ray that reaches its column's walls (the backdrop's depth there: in
-// screen space, as the fluid's own surfaces) ends on them (on_wall: wall_light() adds their colour
-// once the neighbouring pixels' rays have ended too); one that reaches the ground, from inside or
-// outside, ends there and takes its colour. Without this, a ray in water lying on the ground would reach the
+// screen space, as the fluid's own surfaces) ends on them; one that reaches the ground, from
+// inside or outside, ends there. Without this, a ray in water lying on the ground would reach the
 // union's bottom, just below the plane, and meet it as a free surface: past the critical angle
 // it reflects totally and runs on inside the thin layer (the refraction's speckles).
 RayState ray_advance(RayState s, vec3 point) {
@@ -184,15 +191,20 @@ RayState ray_interface(RayState s, vec3 n, bool entering) {
     s.inside = entering;
     return s;
   }
+  bool front = s.bounces > u_bounces;  // the first hit: the pixel's front surface
   s.bounces -= 1;
   s.anchor = s.origin;
   vec3 d = s.dir;
   if (entering) {
     if (!(dot(n, d) < 0.0f)) n = -d;  // a normal the ray cannot enter through: no bending
-    float f = fresnel(-dot(n, d));
-    s.color += s.throughput * f *
-               environment(view_to_world_point(s.origin), view_to_world_direction(reflect(d, n)));
-    s.throughput *= 1.0f - f;
+    // The front surface reflects over its footprint, as the translucent mode's does.
+    vec2 footprint = front ? reflection_footprint(s.pixel, view_to_world_direction(d),
+                                                  view_to_world_direction(n))
+                           : vec2(0.0f, fresnel(-dot(n, d)));
+    s.color += s.throughput * footprint.y *
+               environment_over(view_to_world_point(s.origin),
+                                view_to_world_direction(reflect(d, n)), footprint.x);
+    s.throughput *= 1.0f - footprint.y;
     s.dir = normalize(refract(d, n, 1.0f / u_ior));
     s.inside = true;
   } else {
@@ -450,11 +462,16 @@ vec4 backdrop_bilinear(int level, vec2 xy) {
   return mix(top, bottom, f.y);
 }
 
+// Pixel p's neighbour k: left, right, up, down.
+ivec2 side_neighbour(ivec2 p, int k) {
+  return p + (k < 2 ? ivec2(2 * k - 1, 0) : ivec2(0, 2 * k - 5));
+}
+
 // Half the footprint, in pixels, of the ray of pixel p that ended on the walls at `land`.
 float landing_radius(ivec2 p, vec2 land) {
   float radius = 0.5f;
   for (int k = 0; k < 4; ++k) {
-    ivec2 q = p + (k < 2 ? ivec2(2 * k - 1, 0) : ivec2(0, 2 * k - 5));  // left, right, up, down
+    ivec2 q = side_neighbour(p, k);
     if (!in_image(q)) continue;
     vec2 other = sd_landing(q);
     if (other.x >= 0.0f) radius = max(radius, 0.5f * length(other - land));
@@ -472,6 +489,29 @@ vec3 wall_light(ivec2 p, vec2 land) {
   if (c.w > 0.0f) return vec3(c) / c.w;
   ivec2 q = clamp(ivec2(floor(land)), ivec2(0), u_image - ivec2(1));
   return vec3(sd_backdrop(q));
+}
+
+// Half the angle of the footprint of the ray of pixel p that left to the environment along
+// `dir`: half the largest angle to the directions the four neighbours' rays left along.
+float leaving_spread(ivec2 p, vec3 dir) {
+  float spread = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    ivec2 q = side_neighbour(p, k);
+    if (!in_image(q)) continue;
+    vec4 other = sd_leaving(q);
+    if (other.w > 0.0f)
+      spread = max(spread, 0.5f * acos(clamp(dot(dir, vec3(other)), -1.0f, 1.0f)));
+  }
+  return spread;
+}
+
+// The environment's light seen by the ray of pixel p that left to it from `anchor` along `dir`
+// (view space). Water bends the environment's picture as it bends the walls', and the ground's
+// checker is as fine: a ray that met the fluid (`bent`) takes the environment's mean over its
+// footprint (environment_over); one that did not, the point the other modes' background takes.
+vec3 environment_light(ivec2 p, vec3 anchor, vec3 dir, bool bent) {
+  float spread = bent ? leaving_spread(p, dir) : 0.0f;
+  return environment_over(view_to_world_point(anchor), view_to_world_direction(dir), spread);
 }
 
 // At most `budget` events.

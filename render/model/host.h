@@ -24,6 +24,16 @@
 
 namespace voxspan::model {
 
+// How a refracted ray ended (render/model/column_march.glsl's RayState, what its environment_light
+// and its neighbours' read).
+struct RayEnd {
+  vec3 throughput;
+  vec3 anchor;  // view space: where it left from, when it left
+  vec3 dir;     // view space
+  bool left;    // to the environment
+  bool bent;    // by the fluid, once at least
+};
+
 // The host's per-frame vectors, which a caller keeps from frame to frame and swaps in and out
 // (Host::swap_buffers), so that a steady frame allocates nothing.
 struct HostBuffers {
@@ -31,7 +41,7 @@ struct HostBuffers {
   std::vector<float> ao;
   std::vector<vec2> depths, block_bounds, block_inside;
   std::vector<vec2> landings;
-  std::vector<vec3> wall_weights;
+  std::vector<RayEnd> ends;
 };
 
 // What lies behind every pixel (shade_modes.glsl's sd_background), which a caller keeps from
@@ -60,9 +70,9 @@ class Host : public GridUniforms, public ShadeUniforms {
   // render/model/links.glsl's: 0, no folds.
   float u_fold_step = 0.0f;
   // Refraction's, per pixel (shade fills them): where its ray ended on the walls (x < 0: it did
-  // not), and the throughput it arrived there with.
+  // not), and how it ended.
   std::vector<vec2> landings_;
-  std::vector<vec3> wall_weights_;
+  std::vector<RayEnd> ends_;
 
   uint sd_count(ivec2 p) const { return record(p).count; }
   uint sd_offset(ivec2 p) const { return record(p).offset; }
@@ -88,6 +98,10 @@ class Host : public GridUniforms, public ShadeUniforms {
   vec4 sd_backdrop(ivec2 p) const { return (*backdrop_)[pixel_index(p)]; }
   vec4 sd_backdrop_texel(uint i) const { return (*backdrop_)[i]; }
   vec2 sd_landing(ivec2 p) const { return landings_[pixel_index(p)]; }
+  vec4 sd_leaving(ivec2 p) const {
+    const RayEnd& e = ends_[pixel_index(p)];
+    return e.left ? vec4(e.dir, 1.0f) : vec4(0.0f);
+  }
   float sd_wall_depth(ivec2 p) const {
     return backdrop_ != nullptr ? (*backdrop_)[pixel_index(p)].w : 3.0e38f;
   }
@@ -164,7 +178,7 @@ class Host : public GridUniforms, public ShadeUniforms {
     depths_.swap(b.depths);
     block_bounds_.swap(b.block_bounds);
     landings_.swap(b.landings);
-    wall_weights_.swap(b.wall_weights);
+    ends_.swap(b.ends);
     block_inside_.swap(b.block_inside);
   }
 
@@ -208,9 +222,9 @@ class Host : public GridUniforms, public ShadeUniforms {
 
   // Every pixel's colour in `mode` into `image` (the span image's size). Refraction runs the
   // GPU's dispatches one after the other (at most `dispatches`, each `budget` column events),
-  // then, as its resolve dispatch, adds the walls' light where rays ended on them (wall_light
-  // reads the neighbouring pixels' ends). Returns the rays still marching after the dispatches,
-  // sent to the environment.
+  // then, as its resolve dispatch, adds what each ray sees where it ended (environment_light and
+  // wall_light read the neighbouring pixels' ends). Returns the rays still marching after the
+  // dispatches, sent to the environment.
   std::int64_t shade(ShadeMode mode, int dispatches, int budget, FloatImage& image) {
     if (mode != ShadeMode::refractive) {
       each_pixel([&](ivec2 p) {
@@ -219,12 +233,9 @@ class Host : public GridUniforms, public ShadeUniforms {
       });
       return 0;
     }
-    const bool walls = u_use_backdrop != 0;  // rays end on walls only where there are some
-    if (walls) {
-      const std::size_t pixels = std::size_t(u_image.x) * std::size_t(u_image.y);
-      landings_.assign(pixels, vec2(-1.0f));
-      wall_weights_.resize(pixels);
-    }
+    const std::size_t pixels = std::size_t(u_image.x) * std::size_t(u_image.y);
+    landings_.resize(pixels);
+    ends_.resize(pixels);
     std::atomic<std::int64_t> unfinished{0};
     each_pixel([&](ivec2 p) {
       RayState s = ray_start(p);
@@ -234,17 +245,17 @@ class Host : public GridUniforms, public ShadeUniforms {
         s = ray_leave(s);
       }
       image.set(p.x, p.y, vec4(s.color, 1.0f));
-      if (!s.on_wall) return;
-      landings_[pixel_index(p)] = image_position(s.origin);
-      wall_weights_[pixel_index(p)] = s.throughput;
+      landings_[pixel_index(p)] = s.on_wall ? image_position(s.origin) : vec2(-1.0f);
+      ends_[pixel_index(p)] = {s.throughput, s.anchor, s.dir, s.left, s.bounces <= u_bounces};
     });
-    if (walls)
-      each_pixel([&](ivec2 p) {
-        const vec2 land = landings_[pixel_index(p)];
-        if (land.x < 0.0f) return;
-        const vec3 light = wall_weights_[pixel_index(p)] * wall_light(p, land);
-        image.set(p.x, p.y, image.at(p.x, p.y) + vec4(light, 0.0f));
-      });
+    each_pixel([&](ivec2 p) {
+      const vec2 land = landings_[pixel_index(p)];
+      const RayEnd& e = ends_[pixel_index(p)];
+      vec3 light(0.0f);
+      if (land.x >= 0.0f) light = e.throughput * wall_light(p, land);
+      if (e.left) light = e.throughput * environment_light(p, e.anchor, e.dir, e.bent);
+      image.set(p.x, p.y, image.at(p.x, p.y) + vec4(light, 0.0f));
+    });
     return unfinished.load();
   }
 

@@ -3,8 +3,8 @@
 // REFRACT_BEGIN starts every ray at the eye and gathers the depth bounds of each 8 x 8 block
 // (for skipping empty space); REFRACT_MARCH advances each marching ray by at most
 // u_march_budget column events and counts the rays still marching; REFRACT_RESOLVE sends the rays
-// still marching to the environment, adds the walls' light where rays ended on them (over the
-// footprint the neighbouring rays' ends give: wall_light) and writes every pixel's colour.
+// still marching to the environment, adds what each ray sees where it ended (over the footprint
+// the neighbouring rays' ends give: wall_light, environment_light) and writes every pixel's colour.
 layout(local_size_x = 64) in;
 
 #include "render/gl/passes/shade_common.glsl"
@@ -38,7 +38,8 @@ struct RayRecord {
   vec4 dir;         // xyz; w: anchor x
   vec4 throughput;  // xyz; w: anchor y
   vec4 color;       // xyz; w: anchor z
-  ivec4 ints;       // pixel x, pixel y, hint, bounces | inside << 16 | marching << 17 | on_wall << 18
+  ivec4 ints;       // pixel x, pixel y, hint,
+                    // bounces | inside << 16 | marching << 17 | on_wall << 18 | left << 19
   ivec4 last;       // last_pixel x, y, last_span, last_end
 };
 layout(std430, binding = RAYS_BINDING) buffer Rays { RayRecord rays[]; };
@@ -47,6 +48,13 @@ layout(std430, binding = RAYS_BINDING) buffer Rays { RayRecord rays[]; };
 vec2 sd_landing(ivec2 q) {
   RayRecord r = rays[q.x + q.y * u_image.x];
   return (r.ints.w & (1 << 18)) != 0 ? image_position(r.origin.xyz) : vec2(-1.0);
+}
+
+// Where pixel q's ray left to the environment (column_march.glsl's leaving_spread): a ray still
+// marching leaves in the resolve dispatch, along its direction.
+vec4 sd_leaving(ivec2 q) {
+  RayRecord r = rays[q.x + q.y * u_image.x];
+  return (r.ints.w & ((1 << 17) | (1 << 19))) != 0 ? vec4(r.dir.xyz, 1.0) : vec4(0.0);
 }
 
 #include "render/model/column_march.glsl"
@@ -68,7 +76,7 @@ RayRecord pack_ray(RayState s) {
   r.last = ivec4(s.last_pixel, s.last_span, int(s.last_end));
   r.ints = ivec4(s.pixel, s.hint,
                  s.bounces | (s.inside ? 1 << 16 : 0) | (s.marching ? 1 << 17 : 0) |
-                     (s.on_wall ? 1 << 18 : 0));
+                     (s.on_wall ? 1 << 18 : 0) | (s.left ? 1 << 19 : 0));
   return r;
 }
 
@@ -89,6 +97,7 @@ RayState unpack_ray(RayRecord r) {
   s.inside = (r.ints.w & (1 << 16)) != 0;
   s.marching = (r.ints.w & (1 << 17)) != 0;
   s.on_wall = (r.ints.w & (1 << 18)) != 0;
+  s.left = (r.ints.w & (1 << 19)) != 0;
   return s;
 }
 
@@ -128,8 +137,10 @@ void main() {
 #else
   RayState s = unpack_ray(rays[i]);
   if (s.marching) s = ray_leave(s);
+  ivec2 p = thread_pixel(i);
   vec3 c = s.color;
-  if (s.on_wall) c += s.throughput * wall_light(thread_pixel(i), image_position(s.origin));
+  if (s.on_wall) c += s.throughput * wall_light(p, image_position(s.origin));
+  if (s.left) c += s.throughput * environment_light(p, s.anchor, s.dir, s.bounces <= u_bounces);
   shaded[i] = vec4(c, 1.0);
 #endif
 }

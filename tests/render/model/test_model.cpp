@@ -2,7 +2,7 @@
 // (and the GPU's compilation of the same file against the CPU's), Fresnel, Snell's law and
 // total internal reflection, the environment, Beer-Lambert over spans (exact past a span cap)
 // and a straight path through a flat slab, each against numbers worked out by hand; the walls'
-// light for refracted rays over their footprints (the backdrop's pyramid).
+// and the environment's light for refracted rays over their footprints (the backdrop's pyramid).
 #include <cmath>
 #include <random>
 
@@ -128,6 +128,47 @@ TEST(Model, RefractedRaysSeeTheWallsOverTheirFootprint) {
   }
 }
 
+// A ray of pixel (1, 1) of 3 x 3 leaving from 1 above the middle of a light checker tile straight
+// down, its neighbours' rays `spread` radians beside it (half the angle between them): the
+// environment it sees (environment_light), `bent` by the fluid or not.
+glm::vec3 environment_light_with_spread(float spread, bool bent) {
+  const SpanImage none = test::hand_made(3, 3, std::vector<std::vector<Span>>(9));
+  ShadeOptions o = test::test_shading(ShadeMode::refractive);
+  o.environment.ground_height = 0;
+  o.environment.ground_tile = 0.1;
+  o.environment.sun_color = {0, 0, 0};
+  Host host(none, model::shade_uniforms(o));
+  const glm::vec3 up = host.u_env_up;
+  const glm::vec3 across = host.u_env_axis_a;
+  // (0.05, 0.05) along the ground's axes: the middle of the tile at the origin.
+  const glm::vec3 start = 0.05f * (host.u_env_axis_a + host.u_env_axis_b) + up;
+  const glm::vec3 anchor = host.world_to_view_direction(start - host.u_eye);
+  host.ends_.assign(9, {});
+  for (int k = 0; k < 9; ++k) {
+    const glm::vec3 world =
+        k == 4 ? -up : std::cos(2 * spread) * -up + std::sin(2 * spread) * across;
+    host.ends_[std::size_t(k)] = {glm::vec3(1), anchor, host.world_to_view_direction(world), true,
+                                  bent};
+  }
+  return host.environment_light({1, 1}, anchor, host.ends_[4].dir, bent);
+}
+
+TEST(Model, RefractedRaysSeeTheEnvironmentOverTheirFootprint) {
+  // Neighbours close by: the tile's own colour, as a point sample; far apart (a footprint 2 x 0.2
+  // wide from 1 above the ground: four tiles): the mean of the light and dark tiles.
+  const glm::vec3 point = environment_light_with_spread(1e-4f, true);
+  const glm::vec3 wide = environment_light_with_spread(0.2f, true);
+  ShadeOptions o = test::test_shading(ShadeMode::refractive);
+  const float light = float(o.environment.ground_light.r);
+  const float dark = float(o.environment.ground_dark.r);
+  EXPECT_NEAR(point.r, environment_light_with_spread(0, true).r, 1e-6);
+  EXPECT_GT(std::abs(point.r - wide.r), 0.25f * (light - dark)) << point.r << " " << wide.r;
+  EXPECT_GT(wide.r, dark + 0.25f * (light - dark));
+  EXPECT_LT(wide.r, light - 0.25f * (light - dark));
+  // A ray the fluid did not bend sees the point the other modes' background sees.
+  EXPECT_EQ(environment_light_with_spread(0.2f, false), environment_light_with_spread(0, false));
+}
+
 TEST(Model, FresnelAndSnell) {
   const SpanImage none = test::hand_made(1, 1, {{}});
   Host host(none, model::shade_uniforms(test::test_shading(ShadeMode::refractive)));
@@ -141,6 +182,7 @@ TEST(Model, FresnelAndSnell) {
   for (float degrees : {0.0f, 20.0f, 45.0f, 70.0f}) {
     const float a = glm::radians(degrees);
     Host::RayState s = host.ray_start({0, 0});
+    s.bounces = host.u_bounces;  // past the pixel's front surface (which has no span here)
     s.dir = glm::vec3(std::sin(a), 0.0f, std::cos(a));
     s.throughput = glm::vec3(1.0f);
     s.color = glm::vec3(0.0f);
