@@ -52,15 +52,38 @@ vec3 ground_color(vec3 hit, float distance, float width) {
   return mix(ground, u_sky_horizon, fade);
 }
 
-// Radiance arriving at `origin` from the directions within `spread` radians of `dir` (unit), on
-// average: the ground's footprint 2 t spread wide, stretched by the grazing angle (up to 16
-// times: past that the horizon's fade has taken the pattern).
-vec3 environment_over(vec3 origin, vec3 dir, float spread) {
+// The ground seen from `origin` along `dir` (unit, below the horizon), over a cone `spread`
+// radians wide: its footprint 2 t spread wide, stretched by the grazing angle (up to 16 times:
+// past that the horizon's fade has taken the pattern).
+vec3 ground_over(vec3 origin, vec3 dir, float spread) {
   float down = dot(dir, u_env_up);
-  if (down >= 0.0f) return sky_color(dir);
-  // Below the horizon: the ground, seen from above (from below the plane, where it lies).
+  // Seen from above (from below the plane, where it lies).
   float t = max((u_ground_height - dot(origin, u_env_up)) / down, 0.0f);
   return ground_color(origin + t * dir, t, 2.0f * t * spread / max(-down, 0.0625f));
+}
+
+// `dir` turned about the horizontal towards elevation `e` (radians).
+vec3 at_elevation(vec3 dir, float e) {
+  vec3 level = dir - dot(dir, u_env_up) * u_env_up;
+  float len = length(level);
+  level = len > 1e-6f ? level / len : u_env_axis_a;
+  return cos(e) * level + sin(e) * u_env_up;
+}
+
+// Radiance arriving at `origin` from the directions within `spread` radians of `dir` (unit), on
+// average. A cone across the horizon (a refracted ray whose neighbours went up and down) takes
+// the sky and the ground by the share of its elevations above and below (each seen along its
+// part's middle elevation), not the one its axis points at.
+vec3 environment_over(vec3 origin, vec3 dir, float spread) {
+  float up = dot(dir, u_env_up);
+  if (spread <= 0.0f) return up >= 0.0f ? sky_color(dir) : ground_over(origin, dir, 0.0f);
+  float e = asin(clamp(up, -1.0f, 1.0f));
+  if (e >= spread) return sky_color(dir);
+  if (e <= -spread) return ground_over(origin, dir, spread);
+  float above = 0.5f + 0.5f * e / spread;
+  vec3 sky = sky_color(at_elevation(dir, 0.5f * (e + spread)));
+  vec3 ground = ground_over(origin, at_elevation(dir, 0.5f * (e - spread)), spread);
+  return mix(ground, sky, above);
 }
 
 // Radiance arriving at `origin` from direction `dir` (unit).

@@ -242,6 +242,21 @@ TEST(Model, EnvironmentSkyGroundAndHorizon) {
   const glm::vec3 above = host.environment(eye, glm::normalize(glm::vec3(1, 1e-4f, 0)));
   const glm::vec3 below = host.environment(eye, glm::normalize(glm::vec3(1, -1e-4f, 0)));
   EXPECT_LT(glm::distance(above, below), 0.01f);
+
+  // A footprint across the horizon takes the sky and the ground by the share of its elevations
+  // above and below it: looking level from 1 above the ground over a cone 0.6 wide, half each.
+  const glm::vec3 level(1, 0, 0);
+  const glm::vec3 sky = host.sky_color(host.at_elevation(level, 0.3f));
+  const glm::vec3 ground_below = host.ground_over(eye, host.at_elevation(level, -0.3f), 0.6f);
+  const glm::vec3 cone = host.environment_over(eye, level, 0.6f);
+  EXPECT_LT(glm::distance(cone, 0.5f * (sky + ground_below)), 1e-5f);
+  EXPECT_EQ(host.environment_over(eye, level, 0.0f), host.sky_color(level)) << "a point: the sky";
+  // Continuous where the cone's edge reaches the horizon, from either side.
+  for (float e : {0.6f, -0.6f}) {
+    const glm::vec3 edge = host.at_elevation(level, e);
+    const glm::vec3 in = host.environment_over(eye, host.at_elevation(level, e * 0.999f), 0.6f);
+    EXPECT_LT(glm::distance(host.environment_over(eye, edge, 0.6f), in), 0.01f) << e;
+  }
 }
 
 TEST(Model, TranslucentBeerLambertExactPastTheCap) {
