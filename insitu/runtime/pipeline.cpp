@@ -69,7 +69,7 @@ DepthRange combine_depths(Communicator& comm, const DepthRange& local) {
   return all;
 }
 
-// Host bytes a view takes per pixel, by estimate: 79 measured (peak RSS of render_particles
+// Host bytes a view takes per pixel, by estimate: 77 measured (peak RSS of render_particles
 // with a translucent and a refractive view, the dam break of the MPI tests, CPU renderer, from
 // 640x360 to 3840x2160: picture, depth, span image, surfaces, shading), with room for deeper
 // fluid. A 16384x16384 view (26 GB) used to pass the config and die of std::bad_alloc 34 s in.

@@ -17,8 +17,7 @@
 // (opaque, the fluid resting on it) where it reaches the ground plane. After `u_bounces` hits
 // past the first entry it goes straight on, still absorbed. What a ray sees where it ends (the
 // environment or the walls) is added once the neighbouring pixels' rays have ended too
-// (environment_light, wall_light): water spreads their rays apart, and each takes the mean over
-// its footprint.
+// (end_light): water spreads their rays apart, and each takes the mean over its footprint.
 //
 // One call of march_step() handles one event (a boundary crossed or a column left), so the
 // caller bounds the work per shader invocation (llvmpipe stops an invocation after 65535 loop
@@ -31,9 +30,9 @@
 // with walls reaches from its nearest wall depth, or nearer entry, to 3e38, so that no ray skips
 // a wall), and vec2 sd_block_inside(ivec2): the largest entry and the smallest exit of the
 // columns' first spans (x = 3e38 when a column has none), both over the surface depths; vec4
-// sd_leaving(ivec2) (where pixel q's ray left to the environment: its direction in xyz, w = 1;
-// w = 0 where it did not); u_use_backdrop and, when it is set, vec4 sd_backdrop(ivec2) (the
-// colour, and in the last component the walls' depth) and wall_light()'s needs (below).
+// sd_ray_end(ivec2) (ray_end of pixel q's ray, once every ray has ended or paused);
+// u_use_backdrop and, when it is set, vec4 sd_backdrop(ivec2) (the colour, and in the last
+// component the walls' depth) and wall_light()'s needs (below).
 #ifndef VX_MODEL_COLUMN_MARCH
 #define VX_MODEL_COLUMN_MARCH
 
@@ -136,7 +135,7 @@ RayState ray_start(ivec2 p) {
 }
 
 // The ray leaves to the environment (or ends on the ground, which is part of it): its host adds
-// what it sees there (environment_light).
+// what it sees there (end_light).
 RayState ray_leave(RayState s) {
   s.left = true;
   s.marching = false;
@@ -417,6 +416,35 @@ RayState march_step(RayState s) {
   return s;
 }
 
+// How a ray ended, in the form its neighbours read it (sd_ray_end): on the walls, (the image
+// position where it ended, 0, VX_END_WALLS); leaving to the environment, or still marching (the
+// resolve step sends it there), (the direction it left along, VX_END_LEFT); else 0.
+#define VX_END_WALLS 1.0f
+#define VX_END_LEFT 2.0f
+
+vec4 ray_end(RayState s) {
+  if (s.on_wall) return vec4(image_position(s.origin), 0.0f, VX_END_WALLS);
+  if (s.left || s.marching) return vec4(s.dir, VX_END_LEFT);
+  return vec4(0.0f);
+}
+
+// Half the largest difference between `end` (ray_end's form) of pixel p's ray and the ends of
+// its four neighbours' rays that ended alike: the distance between where they ended on the walls
+// (pixels), or the angle between the directions they left along (radians).
+float end_spread(ivec2 p, vec4 end) {
+  float spread = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    ivec2 q = p + (k < 2 ? ivec2(2 * k - 1, 0) : ivec2(0, 2 * k - 5));  // left, right, up, down
+    if (!in_image(q)) continue;
+    vec4 other = sd_ray_end(q);
+    if (other.w != end.w) continue;
+    float d = end.w == VX_END_WALLS ? length(vec2(other) - vec2(end))
+                                    : acos(clamp(dot(vec3(other), vec3(end)), -1.0f, 1.0f));
+    spread = max(spread, 0.5f * d);
+  }
+  return spread;
+}
+
 // The walls' light where rays end on them. Water bends neighbouring pixels' rays apart, so that
 // one ray a pixel samples the walls' picture more sparsely than a pixel: where that picture has
 // edges finer than the rays' spread (a corner, a rim, the spheres' bumps) single pixels take the
@@ -427,8 +455,7 @@ RayState march_step(RayState s) {
 // backdrop_pyramid: level 0 the backdrop, each level above the 2x2 means of the one below,
 // premultiplied by the share of wall pixels, all in one array), trilinearly.
 //
-// Host needs: vec4 sd_backdrop_texel(uint) (the pyramid's entries), vec2 sd_landing(ivec2) (where
-// pixel q's ray ended on the walls, image_position of its origin; x < 0 where it did not).
+// Host needs: vec4 sd_backdrop_texel(uint) (the pyramid's entries).
 #define VX_BACKDROP_LEVELS 8  // render/backdrop.h's kBackdropLevels: footprints up to 64 pixels
 
 ivec2 backdrop_level_size(int level) {
@@ -462,27 +489,11 @@ vec4 backdrop_bilinear(int level, vec2 xy) {
   return mix(top, bottom, f.y);
 }
 
-// Pixel p's neighbour k: left, right, up, down.
-ivec2 side_neighbour(ivec2 p, int k) {
-  return p + (k < 2 ? ivec2(2 * k - 1, 0) : ivec2(0, 2 * k - 5));
-}
-
-// Half the footprint, in pixels, of the ray of pixel p that ended on the walls at `land`.
-float landing_radius(ivec2 p, vec2 land) {
-  float radius = 0.5f;
-  for (int k = 0; k < 4; ++k) {
-    ivec2 q = side_neighbour(p, k);
-    if (!in_image(q)) continue;
-    vec2 other = sd_landing(q);
-    if (other.x >= 0.0f) radius = max(radius, 0.5f * length(other - land));
-  }
-  return radius;
-}
-
 // The walls' colour seen by the ray of pixel p that ended on them at image position `land`;
 // wider footprints than the pyramid's top but one (a grazing ray) take that level's.
 vec3 wall_light(ivec2 p, vec2 land) {
-  float lod = min(log2(2.0f * landing_radius(p, land)), float(VX_BACKDROP_LEVELS - 2));
+  float radius = max(0.5f, end_spread(p, vec4(land, 0.0f, VX_END_WALLS)));
+  float lod = min(log2(2.0f * radius), float(VX_BACKDROP_LEVELS - 2));
   int level = int(floor(lod));
   vec4 c =
       mix(backdrop_bilinear(level, land), backdrop_bilinear(level + 1, land), lod - float(level));
@@ -491,27 +502,21 @@ vec3 wall_light(ivec2 p, vec2 land) {
   return vec3(sd_backdrop(q));
 }
 
-// Half the angle of the footprint of the ray of pixel p that left to the environment along
-// `dir`: half the largest angle to the directions the four neighbours' rays left along.
-float leaving_spread(ivec2 p, vec3 dir) {
-  float spread = 0.0f;
-  for (int k = 0; k < 4; ++k) {
-    ivec2 q = side_neighbour(p, k);
-    if (!in_image(q)) continue;
-    vec4 other = sd_leaving(q);
-    if (other.w > 0.0f)
-      spread = max(spread, 0.5f * acos(clamp(dot(dir, vec3(other)), -1.0f, 1.0f)));
-  }
-  return spread;
-}
-
 // The environment's light seen by the ray of pixel p that left to it from `anchor` along `dir`
 // (view space). Water bends the environment's picture as it bends the walls', and the ground's
 // checker is as fine: a ray that met the fluid (`bent`) takes the environment's mean over its
 // footprint (environment_over); one that did not, the point the other modes' background takes.
 vec3 environment_light(ivec2 p, vec3 anchor, vec3 dir, bool bent) {
-  float spread = bent ? leaving_spread(p, dir) : 0.0f;
+  float spread = bent ? end_spread(p, vec4(dir, VX_END_LEFT)) : 0.0f;
   return environment_over(view_to_world_point(anchor), view_to_world_direction(dir), spread);
+}
+
+// What the ray of pixel p sees where it ended (`end` in ray_end's form; `anchor` and `bent` as
+// environment_light takes them), before its throughput.
+vec3 end_light(ivec2 p, vec4 end, vec3 anchor, bool bent) {
+  if (end.w == VX_END_WALLS) return wall_light(p, vec2(end));
+  if (end.w == VX_END_LEFT) return environment_light(p, anchor, vec3(end), bent);
+  return vec3(0.0f);
 }
 
 // At most `budget` events.

@@ -24,13 +24,11 @@
 
 namespace voxspan::model {
 
-// How a refracted ray ended (render/model/column_march.glsl's RayState, what its environment_light
-// and its neighbours' read).
+// How a refracted ray ended: what render/model/column_march.glsl's end_light reads of its RayState.
 struct RayEnd {
+  vec4 end;  // ray_end's, which the neighbours read too
   vec3 throughput;
   vec3 anchor;  // view space: where it left from, when it left
-  vec3 dir;     // view space
-  bool left;    // to the environment
   bool bent;    // by the fluid, once at least
 };
 
@@ -40,7 +38,6 @@ struct HostBuffers {
   std::vector<uvec2> links, normals;
   std::vector<float> ao;
   std::vector<vec2> depths, block_bounds, block_inside;
-  std::vector<vec2> landings;
   std::vector<RayEnd> ends;
 };
 
@@ -69,9 +66,7 @@ class Host : public GridUniforms, public ShadeUniforms {
   float u_radius = 0.0f, u_iteration_scale = 0.0f;
   // render/model/links.glsl's: 0, no folds.
   float u_fold_step = 0.0f;
-  // Refraction's, per pixel (shade fills them): where its ray ended on the walls (x < 0: it did
-  // not), and how it ended.
-  std::vector<vec2> landings_;
+  // Refraction's, per pixel (shade fills them): how its ray ended.
   std::vector<RayEnd> ends_;
 
   uint sd_count(ivec2 p) const { return record(p).count; }
@@ -97,11 +92,7 @@ class Host : public GridUniforms, public ShadeUniforms {
   }
   vec4 sd_backdrop(ivec2 p) const { return (*backdrop_)[pixel_index(p)]; }
   vec4 sd_backdrop_texel(uint i) const { return (*backdrop_)[i]; }
-  vec2 sd_landing(ivec2 p) const { return landings_[pixel_index(p)]; }
-  vec4 sd_leaving(ivec2 p) const {
-    const RayEnd& e = ends_[pixel_index(p)];
-    return e.left ? vec4(e.dir, 1.0f) : vec4(0.0f);
-  }
+  vec4 sd_ray_end(ivec2 p) const { return ends_[pixel_index(p)].end; }
   float sd_wall_depth(ivec2 p) const {
     return backdrop_ != nullptr ? (*backdrop_)[pixel_index(p)].w : 3.0e38f;
   }
@@ -177,7 +168,6 @@ class Host : public GridUniforms, public ShadeUniforms {
     ao_.swap(b.ao);
     depths_.swap(b.depths);
     block_bounds_.swap(b.block_bounds);
-    landings_.swap(b.landings);
     ends_.swap(b.ends);
     block_inside_.swap(b.block_inside);
   }
@@ -222,8 +212,8 @@ class Host : public GridUniforms, public ShadeUniforms {
 
   // Every pixel's colour in `mode` into `image` (the span image's size). Refraction runs the
   // GPU's dispatches one after the other (at most `dispatches`, each `budget` column events),
-  // then, as its resolve dispatch, adds what each ray sees where it ended (environment_light and
-  // wall_light read the neighbouring pixels' ends). Returns the rays still marching after the
+  // then, as its resolve dispatch, adds what each ray sees where it ended (end_light reads the
+  // neighbouring pixels' ends). Returns the rays still marching after the
   // dispatches, sent to the environment.
   std::int64_t shade(ShadeMode mode, int dispatches, int budget, FloatImage& image) {
     if (mode != ShadeMode::refractive) {
@@ -234,7 +224,6 @@ class Host : public GridUniforms, public ShadeUniforms {
       return 0;
     }
     const std::size_t pixels = std::size_t(u_image.x) * std::size_t(u_image.y);
-    landings_.resize(pixels);
     ends_.resize(pixels);
     std::atomic<std::int64_t> unfinished{0};
     each_pixel([&](ivec2 p) {
@@ -245,15 +234,11 @@ class Host : public GridUniforms, public ShadeUniforms {
         s = ray_leave(s);
       }
       image.set(p.x, p.y, vec4(s.color, 1.0f));
-      landings_[pixel_index(p)] = s.on_wall ? image_position(s.origin) : vec2(-1.0f);
-      ends_[pixel_index(p)] = {s.throughput, s.anchor, s.dir, s.left, s.bounces <= u_bounces};
+      ends_[pixel_index(p)] = {ray_end(s), s.throughput, s.anchor, s.bounces <= u_bounces};
     });
     each_pixel([&](ivec2 p) {
-      const vec2 land = landings_[pixel_index(p)];
       const RayEnd& e = ends_[pixel_index(p)];
-      vec3 light(0.0f);
-      if (land.x >= 0.0f) light = e.throughput * wall_light(p, land);
-      if (e.left) light = e.throughput * environment_light(p, e.anchor, e.dir, e.bent);
+      const vec3 light = e.throughput * end_light(p, e.end, e.anchor, e.bent);
       image.set(p.x, p.y, image.at(p.x, p.y) + vec4(light, 0.0f));
     });
     return unfinished.load();

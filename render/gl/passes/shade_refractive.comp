@@ -4,7 +4,7 @@
 // (for skipping empty space); REFRACT_MARCH advances each marching ray by at most
 // u_march_budget column events and counts the rays still marching; REFRACT_RESOLVE sends the rays
 // still marching to the environment, adds what each ray sees where it ended (over the footprint
-// the neighbouring rays' ends give: wall_light, environment_light) and writes every pixel's colour.
+// the neighbouring rays' ends give: end_light) and writes every pixel's colour.
 layout(local_size_x = 64) in;
 
 #include "render/gl/passes/shade_common.glsl"
@@ -44,18 +44,7 @@ struct RayRecord {
 };
 layout(std430, binding = RAYS_BINDING) buffer Rays { RayRecord rays[]; };
 
-// Where pixel q's ray ended on the walls (column_march.glsl's wall_light), x < 0 where it did not.
-vec2 sd_landing(ivec2 q) {
-  RayRecord r = rays[q.x + q.y * u_image.x];
-  return (r.ints.w & (1 << 18)) != 0 ? image_position(r.origin.xyz) : vec2(-1.0);
-}
-
-// Where pixel q's ray left to the environment (column_march.glsl's leaving_spread): a ray still
-// marching leaves in the resolve dispatch, along its direction.
-vec4 sd_leaving(ivec2 q) {
-  RayRecord r = rays[q.x + q.y * u_image.x];
-  return (r.ints.w & ((1 << 17) | (1 << 19))) != 0 ? vec4(r.dir.xyz, 1.0) : vec4(0.0);
-}
+vec4 sd_ray_end(ivec2 q);  // below, after the RayState of column_march.glsl it unpacks to
 
 #include "render/model/column_march.glsl"
 layout(std430, binding = MARCH_TALLY_BINDING) buffer MarchTally {
@@ -101,6 +90,9 @@ RayState unpack_ray(RayRecord r) {
   return s;
 }
 
+// Pixel q's ray_end as the neighbours' footprints read it (column_march.glsl's end_spread).
+vec4 sd_ray_end(ivec2 q) { return ray_end(unpack_ray(rays[q.x + q.y * u_image.x])); }
+
 void main() {
   uint i = thread_index();
   if (i >= u_thread_count) return;
@@ -137,10 +129,7 @@ void main() {
 #else
   RayState s = unpack_ray(rays[i]);
   if (s.marching) s = ray_leave(s);
-  ivec2 p = thread_pixel(i);
-  vec3 c = s.color;
-  if (s.on_wall) c += s.throughput * wall_light(p, image_position(s.origin));
-  if (s.left) c += s.throughput * environment_light(p, s.anchor, s.dir, s.bounces <= u_bounces);
-  shaded[i] = vec4(c, 1.0);
+  vec3 light = end_light(thread_pixel(i), ray_end(s), s.anchor, s.bounces <= u_bounces);
+  shaded[i] = vec4(s.color + s.throughput * light, 1.0);
 #endif
 }

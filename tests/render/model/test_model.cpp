@@ -88,11 +88,11 @@ glm::vec3 wall_light_with_spread(float spread, glm::vec2 land) {
   Host host(none, {});
   host.use_backdrop(&pyramid);
   // Every ray ends on the walls at its pixel's centre scaled by `spread` about pixel (4, 4).
-  host.landings_.resize(b.pixels.size());
+  host.ends_.resize(b.pixels.size());
   for (int y = 0; y < b.height; ++y)
     for (int x = 0; x < b.width; ++x)
-      host.landings_[host.pixel_index({x, y})] =
-          land + spread * glm::vec2(float(x - 4), float(y - 4));
+      host.ends_[host.pixel_index({x, y})].end =
+          glm::vec4(land + spread * glm::vec2(float(x - 4), float(y - 4)), 0, VX_END_WALLS);
   return host.wall_light({4, 4}, land);
 }
 
@@ -147,10 +147,10 @@ glm::vec3 environment_light_with_spread(float spread, bool bent) {
   for (int k = 0; k < 9; ++k) {
     const glm::vec3 world =
         k == 4 ? -up : std::cos(2 * spread) * -up + std::sin(2 * spread) * across;
-    host.ends_[std::size_t(k)] = {glm::vec3(1), anchor, host.world_to_view_direction(world), true,
-                                  bent};
+    host.ends_[std::size_t(k)] = {glm::vec4(host.world_to_view_direction(world), VX_END_LEFT),
+                                  glm::vec3(1), anchor, bent};
   }
-  return host.environment_light({1, 1}, anchor, host.ends_[4].dir, bent);
+  return host.environment_light({1, 1}, anchor, glm::vec3(host.ends_[4].end), bent);
 }
 
 TEST(Model, RefractedRaysSeeTheEnvironmentOverTheirFootprint) {
