@@ -91,6 +91,18 @@ struct AdaptiveOptions {
   // march their own particles and their segments are composited (insitu/views/
   // volume_compositor.cpp gives each 1 / ranks; render/cpu/volume_adaptive.h says why that holds).
   double share = 1;
+  // [HOK16] Table 2's variants, for benchmarks (tools/bench/bench_adaptive.cpp): each part of the
+  // plan may be left out. Without `greedy` each cell takes the cheapest choice whose own term
+  // fits the tolerance, not the bundle's sum of terms (their "No greedy alg.": no bound left);
+  // without `surface_rule` the cells at the free surface are planned as the others (their "No
+  // surface"; the bounds still hold the pixels where such a cell is empty); `super_pixels` and
+  // `coarse` (sparser samples along the rays) each allow one kind of choice (their "Only
+  // z-Adapt": no super-pixels).
+  struct Rules {
+    bool greedy = true, surface_rule = true, super_pixels = true, coarse = true;
+    bool operator==(const Rules&) const = default;
+  };
+  Rules rules{};
   bool operator==(const AdaptiveOptions&) const = default;
 };
 
@@ -250,6 +262,9 @@ struct VolumeCounts {
   // largest over the bundles of the terms spent; of a rank's own cells in an MPI job, where the
   // ranks' bounds add up). Not a count: frames' parts take the largest.
   double error_bound = 0;
+  // Adaptive sampling's planning (the bounds and the choices; [HOK16] Table 2's "Adapt"), in
+  // milliseconds summed over the threads: part of the march's time.
+  double planning_ms = 0;
 };
 
 // Each count with the name a stats record gives it.
@@ -279,6 +294,7 @@ inline constexpr VolumeCountName kVolumeCountNames[] = {
 inline VolumeCounts& operator+=(VolumeCounts& a, const VolumeCounts& b) {
   for (const VolumeCountName& c : kVolumeCountNames) a.*c.member += b.*c.member;
   a.error_bound = std::max(a.error_bound, b.error_bound);
+  a.planning_ms += b.planning_ms;
   return a;
 }
 

@@ -206,12 +206,13 @@ void TilePlanner::plan_bundle(int b, const VolumeOptions& o, const TransferBound
       bounds.fill(Bounds{{0, 0, 0}, {tf.brightest(0), tf.brightest(1), tf.brightest(2)}, 0, 1});
       continue;
     }
-    most_[c] = reached && proven ? kSuperPixel : 0;
+    const bool surface = !proven && o.adaptive.rules.surface_rule;
+    most_[c] = reached && !surface ? kSuperPixel : 0;
     if (!reached) {
       bounds.fill(Bounds{{0, 0, 0}, {0, 0, 0}, 1, 1});
       continue;
     }
-    if (!proven) {  // the free surface: full rate ([HOK16] sec. 4.2)
+    if (surface) {  // the free surface: full rate ([HOK16] sec. 4.2)
       ++counts.cells_surface;
       bounds.fill(level_bounds(b, cell, 0, tf, scale_lo, scale_hi));
       continue;
@@ -260,12 +261,17 @@ void TilePlanner::plan_bundle(int b, const VolumeOptions& o, const TransferBound
   }
   std::array<double, 3> back = part ? brightest : behind;
   std::array<double, 4> spent{};
+  const AdaptiveOptions::Rules& rules = o.adaptive.rules;
+  std::array<std::uint8_t, kCellShift + 1> choices{};  // the cheapest first
+  std::size_t n_choices = 0;
+  if (rules.super_pixels) choices[n_choices++] = kSuperPixel;
+  for (std::uint8_t l = kCellShift; rules.coarse && l >= 1; --l) choices[n_choices++] = l;
   for (std::size_t c = n; c-- > 0;) {
     const Bounds& full = cell_bounds_[c][0];
     const double front_hi = front_[c];
     if (most_[c] != 0) {
-      const std::array<std::uint8_t, kCellShift + 1> choices{kSuperPixel, 4, 3, 2, 1};
-      for (std::uint8_t choice : choices) {
+      for (std::size_t k = 0; k < n_choices; ++k) {
+        const std::uint8_t choice = choices[k];
         std::array<double, 4> term{};
         if (choice == kSuperPixel) {  // the middle of the full-rate bounds: half their width
           for (int ch = 0; ch < 3; ++ch)
@@ -282,9 +288,9 @@ void TilePlanner::plan_bundle(int b, const VolumeOptions& o, const TransferBound
                 wt * back[std::size_t(ch)];
           term[3] = wt;
         }
-        bool fits = true;
+        bool fits = true;  // without the greedy step: the cell's own term alone
         for (std::size_t ch = 0; ch < 4; ++ch)
-          fits = fits && spent[ch] + front_hi * term[ch] <= budget[ch];
+          fits = fits && (rules.greedy ? spent[ch] : 0) + front_hi * term[ch] <= budget[ch];
         if (!fits) continue;
         for (std::size_t ch = 0; ch < 4; ++ch) spent[ch] += front_hi * term[ch];
         CellPlan& plan = plans_[std::size_t(b) * n + c];

@@ -32,6 +32,7 @@
 // (the full-rate and the adaptive ray may stop at different samples). With relax 0 a coarse
 // level never fits where the super-pixel does not: its bounds hold the full-rate ones, whose half
 // width is the super-pixel's term; so relax 0 chooses between full rate and super-pixels only.
+// AdaptiveOptions::rules leaves parts of this out ([HOK16] Table 2's variants, for benchmarks).
 //
 // Surface rule ([HOK16] sec. 4.2): a cell where some sample is reached by a support but not
 // proven to hold a weight of at least weight_floor at every pixel (a lower bound from each

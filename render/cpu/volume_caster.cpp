@@ -441,7 +441,10 @@ template <SphKernel K, bool kPart> class TileMarch {
 
   // Adaptive sampling: the tile's cells' plans for this march.
   void plan(std::span<const std::uint32_t> list, const std::vector<Support>& supports) {
-    if (!plan_cells(list, supports, o_.weight_floor)) return;
+    const Stopwatch watch;
+    const bool planned = plan_cells(list, supports, o_.weight_floor);
+    t_.planning_ms += watch.ms();
+    if (!planned) return;
     const TilePlanner& planner = w_.planner;
     // A pixel's bundle, or kFullRate where all its cells are at full rate: the march as without
     // a plan there, and without one at all where that holds for the whole tile.

@@ -45,6 +45,7 @@
 #include "render/gl/volume_renderer.h"
 #include "render/reference/volume_reference.h"
 #include "tools/common/dambreak_state.h"
+#include "tools/common/dambreak_volume.h"
 #include "tools/common/tool_args.h"
 #include "voxspan/error.h"
 #include "voxspan/stopwatch.h"
@@ -111,41 +112,6 @@ bool read_flag(tools::Arg& arg, Args& a) {
 }
 
 bool parse(int argc, char** argv, Args& a) { return tools::read_args(argc, argv, a, read_flag); }
-
-std::vector<VolumeParticle> particles_of(const tools::DamBreakState& s, bool height) {
-  std::vector<VolumeParticle> out;
-  const double weight = 1 / (1.3 * 1.3 * 1.3);  // m / (rho h^3), h = 1.3 spacings
-  for (std::size_t i = 0; i < s.x.size(); ++i) {
-    const double z = glm::dot(glm::dvec3(s.x[i], s.y[i], s.z[i]), s.up) - s.ground;
-    out.push_back(
-        {s.x[i], s.y[i], s.z[i], float(1.3 * s.spacing), float(weight), height ? float(z) : 1.0f});
-  }
-  return out;
-}
-
-VolumeOptions options_for(const tools::DamBreakState& s, const std::vector<VolumeParticle>& p,
-                          bool height, double opacity, VolumeMode mode, double sampling) {
-  VolumeOptions o;
-  o.mode = mode;
-  o.shepard = height;
-  double lo = 0, hi = 1;
-  if (height) {
-    lo = 1e300, hi = -1e300;
-    for (const VolumeParticle& q : p)
-      lo = std::min(lo, double(q.value)), hi = std::max(hi, double(q.value));
-  }
-  const std::vector<std::array<double, 2>> constant{{0.0, opacity}, {1.0, opacity}};
-  o.transfer =
-      transfer_table(ColorMap::viridis, opacity < 0 ? VolumeSettings{}.opacity : constant, lo, hi);
-  o.opacity_length = s.spacing;
-  if (mode != VolumeMode::dvr) o.isos = {IsoSurface{0.5 * (lo + hi), {0.8, 0.85, 0.95}, 0.6}};
-  o.sampling = sampling;
-  o.anchor = s.spacing;
-  o.environment.up = s.up;
-  o.environment.rest_on_floor(s.ground, s.spacing);
-  o.environment.ground_tile = s.length / 3;
-  return o;
-}
 
 // The largest and the 99th-percentile channel error of `a` against `b`.
 std::array<double, 2> errors(const FloatImage& a, const FloatImage& b) {
@@ -310,7 +276,7 @@ int run(const Args& a) {
   tools::DamBreakState s = tools::dam_break_state(a, a);
   s.camera.width = a.width;
   s.camera.height = a.height;
-  const std::vector<VolumeParticle> particles = particles_of(s, a.height_field);
+  const std::vector<VolumeParticle> particles = tools::dam_break_particles(s, a.height_field);
   std::printf("scene: %s; %dx%d, %zu particles, field %s\n", s.description.c_str(), a.width,
               a.height, particles.size(), a.height_field ? "height (Shepard)" : "volume fraction");
   std::printf("%-5s %8s | %8s %8s %8s %8s %8s | %10s %12s %9s %9s %15s", "mode", "sampling",
@@ -341,12 +307,14 @@ int run(const Args& a) {
     VolumeFrame converged;
     int doublings = 0;
     if (a.convergence) {
-      VolumeOptions exact = options_for(s, particles, a.height_field, a.opacity, mode, 1);
+      VolumeOptions exact =
+          tools::dam_break_volume_options(s, particles, a.height_field, a.opacity, mode, 1);
       exact.termination = 0;
       converged = converged_volume(s.camera, particles, exact, 1e-4, 8, &doublings);
     }
     for (double sampling : a.samplings) {
-      const VolumeOptions o = options_for(s, particles, a.height_field, a.opacity, mode, sampling);
+      const VolumeOptions o =
+          tools::dam_break_volume_options(s, particles, a.height_field, a.opacity, mode, sampling);
       std::array<std::vector<double>, kVolumeCastPhaseNames.size() + 1> ms;
       VolumeFrame frame;
       VolumeCounts counts;

@@ -15,7 +15,7 @@
 
 #include "render/backdrop.h"
 #include "render/cpu/volume_caster.h"
-#include "tests/support/adaptive_scenes.h"
+#include "tools/scenes/adaptive_scenes.h"
 #include "tests/support/image_difference.h"
 
 namespace voxspan {
@@ -196,6 +196,38 @@ TEST(VolumeAdaptive, RelaxedCoarseCellsStayWithinTheToleranceWhereTheFieldIsFlat
     EXPECT_GT(b.samples_skipped, b.samples / 4);
     EXPECT_LE(d, tolerance + 1e-6);
   }
+}
+
+TEST(VolumeAdaptive, EachRuleLeftOutChangesItsPartOnly) {
+  // AdaptiveOptions::Rules, [HOK16] Table 2's variants (tools/bench/bench_adaptive.cpp): each
+  // kind of choice off takes none of it; without the surface rule the bounds still hold the
+  // pixels where a cell is empty, so relax 0 keeps its tolerance; without the greedy step the
+  // cells' terms add up past it (the plans report that sum).
+  using Rules = AdaptiveOptions::Rules;
+  double greedy_bound = 0, ungreedy_bound = 0;
+  for (const Scene& scene : scenes()) {
+    SCOPED_TRACE(scene.name);
+    VolumeCaster caster;
+    VolumeFrame exact, frame;
+    caster.run(scene.camera, scene.particles, scene.options, exact);
+    const auto adaptive = [&](double relax, auto change) {
+      VolumeOptions o = scene.options;
+      o.adaptive = {0.01, relax};
+      change(o.adaptive.rules);
+      return caster.run(scene.camera, scene.particles, o, frame);
+    };
+    EXPECT_EQ(adaptive(1, [](Rules& r) { r.super_pixels = false; }).cells_super_pixel, 0);
+    EXPECT_EQ(adaptive(1, [](Rules& r) { r.coarse = false; }).cells_coarse, 0);
+    EXPECT_EQ(adaptive(0, [](Rules& r) { r.surface_rule = false; }).cells_surface, 0);
+    EXPECT_LE(largest_difference(frame.picture, exact.picture), 0.01 + 1e-6);
+    greedy_bound = std::max(greedy_bound, adaptive(0, [](Rules&) {}).error_bound);
+    ungreedy_bound =
+        std::max(ungreedy_bound, adaptive(0, [](Rules& r) { r.greedy = false; }).error_bound);
+  }
+  std::printf("error bound at 0.01, relax 0: greedy %.2e, without the greedy step %.2e\n",
+              greedy_bound, ungreedy_bound);
+  EXPECT_LE(greedy_bound, 0.01);
+  EXPECT_GT(ungreedy_bound, 0.01);
 }
 
 }  // namespace

@@ -16,7 +16,7 @@
 #include "render/cpu/volume_caster.h"
 #include "render/gl/info.h"
 #include "render/gl/volume_renderer.h"
-#include "tests/support/adaptive_scenes.h"
+#include "tools/scenes/adaptive_scenes.h"
 #include "tests/support/image_difference.h"
 
 namespace voxspan {

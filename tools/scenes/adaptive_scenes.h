@@ -1,5 +1,6 @@
-// Scenes for adaptive volume sampling's tests (render/cpu/volume_adaptive.h), on either renderer:
-// Shepard particles of known values, their camera and their volume options (tests only).
+// Scenes for adaptive volume sampling (render/cpu/volume_adaptive.h), on either renderer: Shepard
+// particles of known values, their camera and their volume options; its tests' and
+// tools/bench/bench_adaptive.cpp's.
 #pragma once
 
 #include <algorithm>
