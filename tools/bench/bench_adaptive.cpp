@@ -4,10 +4,10 @@
 // and the frames past the tolerance). The scenes: the solver's dam break (its height above the
 // floor through the view's default transfer function; --time, --particles, cached in --state), a
 // radial concentration through a transfer function with a narrow opacity spike, and a 3D
-// checkerboard of concentrations 0 and 1 (tools/scenes/adaptive_scenes.h; cubes of --side^3
-// particles). Each scene is drawn from --frames camera angles (turned 30 degrees apart about its
-// target), every adaptive frame right after the full-rate one of its angle (after one warm-up
-// pair).
+// checkerboard of concentrations 0 and 1 in cubes 5 spacings wide (tools/scenes/adaptive_scenes.h;
+// each a block of --side^3 particles). Each scene is drawn from --frames camera angles (turned 30
+// degrees apart about its target), every adaptive frame right after the full-rate one of its angle
+// (after one warm-up pair).
 //
 // Rows: the full rate (-); each tolerance (--tolerances) at relax 1 ([HOK16]'s setting) and at
 // relax 0 (the guarantee); then at 0.004 and relax 1 the variants (AdaptiveOptions::Rules): no
@@ -15,10 +15,10 @@
 // rule, super-pixels only (no sparser samples along the rays). Columns: grid (project, sort and
 // bin), adapt (the planning: thread-milliseconds over the threads), RC (the march less the
 // planning) and total, medians over the angles in milliseconds; speed-ups of RC and total (the
-// medians of the pairs' ratios); the largest channel change from the full-rate picture (any
-// channel, alpha included), the largest share of a frame's rays past the tolerance (1e-6 of
-// slack) and the frames past it; the share of samples skipped and the cells taken coarse and as
-// super-pixels, summed over the angles.
+// medians of the pairs' ratios; the full rate's against itself is the machine's noise); the largest
+// channel change from the full-rate picture (any channel, alpha included), the largest share of a
+// frame's rays past the tolerance (1e-6 of slack) and the frames past it; the share of samples
+// skipped and the cells taken coarse and as super-pixels, summed over the angles.
 //
 //   bench_adaptive [--particles N] [--time T] [--state FILE] [--ritter] [--size WxH] [--frames F]
 //                  [--side N] [--tolerances E,...] [--scenes dambreak,radial,checkerboard]
