@@ -273,6 +273,7 @@ void TilePlanner::add(const glm::dvec3& c, double inv_h, double v, double q, std
       }
     }
   const std::size_t n = std::size_t(cells_ * kCellSamples);
+  const double r = kernel_support(K) / inv_h, r2 = r * r;
   for (int py = y0 / kProofBlock; py <= y1 / kProofBlock; ++py)
     for (int px = x0 / kProofBlock; px <= x1 / kProofBlock; ++px) {
       const std::size_t block = std::size_t(px + py * blocks_x_);
@@ -285,6 +286,9 @@ void TilePlanner::add(const glm::dvec3& c, double inv_h, double v, double q, std
         const glm::dvec3 m = zc[k] * d - c;
         m2[k] = glm::dot(m, m);
       }
+      // A corner ray that passes outside the support leaves every sample's farthest corner
+      // outside it: the bound is 0 there (most blocks at the support's rim).
+      if (std::max({m2[0], m2[1], m2[2], m2[3]}) >= r2) continue;
       const std::size_t k0 = std::size_t(first - (c0_ << kCellShift));
       add_weight_floor<K>(&depth_[k0], std::size_t(last - first + 1), zc, a, m2, v, inv_h,
                           &w_lo_[block * n + k0]);
