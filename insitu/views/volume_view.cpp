@@ -71,8 +71,8 @@ const schema::Section<VolumeAdaptiveSettings>& adaptive_section() {
                       "([HOK16]'s E_I; DVR of a Shepard-normalised `quantity`, either renderer; "
                       "in an MPI job, of the composited picture: each rank spends 1 / ranks of "
                       "it); 0: every sample. It pays where 8x8-pixel bundles are flat (a radial "
-                      "concentration: 1.3 times faster at 0.004, 1.5 at 0.01); where none is "
-                      "(the dam break's height) the planning makes the frame 10 to 16 % slower "
+                      "concentration: 1.4 times faster at 0.004, 1.6 at 0.01); where none is "
+                      "(the dam break's height) the planning makes the frame 3 to 10 % slower "
                       "(docs/benchmarks.md)"),
        schema::number("relax", &A::relax, schema::between(0, 1),
                       "the share of each cell's full-rate bound width left out of its coarser "
