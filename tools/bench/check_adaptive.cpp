@@ -34,13 +34,12 @@
 
 #include "insitu/runtime/pipeline.h"
 #include "tools/common/dambreak_views.h"
+#include "tools/common/picture_change.h"
 #include "tools/common/tool_args.h"
 #include "tools/common/usage.h"
 #include "voxspan/insitu.h"
 
 namespace {
-
-constexpr double kRounding = 1e-6;  // float compositing's slack over the tolerance
 
 struct Options {
   std::size_t particles = 20000;
@@ -134,14 +133,8 @@ std::string config_text(const Options& o, const std::vector<Tally>& tallies) {
 
 using voxspan::tools::fluid_grid;
 using voxspan::tools::fluid_view;
-
-// The worst channel of pixel (x, y) between two pictures.
-double worst_channel(const voxspan::FloatImage& a, const voxspan::FloatImage& b, int x, int y) {
-  const glm::vec4 p = a.at(x, y), q = b.at(x, y);
-  double worst = 0;
-  for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(double(p[c]) - double(q[c])));
-  return worst;
-}
+using voxspan::tools::kToleranceSlack;
+using voxspan::tools::worst_channel;
 
 void Deviation::add(const voxspan::FloatImage& picture, const voxspan::FloatImage& converged) {
   for (int y = 0; y < picture.height; ++y)
@@ -162,7 +155,7 @@ void tally(const voxspan::FloatImage& full, const voxspan::FloatImage& adaptive,
       const double worst = worst_channel(full, adaptive, x, y);
       t.largest = std::max(t.largest, worst);
       ++t.rays;
-      if (worst <= t.tolerance + kRounding) continue;
+      if (worst <= t.tolerance + kToleranceSlack) continue;
       ++t.rays_over;
       frame_over = true;
       if (t.relax == 0 && t.rays_over <= 5)

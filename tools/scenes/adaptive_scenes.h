@@ -47,11 +47,37 @@ inline VolumeOptions adaptive_options(double spacing, double lo, double hi,
 
 inline glm::vec4 smooth_tf(float u) { return {u, 0.6f - 0.4f * u, 1 - u, 0.03f + 0.15f * u}; }
 
-// A dam break's shape (Ritter's solution) at three times, its height as the concentration; a
-// radial concentration through a transfer function with a narrow opacity spike ([HOK16] Fig.
-// 3: the cells where the spike lies stay fine, the rest need not); a 3D checkerboard of
-// concentrations 0 and 1 in blocks of 5 spacings. Each at width x height pixels; the dam break
-// at `dam_spacing`, the others a cube of `side`^3 particles.
+// A radial concentration through a transfer function with a narrow opacity spike ([HOK16] Fig.
+// 3: the cells where the spike lies stay fine, the rest need not), a cube of `side`^3 particles.
+inline AdaptiveScene radial_scene(int width, int height, int side) {
+  const double s = 0.05;
+  const Particles block = lattice_block({0, 0, 0}, {side, side, side}, s, s);
+  return {"radial, steep transfer function",
+          with_values(block, s, [](glm::dvec3 x) { return glm::length(x); }),
+          frame_scene(block, {-0.5, -0.6, -1}, width, height),
+          adaptive_options(s, 0, 1.8, [](float u) {
+            const float spike = std::exp(-std::pow((u - 0.55f) / 0.02f, 2.0f));
+            return glm::vec4(u, 0.3f + 0.6f * spike, 1 - u, 0.02f + 0.6f * spike);
+          })};
+}
+
+// A 3D checkerboard of concentrations 0 and 1 in cubes of 5 spacings, a cube of `side`^3
+// particles.
+inline AdaptiveScene checkerboard_scene(int width, int height, int side) {
+  const double s = 0.05;
+  const Particles block = lattice_block({0, 0, 0}, {side, side, side}, s, s);
+  return {"checkerboard",
+          with_values(block, s,
+                      [&](glm::dvec3 x) {
+                        const glm::ivec3 c(glm::floor(x / (5 * s)));
+                        return double((c.x + c.y + c.z) % 2);
+                      }),
+          frame_scene(block, {-0.4, -0.5, -1}, width, height),
+          adaptive_options(s, 0, 1, smooth_tf)};
+}
+
+// A dam break's shape (Ritter's solution) at three times, its height as the concentration, at
+// `dam_spacing`; then radial_scene and checkerboard_scene. Each at width x height pixels.
 inline std::vector<AdaptiveScene> adaptive_scenes(int width, int height, double dam_spacing = 0.02,
                                                   int side = 20) {
   std::vector<AdaptiveScene> out;
@@ -65,23 +91,8 @@ inline std::vector<AdaptiveScene> adaptive_scenes(int width, int height, double 
                    frame_scene(p, {-0.3, -0.4, -1}, width, height),
                    adaptive_options(shape.spacing, 0, 0.6, smooth_tf)});
   }
-  const double s = 0.05;
-  const Particles block = lattice_block({0, 0, 0}, {side, side, side}, s, s);
-  out.push_back({"radial, steep transfer function",
-                 with_values(block, s, [](glm::dvec3 x) { return glm::length(x); }),
-                 frame_scene(block, {-0.5, -0.6, -1}, width, height),
-                 adaptive_options(s, 0, 1.8, [](float u) {
-                   const float spike = std::exp(-std::pow((u - 0.55f) / 0.02f, 2.0f));
-                   return glm::vec4(u, 0.3f + 0.6f * spike, 1 - u, 0.02f + 0.6f * spike);
-                 })});
-  out.push_back({"checkerboard",
-                 with_values(block, s,
-                             [&](glm::dvec3 x) {
-                               const glm::ivec3 c(glm::floor(x / (5 * s)));
-                               return double((c.x + c.y + c.z) % 2);
-                             }),
-                 frame_scene(block, {-0.4, -0.5, -1}, width, height),
-                 adaptive_options(s, 0, 1, smooth_tf)});
+  out.push_back(radial_scene(width, height, side));
+  out.push_back(checkerboard_scene(width, height, side));
   return out;
 }
 

@@ -117,7 +117,7 @@ TEST(VolumeAdaptiveGl, CoarseCellsAreTheCastersSampleForSample) {
 TEST(VolumeAdaptiveGl, PastTheSoftwareLoopBudgetTheFrameIsTheCasters) {
   test::context();
   if (!gl::software_renderer()) GTEST_SKIP() << "a GPU has no loop budget";
-  const test::AdaptiveScene scene = test::adaptive_scenes(kWidth, kHeight)[3];  // 20^3, radial
+  const test::AdaptiveScene scene = test::radial_scene(kWidth, kHeight, 20);
   VolumeOptions o = scene.options;
   o.adaptive = {0.05, 0};
   VolumeFrame gl, cpu;
