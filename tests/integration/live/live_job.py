@@ -128,6 +128,21 @@ class LiveJob:
         with open(f"/proc/{self.process.pid}/status") as f:
             return int(re.search(r"Threads:\s+(\d+)", f.read()).group(1))
 
+    def cpu_seconds(self, nice=None, named=""):
+        """CPU time its threads have used so far: those at niceness `nice` only, if given, and
+        whose names start with `named`."""
+        total = 0
+        for tid in os.listdir(f"/proc/{self.process.pid}/task"):
+            try:
+                with open(f"/proc/{self.process.pid}/task/{tid}/stat") as f:
+                    name, fields = f.read().split("(", 1)[1].rsplit(")", 1)
+            except OSError:  # the thread ended meanwhile
+                continue
+            fields = fields.split()
+            if (nice is None or int(fields[16]) == nice) and name.startswith(named):
+                total += int(fields[11]) + int(fields[12])  # utime, stime
+        return total / os.sysconf("SC_CLK_TCK")
+
     def stats(self):
         lines = []
         for path in glob.glob(os.path.join(self.folder, "**", "*.jsonl"), recursive=True):
