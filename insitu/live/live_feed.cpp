@@ -35,6 +35,9 @@ struct LiveFeed::History {
   };
   std::vector<Shown> views;
   std::vector<std::shared_ptr<const std::string>> pictures;
+  // The newest picture of each view not yet encoded, and its step.
+  std::vector<SharedPicture> waiting;
+  std::vector<std::int64_t> waiting_step;
 
   std::size_t pass_index(const std::string& name) {
     for (std::size_t i = 0; i < passes.size(); ++i)
@@ -51,6 +54,8 @@ LiveFeed::LiveFeed(std::vector<std::string> view_names, bool interactive)
   mailbox_.pictures.resize(names_.size());
   history_->views.resize(names_.size());
   history_->pictures.resize(names_.size());
+  history_->waiting.resize(names_.size());
+  history_->waiting_step.resize(names_.size(), -1);
   snapshot_ = std::make_shared<const LiveSnapshot>(LiveSnapshot{state_json(), history_->pictures});
   thread_ = std::thread([this] { run(); });
 }
@@ -120,19 +125,33 @@ void LiveFeed::run() {
   Handed work;
   work.pictures.resize(names_.size());
   bool finished = false;
+  bool due = false;  // a step taken, or the end, that the snapshot does not show yet
+  std::chrono::steady_clock::time_point made;  // the last snapshot's; none: long ago
   for (;;) {
     {
       std::unique_lock lock(mailbox_mutex_);
       wake_.wait_for(lock, std::chrono::milliseconds(kPollMs),
                      [&] { return mailbox_.fresh || stopping_ || finished_ != finished; });
       if (stopping_) return;
-      if (!mailbox_.fresh && finished_ == finished) continue;
-      finished = finished_;
-      // A swap: both keep their storage, and the mailbox gets back pictures already dropped.
-      std::swap(work, mailbox_);
-      mailbox_.fresh = false;
+      if (mailbox_.fresh || finished_ != finished) {
+        finished = finished_;
+        // A view's picture still waiting goes before its newer one comes: the page never holds
+        // more than two of a view's buffers (the pipeline reserves for that).
+        for (std::size_t i = 0; i < mailbox_.pictures.size(); ++i)
+          if (mailbox_.pictures[i]) history_->waiting[i].reset();
+        // A swap: both keep their storage, and the mailbox gets back pictures already dropped.
+        std::swap(work, mailbox_);
+        mailbox_.fresh = false;
+        due = true;
+      }
     }
     if (work.fresh) take(work);
+    const auto now = std::chrono::steady_clock::now();
+    // Once the job has ended, its last step at once.
+    if (!due || (!finished && now - made < std::chrono::milliseconds(kSnapshotEveryMs))) continue;
+    due = false;
+    made = now;
+    encode_waiting();
     auto next = std::make_shared<LiveSnapshot>();
     next->pictures = history_->pictures;
     {
@@ -145,7 +164,7 @@ void LiveFeed::run() {
   }
 }
 
-// Encodes the step's pictures and adds its row to the chart; drops the references.
+// Adds the step's row to the chart and keeps its pictures, the newest of each view, to encode.
 void LiveFeed::take(Handed& work) {
   History& h = *history_;
   if (h.step < 0)
@@ -167,18 +186,28 @@ void LiveFeed::take(Handed& work) {
   h.rows.push_back(std::move(row));
   if (h.rows.size() > kHistorySteps) h.rows.pop_front();
   for (std::size_t i = 0; i < work.pictures.size(); ++i) {
-    SharedPicture& p = work.pictures[i];
+    if (!work.pictures[i]) continue;  // none this step: the view's older one, if any, stays
+    h.waiting[i] = std::move(work.pictures[i]);
+    h.waiting_step[i] = work.step;
+  }
+  work.fresh = false;
+}
+
+// Encodes the pictures waiting and drops their references.
+void LiveFeed::encode_waiting() {
+  History& h = *history_;
+  for (std::size_t i = 0; i < h.waiting.size(); ++i) {
+    SharedPicture& p = h.waiting[i];
     if (!p) continue;
     try {
       const ImageRGBA8& picture = *p.srgb8();
       h.pictures[i] = std::make_shared<const std::string>(encode_png(picture));
-      h.views[i] = {work.step, picture.width, picture.height};
+      h.views[i] = {h.waiting_step[i], picture.width, picture.height};
     } catch (const std::exception& e) {
       log_warning("live page: view ", names_[i], ": ", e.what());
     }
     p.reset();
   }
-  work.fresh = false;
 }
 
 // {"running":true,"interactive":false,"step":120,"time":0.6,"particles":100000,"render_steps":13,

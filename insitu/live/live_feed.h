@@ -5,10 +5,12 @@
 // thread), its step, time, particles and the milliseconds of each pass. Out: a LiveSnapshot,
 // immutable, that any number of server threads read at once: the state as JSON and each view's
 // latest picture as a PNG. The solver's thread only fills a mailbox under a mutex the feed's
-// thread holds for a swap, never for work; a step that comes before the last is encoded
+// thread holds for a swap, never for work; a step that comes before the last is taken
 // replaces it (the latest only), so a slow encoder never makes the solver wait; nor does the
-// solver wake that thread: it looks for a new step every 50 ms, at a lower priority. Once the
-// pass names are known, publishing allocates nothing.
+// solver wake that thread: it looks for a new step every 50 ms, at a lower priority. Each step
+// taken adds its row to the chart; the snapshot (the state and the pictures, encoded then) is
+// made again at most every kSnapshotEveryMs (the page asks once a second) from the newest step,
+// at once when the job ends. Once the pass names are known, publishing allocates nothing.
 #pragma once
 
 #include <chrono>
@@ -46,6 +48,9 @@ class LiveFeed {
  public:
   // Steps kept for the chart: older ones are dropped first.
   static constexpr std::size_t kHistorySteps = 1000;
+  // The least time between two snapshots: a job rendering 30 steps a second had the feed encode
+  // every one, 5 % of a core for pictures the page fetches once a second.
+  static constexpr int kSnapshotEveryMs = 250;
   // The niceness of the page's threads (the feed's and the server's): below the solver's, so
   // that encoding pictures and answering clients, hostile ones included, wait for a core the
   // solver leaves free.
@@ -81,6 +86,7 @@ class LiveFeed {
   static void add_pass(Handed& h, std::string_view name, double ms);
   void run();
   void take(Handed& work);
+  void encode_waiting();
   std::string state_json() const;
 
   const std::vector<std::string> names_;

@@ -423,9 +423,9 @@ struct InsituPipeline::Impl {
     if (!pattern.empty()) expand_caption(pattern, {data.step, data.time, v.name}, v.caption);
     const PictureFinish finish{std::exchange(products.pending_picture, nullptr),
                                pattern.empty() ? std::string_view() : v.caption, data.step};
-    // With the live page, its mailbox's picture and the one its encoder reads may both be held
-    // when the next is taken: three buffers, made at the first picture rather than on the step
-    // where the encoder first lags.
+    // With the live page, its mailbox's picture and the one its encoder reads or keeps for
+    // later may both be held when the next is taken: three buffers, made at the first picture
+    // rather than on the step where the encoder first lags.
     const std::size_t reserved = live_feed ? 3 : 0;
     if (std::exchange(products.picture_is_srgb8, false)) {
       v.pictures->reserve(products.srgb8_picture, reserved);

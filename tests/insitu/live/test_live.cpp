@@ -3,6 +3,7 @@
 // start-up error that names it. Its rules over HTTP: tests/integration/live/.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -57,6 +58,44 @@ TEST(LiveFeed, ServesTheLatestPictureAsTheOutputsPngAndTheStepsPasses) {
   feed.finish();
   EXPECT_NE(snapshot_with(feed, "\"running\":false")->state.find("\"running\":false"),
             std::string::npos);
+}
+
+// Steps that come faster than LiveFeed::kSnapshotEveryMs: the snapshot made again no sooner
+// than that after the last, from the newest step (none left showing an older picture), and at
+// once when the job ends.
+TEST(LiveFeed, SnapshotsAtMostEveryIntervalTheNewestStepAlways) {
+  PicturePool pool(4);  // first: it outlives the feed's references, whatever fails
+  LiveFeed feed({"main"});
+  auto step = [&](std::int64_t n, float value) {
+    FloatImage drawn(4, 2);
+    std::fill(drawn.rgba.begin(), drawn.rgba.end(), value);
+    SharedPicture picture = pool.take(drawn);
+    ViewResult views[1];
+    views[0] = {.name = "main", .picture = picture.get(), .shared_picture = &picture};
+    feed.publish({n, 0.1 * double(n), 10, 1.0, views, {}});
+  };
+  auto png = [](float value) {
+    FloatImage expected(4, 2);
+    std::fill(expected.rgba.begin(), expected.rgba.end(), value);
+    return encode_png(linear_to_srgb8(expected.rgba, 4, 2));
+  };
+  const auto start = std::chrono::steady_clock::now();
+  step(1, 0.1f);
+  ASSERT_EQ(*snapshot_with(feed, "{\"name\":\"main\",\"step\":1,")->pictures[0], png(0.1f));
+  step(2, 0.2f);
+  step(3, 0.3f);
+  const auto shown = snapshot_with(feed, "{\"name\":\"main\",\"step\":3,");
+  const double waited_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_NE(shown->state.find("{\"name\":\"main\",\"step\":3,"), std::string::npos) << shown->state;
+  EXPECT_EQ(*shown->pictures[0], png(0.3f));
+  EXPECT_GE(waited_ms, LiveFeed::kSnapshotEveryMs);
+
+  step(4, 0.4f);
+  feed.finish();
+  const auto last = snapshot_with(feed, "\"running\":false");
+  EXPECT_NE(last->state.find("{\"name\":\"main\",\"step\":4,"), std::string::npos) << last->state;
+  EXPECT_EQ(*last->pictures[0], png(0.4f));
 }
 
 TEST(LiveServer, ListensOnAFreePortWithARandomTokenAndNamesAPortTaken) {
