@@ -15,9 +15,10 @@
 namespace voxspan {
 namespace {
 
-// The feed's snapshot once its state holds `text` (it looks for new steps every 50 ms).
+// The feed's snapshot once its state holds `text` (it looks for new steps every 50 ms, at a
+// lower priority: up to 10 s on a loaded machine).
 std::shared_ptr<const LiveSnapshot> snapshot_with(const LiveFeed& feed, const std::string& text) {
-  for (int i = 0; i < 200; ++i) {
+  for (int i = 0; i < 1000; ++i) {
     auto s = feed.snapshot();
     if (s->state.find(text) != std::string::npos) return s;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
