@@ -10,7 +10,8 @@ connections, a client that sends a byte a second and one that reads a byte a sec
 be refused or bounded with its status, and the job's in-situ time per render step (the 20th
 percentile over the run, from its stats lines) at most TOLERANCE (VOXSPAN_LIVE_TOLERANCE, default
 0.25; the goal, 0.05, is printed) above the reference's. Both jobs run side by side so that the
-machine's other work weighs on both alike.
+machine's other work weighs on both alike. Each run prints the CPU time the page's threads (those
+at LiveFeed::kThreadNice) used over the attacks: the most the page could take from the solver.
 
 The benchmark of that goal (docs/benchmarks.md, "The live page"): `--runs N` repeats the pair N
 times, the job with the page started first on every other run, and checks the median change;
