@@ -36,8 +36,11 @@ struct LiveFeed::History {
   std::vector<Shown> views;
   std::vector<std::shared_ptr<const std::string>> pictures;
   // The newest picture of each view not yet encoded, and its step.
-  std::vector<SharedPicture> waiting;
-  std::vector<std::int64_t> waiting_step;
+  struct Waiting {
+    SharedPicture picture;
+    std::int64_t step = -1;
+  };
+  std::vector<Waiting> waiting;
 
   std::size_t pass_index(const std::string& name) {
     for (std::size_t i = 0; i < passes.size(); ++i)
@@ -55,7 +58,6 @@ LiveFeed::LiveFeed(std::vector<std::string> view_names, bool interactive)
   history_->views.resize(names_.size());
   history_->pictures.resize(names_.size());
   history_->waiting.resize(names_.size());
-  history_->waiting_step.resize(names_.size(), -1);
   snapshot_ = std::make_shared<const LiveSnapshot>(LiveSnapshot{state_json(), history_->pictures});
   thread_ = std::thread([this] { run(); });
 }
@@ -138,7 +140,7 @@ void LiveFeed::run() {
         // A view's picture still waiting goes before its newer one comes: the page never holds
         // more than two of a view's buffers (the pipeline reserves for that).
         for (std::size_t i = 0; i < mailbox_.pictures.size(); ++i)
-          if (mailbox_.pictures[i]) history_->waiting[i].reset();
+          if (mailbox_.pictures[i]) history_->waiting[i].picture.reset();
         // A swap: both keep their storage, and the mailbox gets back pictures already dropped.
         std::swap(work, mailbox_);
         mailbox_.fresh = false;
@@ -187,8 +189,7 @@ void LiveFeed::take(Handed& work) {
   if (h.rows.size() > kHistorySteps) h.rows.pop_front();
   for (std::size_t i = 0; i < work.pictures.size(); ++i) {
     if (!work.pictures[i]) continue;  // none this step: the view's older one, if any, stays
-    h.waiting[i] = std::move(work.pictures[i]);
-    h.waiting_step[i] = work.step;
+    h.waiting[i] = {std::move(work.pictures[i]), work.step};
   }
   work.fresh = false;
 }
@@ -197,12 +198,12 @@ void LiveFeed::take(Handed& work) {
 void LiveFeed::encode_waiting() {
   History& h = *history_;
   for (std::size_t i = 0; i < h.waiting.size(); ++i) {
-    SharedPicture& p = h.waiting[i];
+    SharedPicture& p = h.waiting[i].picture;
     if (!p) continue;
     try {
       const ImageRGBA8& picture = *p.srgb8();
       h.pictures[i] = std::make_shared<const std::string>(encode_png(picture));
-      h.views[i] = {h.waiting_step[i], picture.width, picture.height};
+      h.views[i] = {h.waiting[i].step, picture.width, picture.height};
     } catch (const std::exception& e) {
       log_warning("live page: view ", names_[i], ": ", e.what());
     }

@@ -47,11 +47,17 @@ inline VolumeOptions adaptive_options(double spacing, double lo, double hi,
 
 inline glm::vec4 smooth_tf(float u) { return {u, 0.6f - 0.4f * u, 1 - u, 0.03f + 0.15f * u}; }
 
+// The synthetic scenes' block: `side`^3 particles at kCubeSpacing from the origin.
+inline constexpr double kCubeSpacing = 0.05;
+inline Particles cube_block(int side) {
+  return lattice_block({0, 0, 0}, {side, side, side}, kCubeSpacing, kCubeSpacing);
+}
+
 // A radial concentration through a transfer function with a narrow opacity spike ([HOK16] Fig.
 // 3: the cells where the spike lies stay fine, the rest need not), a cube of `side`^3 particles.
 inline AdaptiveScene radial_scene(int width, int height, int side) {
-  const double s = 0.05;
-  const Particles block = lattice_block({0, 0, 0}, {side, side, side}, s, s);
+  const double s = kCubeSpacing;
+  const Particles block = cube_block(side);
   return {"radial, steep transfer function",
           with_values(block, s, [](glm::dvec3 x) { return glm::length(x); }),
           frame_scene(block, {-0.5, -0.6, -1}, width, height),
@@ -64,8 +70,8 @@ inline AdaptiveScene radial_scene(int width, int height, int side) {
 // A 3D checkerboard of concentrations 0 and 1 in cubes of 5 spacings, a cube of `side`^3
 // particles.
 inline AdaptiveScene checkerboard_scene(int width, int height, int side) {
-  const double s = 0.05;
-  const Particles block = lattice_block({0, 0, 0}, {side, side, side}, s, s);
+  const double s = kCubeSpacing;
+  const Particles block = cube_block(side);
   return {"checkerboard",
           with_values(block, s,
                       [&](glm::dvec3 x) {
