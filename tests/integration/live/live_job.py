@@ -150,10 +150,20 @@ class LiveJob:
                 lines += [json.loads(line) for line in f if line.strip()]
         return sorted(lines, key=lambda r: r["step"])
 
-    def png(self, view, step):
-        paths = glob.glob(os.path.join(self.folder, "**", f"{view}_*{step}.png"), recursive=True)
-        paths = [p for p in paths if re.search(rf"{view}_0*{step}\.png$", p)]
-        if not paths:
-            raise RuntimeError(f"no PNG of view {view} at step {step} in {self.folder}")
-        with open(paths[0], "rb") as f:
-            return f.read()
+    def png(self, view, step, timeout=60):
+        """The bytes of the job's PNG frame of `view` at `step`. The job's writer thread writes
+        frames after the step that rendered them, and the page may show a step first: waits."""
+        start = time.time()
+        while True:
+            paths = glob.glob(os.path.join(self.folder, "**", f"{view}_*{step}.png"),
+                              recursive=True)
+            paths = [p for p in paths if re.search(rf"{view}_0*{step}\.png$", p)]
+            if paths:
+                if time.time() > start + 0.1:
+                    print(f"(the PNG of step {step} came {time.time() - start:.1f} s after the "
+                          "page showed it)", flush=True)
+                with open(paths[0], "rb") as f:
+                    return f.read()
+            if time.time() > start + timeout:
+                raise RuntimeError(f"no PNG of view {view} at step {step} in {self.folder}")
+            time.sleep(0.2)
