@@ -16,6 +16,10 @@ esac
 tools/scripts/setup.sh
 # Open MPI refuses to run as root without these (CI runs as root).
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# PySPH's dam break (test_default_view_pysph; about 25 s, Python) runs once for both suites.
+VOXSPAN_PYSPH_OUTPUT=$(mktemp -d)
+export VOXSPAN_PYSPH_OUTPUT
+trap 'rm -rf "$VOXSPAN_PYSPH_OUTPUT"' EXIT
 if ((release)); then
   tools/scripts/build.sh
   ctest --test-dir build --output-on-failure -j"$(nproc)"

@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  g++ make cmake pkg-config                          # toolchain (CMake 3.25 on Debian 12)
+  g++ make cmake pkg-config lld                      # toolchain (CMake 3.25 on Debian 12; lld links)
   libegl-dev libgl-dev libepoxy-dev                  # EGL + GL through libglvnd, epoxy loader
   libegl-mesa0 libgl1-mesa-dri                       # Mesa: llvmpipe when there is no GPU
   libglm-dev libtbb-dev libyaml-cpp-dev libpng-dev   # math, threads, config, images
