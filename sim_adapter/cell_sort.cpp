@@ -25,14 +25,17 @@ std::size_t block_begin(std::size_t b, std::size_t blocks, std::size_t n) {
   return n / blocks * b + std::min(b, n % blocks);
 }
 
-// As many blocks as threads, each of at least kGrain particles, their tallies (one counter per
-// block and cell) at most one counter per particle; 0 where even two blocks' do not fit.
+// How many blocks tally with plain increments: one per thread, each of kGrain particles at
+// least, their counters (blocks x cells) at most two per particle; 0 where that leaves fewer
+// than half the threads a block: shared atomic tallies then. Plain increments win even where no
+// two threads meet: a locked increment is a full fence on x86, so a thread waits out each of
+// its cache misses in turn instead of overlapping them.
 std::size_t block_count(std::size_t particles, std::size_t cells) {
   const std::size_t threads = std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
-  const std::size_t by_size = std::max<std::size_t>(1, particles / kGrain);
-  const std::size_t by_memory = cells > 0 ? std::max<std::size_t>(1, particles / cells) : 1;
-  const std::size_t blocks = std::min({threads, by_size, by_memory});
-  return blocks == 1 && threads > 1 && by_size > 1 ? 0 : blocks;
+  const std::size_t wanted = std::min(threads, std::max<std::size_t>(1, particles / kGrain));
+  if (wanted == 1) return 1;
+  const std::size_t blocks = cells > 0 ? std::min(wanted, 2 * particles / cells) : wanted;
+  return 2 * blocks >= wanted ? blocks : 0;
 }
 
 // Each block tallies and places its own particles with plain increments, so within a cell the

@@ -3,8 +3,8 @@
 // cell order. Deterministic: within a cell, particles keep ascending index order.
 // Costs: two passes over the particles, one scan over the cells. Parallel with oneTBB: each
 // thread tallies its own share of the particles (one counter per cell and thread) where those
-// counters take no more memory than the cell index; with more cells than that, one shared
-// tally of atomic increments and a sort of each cell's few entries.
+// counters number at most two per particle; with more cells than that, one shared tally of
+// atomic increments and a sort of each cell's few entries.
 #pragma once
 
 #include <cstdint>
