@@ -41,6 +41,9 @@
 #   volume_*             bench_volume --gl (the volume views' GL march on the GPU: its time, its
 #                        difference from the CPU frame): Ritter 1e5 at 640x360, 1e6 at 1920x1080
 #                        and 1024x1024 (DVR, iso).
+#   classify_1t, _all    bench_classify --particles 5e6 (the dam break's 5 M) on one thread and
+#                        on all: the adapter's classification without the solver's grid, and how
+#                        it scales with the cores.
 # The benches time 3 frames after a warm-up (--quick: 1); most of a step's time is building its
 # scene on the CPU. Each step runs under `timeout`, within its own limit and the time left of the
 # budget (--budget S, default 230 s from the start, --quick 900; a step with under 5 s left is
@@ -126,13 +129,13 @@ if ((quick)); then
   all_1=2e4 all_2=4e4 shell_1=1e5 shell_2=2e5 ren_1=2e4 ren_2=1e5 ren_low=5e3
   pic=(--particles 2e4 --size 320x180) spans=(--particles 2e4 --size 320x180)
   insitu=(--particles 5000 --non-render-steps 1000) insitu_steps=20 insitu_low_steps=20
-  vol_low=2e4 vol_1=2e4
+  vol_low=2e4 vol_1=2e4 cls=2e5
 else
   frames=3 hd=1920x1080 uhd=3840x2160 low=640x360 square=1024x1024
   all_1=7e6 all_2=13.35e6 shell_1=50e6 shell_2=100e6 ren_1=1e6 ren_2=1e7 ren_low=1e5
   pic=() spans=()
   insitu=(--particles 1e6 --non-render-steps 1000000) insitu_steps=100 insitu_low_steps=50
-  vol_low=1e5 vol_1=1e6
+  vol_low=1e5 vol_1=1e6 cls=5e6
 fi
 all=(--ritter --all-particles --alpha 1 --max-layers 16384 --frames "$frames")
 insitu+=(--config "$repo/examples/dambreak/main-job.yaml" --start 0.05 --render-every 10
@@ -180,6 +183,8 @@ step 30 volume_1e6_1080p "$bin/bench_volume" --ritter --particles "$vol_1" --siz
   --frames "$frames" --modes dvr,iso --gl
 step 30 volume_1e6_1024 "$bin/bench_volume" --ritter --particles "$vol_1" --size "$square" \
   --frames "$frames" --modes dvr,iso --gl
+step 30 classify_1t "$bin/bench_classify" --particles "$cls" --steps 1 --repeats 7 --threads 1
+step 20 classify_all "$bin/bench_classify" --particles "$cls" --steps 1 --repeats 7
 
 # The summary: parsers of the tools' outputs (an empty answer when the figure is missing).
 outfile() { echo "$out/$1.txt"; }
@@ -221,6 +226,8 @@ thread_ms() {
          printf "%.1f\n", s; exit
        }' "$(outfile "$1")" 2>/dev/null
 }
+# nogrid STEP: bench_classify's particles a second without the solver's grid.
+nogrid() { awk '$1 ~ /^[0-9]+$/ && NF >= 10 { print $8; exit }' "$(outfile "$1")" 2>/dev/null; }
 # figures STEP UNIT VALUE...: "a / b / c UNIT", "?" for a missing value, and why the step gave
 # none when it did not end well.
 figures() {
@@ -304,6 +311,11 @@ summary() {
   r "the same, solver thread per render step: pictures read later (\`readback: auto\`) / at once (\`wait\`) / as floats (\`--linear-pictures\`)" \
     "$(figures insitu_1080p_wait "" "$(with "$ms" ms)" "$(with "$(thread_ms insitu_1080p_wait)" ms)" \
       "$(with "$(thread_ms insitu_1080p_linear)" ms)")"
+  local c1 ca
+  c1=$(nogrid classify_1t) ca=$(nogrid classify_all)
+  r "bench_classify, the dam break's $cls particles without the solver's grid: particles/s on 1 thread / on all (speed-up)" \
+    "$(figures classify_all "" "$c1" "$ca")$(awk -v a="$c1" -v b="$ca" 'BEGIN {
+      if (a > 0 && b > 0) printf " (x%.1f)", b / a }')" "scales with the cores"
   local w=0 where="" s c
   for s in "${steps[@]}"; do
     c=$(grep -ci "performance warning" "$(outfile "$s")" 2>/dev/null) || true
