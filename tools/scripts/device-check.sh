@@ -314,7 +314,7 @@ summary() {
   local c1 ca
   c1=$(nogrid classify_1t) ca=$(nogrid classify_all)
   r "bench_classify, the dam break's $cls particles without the solver's grid: particles/s on 1 thread / on all (speed-up)" \
-    "$(figures classify_all "" "$c1" "$ca")$(awk -v a="$c1" -v b="$ca" 'BEGIN {
+    "$(figures "$([[ -z $c1 ]] && echo classify_1t || echo classify_all)" "" "$c1" "$ca")$(awk -v a="$c1" -v b="$ca" 'BEGIN {
       if (a > 0 && b > 0) printf " (x%.1f)", b / a }')" "scales with the cores"
   local w=0 where="" s c
   for s in "${steps[@]}"; do
