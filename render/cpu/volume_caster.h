@@ -27,7 +27,9 @@
 //            its chords' ends, one that reaches only super-pixels is not read, and each ray takes
 //            its bundle's super-pixels whether a support reached it there or not.
 // Each sample's sum adds its particles in the sorted order: the picture does not depend on the
-// number of threads.
+// number of threads. The phases' parts: render/cpu/volume_supports.h (project, sort, bin; a
+// support's kernel sums), render/cpu/volume_march.h (a tile's supports into its rays) and
+// render/cpu/volume_rays.h (a tile's rays composited).
 #pragma once
 
 #include <array>
