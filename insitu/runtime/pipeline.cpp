@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cstring>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -25,6 +24,7 @@
 #include "insitu/runtime/registry.h"
 #include "insitu/runtime/schedule.h"
 #include "insitu/runtime/step_record.h"
+#include "insitu/runtime/step_scene.h"
 #include "insitu/views/legend.h"
 #include "insitu/views/span_compositor.h"
 #include "insitu/views/view.h"
@@ -120,12 +120,6 @@ struct ViewState {
   bool jump_told = false;  // the framing's jump is said once
 };
 
-std::string point(const std::array<double, 3>& p) {
-  std::ostringstream s;
-  s << "(" << p[0] << ", " << p[1] << ", " << p[2] << ")";
-  return s.str();
-}
-
 struct OutputState {
   const OutputKind* kind;
   std::unique_ptr<Output> output;  // null when the output is disabled
@@ -171,7 +165,8 @@ struct InsituPipeline::Impl {
         backend(
             choose_backend(config.renderer.backend, prepared(config, communicator, made_folders))),
         recorder(make_recorder(backend)),
-        writer(config.writer) {
+        writer(config.writer),
+        scene(communicator, communicator == nullptr || communicator->root()) {
     for (const ConfiguredView& v : config.views) view_names.push_back(v.settings->name);
     check_view_memory(config);
     const ViewContext view_context = make_view_context();
@@ -284,8 +279,8 @@ struct InsituPipeline::Impl {
               const Camera camera =
                   orbited(v.camera, double(phi), double(theta), v.framing.pivot());
               const bool shown =
-                  v.view->render({data, camera, v.framing.box(), needs, true, &scenery}, *recorder,
-                                 v.orbit_products);
+                  v.view->render({data, camera, v.framing.box(), needs, true, &scene.scenery()},
+                                 *recorder, v.orbit_products);
               recorder->collect();
               if (!shown) {
                 drop_pending(v.orbit_products);
@@ -366,8 +361,8 @@ struct InsituPipeline::Impl {
   // Renders every view; the first failure's message comes back (empty when all went well).
   std::string render_views(const StepData& data, const ViewNeeds& needs) {
     std::string failure;
-    const Bounds step_box = global_box(data.boundary);
-    update_scenery(data);
+    const Bounds step_box = scene.fluid_box(data.boundary);
+    const Scenery& scenery = scene.update_scenery(data);
     Bounds with_scenery = step_box;
     with_scenery.add(scenery.box);
     for (std::size_t i = 0; i < views.size(); ++i) {
@@ -383,7 +378,7 @@ struct InsituPipeline::Impl {
         if (v.framing.jumped() && !v.jump_told && reports_here()) {
           v.jump_told = true;
           log_warning("view ", v.name, ": the automatic framing jumped (the fluid's box now ",
-                      point(v.framing.box().lo), " to ", point(v.framing.box().hi),
+                      point_text(v.framing.box().lo), " to ", point_text(v.framing.box().hi),
                       ", over 4 times its size before); said once");
         }
         const bool shown = v.view->render({data, camera, v.framing.box(), needs, false, &scenery},
@@ -494,83 +489,7 @@ struct InsituPipeline::Impl {
 
   bool reports_here() const { return comm == nullptr || comm->root(); }
 
-  // This step's box of the boundary spheres over every rank, without those far from the bulk
-  // (BulkBox), which are said.
-  Bounds global_box(std::span<const ParticleSphere> boundary) {
-    BulkBox::Range range = BulkBox::range(boundary);
-    if (comm != nullptr) {
-      comm->min(range.centres.lo);
-      comm->max(range.centres.hi);
-      comm->sum(range.count_and_radii);
-    }
-    BulkBox::histogram(boundary, range, bulk_scratch, bulk_bins);
-    if (comm != nullptr) comm->sum(bulk_bins);
-    BulkBox::Split split = BulkBox::split(boundary, BulkBox::kept(range, bulk_bins));
-    if (comm != nullptr) {
-      comm->min(split.box.lo);
-      comm->max(split.box.hi);
-      comm->min(split.left_out_box.lo);
-      comm->max(split.left_out_box.hi);
-      comm->sum(std::span(&split.left_out, 1));
-    }
-    tell_strays(split);
-    return split.box;
-  }
-
-  // A warning when particles are first left out of the automatic framing, and again when
-  // their number has doubled since (escaping particles must not flood the log).
-  void tell_strays(const BulkBox::Split& split) {
-    if (split.left_out == 0) {
-      strays_told = 0;
-      return;
-    }
-    if (strays_told > 0 && split.left_out < 2 * strays_told) return;
-    strays_told = split.left_out;
-    if (!reports_here()) return;
-    log_warning("automatic framing leaves out ", split.left_out,
-                split.left_out == 1 ? " particle" : " particles",
-                " far from the fluid (centres from ", point(split.left_out_box.lo), " to ",
-                point(split.left_out_box.hi), "); it frames ", point(split.box.lo), " to ",
-                point(split.box.hi), " (camera.bounds frames a box of your own)");
-  }
-
-  // The scenery the views see (Scenery): this process's own in one process; with ranks, the
-  // box of every rank's, and on the root all their spheres, gathered again whenever any rank
-  // gives new ones (the versions only grow, so their sum changes then). Collective.
-  void update_scenery(const StepData& data) {
-    if (comm == nullptr) {
-      if (data.scenery_version != scenery.version) {
-        scenery.box = Bounds::of_spheres(data.scenery);
-        scenery.version = data.scenery_version;
-      }
-      scenery.spheres = data.scenery;
-      return;
-    }
-    std::int64_t version = std::int64_t(data.scenery_version);
-    comm->sum(std::span(&version, 1));
-    if (std::uint64_t(version) == scenery.version) return;
-    scenery.version = std::uint64_t(version);
-    scenery.box = Bounds::of_spheres(data.scenery);
-    comm->min(scenery.box.lo);
-    comm->max(scenery.box.hi);
-    const std::vector<std::vector<std::byte>> parts = comm->gather(std::as_bytes(data.scenery));
-    scenery_spheres.clear();
-    for (const std::vector<std::byte>& part : parts) {
-      const std::size_t n = part.size() / sizeof(ParticleSphere);
-      if (n == 0) continue;  // a rank with none (memcpy must not see its null data)
-      const std::size_t at = scenery_spheres.size();
-      scenery_spheres.resize(at + n);
-      std::memcpy(scenery_spheres.data() + at, part.data(), n * sizeof(ParticleSphere));
-    }
-    scenery.spheres = comm->root() ? std::span<const ParticleSphere>(scenery_spheres)
-                                   : std::span<const ParticleSphere>();
-  }
-
-  Scenery scenery;
-  std::vector<ParticleSphere> scenery_spheres;  // every rank's, on the root of an MPI job
-
-  std::vector<std::int64_t> bulk_scratch, bulk_bins;
-  std::int64_t strays_told = 0;
+  StepScene scene;  // what the views frame and show besides the fluid, agreed over ranks
 
   std::unique_ptr<LiveFeed> live_feed;            // on the root, when the live page is enabled
   std::unique_ptr<CameraMailbox> camera_mailbox;  // on the root, when it is interactive

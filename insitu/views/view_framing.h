@@ -40,7 +40,7 @@ struct Bounds {
 // the spheres' centres are binned over their range (kBulkBins bins); nonempty bins closer than
 // kBulkGapDiameters mean diameters are one body of fluid; bodies at either end that hold under
 // kStrayShare of the spheres are left out and counted, all the others framed. Four phases, so
-// that an MPI job reduces between them (insitu/runtime/pipeline.cpp): the ranks' ranges
+// that an MPI job reduces between them (insitu/runtime/step_scene.h): the ranks' ranges
 // (min/max), their histograms (sum), then the box (min/max) and what it left out (sum).
 struct BulkBox {
   static constexpr int kBulkBins = 4096;
