@@ -44,9 +44,9 @@ constexpr std::int64_t kMaxSupportSamples = std::int64_t(1) << 16;
 }  // namespace
 
 struct VolumeCaster::Work {
-  std::vector<Support> supports;      // in view, in input order
-  std::vector<std::uint64_t> keys;    // (first - base) << 32 | position in `supports`
-  std::vector<std::uint32_t> sorted;  // positions in `supports`, nearest first
+  std::vector<Support> projected;   // per particle, in input order
+  std::vector<std::uint64_t> keys;  // (first - base) << 32 | position in `projected`
+  std::vector<Support> supports;    // those in view, nearest first
   Bins tile_bins;
   std::vector<std::uint32_t> tile_lists;  // per tile its supports, in order
   Samples samples;
@@ -95,15 +95,15 @@ VolumeCounts VolumeCaster::start_frame(const Camera& camera,
   s.lattice = volume_lattice(w.frame.tan_half_y, w.frame.height, options);
   s.near =
       options.anchor;  // one spacing in front of the eye: a camera inside the fluid sees from there
-  project(view_grid, s, particles, support, counts, w.supports);
+  project(view_grid, s, particles, support, counts, w.projected);
   lap(VolumeCastPhase::project);
 
   std::int64_t lo = std::numeric_limits<std::int64_t>::max(), hi = lo;
   hi = std::numeric_limits<std::int64_t>::min();
-  for (const Support& p : w.supports)
+  for (const Support& p : w.projected)
     if (!p.rect.empty()) lo = std::min(lo, p.first), hi = std::max(hi, p.last);
   if (hi < lo) lo = hi = 0;
-  for (const Support& p : w.supports)
+  for (const Support& p : w.projected)
     if (!p.rect.empty() && p.last - p.first + 1 > kMaxSupportSamples)
       throw make_error("a particle's support spans ", p.last - p.first + 1,
                        " samples along the view (at most ", kMaxSupportSamples,
@@ -113,11 +113,10 @@ VolumeCounts VolumeCaster::start_frame(const Camera& camera,
   s.depths.resize(std::size_t(hi - lo + 2));
   for (std::size_t k = 0; k < s.depths.size(); ++k)
     s.depths[k] = s.lattice.depth(lo + std::int64_t(k));
-  sort_supports(w.supports, s.base, w.keys, w.sorted);
+  sort_supports(w.projected, s.base, w.keys, w.supports);
   lap(VolumeCastPhase::sort);
 
-  bin_supports(Tiles(camera.width, camera.height, kTile), w.supports, w.sorted, w.tile_bins,
-               w.tile_lists);
+  bin_supports(Tiles(camera.width, camera.height, kTile), w.supports, w.tile_bins, w.tile_lists);
   lap(VolumeCastPhase::bin);
   return counts;
 }
@@ -303,12 +302,10 @@ VolumeCounts VolumeCaster::setup(const Camera& camera, std::span<const VolumePar
                                  const VolumeOptions& options, VolumeSetup& out) {
   VolumeCounts counts = start_frame(camera, particles, options, [](VolumeCastPhase) {});
   Work& w = *work_;
-  // The supports in view in their sorted order, and the tiles' lists in those positions.
-  std::vector<std::uint32_t> position(w.supports.size(), 0);
-  out.supports.resize(w.sorted.size());
-  for (std::size_t k = 0; k < w.sorted.size(); ++k) {
-    const Support& s = w.supports[w.sorted[k]];
-    position[w.sorted[k]] = std::uint32_t(k);
+  // The supports in view in their sorted order, and the tiles' lists of their positions.
+  out.supports.resize(w.supports.size());
+  for (std::size_t k = 0; k < w.supports.size(); ++k) {
+    const Support& s = w.supports[k];
     out.supports[k] = {s.c.x,
                        s.c.y,
                        s.c.z,
@@ -327,9 +324,7 @@ VolumeCounts VolumeCaster::setup(const Camera& camera, std::span<const VolumePar
                        0};
   }
   out.tile_start = w.tile_bins.start;
-  out.tile_lists.resize(w.tile_lists.size());
-  for (std::size_t k = 0; k < w.tile_lists.size(); ++k)
-    out.tile_lists[k] = position[w.tile_lists[k]];
+  out.tile_lists = w.tile_lists;
   out.tiles_x = Tiles(camera.width, camera.height, kTile).nx;
   out.base = w.samples.base;
   out.depths = w.samples.depths;

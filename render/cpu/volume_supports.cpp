@@ -38,8 +38,6 @@ void project(const PerspectiveGrid& view_grid, const Samples& s,
                         }
                         o.first = s.lattice.first_at_or_after(lo);
                         o.last = s.lattice.last_at_or_before(hi);
-                        o.first_depth = s.lattice.depth(o.first);
-                        o.per_depth = 1 / (s.lattice.k * o.first_depth);
                         if (o.last < o.first) {
                           o.rect = {};
                           ++t[1];
@@ -57,23 +55,26 @@ void project(const PerspectiveGrid& view_grid, const Samples& s,
 }
 
 void sort_supports(const std::vector<Support>& supports, std::int64_t base,
-                   std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& sorted) {
+                   std::vector<std::uint64_t>& keys, std::vector<Support>& sorted) {
   keys.clear();
   for (std::size_t i = 0; i < supports.size(); ++i)
     if (!supports[i].rect.empty())
       keys.push_back(std::uint64_t(supports[i].first - base) << 32 | std::uint64_t(i));
   tbb::parallel_sort(keys.begin(), keys.end());
   sorted.resize(keys.size());
-  for (std::size_t k = 0; k < keys.size(); ++k) sorted[k] = std::uint32_t(keys[k] & 0xffffffffu);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, keys.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k != range.end(); ++k)
+                        sorted[k] = supports[keys[k] & 0xffffffffu];
+                    });
 }
 
-void bin_supports(const Tiles& screen, const std::vector<Support>& supports,
-                  std::span<const std::uint32_t> sorted, Bins& bins,
+void bin_supports(const Tiles& screen, const std::vector<Support>& sorted, Bins& bins,
                   std::vector<std::uint32_t>& lists) {
-  const auto tiles_of = [&](std::size_t k, auto&& f) { screen.each(supports[sorted[k]].rect, f); };
+  const auto tiles_of = [&](std::size_t k, auto&& f) { screen.each(sorted[k].rect, f); };
   bins.count(screen.count(), sorted.size(), tiles_of);
   lists.resize(bins.size());
-  bins.place(tiles_of, [&](std::size_t k, std::uint32_t slot) { lists[slot] = sorted[k]; });
+  bins.place(tiles_of, [&](std::size_t k, std::uint32_t slot) { lists[slot] = std::uint32_t(k); });
 }
 
 }  // namespace voxspan::volume_cast

@@ -30,8 +30,6 @@ struct Support {
   double vq = 0, v = 0;    // weight q and weight: the kernel's shape times these is the sum
   std::int64_t first = 0;  // the first sample at or after its nearest depth (and the near clip)
   std::int64_t last = -1;  // the last sample at or before its farthest depth
-  double first_depth = 0;  // that first sample's depth
-  double per_depth = 0;    // 1 / (k first_depth): samples per unit of depth there
   PixelRect rect;
 };
 
@@ -51,14 +49,14 @@ void project(const PerspectiveGrid& view_grid, const Samples& s,
              std::span<const VolumeParticle> particles, double support, VolumeCounts& counts,
              std::vector<Support>& out);
 
-// Sort: the supports in view, nearest first sample first, ties by input order, as positions in
-// `supports` (`keys`: scratch).
+// Sort: the supports in view (a pixel rectangle), nearest first sample first, ties by input
+// order, copied into `sorted` in that order: the march then reads each tile's in rising
+// addresses (`keys`: scratch).
 void sort_supports(const std::vector<Support>& supports, std::int64_t base,
-                   std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& sorted);
+                   std::vector<std::uint64_t>& keys, std::vector<Support>& sorted);
 
-// Bin: per tile the supports whose rectangles touch it, in the sorted order.
-void bin_supports(const Tiles& screen, const std::vector<Support>& supports,
-                  std::span<const std::uint32_t> sorted, Bins& bins,
+// Bin: per tile the positions of the sorted supports whose rectangles touch it, in order.
+void bin_supports(const Tiles& screen, const std::vector<Support>& sorted, Bins& bins,
                   std::vector<std::uint32_t>& lists);
 
 // The kernel of support s at the n samples of depths z[k] on the ray of |d|^2 = a whose depth
