@@ -404,7 +404,9 @@ template <SphKernel K, bool kPart> class TileMarch {
   }
 
   // The support's first sample at or after depth d, and its last at or before d: binary searches
-  // over its samples without branches (the compiler's conditional moves), a few steps each.
+  // over its samples, a few steps each. GCC branches on the comparison, and neighbouring rays
+  // take the same turns: a form of conditional moves and an index estimated from the
+  // lattice's logarithm were both slower (docs/benchmarks.md, "Volume views").
   std::int64_t first_sample(const Support& s, double d) const {
     return s.first + count_below(s, [d](double z) { return z < d; });
   }
