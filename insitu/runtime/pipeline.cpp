@@ -166,7 +166,7 @@ struct InsituPipeline::Impl {
             choose_backend(config.renderer.backend, prepared(config, communicator, made_folders))),
         recorder(make_recorder(backend)),
         writer(config.writer),
-        scene(communicator, communicator == nullptr || communicator->root()) {
+        scene(communicator) {
     for (const ConfiguredView& v : config.views) view_names.push_back(v.settings->name);
     check_view_memory(config);
     const ViewContext view_context = make_view_context();

@@ -44,7 +44,7 @@ void StepScene::tell_strays(const BulkBox::Split& split) {
   }
   if (strays_told_ > 0 && split.left_out < 2 * strays_told_) return;
   strays_told_ = split.left_out;
-  if (!reports_) return;
+  if (comm_ != nullptr && !comm_->root()) return;
   log_warning("automatic framing leaves out ", split.left_out,
               split.left_out == 1 ? " particle" : " particles",
               " far from the fluid (centres from ", point_text(split.left_out_box.lo), " to ",

@@ -29,8 +29,8 @@ std::string point_text(const std::array<double, 3>& p);
 
 class StepScene {
  public:
-  // `comm`: null in one process; `reports`: whether this process says the warnings.
-  StepScene(Communicator* comm, bool reports) : comm_(comm), reports_(reports) {}
+  // `comm`: null in one process; with ranks the root says the warnings.
+  explicit StepScene(Communicator* comm) : comm_(comm) {}
 
   // This step's box of the boundary spheres over every rank, without those far from the bulk.
   Bounds fluid_box(std::span<const ParticleSphere> boundary);
@@ -44,7 +44,6 @@ class StepScene {
   void tell_strays(const BulkBox::Split& split);
 
   Communicator* const comm_;
-  const bool reports_;
   std::vector<std::int64_t> bulk_scratch_, bulk_bins_;
   std::int64_t strays_told_ = 0;
   Scenery scenery_;

@@ -139,6 +139,11 @@ template <SphKernel K, bool kPart> class TileMarch {
 
  private:
   int width() const { return tile_.x1 - tile_.x0 + 1; }
+  // Support s's pixels in the tile, relative to its first pixel.
+  PixelRect in_tile(const Support& s) const {
+    return {std::max(s.rect.x0, tile_.x0) - tile_.x0, std::max(s.rect.y0, tile_.y0) - tile_.y0,
+            std::min(s.rect.x1, tile_.x1) - tile_.x0, std::min(s.rect.y1, tile_.y1) - tile_.y0};
+  }
 
   void march(const PixelRect& tile, std::span<const std::uint32_t> list,
              const std::vector<Support>& supports) {
@@ -183,12 +188,9 @@ template <SphKernel K, bool kPart> class TileMarch {
 
   // Whether every bundle of the tile that support s's pixels touch has only opaque rays.
   bool behind_opaque_bundles(const Support& s) const {
-    const int x0 = std::max(s.rect.x0, tile_.x0) - tile_.x0,
-              x1 = std::min(s.rect.x1, tile_.x1) - tile_.x0;
-    const int y0 = std::max(s.rect.y0, tile_.y0) - tile_.y0,
-              y1 = std::min(s.rect.y1, tile_.y1) - tile_.y0;
-    for (int by = y0 / kBundle; by <= y1 / kBundle; ++by)
-      for (int bx = x0 / kBundle; bx <= x1 / kBundle; ++bx)
+    const PixelRect in = in_tile(s);
+    for (int by = in.y0 / kBundle; by <= in.y1 / kBundle; ++by)
+      for (int bx = in.x0 / kBundle; bx <= in.x1 / kBundle; ++bx)
         if (!rays_.bundle_stopped(bx + by * Rays::kBundlesX)) return false;
     return true;
   }
@@ -262,17 +264,16 @@ template <SphKernel K, bool kPart> class TileMarch {
   // depth nearest its centre, the ray's squared distance from it there (chord_row) and the
   // chord's ends d0 <= d1 (d0 clipped to the near plane), in row order.
   template <class F> void each_chord(const Support& s, F&& f) {
-    const int x0 = std::max(s.rect.x0, tile_.x0), x1 = std::min(s.rect.x1, tile_.x1);
-    const int y0 = std::max(s.rect.y0, tile_.y0), y1 = std::min(s.rect.y1, tile_.y1);
-    for (int y = y0; y <= y1; ++y) {
-      const int row = (y - tile_.y0) * width();
-      chord_row(s, row + (x0 - tile_.x0), x1 - x0 + 1);
-      for (int k = 0; k <= x1 - x0; ++k) {
+    const PixelRect in = in_tile(s);
+    for (int y = in.y0; y <= in.y1; ++y) {
+      const int row = y * width() + in.x0;
+      chord_row(s, row, in.x1 - in.x0 + 1);
+      for (int k = 0; k <= in.x1 - in.x0; ++k) {
         if (!(w_.h2[k] > 0)) continue;  // the ray misses the support
         const double half = std::sqrt(w_.h2[k]), zc = w_.zc[k];
         const double d0 = std::max(zc - half, s_.near), d1 = zc + half;
         if (d1 < d0) continue;
-        f(row + (x0 - tile_.x0) + k, s, zc, w_.m2[k], d0, d1);
+        f(row + k, s, zc, w_.m2[k], d0, d1);
       }
     }
   }
@@ -309,16 +310,13 @@ template <SphKernel K, bool kPart> class TileMarch {
   // offsets in w_.needed, -1 for a bundle with a full-rate cell).
   enum class Sparse { none, some, nothing_taken };
   Sparse sparse_bundles(const Support& s) {
-    const int x0 = std::max(s.rect.x0, tile_.x0) - tile_.x0,
-              x1 = std::min(s.rect.x1, tile_.x1) - tile_.x0;
-    const int y0 = std::max(s.rect.y0, tile_.y0) - tile_.y0,
-              y1 = std::min(s.rect.y1, tile_.y1) - tile_.y0;
+    const PixelRect in = in_tile(s);
     const int bundles_x = (width() + kBundle - 1) / kBundle;
     const TilePlanner& plan = *rays_.plan();
     w_.needed.clear();
     bool any = false, all = true;
-    for (int by = y0 / kBundle; by <= y1 / kBundle; ++by)
-      for (int bx = x0 / kBundle; bx <= x1 / kBundle; ++bx) {
+    for (int by = in.y0 / kBundle; by <= in.y1 / kBundle; ++by)
+      for (int bx = in.x0 / kBundle; bx <= in.x1 / kBundle; ++bx) {
         const int b = bx + by * bundles_x;
         const std::size_t begin = w_.needed.size();
         bool sparse = true;
@@ -346,16 +344,15 @@ template <SphKernel K, bool kPart> class TileMarch {
   // the kernel at those samples only (zero outside the support, which adds nothing), without
   // the chord's ends.
   void add_sparse(const Support& s) {
-    const int x0 = std::max(s.rect.x0, tile_.x0), x1 = std::min(s.rect.x1, tile_.x1);
-    const int y0 = std::max(s.rect.y0, tile_.y0), y1 = std::min(s.rect.y1, tile_.y1);
+    const PixelRect in = in_tile(s);
     const double r2 = s.radius * s.radius;
     const std::int64_t mask = rays_.mask();
-    for (int y = y0; y <= y1; ++y) {
-      const int row = (y - tile_.y0) * width();
-      chord_row(s, row + (x0 - tile_.x0), x1 - x0 + 1);
-      for (int k = 0; k <= x1 - x0; ++k) {
+    for (int y = in.y0; y <= in.y1; ++y) {
+      const int row = y * width() + in.x0;
+      chord_row(s, row, in.x1 - in.x0 + 1);
+      for (int k = 0; k <= in.x1 - in.x0; ++k) {
         if (!(w_.h2[k] > 0)) continue;  // the ray misses the support
-        const int p = row + (x0 - tile_.x0) + k;
+        const int p = row + k;
         const int b = rays_.bundle(p);
         const double zc = w_.zc[k], m2 = w_.m2[k];
         if (b == kFullRate || w_.sparse[std::size_t(b)] < 0) {
@@ -475,11 +472,10 @@ template <SphKernel K, bool kPart> class TileMarch {
     FieldSums* sums = rays_.clear_hit_sums();
     for (std::uint32_t k : list) {
       const Support& s = supports[k];
-      const int x0 = std::max(s.rect.x0, tile_.x0), x1 = std::min(s.rect.x1, tile_.x1);
-      const int y0 = std::max(s.rect.y0, tile_.y0), y1 = std::min(s.rect.y1, tile_.y1);
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-          const int p = (x - tile_.x0) + (y - tile_.y0) * width();
+      const PixelRect in = in_tile(s);
+      for (int y = in.y0; y <= in.y1; ++y)
+        for (int x = in.x0; x <= in.x1; ++x) {
+          const int p = x + y * width();
           const RayState& r = rays_.ray(p);
           for (int h = 0; h < r.hits.count; ++h)
             add_field_sums<K>(double(r.hits.hit[std::size_t(h)].depth) * rays_.dir(p), s,
