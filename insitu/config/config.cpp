@@ -1,6 +1,7 @@
-// The config schema of the top level, triggers, cameras, the renderer, classification and the
-// writer; the views' and outputs' own keys come from their kinds (insitu/views/,
-// insitu/outputs/). The mechanism is insitu/config/schema.h.
+// The config schema of the top level, the renderer, classification, the writer and the live
+// page; a trigger's keys are in trigger.cpp, a camera's in camera_section.cpp, the views' and
+// outputs' own from their kinds (insitu/views/, insitu/outputs/). The mechanism is
+// insitu/config/schema.h.
 #include "insitu/config/config.h"
 
 #include <arpa/inet.h>
@@ -8,7 +9,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <limits>
 #include <set>
 
 #include "insitu/config/yaml_reader.h"
@@ -22,61 +22,6 @@ using schema::Key;
 using schema::Section;
 using yaml::Checker;
 using yaml::MapReader;
-
-constexpr std::int64_t kNoLimit = std::numeric_limits<std::int64_t>::max();
-
-double length(const Vec3d& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-
-// sin of the angle between a and b is |a x b| / (|a| |b|).
-bool parallel(const Vec3d& a, const Vec3d& b) {
-  Vec3d c{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  return length(c) <= 1e-6 * length(a) * length(b);
-}
-
-bool valid_bounds(const std::vector<std::array<double, 2>>& bounds) {
-  if (bounds.size() != 3) return false;
-  for (const std::array<double, 2>& axis : bounds)
-    if (!std::isfinite(axis[0]) || !std::isfinite(axis[1]) || !(axis[0] < axis[1])) return false;
-  return true;
-}
-
-void check_camera(MapReader& r, CameraConfig& c) {
-  const bool manual_keys = r.has("eye") || r.has("target");
-  if (!r.has("auto")) c.automatic = !manual_keys;
-  Checker& ch = r.checker();
-  if (length(c.up) == 0) ch.error(r.find("up"), r.path("up"), "must not be zero");
-  if (c.automatic) {
-    if (manual_keys) {
-      const char* key = r.has("eye") ? "eye" : "target";
-      ch.error(r.find(key), r.path(key),
-               "automatic framing (auto: true) chooses the eye and target itself; remove it or "
-               "set auto: false");
-    }
-    if (!c.bounds.empty() && !valid_bounds(c.bounds))
-      ch.error(r.find("bounds"), r.path("bounds"),
-               "must be three [low, high] pairs of finite numbers, low < high (x, y, z)");
-    if (length(c.direction) == 0)
-      ch.error(r.find("direction"), r.path("direction"), "must not be zero");
-    else if (length(c.up) > 0 && parallel(c.direction, c.up))
-      ch.error(r.find("direction"), r.path("direction"), "must not be parallel to camera.up");
-    return;
-  }
-  for (const char* key : {"direction", "margin", "framing", "bounds"})
-    if (r.has(key))
-      ch.error(r.find(key), r.path(key),
-               "is for automatic framing; a camera with eye and target looks at the target");
-  if (!r.has("eye") || !r.has("target")) {
-    ch.error(r.node(), r.path(), "a manual camera needs both eye and target");
-    return;
-  }
-  const Vec3d d{c.target[0] - c.eye[0], c.target[1] - c.eye[1], c.target[2] - c.eye[2]};
-  if (length(d) == 0) ch.error(r.find("target"), r.path("target"), "must differ from camera.eye");
-  else if (length(c.up) > 0 && parallel(d, c.up))
-    ch.error(r.find("up"), r.path("up"), "must not be parallel to the viewing direction");
-}
-
-bool manual(const CameraConfig& c) { return !c.automatic; }
-bool automatic(const CameraConfig& c) { return c.automatic; }
 
 const Section<RendererConfig>& renderer_section() {
   using R = RendererConfig;
@@ -509,84 +454,7 @@ Section<Config> top_section(const ConfigKinds& kinds) {
   return Section<Config>("", top_keys(kinds), check_top);
 }
 
-bool has_condition(const TriggerSpec& t) { return !t.when.empty(); }
-
-// A condition's own keys need the condition; its place is kept for the steps' messages.
-void check_trigger(MapReader& r, TriggerSpec& t) {
-  if (r.has("when")) {
-    if (t.when.empty()) r.checker().error(r.find("when"), r.path("when"), "must not be empty");
-    t.source.where = r.checker().where(r.find("when").Mark(), r.path("when"));
-    return;
-  }
-  for (const char* key : {"once", "cooldown_steps", "cooldown_time"})
-    if (r.has(key))
-      r.checker().error(r.find(key), r.path(key), "is for a condition: set `when` or remove it");
-}
-
 }  // namespace
-
-const Section<TriggerSpec>& trigger_section() {
-  using T = TriggerSpec;
-  static const Section<T> s{
-      "trigger",
-      {schema::integer("every_steps", &T::every_steps, std::int64_t{0}, kNoLimit,
-                       "on the first step at or past each multiple of N; 0: off"),
-       schema::number("every_time", &T::every_time, schema::at_least(0),
-                      "on the first step whose simulated time reaches each multiple of T "
-                      "(variable time steps: never misses a multiple, never fires twice for "
-                      "one; 1e-9 T of slack for sums of dt); 0: off"),
-       schema::flag("first", &T::first, "the first step the runtime sees"),
-       schema::flag("last", &T::last, "the step the solver marks as its last"),
-       schema::text("when", &T::when,
-                    "a condition on the particles (`max(velocity) > 2.5 and time > 0.3`): "
-                    "fires when it becomes true; checked on every step, at the cost of a pass "
-                    "over the particles (docs/runtime.md, \"Triggers on conditions\")")
-           .default_shown_as("none")
-           .only_when(has_condition),
-       schema::flag("once", &T::once, "with `when`: the condition fires the first time only")
-           .only_when(has_condition),
-       schema::integer("cooldown_steps", &T::cooldown_steps, std::int64_t{0}, kNoLimit,
-                       "with `when`: steps after the condition fired during which it cannot "
-                       "fire (a rising edge there is lost)")
-           .only_when(has_condition),
-       schema::number("cooldown_time", &T::cooldown_time, schema::at_least(0),
-                      "with `when`: the same in simulated time")
-           .only_when(has_condition)},
-      check_trigger};
-  return s;
-}
-
-const Section<CameraConfig>& camera_section() {
-  using C = CameraConfig;
-  static const Section<C> s{
-      "views[i].camera",
-      {schema::flag("auto", &C::automatic, "automatic framing")
-           .default_shown_as("true unless `eye`/`target` given"),
-       schema::vec3("eye", &C::eye, "manual only, with `target`").only_when(manual),
-       schema::vec3("target", &C::target, "manual only, with `eye`; not the eye").only_when(manual),
-       schema::vec3("up", &C::up, "not parallel to the viewing direction"),
-       schema::number("fov", &C::fov_degrees, schema::above_up_to(0, 179),
-                      "vertical field of view, degrees"),
-       schema::vec3("direction", &C::direction,
-                    "automatic only: the camera looks along it at the fluid's box")
-           .only_when(automatic),
-       schema::number("margin", &C::margin, schema::above_up_to(0, 100),
-                      "automatic only: the box, grown about its centre by this, just fits the "
-                      "view (all eight corners inside)")
-           .only_when(automatic),
-       schema::choice("framing", &C::framing, kFramingNames,
-                      "automatic only: the box is the union over all render steps so far (the "
-                      "camera only backs away: a steady video), each step's own, or the first "
-                      "step's; particles far from the fluid's bulk (under 1 % of the surface "
-                      "shell, 8 diameters or more away) are left out of it, with a warning")
-           .only_when(automatic),
-       schema::pairs("bounds", &C::bounds,
-                     "automatic only: [[x0, x1], [y0, y1], [z0, z1]], a box to frame instead of "
-                     "the fluid's (a domain you know), every step")
-           .only_when(automatic)},
-      check_camera};
-  return s;
-}
 
 std::filesystem::path Config::folder_of(const OutputSettings& output) const {
   std::filesystem::path folder(output.folder);

@@ -1,8 +1,66 @@
+// A trigger: its keys in the config (trigger_section) and its schedule over the steps.
 #include "insitu/config/trigger.h"
 
 #include <cmath>
+#include <limits>
+
+#include "insitu/config/settings.h"
+#include "insitu/config/yaml_reader.h"
 
 namespace voxspan {
+namespace {
+
+using schema::Section;
+using yaml::MapReader;
+
+constexpr std::int64_t kNoLimit = std::numeric_limits<std::int64_t>::max();
+
+bool has_condition(const TriggerSpec& t) { return !t.when.empty(); }
+
+// A condition's own keys need the condition; its place is kept for the steps' messages.
+void check_trigger(MapReader& r, TriggerSpec& t) {
+  if (r.has("when")) {
+    if (t.when.empty()) r.checker().error(r.find("when"), r.path("when"), "must not be empty");
+    t.source.where = r.checker().where(r.find("when").Mark(), r.path("when"));
+    return;
+  }
+  for (const char* key : {"once", "cooldown_steps", "cooldown_time"})
+    if (r.has(key))
+      r.checker().error(r.find(key), r.path(key), "is for a condition: set `when` or remove it");
+}
+
+}  // namespace
+
+const Section<TriggerSpec>& trigger_section() {
+  using T = TriggerSpec;
+  static const Section<T> s{
+      "trigger",
+      {schema::integer("every_steps", &T::every_steps, std::int64_t{0}, kNoLimit,
+                       "on the first step at or past each multiple of N; 0: off"),
+       schema::number("every_time", &T::every_time, schema::at_least(0),
+                      "on the first step whose simulated time reaches each multiple of T "
+                      "(variable time steps: never misses a multiple, never fires twice for "
+                      "one; 1e-9 T of slack for sums of dt); 0: off"),
+       schema::flag("first", &T::first, "the first step the runtime sees"),
+       schema::flag("last", &T::last, "the step the solver marks as its last"),
+       schema::text("when", &T::when,
+                    "a condition on the particles (`max(velocity) > 2.5 and time > 0.3`): "
+                    "fires when it becomes true; checked on every step, at the cost of a pass "
+                    "over the particles (docs/runtime.md, \"Triggers on conditions\")")
+           .default_shown_as("none")
+           .only_when(has_condition),
+       schema::flag("once", &T::once, "with `when`: the condition fires the first time only")
+           .only_when(has_condition),
+       schema::integer("cooldown_steps", &T::cooldown_steps, std::int64_t{0}, kNoLimit,
+                       "with `when`: steps after the condition fired during which it cannot "
+                       "fire (a rising edge there is lost)")
+           .only_when(has_condition),
+       schema::number("cooldown_time", &T::cooldown_time, schema::at_least(0),
+                      "with `when`: the same in simulated time")
+           .only_when(has_condition)},
+      check_trigger};
+  return s;
+}
 
 // The first call's own step/time fires when it is itself a multiple (step 0, time 0).
 void Trigger::start(std::int64_t step, double time) {

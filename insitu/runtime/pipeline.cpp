@@ -12,13 +12,11 @@
 #include <thread>
 #include <utility>
 
-#include "insitu/live/live_feed.h"
-#include "insitu/live/live_server.h"
 #include "insitu/outputs/formats/stats_record.h"
 #include "insitu/parallel/communicator.h"
 #include "insitu/runtime/config_file.h"
 #include "insitu/runtime/host_memory.h"
-#include "insitu/runtime/live_cameras.h"
+#include "insitu/runtime/live_page.h"
 #include "insitu/runtime/output_folder.h"
 #include "insitu/runtime/rank_stats.h"
 #include "insitu/runtime/registry.h"
@@ -190,14 +188,12 @@ struct InsituPipeline::Impl {
     for (const ViewState& v : views) record.view(v.name);  // made once: their addresses stay
     results.resize(views.size());
     for (const ConfiguredOutput& o : config.outputs) make_output(o);
-    if (config.live.enabled && reports_here()) start_live();
-    if (config.live.enabled && config.live.interactive)
-      live_cameras.emplace(view_names, camera_mailbox.get(), comm);
+    if (config.live.enabled)
+      live = std::make_unique<LivePage>(config.live, view_names, reports_here(), comm);
   }
 
   ~Impl() {
-    live_server.reset();  // no request reads the feed after this
-    live_feed.reset();    // its references to the pictures dropped before their pools go
+    live.reset();  // its references to the pictures dropped before their pools go
     writer.drain();
     for (OutputState& o : outputs)
       if (o.output) o.output->close();
@@ -311,37 +307,6 @@ struct InsituPipeline::Impl {
     return std::size_t(config.writer.queue_size) + 2 + (config.live.enabled ? 2 : 0);
   }
 
-  void start_live() {
-    live_feed = std::make_unique<LiveFeed>(view_names, config.live.interactive);
-    if (config.live.interactive) camera_mailbox = std::make_unique<CameraMailbox>(views.size());
-    live_server = std::make_unique<LiveServer>(config.live, *live_feed, camera_mailbox.get());
-    // Said once, at a level shown by default: the token is in it (as Jupyter prints its URL).
-    log_warning("live page: ", live_server->url());
-  }
-
-  // The solver's thread hands over references and a few numbers (insitu/live/live_feed.h).
-  void publish_live(const StepData& data, const StepStats& stats, double outputs_ms,
-                    double process_ms) {
-    if (!live_feed) return;
-    const Stopwatch handing;
-    live_passes[0].second = 1e3 * stats.seconds_classify;
-    live_passes[1].second = 1e3 * stats.seconds_compact;
-    live_passes[2].second = outputs_ms;
-    live_feed->publish({data.step, data.time, std::int64_t(stats.counts.particles),
-                        in_situ_ms(stats, process_ms), results, live_passes});
-    totals.seconds_live += handing.seconds();
-  }
-
-  // The live page's server keeps the process up a while after the last step, when asked.
-  void finish_live() {
-    if (!live_feed || live_finished) return;
-    live_finished = true;
-    live_feed->finish();
-    if (config.live.linger_seconds <= 0) return;
-    log_warning("live page: kept up ", config.live.linger_seconds, " s after the last step");
-    std::this_thread::sleep_for(std::chrono::duration<double>(config.live.linger_seconds));
-  }
-
   void make_current() {
     if (!backend.context || std::this_thread::get_id() == gl_thread) return;
     backend.context->make_current();
@@ -353,7 +318,7 @@ struct InsituPipeline::Impl {
     ViewNeeds n;
     for (std::size_t i = 0; i < outputs.size(); ++i)
       if (p.outputs[i]) n |= outputs[i].kind->needs;
-    n.picture |= live_feed != nullptr;  // it shows every render step's, as 8-bit sRGB
+    n.picture |= feeds_live();  // it shows every render step's, as 8-bit sRGB
     n.linear_picture |= linear_pictures;
     return n;
   }
@@ -373,8 +338,7 @@ struct InsituPipeline::Impl {
       recorder->record_into(stats);
       try {
         v.camera = v.framing.update(v.view->draws_scenery() ? with_scenery : step_box);
-        const Camera camera =
-            live_cameras ? live_cameras->camera(i, v.camera, v.framing.pivot()) : v.camera;
+        const Camera camera = live ? live->camera(i, v.camera, v.framing.pivot()) : v.camera;
         if (v.framing.jumped() && !v.jump_told && reports_here()) {
           v.jump_told = true;
           log_warning("view ", v.name, ": the automatic framing jumped (the fluid's box now ",
@@ -421,7 +385,7 @@ struct InsituPipeline::Impl {
     // With the live page, its mailbox's picture and the one its encoder reads or keeps for
     // later may both be held when the next is taken: three buffers, made at the first picture
     // rather than on the step where the encoder first lags.
-    const std::size_t reserved = live_feed ? 3 : 0;
+    const std::size_t reserved = feeds_live() ? 3 : 0;
     if (std::exchange(products.picture_is_srgb8, false)) {
       v.pictures->reserve(products.srgb8_picture, reserved);
       return v.pictures->take(products.srgb8_picture, finish);
@@ -491,13 +455,8 @@ struct InsituPipeline::Impl {
 
   StepScene scene;  // what the views frame and show besides the fluid, agreed over ranks
 
-  std::unique_ptr<LiveFeed> live_feed;            // on the root, when the live page is enabled
-  std::unique_ptr<CameraMailbox> camera_mailbox;  // on the root, when it is interactive
-  std::unique_ptr<LiveServer> live_server;
-  std::optional<LiveCameras> live_cameras;  // on every rank, when it is interactive
-  std::array<std::pair<const char*, double>, 3> live_passes{
-      {{"classify", 0}, {"compact", 0}, {"outputs", 0}}};
-  bool live_finished = false;
+  std::unique_ptr<LivePage> live;  // when the live page is enabled
+  bool feeds_live() const { return live && live->feeds(); }
 };
 
 const OutputTally& PipelineTotals::output(std::string_view kind) const {
@@ -633,7 +592,7 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
   m.orbit_pictures.clear();  // the last step's references go
   if (p.render) {
     const Stopwatch render;
-    if (m.live_cameras) m.live_cameras->take();
+    if (m.live) m.live->take_cameras();
     failure = m.render_views(data, m.needs(p));
     const std::string orbits = m.render_orbits(data, p);
     if (failure.empty()) failure = orbits;
@@ -653,7 +612,8 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
     m.write_outputs(step, p, true, failure);
   }
 
-  if (p.render) m.publish_live(data, stats, outputs_ms, process.ms());
+  if (p.render && m.live)
+    m.totals.seconds_live += m.live->publish(data, stats, m.results, outputs_ms, process.ms());
   m.totals.seconds_render += 1e-3 * render_ms;
   m.totals.seconds_outputs += outputs.seconds();
   m.totals.seconds_process += process.seconds();
@@ -663,7 +623,7 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
 
 void InsituPipeline::finish() {
   impl_->writer.drain();
-  impl_->finish_live();
+  if (impl_->live) impl_->live->finish();
 }
 
 PipelineTotals InsituPipeline::totals() const {
