@@ -1,8 +1,12 @@
 // Particles from text files.
-//  .csv: a header row names the columns (ParaView's "Save Data" CSV works as is). Positions are
-//        x,y,z or Points:0,Points:1,Points:2 (any case); three consecutive columns named
-//        <base>_x/_y/_z, <base>:0/:1/:2 or <base>x/y/z become the vector attribute <base>; a
-//        column radius/radii/r gives the radii; every other column is a scalar attribute.
+//  .csv: a header row names the columns (ParaView's "Save Data" CSV works as is), or, where the
+//        first row holds numbers, the '#' comment line just before it with as many names
+//        (numpy.savetxt's header). Fields are separated by commas, else semicolons
+//        (DualSPHysics), else tabs, else white space, as the first row has them; a unit after a
+//        name ("Pos.x [m]") is left out of it. Positions are x,y,z or Points:0,Points:1,Points:2
+//        (any case); three consecutive columns named <base>_x/_y/_z, <base>:0/:1/:2,
+//        <base>.x/.y/.z or <base>x/y/z become the vector attribute <base>; a column
+//        radius/radii/r gives the radii; every other column is a scalar attribute.
 //  .xyz: whitespace-separated "x y z [radius] [more...]" per line, '#' comments; the
 //        extended-XYZ header (a count line, then a comment line) and a leading element symbol
 //        on each line are accepted. Extra columns become attributes column4, column5...
@@ -10,6 +14,7 @@
 #include <cctype>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "insitu/io/particle_data.h"
@@ -64,6 +69,32 @@ std::vector<std::string> split(const std::string& line, char sep) {
   return fields;
 }
 
+std::vector<std::string> split_whitespace(const std::string& line);
+
+// A CSV row's separator, from its first row: kWhiteSpace for runs of spaces and tabs.
+constexpr char kWhiteSpace = ' ';
+char separator_of(const std::string& row) {
+  for (char c : {',', ';', '\t'})
+    if (row.find(c) != std::string::npos) return c;
+  return kWhiteSpace;
+}
+
+// A trimmed row's fields; a separator ending the row (DualSPHysics ends every row with one)
+// opens no field.
+std::vector<std::string> fields_of(const std::string& row, char sep) {
+  if (sep == kWhiteSpace) return split_whitespace(row);
+  return split(!row.empty() && row.back() == sep ? row.substr(0, row.size() - 1) : row, sep);
+}
+
+// A column's name without a unit after it: "Vel.x [m/s]" is "Vel.x".
+std::string without_unit(std::string name) {
+  const std::size_t open = name.find_last_of("[(");
+  const char close = open != std::string::npos && name[open] == '[' ? ']' : ')';
+  if (open != std::string::npos && open > 0 && name.back() == close)
+    name = trim(name.substr(0, open));
+  return name;
+}
+
 std::vector<std::string> split_whitespace(const std::string& line) {
   std::vector<std::string> fields;
   std::size_t i = 0;
@@ -78,11 +109,9 @@ std::vector<std::string> split_whitespace(const std::string& line) {
 
 // The base name when a, b, c are the x, y, z components of one vector; empty otherwise.
 std::string vector_base(const std::string& a, const std::string& b, const std::string& c) {
-  static const std::vector<std::array<std::string, 3>> suffixes = {{"_x", "_y", "_z"},
-                                                                   {":0", ":1", ":2"},
-                                                                   {"[0]", "[1]", "[2]"},
-                                                                   {"_0", "_1", "_2"},
-                                                                   {"x", "y", "z"}};
+  static const std::vector<std::array<std::string, 3>> suffixes = {
+      {"_x", "_y", "_z"}, {":0", ":1", ":2"}, {"[0]", "[1]", "[2]"},
+      {"_0", "_1", "_2"}, {".x", ".y", ".z"}, {"x", "y", "z"}};
   std::string la = lower(a), lb = lower(b), lc = lower(c);
   for (const auto& s : suffixes) {
     auto ends = [](const std::string& t, const std::string& suffix) {
@@ -124,20 +153,32 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
   auto fail = [&](std::size_t line, const std::string& why) {
     return make_error(path.string(), ":", line, ": ", why);
   };
-  std::string line;
+  std::string line, first_row, comment;
   std::size_t line_no = 0;
-  std::vector<std::string> header;
-  while (header.empty() && std::getline(in, line)) {
+  while (first_row.empty() && std::getline(in, line)) {
     ++line_no;
     std::string t = trim(line);
-    if (t.empty() || t[0] == '#') continue;
-    for (const std::string& f : split(t, ',')) header.push_back(field_text(f));
+    if (!t.empty() && t[0] == '#') comment = trim(std::string_view(t).substr(1));
+    if (!t.empty() && t[0] != '#') first_row = t;
   }
-  if (header.empty()) throw fail(line_no, "no header row (the first row must name the columns)");
+  if (first_row.empty()) throw fail(line_no, "no header row (the first row must name the columns)");
+  const char sep = separator_of(first_row);
+  std::vector<std::string> header;
+  for (const std::string& f : fields_of(first_row, sep)) header.push_back(field_text(f));
   double probe = 0;
-  if (parse_number(header[0], probe))
-    throw fail(line_no,
-               "the first row holds numbers; a header row must name the columns (x,y,z,...)");
+  // The first row is data where it holds numbers; the comment line before it names its columns
+  // if it has as many names.
+  std::string pending;
+  if (parse_number(header[0], probe)) {
+    std::vector<std::string> names = fields_of(comment, sep);
+    if (names.size() != header.size() || parse_number(names[0], probe))
+      throw fail(line_no,
+                 "the first row holds numbers; a header row must name the columns (x,y,z,...)");
+    pending = first_row;
+    header.clear();
+    for (const std::string& f : names) header.push_back(field_text(f));
+  }
+  for (std::string& name : header) name = without_unit(name);
 
   std::vector<Column> columns;
   int position = -1;  // index into columns
@@ -163,11 +204,20 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
   for (std::size_t c = 0; c < columns.size(); ++c)
     if (int(c) != position) data.attributes.push_back({columns[c].name, columns[c].components, {}});
   std::vector<double> values(header.size());
-  while (std::getline(in, line)) {
+  // The rows after the header: the first row itself first where it is data.
+  const auto next_row = [&](std::string& t) {
+    if (!pending.empty()) {
+      t = std::exchange(pending, {});
+      return true;
+    }
+    if (!std::getline(in, line)) return false;
     ++line_no;
-    std::string t = trim(line);
+    t = trim(line);
+    return true;
+  };
+  for (std::string t; next_row(t);) {
     if (t.empty() || t[0] == '#') continue;
-    std::vector<std::string> fields = split(t, ',');
+    std::vector<std::string> fields = fields_of(t, sep);
     if (fields.size() != header.size())
       throw fail(line_no, std::to_string(fields.size()) + " fields; the header has " +
                               std::to_string(header.size()));

@@ -52,10 +52,53 @@ TEST(CsvParticles, ParaViewExportWithQuotedPointColumns) {
   EXPECT_EQ(d.spheres(0.1f)[0].radius, 0.1f);
 }
 
+// numpy.savetxt(path, a, header="x y z u v w") writes its header as a comment and white space
+// between the numbers.
+TEST(CsvParticles, NumpysHeaderInACommentAndWhiteSpace) {
+  test::TempFolder dir;
+  std::ofstream(dir / "np.csv") << "# x y z u v w\n"
+                                   "0.0 0.0 0.0 1.0 2.0 3.0\n"
+                                   "1.5e-1\t2 3 4 5 6\n";
+  ParticleData d = read_particles(dir / "np.csv");
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_DOUBLE_EQ(d.positions[1][0], 0.15);
+  EXPECT_DOUBLE_EQ(d.positions[1][2], 3);
+  ASSERT_NE(d.attribute("w"), nullptr);
+  EXPECT_EQ(d.attribute("w")->values, (std::vector<float>{3, 6}));
+
+  std::ofstream(dir / "tabs.csv") << "X\tY\tZ\tp\n1\t2\t3\t4\n";
+  d = read_particles(dir / "tabs.csv");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_DOUBLE_EQ(d.positions[0][1], 2);
+  EXPECT_EQ(d.attribute("p")->values, (std::vector<float>{4}));
+}
+
+// DualSPHysics' CSV: semicolons, a unit after each name, a semicolon ending every row.
+TEST(CsvParticles, SemicolonsUnitsAndDottedVectors) {
+  test::TempFolder dir;
+  std::ofstream(dir / "part.csv")
+      << "Pos.x [m];Pos.y [m];Pos.z [m];Idp;Vel.x [m/s];Vel.y [m/s];Vel.z [m/s];Rhop [kg/m^3];\n"
+         "0.1;0.2;0.3;7;1;2;3;1000;\n"
+         "0.4;0.5;0.6;8;4;5;6;1001;\n";
+  ParticleData d = read_particles(dir / "part.csv");
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_DOUBLE_EQ(d.positions[1][2], 0.6);
+  ASSERT_NE(d.attribute("Vel"), nullptr);
+  EXPECT_EQ(d.attribute("Vel")->components, 3);
+  EXPECT_EQ(d.attribute("Vel")->values, (std::vector<float>{1, 2, 3, 4, 5, 6}));
+  ASSERT_NE(d.attribute("Rhop"), nullptr);
+  EXPECT_EQ(d.attribute("Rhop")->values, (std::vector<float>{1000, 1001}));
+  EXPECT_NE(d.attribute("Idp"), nullptr);
+}
+
 TEST(CsvParticles, ErrorsNameFileAndLine) {
   test::TempFolder dir;
   std::ofstream(dir / "a.csv") << "1,2,3\n";
   EXPECT_NE(error_of(dir / "a.csv").find("a.csv:1: the first row holds numbers"),
+            std::string::npos);
+  // A comment before it that names fewer columns than it has is not its header.
+  std::ofstream(dir / "a2.csv") << "# x y\n1 2 3\n";
+  EXPECT_NE(error_of(dir / "a2.csv").find("a2.csv:2: the first row holds numbers"),
             std::string::npos);
   std::ofstream(dir / "b.csv") << "x,y,z\n1,2,3\n1,2\n";
   EXPECT_NE(error_of(dir / "b.csv").find("b.csv:3: 2 fields; the header has 3"), std::string::npos);
