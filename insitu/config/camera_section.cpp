@@ -79,7 +79,9 @@ const Section<CameraConfig>& camera_section() {
        schema::number("fov", &C::fov_degrees, schema::above_up_to(0, 179),
                       "vertical field of view, degrees"),
        schema::vec3("direction", &C::direction,
-                    "automatic only: the camera looks along it at the fluid's box")
+                    "automatic only: the camera looks along it at the fluid's box; with it and "
+                    "`up` at their defaults a 2D run (every particle in one plane x, y or z = "
+                    "const) is seen head-on, y up in the x-y plane, z up in the others")
            .only_when(automatic),
        schema::number("margin", &C::margin, schema::above_up_to(0, 100),
                       "automatic only: the box, grown about its centre by this, just fits the "

@@ -335,7 +335,8 @@ struct InsituPipeline::Impl {
       results[i] = {.name = v.name, .stats = &stats};
       recorder->record_into(stats);
       try {
-        v.camera = v.framing.update(v.view->draws_scenery() ? with_scenery : step_box);
+        v.camera =
+            v.framing.update(v.view->draws_scenery() ? with_scenery : step_box, scene.flat_axis());
         const Camera camera = live ? live->camera(i, v.camera, v.framing.pivot()) : v.camera;
         if (v.framing.jumped() && !v.jump_told && reports_here()) {
           v.jump_told = true;

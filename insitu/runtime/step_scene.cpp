@@ -21,6 +21,7 @@ Bounds StepScene::fluid_box(std::span<const ParticleSphere> boundary) {
     comm_->max(range.centres.hi);
     comm_->sum(range.count_and_radii);
   }
+  flat_axis_ = voxspan::flat_axis(range.centres);
   BulkBox::histogram(boundary, range, bulk_scratch_, bulk_bins_);
   if (comm_ != nullptr) comm_->sum(bulk_bins_);
   BulkBox::Split split = BulkBox::split(boundary, BulkBox::kept(range, bulk_bins_));

@@ -34,6 +34,9 @@ class StepScene {
 
   // This step's box of the boundary spheres over every rank, without those far from the bulk.
   Bounds fluid_box(std::span<const ParticleSphere> boundary);
+  // The axis every particle's centre lies flat along at the last fluid_box (flat_axis: a 2D
+  // run), -1 for a 3D fluid.
+  int flat_axis() const { return flat_axis_; }
 
   // The scenery for this step's views, brought up to `data`'s.
   const Scenery& update_scenery(const StepData& data);
@@ -46,6 +49,7 @@ class StepScene {
   Communicator* const comm_;
   std::vector<std::int64_t> bulk_scratch_, bulk_bins_;
   std::int64_t strays_told_ = 0;
+  int flat_axis_ = -1;
   Scenery scenery_;
   std::vector<ParticleSphere> scenery_spheres_;  // every rank's, on the root of an MPI job
 };

@@ -189,6 +189,9 @@ class SurfaceView final : public View {
       auto_absorption_ =
           Material::water_absorption(std::max(smallest_side(step.fluid_box), spacing_));
     if (auto_absorption_) o.shade.material.absorption = *auto_absorption_;
+    // The camera's up: a 2D fluid is seen head-on with its plane's upward axis up.
+    o.shade.environment.up = step.camera.up;
+    o.shade.environment.sun_direction = sun_direction(step.camera.up);
     if (!step.fluid_box.empty() && !settings_.ground_height)
       // Under the framed box: with scenery framed, under the tank rather than in its floor.
       o.shade.environment.rest_on_floor(

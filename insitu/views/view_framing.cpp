@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <glm/glm.hpp>
 
@@ -190,12 +191,41 @@ BulkBox::Split bulk_box(std::span<const ParticleSphere> spheres) {
   return BulkBox::split(spheres, BulkBox::kept(range, bins));
 }
 
+int flat_axis(const Bounds& centres) {
+  if (centres.empty()) return -1;
+  double largest = 0;
+  for (std::size_t a = 0; a < 3; ++a) largest = std::max(largest, centres.hi[a] - centres.lo[a]);
+  // Equal to rounding: a 2D solver writes the same number (usually 0) for every particle. One
+  // such axis only: a line of particles is no plane to face.
+  int flat = -1, count = 0;
+  for (std::size_t a = 0; a < 3; ++a)
+    if (largest > 0 && centres.hi[a] - centres.lo[a] <= 1e-9 * largest) flat = int(a), ++count;
+  return count == 1 ? flat : -1;
+}
+
+namespace {
+
+// A 2D fluid's plane seen head-on, from the side the default direction looks from, with the
+// plane's upward axis up: y in the x-y plane (PySPH's 2D runs, gravity along -y), z in the
+// others (DualSPHysics' x-z plane). Direction and up: the view's where it gives either.
+std::pair<glm::dvec3, glm::dvec3> head_on_orientation(const CameraConfig& c, int flat) {
+  const CameraConfig defaults;
+  if (flat < 0 || c.direction != defaults.direction || c.up != defaults.up)
+    return {glm::normalize(vec(c.direction)), vec(c.up)};
+  glm::dvec3 forward(0), up(0, 0, 1);
+  forward[flat] = defaults.direction[std::size_t(flat)] > 0 ? 1 : -1;
+  if (flat == 2) up = glm::dvec3(0, 1, 0);
+  return {forward, up};
+}
+
+}  // namespace
+
 Camera frame_camera(const ViewSettings& view, const Bounds& box) {
   return frame_camera(view.camera, view.width, view.height, box);
 }
 
 Camera frame_camera(const CameraConfig& c, int width, int height, const Bounds& box,
-                    const LegendMargins& clear) {
+                    const LegendMargins& clear, int flat) {
   Camera camera;
   camera.up = vec(c.up);
   camera.fov_y_degrees = c.fov_degrees;
@@ -206,7 +236,8 @@ Camera frame_camera(const CameraConfig& c, int width, int height, const Bounds& 
     camera.target = vec(c.target);
     return camera;
   }
-  const glm::dvec3 forward = glm::normalize(vec(c.direction));
+  const auto [forward, up_axis] = head_on_orientation(c, flat);
+  camera.up = up_axis;
   if (box.empty()) {
     camera.target = glm::dvec3(0);
     camera.eye = -forward;
@@ -266,7 +297,7 @@ glm::dvec3 ViewFraming::pivot() const {
                 glm::dvec3(box_.hi[0], box_.hi[1], box_.hi[2]));
 }
 
-Camera ViewFraming::update(const Bounds& now) {
+Camera ViewFraming::update(const Bounds& now, int flat) {
   const double before = largest_side(box_);
   if (!camera_.bounds.empty()) {  // the user's box, whatever the fluid does
     for (std::size_t a = 0; a < 3; ++a) {
@@ -279,7 +310,7 @@ Camera ViewFraming::update(const Bounds& now) {
     else if (!now.empty()) box_ = now;
   }
   jumped_ = camera_.automatic && before > 0 && largest_side(box_) > 4 * before;
-  return frame_camera(camera_, width_, height_, box_, clear_);
+  return frame_camera(camera_, width_, height_, box_, clear_, flat);
 }
 
 void distances_from_view_depth(const Camera& camera, std::span<const float> view_depth,

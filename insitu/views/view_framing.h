@@ -74,13 +74,20 @@ struct BulkBox {
 // The four phases on one process.
 BulkBox::Split bulk_box(std::span<const ParticleSphere> spheres);
 
+// The axis (0, 1, 2) along which every particle's centre has the same coordinate, from the
+// centres' box (BulkBox::Range::centres): a 2D run, which PySPH stores in the plane z = 0 and
+// DualSPHysics in y = const. -1 for a 3D fluid, a line of particles, one point or none.
+int flat_axis(const Bounds& centres);
+
 // The camera that frames `box` as the view says (automatic framing), or the manual camera.
 // An empty box (no particle yet) gives a camera that looks at the origin from 1 unit away.
 // Automatic framing fits the box between the picture's `clear` margins (what the view's
 // legends cover): the box's centre at the middle of the space between them, the camera moved
-// sideways rather than turned, so that it still looks along `direction`.
+// sideways rather than turned, so that it still looks along `direction`. A 2D fluid (`flat`:
+// flat_axis) with `direction` and `up` left at their defaults is seen head-on, its plane's
+// upward axis up (head_on_orientation).
 Camera frame_camera(const CameraConfig& camera, int width, int height, const Bounds& box,
-                    const LegendMargins& clear = {});
+                    const LegendMargins& clear = {}, int flat = -1);
 Camera frame_camera(const ViewSettings& view, const Bounds& box);
 
 // Depths per pixel (row 0 at the top, 0: nothing there) two ways: along the camera's axis (view
@@ -99,8 +106,9 @@ class ViewFraming {
       : camera_(view.camera), width_(view.width), height_(view.height), clear_(clear) {}
   // The camera for this render step's boundary spheres.
   Camera update(std::span<const ParticleSphere> boundary);
-  // The same from this step's box of them (with MPI: the box of every rank's).
-  Camera update(const Bounds& step_box);
+  // The same from this step's box of them (with MPI: the box of every rank's) and the fluid's
+  // flat axis (flat_axis; -1: a 3D fluid).
+  Camera update(const Bounds& step_box, int flat = -1);
   // The fluid's box as the framing follows it (the grown box under `grow`), kept for manual
   // cameras too (the ground plane of the environment goes under it).
   const Bounds& box() const { return box_; }

@@ -6,6 +6,7 @@
 // measured beside it: nearly invisible at 1 cm.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -100,6 +101,73 @@ TEST(DefaultView, TheGroundAndTheSkyAreTheViewsToChoose) {
   ASSERT_GT(c.background, 1000);
   EXPECT_LT(c.grey_background, c.background / 100)
       << c.grey_background << " of " << c.background << " background pixels grey";
+}
+
+// A 2D run: a right triangle of water, 1 wide and 0.5 tall, its right angle at the lower left,
+// in the plane `flat` = 0 (2: PySPH's x-y plane, y up; 1: DualSPHysics' x-z plane, z up),
+// rendered by the default view. What the depth image's hits show of it: their box's width over
+// its height, and the share of the box's upper quarter that lies in its left half.
+struct Seen {
+  double aspect = 0, upper_left = 0;
+};
+
+Seen render_triangle(int flat) {
+  test::TempFolder dir;
+  const double spacing = 0.02;
+  std::vector<double> c[3];
+  const int up = flat == 2 ? 1 : 2;
+  for (int i = 0; i <= 50; ++i)
+    for (int j = 0; j <= 25 - i / 2; ++j) {
+      c[0].push_back(i * spacing);
+      c[up].push_back(j * spacing);
+      c[flat].push_back(0.0);
+    }
+  const std::string yaml = "output_folder: " + dir.path().string() + R"(
+trigger: {every_steps: 1}
+outputs:
+  png: {enabled: false}
+  depth: {enabled: true, trigger: {every_steps: 1}}
+  stats: {enabled: false}
+writer: {fsync: false}
+)";
+  AdapterOptions options;
+  options.classify.particle_spacing = spacing;
+  {
+    Adapter adapter = adapter_from_config_text(yaml, options, "two_d.yaml");
+    const Status status = adapter.execute(
+        1, 0.0, ParticleView::soa(c[0].data(), c[1].data(), c[2].data(), c[0].size()));
+    EXPECT_TRUE(status.ok()) << status.message;
+    adapter.finish();
+  }
+  int w = 0, h = 0;
+  const std::vector<float> depth = test::read_depth_exr(dir / "depth" / "main_00000001.exr", w, h);
+  int x0 = w, x1 = -1, y0 = h, y1 = -1;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (depth[std::size_t(x + y * w)] > 0)
+        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+  if (x1 < 0) return {};
+  int upper = 0, left = 0;  // rows from the top, as the depth image stores them
+  for (int y = y0; y <= y0 + (y1 - y0) / 4; ++y)
+    for (int x = x0; x <= x1; ++x)
+      if (depth[std::size_t(x + y * w)] > 0) ++upper, left += x < (x0 + x1) / 2;
+  return {double(x1 - x0 + 1) / double(y1 - y0 + 1), double(left) / std::max(upper, 1)};
+}
+
+// A 2D solver's plane is seen head-on with its upward axis up, not as a pane lying on the
+// ground seen from above at an angle (the default direction, whose box of the sheet then
+// filled a strip of the picture).
+TEST(DefaultView, ATwoDimensionalRunIsSeenHeadOnWithItsUpwardAxisUp) {
+  for (int flat : {2, 1}) {
+    const Seen seen = render_triangle(flat);
+    std::printf(
+        "2D run in the plane %c = 0: width / height %.3f (1.02 / 0.52 = 1.96), upper "
+        "quarter in the left half %.2f\n",
+        "xyz"[flat], seen.aspect, seen.upper_left);
+    // The particles' radius adds to both sides; perspective nothing, seen head-on.
+    EXPECT_NEAR(seen.aspect, 1.96, 0.1) << "plane " << flat;
+    EXPECT_GT(seen.upper_left, 0.95) << "the triangle's tall side on the left, up: plane " << flat;
+  }
 }
 
 }  // namespace

@@ -203,5 +203,43 @@ TEST(ViewFraming, FixedBoundsAreFramedWhateverTheFluid) {
   EXPECT_FALSE(framing.jumped());
 }
 
+// A 2D run's centres lie in one plane to rounding; a 3D block's, a line's and a point's do not.
+TEST(ViewFraming, FlatAxisIsThePlaneOfATwoDimensionalRun) {
+  const auto centres = [](Vec3d lo, Vec3d hi) {
+    Bounds b;
+    b.lo = lo, b.hi = hi;
+    return b;
+  };
+  EXPECT_EQ(flat_axis(centres({0, 0, 0}, {1, 0.5, 0})), 2);
+  EXPECT_EQ(flat_axis(centres({0, 3, 0}, {1, 3 + 1e-12, 2})), 1);
+  EXPECT_EQ(flat_axis(centres({0, 0, 0}, {1, 0.5, 0.02})), -1);  // a shallow 3D layer
+  EXPECT_EQ(flat_axis(centres({0, 0, 0}, {1, 0, 0})), -1);       // a line
+  EXPECT_EQ(flat_axis(centres({1, 1, 1}, {1, 1, 1})), -1);       // a point
+  EXPECT_EQ(flat_axis(Bounds{}), -1);
+}
+
+// Head-on with the plane's upward axis up at the default direction and up; the view's own
+// direction or up wins over it, and the box still just fits.
+TEST(ViewFraming, TwoDimensionalRunsAreSeenHeadOnUnlessTheViewSaysOtherwise) {
+  Bounds sheet;
+  sheet.lo = {0, 0, -0.01}, sheet.hi = {1, 0.5, 0.01};
+  SurfaceSettings v = view_looking(CameraConfig{}.direction);
+  Camera c = frame_camera(v.camera, v.width, v.height, sheet, {}, 2);
+  glm::dvec3 forward = glm::normalize(c.target - c.eye);
+  EXPECT_NEAR(forward.z, -1, 1e-12);
+  EXPECT_EQ(c.up, glm::dvec3(0, 1, 0));
+  EXPECT_NEAR(fill(c, sheet, v.camera.margin), 1, 1e-9);
+
+  sheet.lo = {0, -0.01, 0}, sheet.hi = {1, 0.01, 0.5};
+  c = frame_camera(v.camera, v.width, v.height, sheet, {}, 1);
+  EXPECT_NEAR(glm::normalize(c.target - c.eye).y, 1, 1e-12);
+  EXPECT_EQ(c.up, glm::dvec3(0, 0, 1));
+
+  v.camera.direction = {0.3, 1, -0.45};
+  c = frame_camera(v.camera, v.width, v.height, sheet, {}, 1);
+  forward = glm::normalize(c.target - c.eye);
+  EXPECT_NEAR(glm::dot(forward, glm::normalize(glm::dvec3(0.3, 1, -0.45))), 1, 1e-12);
+}
+
 }  // namespace
 }  // namespace voxspan
