@@ -111,7 +111,7 @@ struct Seen {
   double aspect = 0, upper_left = 0;
 };
 
-Seen render_triangle(int flat) {
+Seen render_triangle(int flat, const std::string& backend) {
   test::TempFolder dir;
   const double spacing = 0.02;
   std::vector<double> c[3];
@@ -122,7 +122,8 @@ Seen render_triangle(int flat) {
       c[up].push_back(j * spacing);
       c[flat].push_back(0.0);
     }
-  const std::string yaml = "output_folder: " + dir.path().string() + R"(
+  const std::string yaml =
+      "output_folder: " + dir.path().string() + "\nrenderer: {backend: " + backend + "}" + R"(
 trigger: {every_steps: 1}
 outputs:
   png: {enabled: false}
@@ -158,16 +159,18 @@ writer: {fsync: false}
 // ground seen from above at an angle (the default direction, whose box of the sheet then
 // filled a strip of the picture).
 TEST(DefaultView, ATwoDimensionalRunIsSeenHeadOnWithItsUpwardAxisUp) {
-  for (int flat : {2, 1}) {
-    const Seen seen = render_triangle(flat);
-    std::printf(
-        "2D run in the plane %c = 0: width / height %.3f (1.02 / 0.52 = 1.96), upper "
-        "quarter in the left half %.2f\n",
-        "xyz"[flat], seen.aspect, seen.upper_left);
-    // The particles' radius adds to both sides; perspective nothing, seen head-on.
-    EXPECT_NEAR(seen.aspect, 1.96, 0.1) << "plane " << flat;
-    EXPECT_GT(seen.upper_left, 0.95) << "the triangle's tall side on the left, up: plane " << flat;
-  }
+  for (const char* backend : {"cpu", "gl"})
+    for (int flat : {2, 1}) {
+      const Seen seen = render_triangle(flat, backend);
+      std::printf(
+          "%s renderer, 2D run in the plane %c = 0: width / height %.3f (1.02 / 0.52 = "
+          "1.96), upper quarter in the left half %.2f\n",
+          backend, "xyz"[flat], seen.aspect, seen.upper_left);
+      // The particles' radius adds to both sides; perspective nothing, seen head-on.
+      EXPECT_NEAR(seen.aspect, 1.96, 0.1) << backend << ", plane " << flat;
+      EXPECT_GT(seen.upper_left, 0.95)
+          << "the triangle's tall side on the left, up: " << backend << ", plane " << flat;
+    }
 }
 
 }  // namespace
