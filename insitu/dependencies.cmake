@@ -15,7 +15,7 @@ find_library(CIVETWEB_LIBRARY civetweb REQUIRED)
 add_library(civetweb::civetweb UNKNOWN IMPORTED GLOBAL)
 set_target_properties(civetweb::civetweb PROPERTIES IMPORTED_LOCATION "${CIVETWEB_LIBRARY}"
                       INTERFACE_INCLUDE_DIRECTORIES "${CIVETWEB_INCLUDE_DIR}")
-find_package(VTK 9.1 REQUIRED COMPONENTS CommonCore CommonDataModel IOXML IOXMLParser
+find_package(VTK 9.1 REQUIRED COMPONENTS CommonCore CommonDataModel IOLegacy IOXML IOXMLParser
              IOParallelXML)
 find_package(HDF5 REQUIRED COMPONENTS C)
 # Imath first (OpenVDB and OpenEXR both need it), so that its target is made global here too.

@@ -555,7 +555,7 @@ PYBIND11_MODULE(_voxspan, m) {
 
   m.def("read_particles", &particle_file, py::arg("path"),
         py::arg("arrays") = std::vector<std::string>{},
-        "Reads a particle file (.vtp .vtu .csv .xyz, PySPH .hdf5/.h5): a dict of positions "
+        "Reads a particle file (.vtp .vtu .vtk .csv .xyz, PySPH .hdf5/.h5): a dict of positions "
         "((n, 3) float64), radii (or None), attributes ({name: array}), time, step, spacing "
         "(PySPH: from mass and density) and chosen (the arrays read). arrays: PySPH arrays to "
         "read, ['all'], or [] for the fluid's. Raises voxspan.Error naming the file.");

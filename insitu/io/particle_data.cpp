@@ -54,15 +54,20 @@ void adopt_radius_attribute(ParticleData& data) {
   data.attributes.erase(it);
 }
 
-ParticleData read_particles(const std::filesystem::path& path, const ParticleReadOptions& options) {
+std::string extension_of(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+ParticleData read_particles(const std::filesystem::path& path, const ParticleReadOptions& options) {
+  const std::string ext = extension_of(path);
   if (ext == ".hdf5" || ext == ".h5") return read_pysph_hdf5(path, options);
-  const bool vtk = ext == ".vtp" || ext == ".vtu";
+  const bool vtk = ext == ".vtp" || ext == ".vtu" || ext == ".vtk";
   if (!vtk && ext != ".csv" && ext != ".xyz")
     throw make_error("cannot read particles from ", path.string(), ": unknown extension \"", ext,
-                     "\" (known: .vtp .vtu .csv .xyz .hdf5 .h5)");
+                     "\" (known: .vtp .vtu .vtk .csv .xyz .hdf5 .h5)");
   // Named arrays would otherwise read as the whole file, silently; `all` is what it holds.
   const auto refuse_names = [&](const char* what, const std::vector<std::string>& list) {
     std::string names;

@@ -51,9 +51,10 @@ struct ParticleReadOptions {
   std::vector<std::string> scenery;
 };
 
-// By extension: .vtp/.vtu (VTK XML), .csv, .xyz, .hdf5/.h5 (PySPH). Throws voxspan::Error
-// naming the file and what is wrong with it; also where options.arrays names arrays (other
-// than `all`) and the file is not PySPH's: the other formats hold one unnamed set of particles.
+// By extension (any case): .vtp/.vtu (VTK XML), .vtk (legacy VTK), .csv, .xyz, .hdf5/.h5 (PySPH).
+// Throws voxspan::Error naming the file and what is wrong with it; also where options.arrays names
+// arrays (other than `all`) and the file is not PySPH's: the other formats hold one unnamed set of
+// particles.
 ParticleData read_particles(const std::filesystem::path& path,
                             const ParticleReadOptions& options = {});
 ParticleData read_vtk_particles(const std::filesystem::path& path);
@@ -65,6 +66,9 @@ ParticleData read_pysph_hdf5(const std::filesystem::path& path,
 // Throws voxspan::Error naming the file unless it is a file that exists. Every reader calls
 // it first: HDF5 would call a missing file "not an HDF5 file", VTK "not readable".
 void require_particle_file(const std::filesystem::path& path);
+
+// The file's extension in lower case, with its dot: what picks its reader.
+std::string extension_of(const std::filesystem::path& path);
 
 // Names the files use for radii (first match wins): radius, radii, r.
 bool is_radius_name(std::string_view name);

@@ -1,6 +1,8 @@
-// Particles from VTK XML files (.vtp, .vtu): the points, a radius array if there is one, and
-// every 1- or 3-component point-data array as a named attribute.
+// Particles from VTK files: XML (.vtp, .vtu) and legacy (.vtk: polydata or an unstructured grid,
+// as DualSPHysics' PartVTK writes them): the points, a radius array if there is one, and every
+// 1- or 3-component point-data array as a named attribute.
 #include <vtkDataArray.h>
+#include <vtkGenericDataObjectReader.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
@@ -10,6 +12,9 @@
 #include <vtkSmartPointer.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
+
+#include <fstream>
+#include <string>
 
 #include "insitu/io/particle_data.h"
 #include "voxspan/error.h"
@@ -30,13 +35,41 @@ vtkSmartPointer<vtkPointSet> read_point_set(const std::filesystem::path& path) {
   return vtkSmartPointer<vtkPointSet>(reader->GetOutput());
 }
 
+vtkSmartPointer<vtkPointSet> read_legacy_point_set(const std::filesystem::path& path) {
+  // Its first line says what it is; VTK's reader would print its own error too.
+  std::string first;
+  std::getline(std::ifstream(path), first);
+  if (!first.starts_with("# vtk DataFile"))
+    throw make_error("cannot read particles from ", path.string(),
+                     ": not a legacy VTK file (its first line is not \"# vtk DataFile ...\")");
+  vtkNew<vtkGenericDataObjectReader> reader;
+  reader->SetFileName(path.c_str());
+  // The type from the header alone, so that a file of another kind reads nothing.
+  const int type = reader->ReadOutputType();
+  if (type != VTK_POLY_DATA && type != VTK_UNSTRUCTURED_GRID)
+    throw make_error("cannot read particles from ", path.string(),
+                     type < 0 ? ": not a legacy VTK file"
+                              : ": a legacy VTK file of other data than points (polydata or an "
+                                "unstructured grid)");
+  reader->Update();
+  auto* set = vtkPointSet::SafeDownCast(reader->GetOutput());
+  if (reader->GetErrorCode() != 0 || set == nullptr)
+    throw make_error("cannot read particles from ", path.string(), ": VTK reader failed");
+  return vtkSmartPointer<vtkPointSet>(set);
+}
+
+vtkSmartPointer<vtkPointSet> read_any_point_set(const std::filesystem::path& path) {
+  const std::string ext = extension_of(path);
+  if (ext == ".vtk") return read_legacy_point_set(path);
+  if (ext == ".vtu") return read_point_set<vtkXMLUnstructuredGridReader>(path);
+  return read_point_set<vtkXMLPolyDataReader>(path);
+}
+
 }  // namespace
 
 ParticleData read_vtk_particles(const std::filesystem::path& path) {
   require_particle_file(path);
-  vtkSmartPointer<vtkPointSet> set = path.extension() == ".vtu"
-                                         ? read_point_set<vtkXMLUnstructuredGridReader>(path)
-                                         : read_point_set<vtkXMLPolyDataReader>(path);
+  vtkSmartPointer<vtkPointSet> set = read_any_point_set(path);
   ParticleData data;
   const vtkIdType n = set->GetNumberOfPoints();
   data.positions.resize(static_cast<std::size_t>(n));

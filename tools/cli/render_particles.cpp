@@ -1,4 +1,4 @@
-// render_particles: the offline renderer. Particle files written by a solver (VTK .vtp/.vtu,
+// render_particles: the offline renderer. Particle files written by a solver (VTK .vtp/.vtu/.vtk,
 // CSV, XYZ, PySPH HDF5: insitu/io/particle_data.h) go through the same runtime as an in-situ run,
 // with the same YAML config: each file is one step, classified by the solver-side classifier
 // (voxspan/classify.h, the adapter sorting the particles into its own grid), every view
@@ -61,7 +61,7 @@ constexpr char kUsage[] =
     "usage: render_particles [--config FILE] [--output DIR] [--spacing DX] "
     "[--radius R] [--arrays NAME,...] [--scenery NAME,...|none] "
     "[--split slabs|uneven|interleaved] FILE...\n"
-    "  FILE: .vtp .vtu .csv .xyz .hdf5/.h5 (PySPH); each file is one step\n"
+    "  FILE: .vtp .vtu .vtk .csv .xyz .hdf5/.h5 (PySPH); each file is one step\n"
     "  under mpiexec each rank renders its part (--split) and rank 0 writes the pictures\n";
 
 bool parse(int argc, char** argv, Options& o) {

@@ -91,6 +91,45 @@ TEST(CsvParticles, SemicolonsUnitsAndDottedVectors) {
   EXPECT_NE(d.attribute("Idp"), nullptr);
 }
 
+// Legacy VTK, as DualSPHysics' PartVTK writes its particles: polydata with vertices and point
+// data (a vector and scalars); an unstructured grid reads alike; other data is refused.
+TEST(LegacyVtkParticles, PolyDataAndUnstructuredGridPointsWithTheirArrays) {
+  test::TempFolder dir;
+  const std::string data =
+      "POINT_DATA 2\n"
+      "VECTORS Vel float\n1 2 3 4 5 6\n"
+      "SCALARS Rhop float 1\nLOOKUP_TABLE default\n1000 1001\n";
+  std::ofstream(dir / "PartFluid_0000.vtk")
+      << "# vtk DataFile Version 3.0\nPart_0000\nASCII\nDATASET POLYDATA\n"
+         "POINTS 2 float\n0 0 0 0.1 0.2 0.3\nVERTICES 2 4\n1 0\n1 1\n"
+      << data;
+  ParticleData d = read_particles(dir / "PartFluid_0000.vtk");
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_NEAR(d.positions[1][1], 0.2, 1e-7);
+  ASSERT_NE(d.attribute("Vel"), nullptr);
+  EXPECT_EQ(d.attribute("Vel")->components, 3);
+  EXPECT_EQ(d.attribute("Vel")->values, (std::vector<float>{1, 2, 3, 4, 5, 6}));
+  ASSERT_NE(d.attribute("Rhop"), nullptr);
+  EXPECT_EQ(d.attribute("Rhop")->values, (std::vector<float>{1000, 1001}));
+
+  std::ofstream(dir / "grid.VTK") << "# vtk DataFile Version 3.0\ngrid\nASCII\n"
+                                     "DATASET UNSTRUCTURED_GRID\nPOINTS 2 double\n0 0 0 1 1 1\n"
+                                     "CELLS 2 4\n1 0\n1 1\nCELL_TYPES 2\n1\n1\n"
+                                  << data;
+  d = read_particles(dir / "grid.VTK");
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_DOUBLE_EQ(d.positions[1][2], 1);
+  EXPECT_EQ(d.attribute("Rhop")->values, (std::vector<float>{1000, 1001}));
+
+  std::ofstream(dir / "image.vtk") << "# vtk DataFile Version 3.0\nimage\nASCII\n"
+                                      "DATASET STRUCTURED_POINTS\nDIMENSIONS 2 1 1\n"
+                                      "SPACING 1 1 1\nORIGIN 0 0 0\n";
+  EXPECT_NE(error_of(dir / "image.vtk").find("image.vtk: a legacy VTK file of other data"),
+            std::string::npos);
+  std::ofstream(dir / "text.vtk") << "not VTK at all\n";
+  EXPECT_NE(error_of(dir / "text.vtk").find("text.vtk: not a legacy VTK file"), std::string::npos);
+}
+
 TEST(CsvParticles, ErrorsNameFileAndLine) {
   test::TempFolder dir;
   std::ofstream(dir / "a.csv") << "1,2,3\n";
