@@ -18,11 +18,9 @@ SlicePlane SlicePlane::make(glm::dvec3 origin, glm::dvec3 normal, double width, 
   p.normal = glm::normalize(normal);
   glm::dvec3 v = up - glm::dot(up, p.normal) * p.normal;
   if (glm::length(v) < 1e-9 * glm::length(up)) {
-    // `up` along the normal: the axis least aligned with the normal instead
-    const glm::dvec3 a = glm::abs(p.normal);
-    const glm::dvec3 axis = a.x <= a.y && a.x <= a.z ? glm::dvec3(1, 0, 0)
-                            : a.y <= a.z             ? glm::dvec3(0, 1, 0)
-                                                     : glm::dvec3(0, 0, 1);
+    // `up` along the normal: +y, or +x for a normal along y (a 2D run's plane z = 0 then reads
+    // as its map: x right, y up).
+    const glm::dvec3 axis = std::abs(p.normal.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
     v = axis - glm::dot(axis, p.normal) * p.normal;
   }
   p.v = glm::normalize(v);

@@ -25,7 +25,8 @@ namespace voxspan {
 
 // A rectangle of the plane through `origin` with unit normal `normal`: `width` along u and
 // `height` along v (u, v, normal right-handed; v is the projection of `up` onto the plane, or
-// of another axis when `up` is along the normal). Pixel (i, j) of a W x H image, row 0 at the
+// where `up` is along the normal of +y, else of +x: a plane z = const seen from +z reads as a
+// 2D run's map, +x right and +y up). Pixel (i, j) of a W x H image, row 0 at the
 // top, has its centre at (the picture shows the plane as seen from the side its normal points
 // to: with normal -y and up +z, +x is to the right)
 //   origin + ((i + 0.5) / W - 0.5) * width * u + (0.5 - (j + 0.5) / H) * height * v.

@@ -141,6 +141,20 @@ TEST(SphPoints, EqualsTheDoubleSumOnASheetAndAtScatteredPoints) {
     }
 }
 
+// The picture's right (u) and up (v): up's projection onto the plane, and where up is along the
+// normal a map's axes, so that a 2D run's plane z = 0 reads x right, y up.
+TEST(SphSlice, ThePlanesAxesFollowUpOrReadAsAMap) {
+  SlicePlane p = SlicePlane::make({0, 0, 0}, {0, -1, 0}, 1, 1);
+  EXPECT_EQ(p.u, glm::dvec3(1, 0, 0));
+  EXPECT_EQ(p.v, glm::dvec3(0, 0, 1));
+  p = SlicePlane::make({0, 0, 0}, {0, 0, 1}, 1, 1);
+  EXPECT_EQ(p.u, glm::dvec3(1, 0, 0));
+  EXPECT_EQ(p.v, glm::dvec3(0, 1, 0));
+  p = SlicePlane::make({0, 0, 0}, {0, 1, 0}, 1, 1, {0, 1, 0});
+  EXPECT_EQ(p.v, glm::dvec3(1, 0, 0));
+  EXPECT_EQ(p.u, glm::dvec3(0, 0, 1));
+}
+
 TEST(SphSlice, AUniformFieldIsFlatWithShepardAwayFromTheFreeSurface) {
   const Particles s(20, 20, 20);
   std::vector<double> three(s.x.size(), 3.0);
