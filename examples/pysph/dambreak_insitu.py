@@ -10,8 +10,9 @@ the adapter is attached through Solver.add_post_step_callback and renders the fl
 PySPH's output frequency --pfreq, so that every rendered step is also a file PySPH writes), the
 initial state and the last step, with the views and outputs of the YAML config (default:
 insitu.yaml beside this script: two views of the water and a slice of the pressure as PNG, the
-stats, an OpenVDB snapshot at the end). The application's other arrays (the tank's `boundary`,
-the `obstacle`) are its scenery: handed over once, they are drawn as opaque walls.
+stats, an OpenVDB snapshot at the end; insitu_2d.yaml beside it has views for a 2D application,
+--app pysph.examples.dam_break_2d:DamBreak2D). The application's other arrays (the tank's
+`boundary`, the `obstacle`) are its scenery: handed over once, they are drawn as opaque walls.
 
 The particles are handed over as PySPH holds them: x, y, z, u, v, w, rho, p and m of the array,
 numpy views of its own memory, not copies, under PySPH's names (rho, p, velocity), as the
@@ -47,10 +48,11 @@ def application(name):
     return getattr(importlib.import_module(module), cls)()
 
 
-def rest_spacing(arrays):
-    """The median (m / rho)^(1/3) of the arrays' particles: the spacing at rest density."""
+def rest_spacing(arrays, dim):
+    """The median (m / rho)^(1/dim) of the arrays' particles: the spacing at rest density (in a
+    2D run m / rho is an area)."""
     volume = numpy.concatenate([pa.m / pa.rho for pa in arrays])
-    return float(numpy.median(numpy.cbrt(volume)))
+    return float(numpy.median(volume ** (1.0 / dim)))
 
 
 class Insitu:
@@ -59,7 +61,7 @@ class Insitu:
     def __init__(self, solver, arrays, scenery, config, every, output):
         self.arrays = arrays
         self.every = every
-        self.spacing = rest_spacing(arrays)
+        self.spacing = rest_spacing(arrays, solver.dim)
         print(f"voxspan: particle spacing {self.spacing!r} (rest volume of {len(arrays)} "
               f"array(s)), rendering every {every} steps")
         self.adapter = voxspan.Adapter.from_config_file(config, spacing=self.spacing,
