@@ -69,7 +69,17 @@ std::vector<std::string> split(const std::string& line, char sep) {
   return fields;
 }
 
-std::vector<std::string> split_whitespace(const std::string& line);
+std::vector<std::string> split_whitespace(const std::string& line) {
+  std::vector<std::string> fields;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    std::size_t b = i;
+    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i > b) fields.push_back(line.substr(b, i - b));
+  }
+  return fields;
+}
 
 // A CSV row's separator, from its first row: kWhiteSpace for runs of spaces and tabs.
 constexpr char kWhiteSpace = ' ';
@@ -86,25 +96,13 @@ std::vector<std::string> fields_of(const std::string& row, char sep) {
   return split(!row.empty() && row.back() == sep ? row.substr(0, row.size() - 1) : row, sep);
 }
 
-// A column's name without a unit after it: "Vel.x [m/s]" is "Vel.x".
+// A column's name without a unit after it: "Vel.x [m/s]" is "Vel.x"; "f[0]" (no space before
+// the bracket) is a component, kept.
 std::string without_unit(std::string name) {
   const std::size_t open = name.find_last_of("[(");
-  const char close = open != std::string::npos && name[open] == '[' ? ']' : ')';
-  if (open != std::string::npos && open > 0 && name.back() == close)
-    name = trim(name.substr(0, open));
+  if (open == std::string::npos || open == 0 || name[open - 1] != ' ') return name;
+  if (name.back() == (name[open] == '[' ? ']' : ')')) name = trim(name.substr(0, open));
   return name;
-}
-
-std::vector<std::string> split_whitespace(const std::string& line) {
-  std::vector<std::string> fields;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    std::size_t b = i;
-    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    if (i > b) fields.push_back(line.substr(b, i - b));
-  }
-  return fields;
 }
 
 // The base name when a, b, c are the x, y, z components of one vector; empty otherwise.

@@ -89,6 +89,13 @@ TEST(CsvParticles, SemicolonsUnitsAndDottedVectors) {
   ASSERT_NE(d.attribute("Rhop"), nullptr);
   EXPECT_EQ(d.attribute("Rhop")->values, (std::vector<float>{1000, 1001}));
   EXPECT_NE(d.attribute("Idp"), nullptr);
+
+  // A bracket right after the name is a component, not a unit.
+  std::ofstream(dir / "f.csv") << "x (m);y (m);z (m);f[0];f[1];f[2]\n1;2;3;4;5;6\n";
+  d = read_particles(dir / "f.csv");
+  EXPECT_DOUBLE_EQ(d.positions[0][1], 2);
+  ASSERT_NE(d.attribute("f"), nullptr);
+  EXPECT_EQ(d.attribute("f")->values, (std::vector<float>{4, 5, 6}));
 }
 
 // Legacy VTK, as DualSPHysics' PartVTK writes its particles: polydata with vertices and point
