@@ -31,9 +31,12 @@ double SpanImage::inside_sum() const {
 }
 
 void SpanListBuilder::add(double entry, double exit, double ray_scale) {
-  inside_ += (exit - entry) * ray_scale;
-  if (cap_ == 0 || found_ < cap_) out_.push_back({float(entry), float(exit)});
-  else out_.back().exit = float(exit);  // sec. 3.1: extend the last stored span
+  // The length of the span as stored (in float): an MPI merge, which sees only the ranks' stored
+  // spans, then sums the same lengths as one process does (insitu/parallel/span_merge.cpp).
+  const float e = float(entry), x = float(exit);
+  inside_ += (double(x) - double(e)) * ray_scale;
+  if (cap_ == 0 || found_ < cap_) out_.push_back({e, x});
+  else out_.back().exit = x;  // sec. 3.1: extend the last stored span
   ++found_;
 }
 
