@@ -51,8 +51,6 @@ FrameOptions frame_options(const SurfaceSettings& view, double spacing) {
   if (view.absorption) shade.material.absorption = vec(*view.absorption);
   shade.material.ior = view.ior;
   shade.bounces = view.bounces;
-  shade.environment.up = vec(view.camera.up);
-  shade.environment.sun_direction = sun_direction(shade.environment.up);
   shade.environment.ground_tile = view.ground_tile.value_or(12 * spacing);
   shade.environment.ground_light = vec(view.ground_light);
   shade.environment.ground_dark = vec(view.ground_dark);
@@ -189,7 +187,7 @@ class SurfaceView final : public View {
       auto_absorption_ =
           Material::water_absorption(std::max(smallest_side(step.fluid_box), spacing_));
     if (auto_absorption_) o.shade.material.absorption = *auto_absorption_;
-    // The camera's up: a 2D fluid is seen head-on with its plane's upward axis up.
+    // The environment's up is the camera's (a 2D fluid's camera has its plane's upward axis up).
     o.shade.environment.up = step.camera.up;
     o.shade.environment.sun_direction = sun_direction(step.camera.up);
     if (!step.fluid_box.empty() && !settings_.ground_height)

@@ -18,13 +18,19 @@ std::string error_of(const std::filesystem::path& path, const ParticleReadOption
   return test::error_message([&] { read_particles(path, options); });
 }
 
+// The particles of a file `name` in `dir` holding `text`.
+ParticleData read_text(const test::TempFolder& dir, const char* name, const std::string& text) {
+  std::ofstream(dir / name) << text;
+  return read_particles(dir / name);
+}
+
 TEST(CsvParticles, HeaderNamesPositionsRadiiScalarsAndVectors) {
   test::TempFolder dir;
-  std::ofstream(dir / "p.csv") << "# made by a solver\n"
-                                  "x,y,z,radius,vx,vy,vz,pressure\n"
-                                  "0,0,0,0.5,1,2,3,100\n"
-                                  "1.5,-2,3e-2,0.25,4,5,6,200\n";
-  ParticleData d = read_particles(dir / "p.csv");
+  ParticleData d = read_text(dir, "p.csv",
+                             "# made by a solver\n"
+                             "x,y,z,radius,vx,vy,vz,pressure\n"
+                             "0,0,0,0.5,1,2,3,100\n"
+                             "1.5,-2,3e-2,0.25,4,5,6,200\n");
   ASSERT_EQ(d.size(), 2u);
   EXPECT_DOUBLE_EQ(d.positions[1][0], 1.5);
   EXPECT_DOUBLE_EQ(d.positions[1][2], 0.03);
@@ -39,10 +45,10 @@ TEST(CsvParticles, HeaderNamesPositionsRadiiScalarsAndVectors) {
 
 TEST(CsvParticles, ParaViewExportWithQuotedPointColumns) {
   test::TempFolder dir;
-  std::ofstream(dir / "pv.csv") << "\"density\",\"velocity:0\",\"velocity:1\",\"velocity:2\","
-                                   "\"Points:0\",\"Points:1\",\"Points:2\"\n"
-                                   "1000,0,0,-1,0.1,0.2,0.3\n";
-  ParticleData d = read_particles(dir / "pv.csv");
+  ParticleData d = read_text(dir, "pv.csv",
+                             "\"density\",\"velocity:0\",\"velocity:1\",\"velocity:2\","
+                             "\"Points:0\",\"Points:1\",\"Points:2\"\n"
+                             "1000,0,0,-1,0.1,0.2,0.3\n");
   ASSERT_EQ(d.size(), 1u);
   EXPECT_DOUBLE_EQ(d.positions[0][2], 0.3);
   EXPECT_TRUE(d.radii.empty());
@@ -56,18 +62,17 @@ TEST(CsvParticles, ParaViewExportWithQuotedPointColumns) {
 // between the numbers.
 TEST(CsvParticles, NumpysHeaderInACommentAndWhiteSpace) {
   test::TempFolder dir;
-  std::ofstream(dir / "np.csv") << "# x y z u v w\n"
-                                   "0.0 0.0 0.0 1.0 2.0 3.0\n"
-                                   "1.5e-1\t2 3 4 5 6\n";
-  ParticleData d = read_particles(dir / "np.csv");
+  ParticleData d = read_text(dir, "np.csv",
+                             "# x y z u v w\n"
+                             "0.0 0.0 0.0 1.0 2.0 3.0\n"
+                             "1.5e-1\t2 3 4 5 6\n");
   ASSERT_EQ(d.size(), 2u);
   EXPECT_DOUBLE_EQ(d.positions[1][0], 0.15);
   EXPECT_DOUBLE_EQ(d.positions[1][2], 3);
   ASSERT_NE(d.attribute("w"), nullptr);
   EXPECT_EQ(d.attribute("w")->values, (std::vector<float>{3, 6}));
 
-  std::ofstream(dir / "tabs.csv") << "X\tY\tZ\tp\n1\t2\t3\t4\n";
-  d = read_particles(dir / "tabs.csv");
+  d = read_text(dir, "tabs.csv", "X\tY\tZ\tp\n1\t2\t3\t4\n");
   ASSERT_EQ(d.size(), 1u);
   EXPECT_DOUBLE_EQ(d.positions[0][1], 2);
   EXPECT_EQ(d.attribute("p")->values, (std::vector<float>{4}));
@@ -76,11 +81,11 @@ TEST(CsvParticles, NumpysHeaderInACommentAndWhiteSpace) {
 // DualSPHysics' CSV: semicolons, a unit after each name, a semicolon ending every row.
 TEST(CsvParticles, SemicolonsUnitsAndDottedVectors) {
   test::TempFolder dir;
-  std::ofstream(dir / "part.csv")
-      << "Pos.x [m];Pos.y [m];Pos.z [m];Idp;Vel.x [m/s];Vel.y [m/s];Vel.z [m/s];Rhop [kg/m^3];\n"
-         "0.1;0.2;0.3;7;1;2;3;1000;\n"
-         "0.4;0.5;0.6;8;4;5;6;1001;\n";
-  ParticleData d = read_particles(dir / "part.csv");
+  ParticleData d = read_text(
+      dir, "part.csv",
+      "Pos.x [m];Pos.y [m];Pos.z [m];Idp;Vel.x [m/s];Vel.y [m/s];Vel.z [m/s];Rhop [kg/m^3];\n"
+      "0.1;0.2;0.3;7;1;2;3;1000;\n"
+      "0.4;0.5;0.6;8;4;5;6;1001;\n");
   ASSERT_EQ(d.size(), 2u);
   EXPECT_DOUBLE_EQ(d.positions[1][2], 0.6);
   ASSERT_NE(d.attribute("Vel"), nullptr);
@@ -91,8 +96,7 @@ TEST(CsvParticles, SemicolonsUnitsAndDottedVectors) {
   EXPECT_NE(d.attribute("Idp"), nullptr);
 
   // A bracket right after the name is a component, not a unit.
-  std::ofstream(dir / "f.csv") << "x (m);y (m);z (m);f[0];f[1];f[2]\n1;2;3;4;5;6\n";
-  d = read_particles(dir / "f.csv");
+  d = read_text(dir, "f.csv", "x (m);y (m);z (m);f[0];f[1];f[2]\n1;2;3;4;5;6\n");
   EXPECT_DOUBLE_EQ(d.positions[0][1], 2);
   ASSERT_NE(d.attribute("f"), nullptr);
   EXPECT_EQ(d.attribute("f")->values, (std::vector<float>{4, 5, 6}));
@@ -106,11 +110,10 @@ TEST(LegacyVtkParticles, PolyDataAndUnstructuredGridPointsWithTheirArrays) {
       "POINT_DATA 2\n"
       "VECTORS Vel float\n1 2 3 4 5 6\n"
       "SCALARS Rhop float 1\nLOOKUP_TABLE default\n1000 1001\n";
-  std::ofstream(dir / "PartFluid_0000.vtk")
-      << "# vtk DataFile Version 3.0\nPart_0000\nASCII\nDATASET POLYDATA\n"
-         "POINTS 2 float\n0 0 0 0.1 0.2 0.3\nVERTICES 2 4\n1 0\n1 1\n"
-      << data;
-  ParticleData d = read_particles(dir / "PartFluid_0000.vtk");
+  ParticleData d = read_text(dir, "PartFluid_0000.vtk",
+                             "# vtk DataFile Version 3.0\nPart_0000\nASCII\nDATASET POLYDATA\n"
+                             "POINTS 2 float\n0 0 0 0.1 0.2 0.3\nVERTICES 2 4\n1 0\n1 1\n" +
+                                 data);
   ASSERT_EQ(d.size(), 2u);
   EXPECT_NEAR(d.positions[1][1], 0.2, 1e-7);
   ASSERT_NE(d.attribute("Vel"), nullptr);
@@ -119,11 +122,11 @@ TEST(LegacyVtkParticles, PolyDataAndUnstructuredGridPointsWithTheirArrays) {
   ASSERT_NE(d.attribute("Rhop"), nullptr);
   EXPECT_EQ(d.attribute("Rhop")->values, (std::vector<float>{1000, 1001}));
 
-  std::ofstream(dir / "grid.VTK") << "# vtk DataFile Version 3.0\ngrid\nASCII\n"
-                                     "DATASET UNSTRUCTURED_GRID\nPOINTS 2 double\n0 0 0 1 1 1\n"
-                                     "CELLS 2 4\n1 0\n1 1\nCELL_TYPES 2\n1\n1\n"
-                                  << data;
-  d = read_particles(dir / "grid.VTK");
+  d = read_text(dir, "grid.VTK",
+                "# vtk DataFile Version 3.0\ngrid\nASCII\n"
+                "DATASET UNSTRUCTURED_GRID\nPOINTS 2 double\n0 0 0 1 1 1\n"
+                "CELLS 2 4\n1 0\n1 1\nCELL_TYPES 2\n1\n1\n" +
+                    data);
   ASSERT_EQ(d.size(), 2u);
   EXPECT_DOUBLE_EQ(d.positions[1][2], 1);
   EXPECT_EQ(d.attribute("Rhop")->values, (std::vector<float>{1000, 1001}));
@@ -174,12 +177,10 @@ TEST(CsvParticles, NamedArraysAreAnErrorOutsidePySphFiles) {
 
 TEST(XyzParticles, PlainAndExtended) {
   test::TempFolder dir;
-  std::ofstream(dir / "p.xyz") << "# x y z r\n0 0 0 0.5\n1 2 3 0.25\n";
-  ParticleData d = read_particles(dir / "p.xyz");
+  ParticleData d = read_text(dir, "p.xyz", "# x y z r\n0 0 0 0.5\n1 2 3 0.25\n");
   ASSERT_EQ(d.size(), 2u);
   EXPECT_EQ(d.radii, (std::vector<float>{0.5f, 0.25f}));
-  std::ofstream(dir / "e.xyz") << "3\ncomment line\nO 0 0 0\nH 1 0 0\nH 0 1 0\n";
-  d = read_particles(dir / "e.xyz");
+  d = read_text(dir, "e.xyz", "3\ncomment line\nO 0 0 0\nH 1 0 0\nH 0 1 0\n");
   ASSERT_EQ(d.size(), 3u);
   EXPECT_TRUE(d.radii.empty());
   EXPECT_DOUBLE_EQ(d.positions[2][1], 1);
