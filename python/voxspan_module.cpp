@@ -555,10 +555,11 @@ PYBIND11_MODULE(_voxspan, m) {
 
   m.def("read_particles", &particle_file, py::arg("path"),
         py::arg("arrays") = std::vector<std::string>{},
-        "Reads a particle file (.vtp .vtu .vtk .csv .xyz, PySPH .hdf5/.h5): a dict of positions "
-        "((n, 3) float64), radii (or None), attributes ({name: array}), time, step, spacing "
-        "(PySPH: from mass and density) and chosen (the arrays read). arrays: PySPH arrays to "
-        "read, ['all'], or [] for the fluid's. Raises voxspan.Error naming the file.");
+        "Reads a particle file (.vtp .vtu .vtk .csv .xyz, .hdf5/.h5 of PySPH or GADGET/SWIFT): a "
+        "dict of positions ((n, 3) float64), radii (or None), attributes ({name: array}), time, "
+        "step, spacing (HDF5: from mass and density) and chosen (the arrays read). arrays: PySPH "
+        "arrays or GADGET particle types (PartType4) to read, ['all'], or [] for the fluid's "
+        "(the gas). Raises voxspan.Error naming the file.");
   m.def("read_png", &png_file, py::arg("path"),
         "A PNG file as a (height, width, 4) uint8 array (sRGB RGBA, row 0 at the top).");
   m.def("_viewed_axes", &viewed_axes, py::arg("x"), py::arg("y") = py::none(),

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <system_error>
 
+#include "insitu/io/hdf5_file.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
@@ -61,9 +62,29 @@ std::string extension_of(const std::filesystem::path& path) {
   return ext;
 }
 
+ParticleData read_hdf5_particles(const std::filesystem::path& path,
+                                 const ParticleReadOptions& options) {
+  bool pysph = false;
+  {
+    hdf5::Quiet quiet;
+    const hdf5::Handle h5 = hdf5::open_particle_file(path);
+    pysph = hdf5::has_member(h5.get(), "particles");
+    if (!pysph && !hdf5::has_member(h5.get(), "Header")) {
+      std::string members;
+      for (const std::string& n : hdf5::member_names(h5.get()))
+        members += (members.empty() ? "/" : ", /") + n;
+      throw make_error("cannot read particles from ", path.string(),
+                       ": neither PySPH's layout (/particles) nor a GADGET-format snapshot "
+                       "(/Header, /PartType0...); the file has ",
+                       members.empty() ? std::string("nothing") : members);
+    }
+  }
+  return pysph ? read_pysph_hdf5(path, options) : read_gadget_hdf5(path, options);
+}
+
 ParticleData read_particles(const std::filesystem::path& path, const ParticleReadOptions& options) {
   const std::string ext = extension_of(path);
-  if (ext == ".hdf5" || ext == ".h5") return read_pysph_hdf5(path, options);
+  if (ext == ".hdf5" || ext == ".h5") return read_hdf5_particles(path, options);
   const bool vtk = ext == ".vtp" || ext == ".vtu" || ext == ".vtk";
   if (!vtk && ext != ".csv" && ext != ".xyz")
     throw make_error("cannot read particles from ", path.string(), ": unknown extension \"", ext,
@@ -73,8 +94,10 @@ ParticleData read_particles(const std::filesystem::path& path, const ParticleRea
     std::string names;
     for (const std::string& n : list) names += (names.empty() ? "" : ", ") + n;
     throw make_error("cannot read particles from ", path.string(), ": ", what, " were named (",
-                     names, "), but only PySPH files (.hdf5 .h5) have named arrays; a ", ext,
-                     " file is one set of particles");
+                     names,
+                     "), but only HDF5 files (.hdf5 .h5: PySPH's arrays, GADGET's particle "
+                     "types) have named arrays; a ",
+                     ext, " file is one set of particles");
   };
   const auto only = [](const std::vector<std::string>& list, const char* word) {
     return list.size() == 1 && list[0] == word;

@@ -43,25 +43,32 @@ struct ParticleData {
 };
 
 struct ParticleReadOptions {
-  // PySPH: the particle arrays to read (e.g. {"fluid"}); {"all"}: every array; empty: the
-  // fluid's (kPickFluid in read_pysph_hdf5.cpp).
+  // HDF5 files: PySPH's particle arrays to read (e.g. {"fluid"}), or a GADGET-format snapshot's
+  // particle types (e.g. {"PartType4"}); {"all"}: every one; empty: the fluid's (PySPH:
+  // kPickFluid in read_pysph_hdf5.cpp; GADGET: the gas, PartType0).
   std::vector<std::string> arrays;
   // PySPH: the arrays read as scenery (walls, obstacles); empty: every array not read as the
   // fluid (none when `arrays` is `all`); {"none"}: none.
   std::vector<std::string> scenery;
 };
 
-// By extension (any case): .vtp/.vtu (VTK XML), .vtk (legacy VTK), .csv, .xyz, .hdf5/.h5 (PySPH).
-// Throws voxspan::Error naming the file and what is wrong with it; also where options.arrays names
-// arrays (other than `all`) and the file is not PySPH's: the other formats hold one unnamed set of
-// particles.
+// By extension (any case): .vtp/.vtu (VTK XML), .vtk (legacy VTK), .csv, .xyz, .hdf5/.h5 (PySPH's
+// layout, or a GADGET-format snapshot: SWIFT, GIZMO...). Throws voxspan::Error naming the file
+// and what is wrong with it; also where options.arrays names arrays (other than `all`) and the
+// file is not HDF5: the other formats hold one unnamed set of particles.
 ParticleData read_particles(const std::filesystem::path& path,
                             const ParticleReadOptions& options = {});
 ParticleData read_vtk_particles(const std::filesystem::path& path);
 ParticleData read_csv_particles(const std::filesystem::path& path);
 ParticleData read_xyz_particles(const std::filesystem::path& path);
+// HDF5: PySPH's layout (/particles) or the GADGET family's (/Header, /PartType<k>), as the file
+// has it; the two readers behind it.
+ParticleData read_hdf5_particles(const std::filesystem::path& path,
+                                 const ParticleReadOptions& options = {});
 ParticleData read_pysph_hdf5(const std::filesystem::path& path,
                              const ParticleReadOptions& options = {});
+ParticleData read_gadget_hdf5(const std::filesystem::path& path,
+                              const ParticleReadOptions& options = {});
 
 // Throws voxspan::Error naming the file unless it is a file that exists. Every reader calls
 // it first: HDF5 would call a missing file "not an HDF5 file", VTK "not readable".

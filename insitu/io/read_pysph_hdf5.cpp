@@ -12,89 +12,22 @@
 // particles move, else every one (a file written at rest with other names), and ParticleData
 // says which and why. The spacing is the median of (m / rho)^(1 / dimensions) when the arrays
 // store mass and density (2 dimensions when every z is the same).
-#include <hdf5.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <map>
 #include <optional>
 
+#include "insitu/io/hdf5_file.h"
 #include "insitu/io/particle_data.h"
+#include "insitu/io/spacing_estimate.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
 namespace {
 
-// Owns one HDF5 identifier.
-class Handle {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
-  ~Handle() {
-    if (id_ >= 0) closer_(id_);
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-
- private:
-  hid_t id_;
-  Closer closer_;
-};
-
-// HDF5 prints its error stack to stderr by default; our errors name the problem instead.
-class QuietHdf5 {
- public:
-  QuietHdf5() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietHdf5() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
-
-// The message of the innermost HDF5 error on this thread's stack: what went wrong, not the
-// calls that passed it up ("truncated file: eof = 1024, ... stored_eof = 6144").
-std::string innermost_hdf5_error() {
-  std::string message = "HDF5 gives no reason";
-  H5Ewalk2(
-      H5E_DEFAULT, H5E_WALK_UPWARD,
-      [](unsigned n, const H5E_error2_t* e, void* out) -> herr_t {
-        if (n == 0 && e->desc && *e->desc) *static_cast<std::string*>(out) = e->desc;
-        return 0;
-      },
-      &message);
-  return message;
-}
-
-std::vector<std::string> member_names(hid_t group) {
-  H5G_info_t info{};
-  std::vector<std::string> names;
-  if (H5Gget_info(group, &info) < 0) return names;
-  for (hsize_t i = 0; i < info.nlinks; ++i) {
-    ssize_t size =
-        H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
-    if (size < 0) continue;
-    std::string name(static_cast<std::size_t>(size) + 1, '\0');
-    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(),
-                       H5P_DEFAULT);
-    name.resize(static_cast<std::size_t>(size));
-    names.push_back(name);
-  }
-  return names;
-}
-
-// A numeric attribute of an object, if present.
-template <class T> bool read_scalar_attribute(hid_t object, const char* name, hid_t type, T& out) {
-  if (H5Aexists(object, name) <= 0) return false;
-  Handle attr(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
-  return attr.valid() && H5Aread(attr.get(), type, &out) >= 0;
-}
+using hdf5::Handle;
+using hdf5::member_names;
 
 // Whether PySPH stored a property (its "stored" attribute). h5py writes numpy's bool as an
 // enum over int8, which HDF5 converts to no integer type: its byte is read as it is.
@@ -139,9 +72,9 @@ ArrayData read_array(hid_t particles, const std::string& name, const std::string
       if (stored_flag(set.get())) stored_empty.push_back(prop);
       continue;
     }
-    int stride = 1;
-    read_scalar_attribute(set.get(), "stride", H5T_NATIVE_INT, stride);
-    if (stride != 1) continue;  // per-particle tensors and the like: not an attribute we draw
+    const std::vector<double> stride = hdf5::numeric_attribute(set.get(), "stride");
+    if (!stride.empty() && stride[0] != 1)
+      continue;  // per-particle tensors and the like: not an attribute we draw
     std::vector<double> values(static_cast<std::size_t>(n));
     if (H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
       throw make_error(file, ": cannot read /particles/", name, "/arrays/", prop);
@@ -204,19 +137,15 @@ std::vector<std::size_t> pick_fluid(const std::vector<std::string>& names,
   return all;
 }
 
-// The median of (m / rho)^(1 / dims) over the arrays' particles; nullopt without m and rho.
-std::optional<double> spacing_from_mass(const std::vector<const ArrayData*>& arrays, int dims) {
-  std::vector<double> d;
+// The particles' volumes m / rho, where every array stores mass and density (none otherwise).
+std::vector<double> volumes(const std::vector<const ArrayData*>& arrays) {
+  std::vector<double> v;
   for (const ArrayData* a : arrays) {
     auto m = a->properties.find("m"), rho = a->properties.find("rho");
-    if (m == a->properties.end() || rho == a->properties.end()) return std::nullopt;
-    for (std::size_t i = 0; i < a->count; ++i)
-      if (m->second[i] > 0 && rho->second[i] > 0)
-        d.push_back(std::pow(m->second[i] / rho->second[i], 1.0 / dims));
+    if (m == a->properties.end() || rho == a->properties.end()) return {};
+    for (std::size_t i = 0; i < a->count; ++i) v.push_back(m->second[i] / rho->second[i]);
   }
-  if (d.empty()) return std::nullopt;
-  std::nth_element(d.begin(), d.begin() + std::ptrdiff_t(d.size() / 2), d.end());
-  return d[d.size() / 2];
+  return v;
 }
 
 // The arrays read as scenery (ParticleReadOptions::scenery): by default those not read as the
@@ -260,17 +189,9 @@ void add_scenery(const ArrayData& a, ParticleData& data) {
 
 ParticleData read_pysph_hdf5(const std::filesystem::path& path,
                              const ParticleReadOptions& options) {
-  QuietHdf5 quiet;
+  hdf5::Quiet quiet;
   const std::string file = path.string();
-  require_particle_file(path);
-  if (H5Fis_hdf5(path.c_str()) <= 0)
-    throw make_error("cannot read particles from ", file, ": not an HDF5 file");
-  Handle h5(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  // The signature is there but HDF5 cannot open the file: most often a dump cut short (the
-  // solver killed while writing, a copy not finished), which HDF5 calls a "truncated file".
-  if (!h5.valid())
-    throw make_error("cannot read particles from ", file,
-                     ": the HDF5 file is truncated or corrupt (", innermost_hdf5_error(), ")");
+  Handle h5 = hdf5::open_particle_file(path);
   Handle particles(H5Gopen2(h5.get(), "particles", H5P_DEFAULT), H5Gclose);
   if (!particles.valid()) throw make_error(file, ": no /particles group (not a PySPH output file)");
 
@@ -349,12 +270,11 @@ ParticleData read_pysph_hdf5(const std::filesystem::path& path,
 
   Handle solver(H5Gopen2(h5.get(), "solver_data", H5P_DEFAULT), H5Gclose);
   if (solver.valid()) {
-    double t = 0;
-    if (read_scalar_attribute(solver.get(), "t", H5T_NATIVE_DOUBLE, t)) data.time = t;
-    long long count = 0;
-    if (read_scalar_attribute(solver.get(), "count", H5T_NATIVE_LLONG, count)) data.step = count;
+    if (auto t = hdf5::numeric_attribute(solver.get(), "t"); !t.empty()) data.time = t[0];
+    if (auto count = hdf5::numeric_attribute(solver.get(), "count"); !count.empty())
+      data.step = std::int64_t(count[0]);
   }
-  data.spacing = spacing_from_mass(filled, three_d ? 3 : 2);
+  data.spacing = spacing_from_volumes(volumes(filled), three_d ? 3 : 2);
   std::map<std::string, ArrayData> more;  // arrays read for the scenery alone
   const auto array = [&](const std::string& n) -> const ArrayData& {
     for (std::size_t i = 0; i < names.size(); ++i)

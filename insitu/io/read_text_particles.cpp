@@ -1,12 +1,13 @@
 // Particles from text files.
 //  .csv: a header row names the columns (ParaView's "Save Data" CSV works as is), or, where the
 //        first row holds numbers, the '#' comment line just before it with as many names
-//        (numpy.savetxt's header). Fields are separated by commas, else semicolons
-//        (DualSPHysics), else tabs, else white space, as the first row has them; a unit after a
-//        name ("Pos.x [m]") is left out of it. Positions are x,y,z or Points:0,Points:1,Points:2
-//        (any case); three consecutive columns named <base>_x/_y/_z, <base>:0/:1/:2,
-//        <base>.x/.y/.z or <base>x/y/z become the vector attribute <base>; a column
-//        radius/radii/r gives the radii; every other column is a scalar attribute.
+//        (numpy.savetxt's header), else the columns are x, y, z, column4... (said in `chosen`).
+//        Fields are separated by commas, else semicolons (DualSPHysics), else tabs, else white
+//        space, as the first row has them; a unit after a name ("Pos.x [m]") is left out of it.
+//        Positions are x,y,z or Points:0,Points:1,Points:2 (any case); three consecutive columns
+//        named <base>_x/_y/_z, <base>:0/:1/:2, <base>.x/.y/.z or <base>x/y/z become the vector
+//        attribute <base>; a column radius/radii/r gives the radii; every other column is a scalar
+//        attribute.
 //  .xyz: whitespace-separated "x y z [radius] [more...]" per line, '#' comments; the
 //        extended-XYZ header (a count line, then a comment line) and a leading element symbol
 //        on each line are accepted. Extra columns become attributes column4, column5...
@@ -165,13 +166,20 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
   for (const std::string& f : fields_of(first_row, sep)) header.push_back(field_text(f));
   double probe = 0;
   // The first row is data where it holds numbers; the comment line before it names its columns
-  // if it has as many names.
-  std::string pending;
+  // if it has as many names, else the columns are x, y, z and column4... as in .xyz files.
+  std::string pending, chosen;
   if (parse_number(header[0], probe)) {
     std::vector<std::string> names = fields_of(comment, sep);
-    if (names.size() != header.size() || parse_number(names[0], probe))
-      throw fail(line_no,
-                 "the first row holds numbers; a header row must name the columns (x,y,z,...)");
+    if (names.size() != header.size() || parse_number(names[0], probe)) {
+      if (header.size() < 3)
+        throw fail(line_no, "the first row holds " + std::to_string(header.size()) +
+                                " numbers and no header row names them: x,y,z are needed");
+      names = {"x", "y", "z"};
+      for (std::size_t c = 3; c < header.size(); ++c)
+        names.push_back("column" + std::to_string(c + 1));
+      chosen = "columns 1 to 3 as x, y, z (no header row names them)";
+      if (header.size() > 3) chosen += ", the others as column4..";
+    }
     pending = first_row;
     header.clear();
     for (const std::string& f : names) header.push_back(field_text(f));
@@ -233,6 +241,7 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
       ++a;
     }
   }
+  data.chosen = chosen;
   adopt_radius_attribute(data);
   return data;
 }

@@ -73,4 +73,12 @@ double estimate_particle_spacing(std::span<const std::array<double, 3>> position
   return nearest[nearest.size() / 2];
 }
 
+std::optional<double> spacing_from_volumes(std::vector<double> volumes, int dims) {
+  std::erase_if(volumes, [](double v) { return !(v > 0) || !std::isfinite(v); });
+  if (volumes.empty()) return std::nullopt;
+  const auto middle = volumes.begin() + std::ptrdiff_t(volumes.size() / 2);
+  std::nth_element(volumes.begin(), middle, volumes.end());
+  return std::pow(*middle, 1.0 / dims);
+}
+
 }  // namespace voxspan

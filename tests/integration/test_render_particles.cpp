@@ -144,7 +144,7 @@ TEST(RenderParticles, ReaderErrorsSayWhichFileAndWhy) {
                                (dir / "a.csv").string());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find((dir / "a.csv").string() +
-                       ": particle arrays were named (fluid), but only PySPH files"),
+                       ": particle arrays were named (fluid), but only HDF5 files"),
             std::string::npos)
       << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

@@ -1,9 +1,9 @@
 // render_particles: the offline renderer. Particle files written by a solver (VTK .vtp/.vtu/.vtk,
-// CSV, XYZ, PySPH HDF5: insitu/io/particle_data.h) go through the same runtime as an in-situ run,
-// with the same YAML config: each file is one step, classified by the solver-side classifier
-// (voxspan/classify.h, the adapter sorting the particles into its own grid), every view
-// rendered and written as PNG, with the stats line and, where the config enables them, the
-// OpenVDB and VTK snapshots on their own triggers (counted in files).
+// CSV, XYZ, HDF5 of PySPH or the GADGET family: insitu/io/particle_data.h) go through the same
+// runtime as an in-situ run, with the same YAML config: each file is one step, classified by the
+// solver-side classifier (voxspan/classify.h, the adapter sorting the particles into its own grid),
+// every view rendered and written as PNG, with the stats line and, where the config enables them,
+// the OpenVDB and VTK snapshots on their own triggers (counted in files).
 //
 //   render_particles [--config FILE] [--output DIR] [--spacing DX] [--radius R]
 //                    [--arrays NAME,...] [--scenery NAME,...|none]
@@ -15,11 +15,13 @@
 // the particles near its part as ghosts; the ranks' span images are composited exactly and
 // rank 0 writes the same pictures one process would.
 // --spacing: the particles' rest spacing (else the config's classification.particle_spacing,
-// else that of the first file with particles: PySPH's mass and density, else estimated from its
+// else that of the first file with particles: its masses and densities (PySPH, GADGET), else
+// estimated from its
 // positions: the median nearest-neighbour distance). --radius: the sphere radius where a file
-// has none (default: the spacing). --arrays: PySPH particle arrays to read, or `all` (default:
-// the fluid's, picked by name or motion and printed: insitu/io/read_pysph_hdf5.cpp); an error
-// on the other formats, which have no arrays. --scenery: the PySPH arrays drawn as walls and
+// has none (default: the spacing). --arrays: PySPH particle arrays or GADGET particle types to
+// read, or `all` (default: PySPH's fluid, picked by name or motion and printed:
+// insitu/io/read_pysph_hdf5.cpp; GADGET's gas, PartType0); an error on the other formats, which
+// have no arrays. --scenery: the PySPH arrays drawn as walls and
 // obstacles (docs/runtime.md, "Scenery"; default: every array not read as the fluid), or
 // `none`. Exit status 0 when every file was read and
 // rendered, 1 otherwise, 2 on bad arguments; each failure is one line on stderr naming the
@@ -61,7 +63,7 @@ constexpr char kUsage[] =
     "usage: render_particles [--config FILE] [--output DIR] [--spacing DX] "
     "[--radius R] [--arrays NAME,...] [--scenery NAME,...|none] "
     "[--split slabs|uneven|interleaved] FILE...\n"
-    "  FILE: .vtp .vtu .vtk .csv .xyz .hdf5/.h5 (PySPH); each file is one step\n"
+    "  FILE: .vtp .vtu .vtk .csv .xyz .hdf5/.h5 (PySPH, GADGET/SWIFT); each file is one step\n"
     "  under mpiexec each rank renders its part (--split) and rank 0 writes the pictures\n";
 
 bool parse(int argc, char** argv, Options& o) {
@@ -161,7 +163,7 @@ voxspan::ParticleData part_of(const voxspan::ParticleData& d, const Options& o, 
 }
 
 // The particles' rest spacing: --spacing, else the config's, else from the first file that
-// holds particles (PySPH's mass and density, else estimated from the positions). The files
+// holds particles (its masses and densities, else estimated from the positions). The files
 // before it hold none, and where no file holds any nothing is drawn: any spacing will do.
 double spacing_of(const Options& o, const voxspan::Config& config,
                   const voxspan::ParticleData& first, bool talk) {

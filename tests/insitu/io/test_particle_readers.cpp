@@ -1,5 +1,5 @@
-// Particle files for the offline tools: CSV (ours and ParaView's), XYZ, and PySPH's HDF5
-// output, written here with the HDF5 C API in PySPH's layout.
+// Particle files for the offline tools: CSV (ours and ParaView's), XYZ, and HDF5 as PySPH and
+// the GADGET family (SWIFT, GIZMO...) write it, written here with the HDF5 C API in their layouts.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
@@ -78,6 +78,23 @@ TEST(CsvParticles, NumpysHeaderInACommentAndWhiteSpace) {
   EXPECT_EQ(d.attribute("p")->values, (std::vector<float>{4}));
 }
 
+// numpy.savetxt(path, a, delimiter=",") with no header: x, y, z first, as in .xyz files, and
+// said; a comment before the numbers that names fewer columns than they have is not a header.
+TEST(CsvParticles, WithoutAHeaderTheFirstColumnsAreThePositions) {
+  test::TempFolder dir;
+  ParticleData d = read_text(dir, "bare.csv", "1,2,3\n4,5,6\n");
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_DOUBLE_EQ(d.positions[1][2], 6);
+  EXPECT_TRUE(d.attributes.empty());
+  EXPECT_EQ(d.chosen, "columns 1 to 3 as x, y, z (no header row names them)");
+  d = read_text(dir, "more.csv", "# x y\n1 2 3 7 8\n");
+  ASSERT_EQ(d.size(), 1u);
+  ASSERT_NE(d.attribute("column5"), nullptr);
+  EXPECT_EQ(d.attribute("column5")->values, (std::vector<float>{8}));
+  EXPECT_EQ(d.chosen,
+            "columns 1 to 3 as x, y, z (no header row names them), the others as column4..");
+}
+
 // DualSPHysics' CSV: semicolons, a unit after each name, a semicolon ending every row.
 TEST(CsvParticles, SemicolonsUnitsAndDottedVectors) {
   test::TempFolder dir;
@@ -142,12 +159,9 @@ TEST(LegacyVtkParticles, PolyDataAndUnstructuredGridPointsWithTheirArrays) {
 
 TEST(CsvParticles, ErrorsNameFileAndLine) {
   test::TempFolder dir;
-  std::ofstream(dir / "a.csv") << "1,2,3\n";
-  EXPECT_NE(error_of(dir / "a.csv").find("a.csv:1: the first row holds numbers"),
-            std::string::npos);
-  // A comment before it that names fewer columns than it has is not its header.
-  std::ofstream(dir / "a2.csv") << "# x y\n1 2 3\n";
-  EXPECT_NE(error_of(dir / "a2.csv").find("a2.csv:2: the first row holds numbers"),
+  std::ofstream(dir / "a.csv") << "1,2\n";
+  EXPECT_NE(error_of(dir / "a.csv")
+                .find("a.csv:1: the first row holds 2 numbers and no header row names them"),
             std::string::npos);
   std::ofstream(dir / "b.csv") << "x,y,z\n1,2,3\n1,2\n";
   EXPECT_NE(error_of(dir / "b.csv").find("b.csv:3: 2 fields; the header has 3"), std::string::npos);
@@ -162,14 +176,15 @@ TEST(CsvParticles, ErrorsNameFileAndLine) {
 
 // PySPH's arrays (--arrays fluid) name parts of a PySPH file; the other formats have none, and
 // reading the whole file instead would render the walls the caller meant to leave out.
-TEST(CsvParticles, NamedArraysAreAnErrorOutsidePySphFiles) {
+TEST(CsvParticles, NamedArraysAreAnErrorOutsideHdf5Files) {
   test::TempFolder dir;
   std::ofstream(dir / "p.csv") << "x,y,z\n0,0,0\n";
   std::ofstream(dir / "p.xyz") << "0 0 0\n";
   EXPECT_EQ(error_of(dir / "p.csv", {{"fluid"}, {}}),
             "cannot read particles from " + (dir / "p.csv").string() +
-                ": particle arrays were named (fluid), but only PySPH files (.hdf5 .h5) have "
-                "named arrays; a .csv file is one set of particles");
+                ": particle arrays were named (fluid), but only HDF5 files (.hdf5 .h5: PySPH's "
+                "arrays, GADGET's particle types) have named arrays; a .csv file is one set of "
+                "particles");
   EXPECT_NE(error_of(dir / "p.xyz", {{"fluid", "wall"}, {}}).find("named (fluid, wall)"),
             std::string::npos);
   EXPECT_EQ(read_particles(dir / "p.csv", {{"all"}, {}}).size(), 1u);  // all of it: what it holds
@@ -415,6 +430,122 @@ TEST(PySphParticles, TwoDimensionalRunsWithZStoredAndAnEmptyFluid) {
   EXPECT_NE(all.attribute("p"), nullptr);  // the empty array has no say
   ASSERT_TRUE(all.spacing.has_value());
   EXPECT_NEAR(*all.spacing, std::sqrt(0.001 / 1001), 1e-12);
+}
+
+// ---- GADGET-format snapshots ----
+
+// A dataset of `rows` x `columns` values as `type` stores them (float, double, integers).
+void write_rows(hid_t group, const char* name, hid_t type, std::size_t rows, int columns,
+                const std::vector<double>& values) {
+  const hsize_t dims[2] = {rows, hsize_t(columns)};
+  hid_t space = H5Screate_simple(columns == 1 ? 1 : 2, dims, nullptr);
+  hid_t set = H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+  H5Dclose(set);
+  H5Sclose(space);
+}
+
+void write_header_attribute(hid_t header, const char* name, hid_t type,
+                            const std::vector<double>& values) {
+  const hsize_t n = values.size();
+  hid_t space = H5Screate_simple(1, &n, nullptr);
+  hid_t a = H5Acreate2(header, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(a, H5T_NATIVE_DOUBLE, values.data());
+  H5Aclose(a);
+  H5Sclose(space);
+}
+
+// As SWIFT writes a snapshot: the header's scalars as arrays of one, the gas with float
+// coordinates, Masses, Densities, SmoothingLengths, 64-bit ids and a tensor; dark matter
+// (positions only) and stars whose mass is the table's.
+void write_swift_file(const std::filesystem::path& path) {
+  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t header = H5Gcreate2(f, "Header", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  write_header_attribute(header, "Time", H5T_IEEE_F64LE, {0.125});
+  write_header_attribute(header, "NumPart_ThisFile", H5T_STD_U32LE, {3, 2, 0, 0, 2, 0});
+  write_header_attribute(header, "MassTable", H5T_IEEE_F64LE, {0, 0, 0, 0, 0.25, 0});
+  write_header_attribute(header, "NumFilesPerSnapshot", H5T_STD_I32LE, {1});
+  H5Gclose(header);
+  hid_t gas = H5Gcreate2(f, "PartType0", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  write_rows(gas, "Coordinates", H5T_IEEE_F32LE, 3, 3, {0, 0, 0, 0.5, 0, 0, 0.25, 0.5, 1});
+  write_rows(gas, "Velocities", H5T_IEEE_F32LE, 3, 3, {1, 2, 3, 4, 5, 6, 7, 8, 9});
+  write_rows(gas, "Masses", H5T_IEEE_F64LE, 3, 1, {8e-3, 8e-3, 8e-3});
+  write_rows(gas, "Densities", H5T_IEEE_F64LE, 3, 1, {1, 1, 2});
+  write_rows(gas, "SmoothingLengths", H5T_IEEE_F32LE, 3, 1, {0.25, 0.25, 0.5});
+  write_rows(gas, "ParticleIDs", H5T_STD_U64LE, 3, 1, {10, 11, 12});
+  write_rows(gas, "Tensor", H5T_IEEE_F64LE, 3, 9, std::vector<double>(27, 1.0));
+  H5Gclose(gas);
+  hid_t dark = H5Gcreate2(f, "PartType1", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  write_rows(dark, "Coordinates", H5T_IEEE_F64LE, 2, 3, {5, 5, 5, 6, 6, 6});
+  H5Gclose(dark);
+  hid_t stars = H5Gcreate2(f, "PartType4", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  write_rows(stars, "Coordinates", H5T_IEEE_F64LE, 2, 3, {1, 1, 1, 2, 2, 2});
+  write_rows(stars, "Velocities", H5T_IEEE_F32LE, 2, 3, {0, 0, 0, 0, 0, 0});
+  H5Gclose(stars);
+  H5Fclose(f);
+}
+
+TEST(GadgetParticles, TheGasWithItsFieldsTimeAndSpacing) {
+  test::TempFolder dir;
+  write_swift_file(dir / "snap_0007.hdf5");
+  const ParticleData d = read_particles(dir / "snap_0007.hdf5");
+  ASSERT_EQ(d.size(), 3u);
+  EXPECT_DOUBLE_EQ(d.positions[2][0], 0.25);
+  EXPECT_DOUBLE_EQ(d.positions[2][2], 1);
+  ASSERT_TRUE(d.time.has_value());
+  EXPECT_DOUBLE_EQ(*d.time, 0.125);
+  EXPECT_FALSE(d.step.has_value());
+  ASSERT_NE(d.attribute("Velocities"), nullptr);
+  EXPECT_EQ(d.attribute("Velocities")->components, 3);
+  EXPECT_EQ(d.attribute("Velocities")->values[5], 6.f);
+  EXPECT_EQ(d.attribute("SmoothingLengths")->values[2], 0.5f);
+  EXPECT_EQ(d.attribute("ParticleIDs")->values[1], 11.f);
+  EXPECT_EQ(d.attribute("Tensor"), nullptr);  // nine values per particle: not drawn
+  ASSERT_TRUE(d.spacing.has_value());
+  EXPECT_NEAR(*d.spacing, 0.2, 1e-12);  // the median (m / rho)^(1/3) of 8e-3 / {1, 1, 2}
+  EXPECT_EQ(d.chosen, "GADGET-format PartType0 (the gas; --arrays picks)");
+}
+
+TEST(GadgetParticles, OtherTypesByNameWithTheMassTable) {
+  test::TempFolder dir;
+  write_swift_file(dir / "snap.h5");
+  const ParticleData stars = read_particles(dir / "snap.h5", {{"PartType4"}, {}});
+  ASSERT_EQ(stars.size(), 2u);
+  ASSERT_NE(stars.attribute("Masses"), nullptr);
+  EXPECT_EQ(stars.attribute("Masses")->values[1], 0.25f);
+  EXPECT_FALSE(stars.spacing.has_value());  // no densities
+  const ParticleData all = read_particles(dir / "snap.h5", {{"all"}, {}});
+  EXPECT_EQ(all.size(), 7u);
+  EXPECT_TRUE(all.attributes.empty());  // dark matter has nothing but positions
+  EXPECT_EQ(all.chosen, "GADGET-format PartType0, PartType1, PartType4");
+}
+
+TEST(GadgetParticles, MissingTypesAndOtherLayoutsSaySo) {
+  test::TempFolder dir;
+  write_swift_file(dir / "snap.hdf5");
+  EXPECT_EQ(error_of(dir / "snap.hdf5", {{"PartType2"}, {}}),
+            (dir / "snap.hdf5").string() +
+                ": no particle type \"PartType2\" (the file has: PartType0, PartType1, PartType4)");
+  EXPECT_NE(
+      error_of(dir / "snap.hdf5", {{}, {"PartType1"}}).find("a GADGET-format snapshot has no"),
+      std::string::npos);
+  hid_t f = H5Fcreate((dir / "dark.hdf5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  H5Gclose(H5Gcreate2(f, "Header", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  hid_t dark = H5Gcreate2(f, "PartType1", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  write_rows(dark, "Coordinates", H5T_IEEE_F64LE, 1, 3, {5, 5, 5});
+  H5Gclose(dark);
+  H5Fclose(f);
+  EXPECT_EQ(error_of(dir / "dark.hdf5"),
+            (dir / "dark.hdf5").string() +
+                ": no gas particles (PartType0), the SPH particles; the file has PartType1 "
+                "(--arrays picks)");
+  f = H5Fcreate((dir / "other.h5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  H5Gclose(H5Gcreate2(f, "grid", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  H5Fclose(f);
+  EXPECT_EQ(error_of(dir / "other.h5"),
+            "cannot read particles from " + (dir / "other.h5").string() +
+                ": neither PySPH's layout (/particles) nor a GADGET-format snapshot (/Header, "
+                "/PartType0...); the file has /grid");
 }
 
 }  // namespace
