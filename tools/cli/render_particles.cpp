@@ -147,6 +147,7 @@ voxspan::ParticleData part_of(const voxspan::ParticleData& d, const Options& o, 
   voxspan::ParticleData p;
   p.time = d.time;
   p.step = d.step;
+  if (r.rank == 0) p.scenery = d.scenery;  // the root gives the adapter the walls
   for (std::size_t i : part.indices) p.positions.push_back(d.positions[i]);
   if (!d.radii.empty())
     for (std::size_t i : part.indices) p.radii.push_back(d.radii[i]);
