@@ -16,6 +16,9 @@ void validate(const VolumeOptions& o) {
   const TransferTable& t = o.transfer;
   if (!(t.lo < t.hi) || !std::isfinite(t.lo) || !std::isfinite(t.hi))
     throw make_error("volume transfer range [", t.lo, ", ", t.hi, "] must be finite with lo < hi");
+  if (t.log && !(t.lo > 0))
+    throw make_error("volume transfer range [", t.lo, ", ", t.hi,
+                     "] on a log scale must be above 0");
   for (const glm::vec4& e : t.rgba)
     if (!(e.a >= 0 && e.a <= 1) || !std::isfinite(e.r) || !std::isfinite(e.g) ||
         !std::isfinite(e.b) || e.r < 0 || e.g < 0 || e.b < 0)
@@ -76,8 +79,10 @@ ShadeUniforms environment_uniforms(const VolumeOptions& o) {
 
 VolumeHost::VolumeHost(const VolumeOptions& o) : ShadeUniforms(environment_uniforms(o)) {
   const TransferTable& t = o.transfer;
-  u_tf_lo = float(t.lo);
-  u_tf_scale = float((kTransferEntries - 1) / (t.hi - t.lo));
+  u_tf_log = t.log ? 1u : 0u;
+  const double lo = t.log ? std::log2(t.lo) : t.lo, hi = t.log ? std::log2(t.hi) : t.hi;
+  u_tf_lo = float(lo);
+  u_tf_scale = float((kTransferEntries - 1) / (hi - lo));
   for (std::size_t k = 0; k < transfer_.size(); ++k) transfer_[k] = t.rgba[k];
   u_opacity_length = float(o.opacity_length);
   u_mode = uint(o.mode);

@@ -66,6 +66,9 @@ inline bool drawable(const VolumeParticle& p) {
 inline constexpr int kTransferEntries = 256;
 struct TransferTable {
   double lo = 0, hi = 1;
+  // Whether the table spans log(q) from log(lo) to log(hi) (lo > 0), a value at or under 0
+  // taking its first entry; else q from lo to hi.
+  bool log = false;
   std::array<glm::vec4, kTransferEntries> rgba{};
 };
 

@@ -45,13 +45,37 @@ glm::vec3 map_color(ColorMap map, double t) {
   return glm::mix(linear_rgb(s[k]), linear_rgb(s[k + 1]), f);
 }
 
-std::array<double, 2> display_range(double lo, double hi) {
-  if (!(lo <= hi) || !std::isfinite(lo) || !std::isfinite(hi)) return {0, 1};
+double ColorAxis::t(double v) const {
+  if (scale == ColorScale::linear) return (v - lo) / (hi - lo);
+  if (!(v > 0)) return -std::numeric_limits<double>::infinity();
+  return std::log(v / lo) / std::log(hi / lo);
+}
+
+double ColorAxis::value(double at) const {
+  if (scale == ColorScale::linear) return lo + at * (hi - lo);
+  return lo * std::pow(hi / lo, at);
+}
+
+ColorAxis display_axis(const ValueSpan& seen, ColorScale scale) {
+  if (scale == ColorScale::log) {
+    const double lo = seen.lo_positive, hi = seen.hi;
+    if (!(lo <= hi) || !std::isfinite(lo) || !std::isfinite(hi)) return {1, 10, scale};
+    if (hi <= lo * (1 + 1e-12)) return {lo / 1.1, hi * 1.1, scale};
+    return {lo, hi, scale};
+  }
+  const double lo = seen.lo, hi = seen.hi;
+  if (!(lo <= hi) || !std::isfinite(lo) || !std::isfinite(hi)) return {0, 1, scale};
   if (hi - lo <= 1e-12 * std::max(std::abs(lo), std::abs(hi))) {
     const double pad = lo == 0 ? 0.5 : 0.01 * std::abs(lo);
-    return {lo - pad, hi + pad};
+    return {lo - pad, hi + pad, scale};
   }
-  return {lo, hi};
+  return {lo, hi, scale};
+}
+
+ColorAxis color_axis(const std::optional<std::array<double, 2>>& range, const ValueSpan& seen,
+                     ColorScale scale) {
+  if (range) return {(*range)[0], (*range)[1], scale};
+  return display_axis(seen, scale);
 }
 
 }  // namespace voxspan

@@ -5,8 +5,12 @@
 // encoding (insitu/outputs/formats/png_image.h) expect. Standard library and glm only.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <limits>
+#include <optional>
 
 #include <glm/glm.hpp>
 
@@ -21,11 +25,48 @@ inline constexpr EnumName<ColorMap> kColorMapNames[] = {{"viridis", ColorMap::vi
                                                         {"coolwarm", ColorMap::coolwarm},
                                                         {"gray", ColorMap::gray}};
 
+// How values spread along a colour map: evenly, or by their logarithm (densities of
+// self-gravitating gas, vorticity: fields that span decades, as SPLASH and yt show them).
+enum class ColorScale : std::uint8_t { linear, log };
+inline constexpr EnumName<ColorScale> kColorScaleNames[] = {{"linear", ColorScale::linear},
+                                                            {"log", ColorScale::log}};
+
 // The colour at t in [0, 1] (clamped; NaN gives the map's lowest colour), linear RGB.
 glm::vec3 map_color(ColorMap map, double t);
 
-// The automatic range for values from lo to hi: [lo, hi], widened about them when (nearly)
-// equal so that the map's middle shows; [0, 1] when there are none (lo > hi or not finite).
-std::array<double, 2> display_range(double lo, double hi);
+// The values a colour map spans, lo at its start and hi at its end (on a log scale both above
+// 0), and how they spread along it.
+struct ColorAxis {
+  double lo = 0, hi = 1;
+  ColorScale scale = ColorScale::linear;
+  // v's place along the map: 0 at lo, 1 at hi, unclamped (on a log scale, a value at or under 0
+  // lies below the map: -infinity).
+  double t(double v) const;
+  // The value at place t: the legend's labels.
+  double value(double t) const;
+};
+
+// The smallest and largest finite values seen, and the smallest above 0 (where a log scale's
+// automatic range starts).
+struct ValueSpan {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo, lo_positive = lo;
+  void add(double v) {
+    if (!std::isfinite(v)) return;
+    lo = std::min(lo, v), hi = std::max(hi, v);
+    if (v > 0) lo_positive = std::min(lo_positive, v);
+  }
+  void add(const ValueSpan& o) {
+    lo = std::min(lo, o.lo), hi = std::max(hi, o.hi),
+    lo_positive = std::min(lo_positive, o.lo_positive);
+  }
+};
+
+// The automatic axis for the values `seen`: their smallest (on a log scale: smallest above 0)
+// to their largest, widened about them when (nearly) equal so that the map's middle shows;
+// [0, 1] ([1, 10] on a log scale) when there are none.
+ColorAxis display_axis(const ValueSpan& seen, ColorScale scale);
+// `range` where given (a config's), else display_axis.
+ColorAxis color_axis(const std::optional<std::array<double, 2>>& range, const ValueSpan& seen,
+                     ColorScale scale);
 
 }  // namespace voxspan

@@ -20,11 +20,11 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // What one pass over the particles adds up (threads join theirs).
 struct Tally {
   GlyphCounts counts;
-  double lo = kInf, hi = -kInf;  // the selected particles' values
+  ValueSpan values;  // the selected particles'
 
   void join(const Tally& o) {
     counts += o.counts;
-    lo = std::min(lo, o.lo), hi = std::max(hi, o.hi);
+    values.add(o.values);
   }
   // parallel_reduce's join.
   static Tally joined(Tally a, const Tally& b) {
@@ -164,8 +164,7 @@ class Passes {
 
 void add_value(const Sources& src, std::size_t i, Tally& t) {
   if (src.color == nullptr) return;
-  const double v = src.color->magnitude(i);
-  if (std::isfinite(v)) t.lo = std::min(t.lo, v), t.hi = std::max(t.hi, v);
+  t.values.add(src.color->magnitude(i));
 }
 
 glm::dvec3 view_centre(const ViewFrame& f, const ParticleView& p, std::size_t i) {
@@ -264,8 +263,7 @@ void resolve(const ViewFrame& f, const Passes& passes, const Tally& t, GlyphImag
     }
   });
   out.counts = t.counts;
-  out.value_min = t.lo;
-  out.value_max = t.hi;
+  out.values = t.values;
 }
 
 // The selected particles of the inner-full cells, sorted by cell (a counting sort), then the cells
@@ -430,7 +428,6 @@ void shade_glyphs(const GlyphImage& g, const Camera& camera, const GlyphShading&
     picture = FloatImage(g.width, g.height);
   const ViewFrame f(camera);
   const glm::dvec3 light = glm::normalize(glm::dvec3(-0.35, 0.6, -0.7));  // view space
-  const double scale = s.hi > s.lo ? 1 / (s.hi - s.lo) : 0;
   tbb::parallel_for(0, g.height, [&](int y) {
     for (int x = 0; x < g.width; ++x) {
       const std::size_t k = std::size_t(x) + std::size_t(g.width) * std::size_t(y);
@@ -441,8 +438,8 @@ void shade_glyphs(const GlyphImage& g, const Camera& camera, const GlyphShading&
       const glm::dvec3 receiver = double(g.depth[k]) * f.view_ray(x, y);
       const glm::dvec3 n = glm::dvec3(g.normal[k]);
       const double ao = s.ao_radius > 0 ? glyph_ao(g, f, s, x, y, receiver, n) : 1.0;
-      const glm::dvec3 base = s.by_value ? glm::dvec3(map_color(s.map, (g.value[k] - s.lo) * scale))
-                                         : glm::dvec3(s.colour);
+      const glm::dvec3 base =
+          s.by_value ? glm::dvec3(map_color(s.map, s.axis.t(g.value[k]))) : glm::dvec3(s.colour);
       const double diffuse = std::max(glm::dot(n, light), 0.0);
       const glm::dvec3 half = glm::normalize(light - glm::normalize(receiver));
       const double highlight = 0.25 * std::pow(std::max(glm::dot(n, half), 0.0), 48.0);

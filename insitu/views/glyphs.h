@@ -99,7 +99,7 @@ struct GlyphImage {
   std::vector<glm::vec3> normal;
   std::vector<float> value;  // 0 without color_by
   GlyphCounts counts;
-  double value_min = 0, value_max = 0;  // over the selected particles (min > max: none)
+  ValueSpan values;  // over the selected particles
 
   // Working storage of the occlusion culling, kept from step to step.
   struct CellScratch {
@@ -139,7 +139,7 @@ inline std::uint64_t glyph_key(float z, std::size_t particle) {
 struct GlyphShading {
   bool by_value = false;  // colour from the value; else `colour`
   ColorMap map = ColorMap::viridis;
-  double lo = 0, hi = 1;  // the values at the map's ends
+  ColorAxis axis;  // the values along the map
   glm::vec3 colour{0.25f, 0.5f, 0.85f};
   double ao_radius = 0;  // world units; 0: no occlusion
   double ao_strength = 0.8;

@@ -238,8 +238,8 @@ LegendMargins covering(const LegendMargins& a, const LegendMargins& b) {
           .bottom = std::max(a.bottom, b.bottom)};
 }
 
-void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi, std::string_view title,
-                    BarSide side) {
+void draw_color_bar(FloatImage& picture, ColorMap map, const ColorAxis& axis,
+                    std::string_view title, BarSide side) {
   const int w = picture.width, h = picture.height;
   const BarLayout l(w, h);
   const int bar = l.bar, top = l.top, bottom = l.bottom;
@@ -255,9 +255,9 @@ void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi, std
     const int x = side == BarSide::right ? x0 - gap - text_width(t, s) : x0 + bar + gap;
     draw_text(picture, x, centre_y - 7 * s / 2, t, s);
   };
-  label(hi, top);
-  label(0.5 * (lo + hi), (top + bottom - 1) / 2);
-  label(lo, bottom - 1);
+  label(axis.hi, top);
+  label(axis.value(0.5), (top + bottom - 1) / 2);
+  label(axis.lo, bottom - 1);
   // Above the top value's label, flush with the bar's outer edge.
   const int title_x = side == BarSide::right ? x0 + bar - text_width(title, s) : x0;
   draw_text(picture, std::max(0, title_x), top - 7 * s / 2 - 3 * s - 7 * s, title, s);

@@ -33,11 +33,11 @@ void draw_caption(ImageRGBA8& picture, std::string_view text);
 // A value as the legend prints it: three significant digits ("0.125", "-3.5e+04").
 std::string legend_number(double value);
 enum class BarSide : std::uint8_t { right, left };
-// The colour bar at the right (or left) edge, the map from `hi` at its top to `lo` at its
-// bottom, with the two values and the middle one beside it and `title` (what the colours are,
-// view_keys.h: color_bar_title) above it.
-void draw_color_bar(FloatImage& picture, ColorMap map, double lo, double hi, std::string_view title,
-                    BarSide side = BarSide::right);
+// The colour bar at the right (or left) edge, the map from the axis' hi at its top to its lo at
+// its bottom, with the two values and the one at its middle (on a log scale their geometric
+// mean) beside it and `title` (what the colours are, view_keys.h: color_bar_title) above it.
+void draw_color_bar(FloatImage& picture, ColorMap map, const ColorAxis& axis,
+                    std::string_view title, BarSide side = BarSide::right);
 
 // The columns from its edge that draw_color_bar covers with the bar and its values (the title
 // above them is not counted: it sits over the top tenth of the picture, as wide as it is long).

@@ -103,6 +103,7 @@ const schema::Section<ParticlesSettings>& particles_section() {
                       "scenery", &S::scenery, scenery_section(),
                       "the solver's walls and obstacles as opaque solids among the glyphs")})),
       [](yaml::MapReader& r, S& v) {
+        check_color_axis(r, v);
         if (v.cull_range && v.cull_by.empty() && v.color_by.empty())
           r.checker().error(r.find("cull_range"), r.path("cull_range"),
                             "needs `cull_by` or `color_by` (the attribute it tests)");
@@ -160,9 +161,7 @@ class ParticlesView final : public View {
     GlyphShading shading;
     shading.by_value = !settings_.color_by.empty();
     shading.map = settings_.color_map;
-    const auto [lo, hi] =
-        settings_.range.value_or(display_range(glyphs_.value_min, glyphs_.value_max));
-    shading.lo = lo, shading.hi = hi;
+    shading.axis = color_axis(settings_.range, glyphs_.values, settings_.scale);
     shading.ao_radius = 4 * selection.radius;
     shading.ao_strength = settings_.ambient_occlusion;
     shade_glyphs(glyphs_, step.camera, shading, out.picture);
@@ -177,7 +176,7 @@ class ParticlesView final : public View {
       trails_.draw(step.camera, depth_, glm::vec3(c[0], c[1], c[2]), out.picture);
       recorder.count(kTrails, std::int64_t(trails_.count()));
     }
-    if (glyph_bar()) draw_color_bar(out.picture, settings_.color_map, lo, hi, bar_title_);
+    if (glyph_bar()) draw_color_bar(out.picture, settings_.color_map, shading.axis, bar_title_);
     // The glyphs' or the slice's distance per pixel, as the depth output writes it.
     if (step.needs.first_hit_depth)
       distances_from_view_depth(step.camera, depth_, out.first_hit_depth);
@@ -256,9 +255,10 @@ class ParticlesView final : public View {
   // The nearest glyph of all ranks per pixel on the root (ties: the lower rank), the value range
   // and the counts of all. Collective.
   void combine_ranks() {
-    double ends[2] = {glyphs_.value_min, -glyphs_.value_max};
+    ValueSpan& v = glyphs_.values;
+    double ends[3] = {v.lo, -v.hi, v.lo_positive};
     comm_->min(ends);
-    glyphs_.value_min = ends[0], glyphs_.value_max = -ends[1];
+    v.lo = ends[0], v.hi = -ends[1], v.lo_positive = ends[2];
     const auto fields = GlyphCounts::fields(glyphs_.counts);
     std::array<std::int64_t, fields.size()> counts;
     for (std::size_t k = 0; k < fields.size(); ++k) counts[k] = *fields[k];

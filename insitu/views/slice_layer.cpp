@@ -92,6 +92,7 @@ std::vector<schema::Key<SliceField>> slice_field_keys() {
 }
 
 void check_slice_field(yaml::MapReader& r, const SliceField& f) {
+  check_color_axis(r, f);
   if (f.quantity.empty())
     r.checker().error(r.node(), r.path("quantity"),
                       "a slice needs `quantity` (the attribute it shows)");
@@ -159,23 +160,22 @@ void SliceLayer::sum_ranks(const ParticleView& particles, const SliceQuantity& q
   finish_slice(values_, q.shepard);
 }
 
-std::array<double, 2> SliceLayer::range() const {
-  if (field_.range) return *field_.range;
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+ColorAxis SliceLayer::axis() const {
+  ValueSpan seen;
   for (std::size_t k = 0; k < values_.values.size(); ++k)
-    if (values_.weight[k] > 0)
-      lo = std::min(lo, double(values_.values[k])), hi = std::max(hi, double(values_.values[k]));
-  return display_range(lo, hi);
+    if (values_.weight[k] > 0) seen.add(values_.values[k]);
+  return color_axis(field_.range, seen, field_.scale);
 }
 
 // The colour of plane pixel k (which a particle reaches): the map, darkened on an isoline (a
-// pixel whose level differs from its right or lower neighbour's).
-glm::vec3 SliceLayer::colour(std::size_t k, double lo, double scale) const {
+// pixel whose level differs from its right or lower neighbour's; evenly spaced along the axis,
+// so a decade apart each on a log scale spanning as many).
+glm::vec3 SliceLayer::colour(std::size_t k, const ColorAxis& axis) const {
   const int w = values_.width, lines = field_.isolines;
-  glm::vec3 c = map_color(field_.color_map, (values_.values[k] - lo) * scale);
+  glm::vec3 c = map_color(field_.color_map, axis.t(values_.values[k]));
   if (lines == 0) return c;
   const auto level = [&](std::size_t n) {
-    return std::floor((values_.values[n] - lo) * scale * (lines + 1));
+    return std::floor(std::max(axis.t(values_.values[n]), -1.0) * (lines + 1));
   };
   const std::size_t i = k % std::size_t(w), j = k / std::size_t(w);
   const double mine = level(k);
@@ -188,16 +188,15 @@ glm::vec3 SliceLayer::colour(std::size_t k, double lo, double scale) const {
 void SliceLayer::draw_image(FloatImage& picture) const {
   const int w = values_.width, h = values_.height;
   if (picture.width != w || picture.height != h) picture = FloatImage(w, h);
-  const auto [lo, hi] = range();
-  const double scale = 1.0 / (hi - lo);
+  const ColorAxis axis = this->axis();
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) {
       const std::size_t k = std::size_t(i) + std::size_t(w) * std::size_t(j);
       picture.set(i, j,
-                  values_.weight[k] > 0 ? glm::vec4(colour(k, lo, scale), 1.0f)
+                  values_.weight[k] > 0 ? glm::vec4(colour(k, axis), 1.0f)
                                         : glm::vec4(0.02f, 0.02f, 0.025f, 1.0f));
     }
-  draw_color_bar(picture, field_.color_map, lo, hi, bar_title_);
+  draw_color_bar(picture, field_.color_map, axis, bar_title_);
   draw_axes(picture, axis_along(plane_.origin, plane_.u, plane_.width, "u"),
             axis_along(plane_.origin, plane_.v, plane_.height, "v"));
 }
@@ -206,8 +205,7 @@ void SliceLayer::draw_in_view(const Camera& camera, std::span<float> view_depth,
                               FloatImage& picture, BarSide bar_side) const {
   const ViewFrame f(camera);
   const int w = values_.width, h = values_.height;
-  const auto [lo, hi] = range();
-  const double scale = 1.0 / (hi - lo);
+  const ColorAxis axis = this->axis();
   for (int y = 0; y < picture.height; ++y)
     for (int x = 0; x < picture.width; ++x) {
       const glm::dvec3 ray = f.world_ray(x, y);  // depth component 1
@@ -225,10 +223,10 @@ void SliceLayer::draw_in_view(const Camera& camera, std::span<float> view_depth,
       if (!(values_.weight[k] > 0)) continue;
       // A plane seen edge-on darkens a little, so that its tilt reads.
       const float lit = float(0.75 + 0.25 * std::abs(along) / glm::length(ray));
-      picture.set(x, y, glm::vec4(colour(k, lo, scale) * lit, 1.0f));
+      picture.set(x, y, glm::vec4(colour(k, axis) * lit, 1.0f));
       view_depth[px] = float(z);
     }
-  draw_color_bar(picture, field_.color_map, lo, hi, bar_title_, bar_side);
+  draw_color_bar(picture, field_.color_map, axis, bar_title_, bar_side);
 }
 
 void SliceLayer::fill_field(FieldImage& f) const {

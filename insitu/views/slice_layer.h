@@ -54,6 +54,7 @@ struct SliceField {
   ColorMap color_map = ColorMap::viridis;
   std::string units;                           // after the colour bar's title; empty: none
   std::optional<std::array<double, 2>> range;  // nullopt = the step's min and max
+  ColorScale scale = ColorScale::linear;
   int isolines = 8;
   bool operator==(const SliceField&) const = default;
 };
@@ -97,7 +98,7 @@ class SliceLayer {
 
   const SlicePlane& plane() const { return plane_; }
   const SliceImage& values() const { return values_; }
-  std::array<double, 2> range() const;  // the colour map's ends on this step
+  ColorAxis axis() const;  // the colour map's on this step
   std::int64_t misses() const { return misses_; }
   // What draw_in_view's colour bar at `side` covers in a width x height picture.
   LegendMargins bar_margins(int width, int height, BarSide side) const {
@@ -105,7 +106,7 @@ class SliceLayer {
   }
 
  private:
-  glm::vec3 colour(std::size_t k, double lo, double scale) const;
+  glm::vec3 colour(std::size_t k, const ColorAxis& axis) const;
   void sum_ranks(const ParticleView& particles, const SliceQuantity& q, int width, int height);
 
   const SliceField field_;

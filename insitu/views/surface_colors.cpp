@@ -105,12 +105,10 @@ void SurfaceColors::sum_ranks(const ParticleView& particles) {
   comm_->sum(sums_.weight);
 }
 
-std::array<double, 2> SurfaceColors::range() const {
-  if (settings_.range) return *settings_.range;
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (double v : values_)
-    if (!std::isnan(v)) lo = std::min(lo, v), hi = std::max(hi, v);
-  return display_range(lo, hi);
+ColorAxis SurfaceColors::axis() const {
+  ValueSpan seen;
+  for (double v : values_) seen.add(v);
+  return color_axis(settings_.range, seen, settings_.scale);
 }
 
 double SurfaceColors::value(int x, int y) const {
@@ -175,8 +173,7 @@ float SurfaceColors::reference_luminance(const ShadeOptions& shade,
 }
 
 void SurfaceColors::paint(const ShadeOptions& shade, FloatImage& picture, BarSide side) const {
-  const auto [lo, hi] = range();
-  const double scale = 1.0 / (hi - lo);
+  const ColorAxis axis = this->axis();
   const float reference = reference_luminance(shade, picture);
   if (shade.mode != ShadeMode::opaque) {
     fresnel_.resize(points_.size());
@@ -194,7 +191,7 @@ void SurfaceColors::paint(const ShadeOptions& shade, FloatImage& picture, BarSid
     for (int x = 0; x < picture.width; ++x) {
       const double v = value(x, y);
       if (std::isnan(v)) continue;
-      const glm::vec3 mapped = map_color(settings_.color_map, (v - lo) * scale);
+      const glm::vec3 mapped = map_color(settings_.color_map, axis.t(v));
       const glm::vec4 c = picture.at(x, y);
       const glm::vec3 shaded(c);
       glm::vec3 out;
@@ -206,7 +203,7 @@ void SurfaceColors::paint(const ShadeOptions& shade, FloatImage& picture, BarSid
       }
       picture.set(x, y, glm::vec4(out, c.a));
     }
-  if (settings_.legend) draw_color_bar(picture, settings_.color_map, lo, hi, bar_title_, side);
+  if (settings_.legend) draw_color_bar(picture, settings_.color_map, axis, bar_title_, side);
 }
 
 }  // namespace voxspan

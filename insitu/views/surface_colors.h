@@ -63,7 +63,7 @@ class SurfaceColors {
   // bar at `side` when the settings want a legend. On the process that shades.
   void paint(const ShadeOptions& shade, FloatImage& picture, BarSide side) const;
 
-  std::array<double, 2> range() const;  // the colour map's ends on this step
+  ColorAxis axis() const;  // the colour map's on this step
   // What paint's colour bar at `side` covers in a width x height picture (none without one).
   LegendMargins bar_margins(int width, int height, BarSide side) const {
     return settings_.legend ? color_bar_margins(width, height, side) : LegendMargins{};

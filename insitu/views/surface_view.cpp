@@ -64,6 +64,7 @@ FrameOptions frame_options(const SurfaceSettings& view, double spacing) {
 }
 
 void check_surface(yaml::MapReader& r, SurfaceSettings& v) {
+  check_color_axis(r, v);
   if (r.has("max_layers") && v.max_layers % 32 != 0)
     r.checker().error(r.find("max_layers"), r.path("max_layers"),
                       "must be a multiple of 32 (a column's layers are stored in 32-bit words); "

@@ -33,17 +33,31 @@ std::vector<schema::Key<S>> sph_sum_keys(std::string quantity_help, std::string 
       schema::text("density", &S::density, "the density attribute")};
 }
 
-// `color_map`, `range` and `units`, for any settings with these members; `range_auto` says what
-// `auto` takes.
+// `color_map`, `range`, `scale` and `units`, for any settings with these members; `range_auto`
+// says what `auto` takes.
 template <class S>
 std::vector<schema::Key<S>> color_map_keys(std::string map_help, std::string range_auto) {
   return {schema::choice("color_map", &S::color_map, kColorMapNames, std::move(map_help)),
           schema::interval_or_auto(
               "range", &S::range,
-              "the values at the colour map's ends; `auto` = " + std::move(range_auto)),
+              "the values at the colour map's ends; `auto` = " + std::move(range_auto) +
+                  " (on a `log` scale: the smallest above 0)"),
+          schema::choice("scale", &S::scale, kColorScaleNames,
+                         "how the values spread along the map: `linear`, or `log` (by their "
+                         "logarithm, for fields spanning decades; values at or under 0 take "
+                         "its lowest colour)"),
           schema::text("units", &S::units,
                        "the values' units, shown after the colour bar's title (the quantity's "
                        "name): `m/s` gives \"speed [m/s]\"; empty: the name alone")};
+}
+
+// A log scale's range must lie above 0 (called by each view kind's check).
+template <class S> void check_color_axis(yaml::MapReader& r, const S& s) {
+  if (s.scale == ColorScale::log && s.range && !((*s.range)[0] > 0))
+    r.checker().error(r.find("range"), r.path("range"),
+                      "a `log` scale needs a range above 0; got [" +
+                          yaml::number_text((*s.range)[0]) + ", " +
+                          yaml::number_text((*s.range)[1]) + "]");
 }
 
 // Colouring by a particle attribute (the particles and surface views): which, through what map
@@ -53,6 +67,7 @@ struct ColorBySettings {
   ColorMap color_map = ColorMap::viridis;
   std::string units;                           // after the colour bar's title; empty: none
   std::optional<std::array<double, 2>> range;  // nullopt = the picture's min and max
+  ColorScale scale = ColorScale::linear;
   bool legend = true;
   bool operator==(const ColorBySettings&) const = default;
 };

@@ -23,10 +23,11 @@
 namespace voxspan {
 
 TransferTable transfer_table(ColorMap map, const std::vector<std::array<double, 2>>& opacity,
-                             double lo, double hi) {
+                             const ColorAxis& axis) {
   TransferTable t;
-  t.lo = lo;
-  t.hi = hi;
+  t.lo = axis.lo;
+  t.hi = axis.hi;
+  t.log = axis.scale == ColorScale::log;
   for (int k = 0; k < kTransferEntries; ++k) {
     const double u = double(k) / (kTransferEntries - 1);
     double alpha = opacity.empty() ? 0.0 : opacity.front()[1];
@@ -83,6 +84,7 @@ const schema::Section<VolumeAdaptiveSettings>& adaptive_section() {
 }
 
 void check_volume(yaml::MapReader& r, VolumeSettings& v) {
+  check_color_axis(r, v);
   const auto& points = v.opacity;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!(points[i][0] >= 0 && points[i][0] <= 1) || !(points[i][1] >= 0 && points[i][1] <= 1))
@@ -189,8 +191,8 @@ class VolumeView final : public View {
 
   bool render(const ViewStep& step, Recorder& recorder, ViewProducts& out) override {
     if (step.data.particles == nullptr) throw make_error("volume: the step has no particles");
-    const std::array<double, 2> range = gathered_range(*step.data.particles);
-    VolumeOptions o = options(step, range);
+    const ColorAxis axis = gathered_axis(*step.data.particles);
+    VolumeOptions o = options(step, axis);
     o.backdrop = walls(step, o.environment, recorder);
     const bool deep = step.needs.deep;
     if (compositor_) {
@@ -203,8 +205,7 @@ class VolumeView final : public View {
     }
     out.shaded_deep = deep ? &frame_.deep : nullptr;
     std::swap(out.picture, frame_.picture);
-    if (draws_bar())
-      draw_color_bar(out.picture, settings_.color_map, range[0], range[1], bar_title_);
+    if (draws_bar()) draw_color_bar(out.picture, settings_.color_map, axis, bar_title_);
     if (step.needs.first_hit_depth) {
       FloatImage& d = out.first_hit_depth;
       if (d.width != settings_.width || d.height != settings_.height)
@@ -272,9 +273,9 @@ class VolumeView final : public View {
   }
 
   // gather() on every rank, the failure of any failing all (before the collectives that follow);
-  // the colour map's range: the settings', or that of every rank's values.
-  std::array<double, 2> gathered_range(const ParticleView& particles) {
-    std::array<double, 2> found{};
+  // the colour map's axis: the settings' range, or that of every rank's values.
+  ColorAxis gathered_axis(const ParticleView& particles) {
+    ValueSpan found;
     if (comm_ == nullptr) {
       found = gather(particles);
     } else {
@@ -288,19 +289,16 @@ class VolumeView final : public View {
       }
       const Agreement agreed = comm_->agree(ok, failure);
       if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
-      std::array<double, 1> lo{found[0]}, hi{found[1]};
-      comm_->min(lo);
-      comm_->max(hi);
-      found = {lo[0], hi[0]};
+      double ends[3] = {found.lo, -found.hi, found.lo_positive};
+      comm_->min(ends);
+      found.lo = ends[0], found.hi = -ends[1], found.lo_positive = ends[2];
     }
-    if (settings_.range) return *settings_.range;
-    if (settings_.quantity.empty()) return {0.0, 1.0};
-    return display_range(found[0], found[1]);
+    if (settings_.quantity.empty() && !settings_.range) return {0.0, 1.0};
+    return color_axis(settings_.range, found, settings_.scale);
   }
 
-  // The step's owned particles as the renderer reads them; returns the smallest and largest
-  // finite value among them.
-  std::array<double, 2> gather(const ParticleView& particles) {
+  // The step's owned particles as the renderer reads them; returns the span of their values.
+  ValueSpan gather(const ParticleView& particles) {
     const AttributeView* q =
         settings_.quantity.empty()
             ? nullptr
@@ -331,30 +329,26 @@ class VolumeView final : public View {
                          q != nullptr ? float(q->magnitude(i)) : 1.0f};
       }
     });
-    using Span = std::array<double, 2>;
-    const Span found = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, n, 16384), Span{1e300, -1e300},
-        [&](const auto& r, Span s) {
-          for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            const double v = particles_[i].value;
-            if (std::isfinite(v)) s = {std::min(s[0], v), std::max(s[1], v)};
-          }
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, n, 16384), ValueSpan{},
+        [&](const auto& r, ValueSpan s) {
+          for (std::size_t i = r.begin(); i != r.end(); ++i) s.add(particles_[i].value);
           return s;
         },
-        [](const Span& a, const Span& b) {
-          return Span{std::min(a[0], b[0]), std::max(a[1], b[1])};
+        [](ValueSpan a, const ValueSpan& b) {
+          a.add(b);
+          return a;
         });
-    return found;
   }
 
-  VolumeOptions options(const ViewStep& step, std::array<double, 2> range) const {
+  VolumeOptions options(const ViewStep& step, const ColorAxis& axis) const {
     const VolumeSettings& s = settings_;
     VolumeOptions o;
     o.mode = s.mode;
     o.kernel = s.kernel;
     o.shepard = s.shepard && !s.quantity.empty();
     o.weight_floor = s.weight_floor;
-    o.transfer = transfer_table(s.color_map, s.opacity, range[0], range[1]);
+    o.transfer = transfer_table(s.color_map, s.opacity, axis);
     o.opacity_length = s.opacity_length * spacing_;
     for (const VolumeIsoSettings& iso : s.iso)
       o.isos.push_back({iso.value, vec(iso.color), iso.opacity});

@@ -53,6 +53,7 @@ struct VolumeSettings : CloneAs<VolumeSettings, ViewSettings> {
   ColorMap color_map = ColorMap::viridis;
   std::string units;                           // after the colour bar's title; empty: none
   std::optional<std::array<double, 2>> range;  // nullopt = the particles' values' min and max
+  ColorScale scale = ColorScale::linear;
   // The transfer function's opacity: (t, alpha) points, t in [0, 1] across the range, alpha the
   // opacity of `opacity_length` particle spacings of fluid at that value; linear between them.
   std::vector<std::array<double, 2>> opacity{{0.0, 0.08}, {1.0, 0.4}};
@@ -70,8 +71,8 @@ struct VolumeSettings : CloneAs<VolumeSettings, ViewSettings> {
   bool operator==(const VolumeSettings&) const = default;
 };
 
-// The transfer table of a colour map and (t, alpha) opacity points over [lo, hi].
+// The transfer table of a colour map and (t, alpha) opacity points along `axis`.
 TransferTable transfer_table(ColorMap map, const std::vector<std::array<double, 2>>& opacity,
-                             double lo, double hi);
+                             const ColorAxis& axis);
 
 }  // namespace voxspan

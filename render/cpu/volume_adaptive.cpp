@@ -1,4 +1,5 @@
 #include "render/cpu/volume_adaptive.h"
+#include "render/model/volume_host.h"
 
 #include <algorithm>
 #include <bit>
@@ -20,9 +21,10 @@ double relaxed(double level_width, double full_rate_width, double relax) {
 }  // namespace
 
 TransferBounds::TransferBounds(const VolumeOptions& o)
-    : lo_(double(float(o.transfer.lo))),
-      scale_(double(float((kTransferEntries - 1) / (o.transfer.hi - o.transfer.lo)))),
-      inv_length_(1 / double(float(o.opacity_length))) {
+    : log_(o.transfer.log), inv_length_(1 / double(float(o.opacity_length))) {
+  const model::VolumeHost host(o);  // the table's position as the compositing finds it
+  lo_ = double(host.u_tf_lo);
+  scale_ = double(host.u_tf_scale);
   for (std::size_t k = 0; k < rgba_.size(); ++k) {
     rgba_[k] = glm::dvec4(o.transfer.rgba[k]);
     for (std::size_t ch = 0; ch < 4; ++ch)
@@ -48,11 +50,16 @@ glm::dvec4 TransferBounds::at(double x) const {
 }
 
 TransferBounds::Range TransferBounds::over(double q_lo, double q_hi) const {
-  // The compositing finds the table position in float: widened by its rounding.
+  // The compositing finds the table position in float (on a log scale from float's log2 of a
+  // value rounded to float, 1e-7 off in log2): widened by its rounding. The log is monotone, so
+  // the bounds of the values bound their positions.
+  const auto position = [&](double q) { return !log_ ? q : q > 0 ? std::log2(q) : lo_ - 1; };
+  const double va = position(q_lo), vb = position(q_hi);
   const double top = kTransferEntries - 1;
-  const double pad = 1e-4 + 2e-7 * (std::abs(q_lo) + std::abs(q_hi) + 2 * std::abs(lo_)) * scale_;
-  const double xa = std::clamp((q_lo - lo_) * scale_ - pad, 0.0, top);
-  const double xb = std::clamp((q_hi - lo_) * scale_ + pad, 0.0, top);
+  const double pad =
+      1e-4 + 2e-7 * (std::abs(va) + std::abs(vb) + 2 * std::abs(lo_) + (log_ ? 2 : 0)) * scale_;
+  const double xa = std::clamp((va - lo_) * scale_ - pad, 0.0, top);
+  const double xb = std::clamp((vb - lo_) * scale_ + pad, 0.0, top);
   const glm::dvec4 ea = at(xa), eb = at(xb);
   double lo[4], hi[4];
   for (int ch = 0; ch < 4; ++ch)

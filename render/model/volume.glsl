@@ -6,7 +6,8 @@
 // sample's length. The host stops the ray when its transmittance falls under the termination.
 //
 // Host needs: VX_TRANSFER_ENTRIES, VX_MAX_ISO; vec4 vx_transfer_entry(int) (the table: linear
-// RGB and opacity); u_tf_lo, u_tf_scale ((entries - 1) / (hi - lo)); u_opacity_length;
+// RGB and opacity); u_tf_log (1: the table spans log2 q), u_tf_lo and u_tf_scale
+// ((entries - 1) / (hi - lo), of log2 q where u_tf_log); u_opacity_length;
 // u_mode (VX_VOLUME_*); u_iso_count, u_iso_value[], u_iso_opacity[], u_iso_color[];
 // u_ambient, u_light (unit, towards the light); void vx_record_hit(float depth, float weight,
 // uint iso) (an iso crossing at `depth` whose lit colour adds `weight` times over).
@@ -35,9 +36,12 @@ VolumeRay vx_ray_start() {
   return r;
 }
 
-// The transfer function at q: the table interpolated linearly, clamped at its ends.
+// The transfer function at q: the table interpolated linearly, clamped at its ends (on a log
+// scale a value at or under 0 below its first entry).
 vec4 vx_transfer(float q) {
-  float x = clamp((q - u_tf_lo) * u_tf_scale, 0.0f, float(VX_TRANSFER_ENTRIES - 1));
+  float v = q;
+  if (u_tf_log != 0u) v = q > 0.0f ? log2(q) : u_tf_lo - 1.0f;
+  float x = clamp((v - u_tf_lo) * u_tf_scale, 0.0f, float(VX_TRANSFER_ENTRIES - 1));
   int k = min(int(x), VX_TRANSFER_ENTRIES - 2);
   return mix(vx_transfer_entry(k), vx_transfer_entry(k + 1), x - float(k));
 }

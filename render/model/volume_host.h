@@ -54,6 +54,7 @@ class VolumeHost : public ShadeUniforms {
     }
   }
 
+  uint u_tf_log = 0u;
   float u_tf_lo = 0.0f, u_tf_scale = 1.0f, u_opacity_length = 1.0f;
   uint u_mode = 0u;
   uint u_iso_count = 0u;

@@ -42,8 +42,8 @@ inline VolumeOptions dam_break_volume_options(const DamBreakState& s,
       lo = std::min(lo, double(q.value)), hi = std::max(hi, double(q.value));
   }
   const std::vector<std::array<double, 2>> constant{{0.0, opacity}, {1.0, opacity}};
-  o.transfer =
-      transfer_table(ColorMap::viridis, opacity < 0 ? VolumeSettings{}.opacity : constant, lo, hi);
+  o.transfer = transfer_table(ColorMap::viridis, opacity < 0 ? VolumeSettings{}.opacity : constant,
+                              {lo, hi});
   o.opacity_length = s.spacing;
   if (mode != VolumeMode::dvr) o.isos = {IsoSurface{0.5 * (lo + hi), {0.8, 0.85, 0.95}, 0.6}};
   o.sampling = sampling;

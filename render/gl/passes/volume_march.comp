@@ -71,6 +71,7 @@ uniform double u_run_length[VM_CELL_SHIFT + 1];
 // draws the frame on the CPU.
 uniform uint u_budget;
 // render/model/volume.glsl's
+uniform uint u_tf_log;
 uniform float u_tf_lo;
 uniform float u_tf_scale;
 uniform float u_opacity_length;

@@ -153,6 +153,7 @@ bool VolumeMarchPass::run(const Camera& camera, const VolumeSetup& setup,
     p.set(kRunLength[l], length);
   }
   p.set("u_budget", software_ ? kSoftwareLoopBudget : 0u);
+  p.set("u_tf_log", host.u_tf_log);
   p.set("u_tf_lo", host.u_tf_lo);
   p.set("u_tf_scale", host.u_tf_scale);
   p.set("u_opacity_length", host.u_opacity_length);

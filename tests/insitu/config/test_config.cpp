@@ -229,6 +229,10 @@ TEST(Config, WrongTypesAndBadValuesNameKeyAndLine) {
        "test.yaml:2:14: views[0].shading: expected one of opaque, translucent, refractive; got "
        "\"glass\""},
       {"views:\n  - max_layers: 100\n", "views[0].max_layers: must be a multiple of 32"},
+      {"views:\n  - {kind: slice, quantity: p, scale: log, range: [0, 1]}\n",
+       "views[0].range: a `log` scale needs a range above 0; got [0, 1]"},
+      {"views:\n  - {kind: volume, scale: logarithmic}\n",
+       "views[0].scale: expected one of linear, log; got \"logarithmic\""},
       {"views:\n  - layer_angle: 0\n", "views[0].layer_angle: expected a number in (0, 45]"},
       {"views:\n  - alpha: 7\n", "views[0].alpha: was renamed 'layer_angle'"},
       {"views:\n  - camera: {fov: 180}\n", "views[0].camera.fov: expected a number in (0, 179]"},

@@ -69,7 +69,7 @@ TEST(Annotations, TheColourBarsMarginsCoverTheBarAndItsValues) {
   for (const auto& [width, height] : {std::pair{320, 180}, std::pair{1920, 1080}})
     for (const BarSide side : {BarSide::right, BarSide::left}) {
       FloatImage blank(width, height), bar(width, height);
-      draw_color_bar(bar, ColorMap::viridis, -35000, -0.000125, "a title", side);
+      draw_color_bar(bar, ColorMap::viridis, {-35000, -0.000125}, "a title", side);
       const LegendMargins m = color_bar_margins(width, height, side);
       const int s = text_scale(height), below_title = height / 10 - 7 * s / 2 - s;
       int x0 = width, x1 = -1;

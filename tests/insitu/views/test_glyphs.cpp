@@ -101,7 +101,7 @@ TEST(Glyphs, EveryCullingModeGivesTheBruteForcePicture) {
     FloatImage reference_picture, fast_picture;
     GlyphShading shading;
     shading.by_value = true;
-    shading.lo = 0, shading.hi = 2;
+    shading.axis = {0, 2};
     shading.ao_radius = 4 * 0.6 * kSpacing;
     shade_glyphs(reference, cam, shading, reference_picture);
     for (GlyphCulling culling :
@@ -110,8 +110,8 @@ TEST(Glyphs, EveryCullingModeGivesTheBruteForcePicture) {
       const std::string name(name_of<GlyphCulling>(kGlyphCullingNames, culling));
       expect_same(fast, reference, name.c_str());
       EXPECT_EQ(fast.counts.selected(), reference.counts.drawn) << name;
-      EXPECT_EQ(fast.value_min, reference.value_min) << name;
-      EXPECT_EQ(fast.value_max, reference.value_max) << name;
+      EXPECT_EQ(fast.values.lo, reference.values.lo) << name;
+      EXPECT_EQ(fast.values.hi, reference.values.hi) << name;
       shade_glyphs(fast, cam, shading, fast_picture);
       EXPECT_EQ(fast_picture.rgba, reference_picture.rgba) << name;
     }

@@ -233,5 +233,31 @@ TEST(ColorMap, EndsAreThePublishedColoursAndLuminanceRisesAlongViridis) {
   EXPECT_EQ(map_color(ColorMap::gray, 2), glm::vec3(1));
 }
 
+// A log scale spreads decades evenly; values at or under 0 lie below it; its automatic range
+// starts at the smallest value above 0, and the legend's middle is the geometric mean.
+TEST(ColorMap, ALogAxisSpreadsDecadesEvenly) {
+  const ColorAxis axis{1e-3, 10, ColorScale::log};
+  EXPECT_NEAR(axis.t(1e-3), 0, 1e-12);
+  EXPECT_NEAR(axis.t(1e-1), 0.5, 1e-12);
+  EXPECT_NEAR(axis.t(10), 1, 1e-12);
+  EXPECT_EQ(axis.t(0), -INFINITY);
+  EXPECT_EQ(axis.t(-1), -INFINITY);
+  EXPECT_NEAR(axis.value(0.5), 0.1, 1e-15);
+  ValueSpan seen;
+  for (double v : {-2.0, 0.0, 4e-3, 7.0, std::nan(""), double(INFINITY)}) seen.add(v);
+  const ColorAxis log = display_axis(seen, ColorScale::log);
+  EXPECT_EQ(log.lo, 4e-3);
+  EXPECT_EQ(log.hi, 7);
+  EXPECT_EQ(display_axis(seen, ColorScale::linear).lo, -2);
+  const ColorAxis none = display_axis(ValueSpan{}, ColorScale::log);
+  EXPECT_EQ(none.lo, 1);
+  EXPECT_EQ(none.hi, 10);
+  ValueSpan one;
+  one.add(5);
+  EXPECT_LT(display_axis(one, ColorScale::log).lo, 5);  // widened, still above 0
+  EXPECT_GT(display_axis(one, ColorScale::log).lo, 0);
+  EXPECT_EQ(color_axis(std::array<double, 2>{2, 3}, seen, ColorScale::log).lo, 2);
+}
+
 }  // namespace
 }  // namespace voxspan

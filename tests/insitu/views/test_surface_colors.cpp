@@ -68,8 +68,8 @@ TEST(SurfaceColors, TheValueAtTheFirstSurfaceIsTheAttributeThere) {
       ++checked;
     }
   EXPECT_GT(checked, 500);
-  EXPECT_NEAR(colors.range()[0], 0.025, 0.02);
-  EXPECT_NEAR(colors.range()[1], 0.975, 0.02);
+  EXPECT_NEAR(colors.axis().lo, 0.025, 0.02);
+  EXPECT_NEAR(colors.axis().hi, 0.975, 0.02);
 }
 
 double mean_difference(const FloatImage& a, const FloatImage& b) {

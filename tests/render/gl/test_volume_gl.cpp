@@ -57,6 +57,25 @@ TEST(VolumeGl, PicturesAreTheReferencesAtTheirSamples) {
   });
 }
 
+// A log scale (TransferTable::log): the table over log2 q, a value at or under 0 at its first
+// entry; the march, the caster and the reference alike, and not the linear picture.
+TEST(VolumeGl, OnALogScaleTheMarchAndTheCasterAreTheReference) {
+  const test::Cloud c = test::cloud(9, 7);
+  VolumeOptions o = test::cloud_options(VolumeMode::dvr, c.spacing);
+  o.shepard = true;
+  o.transfer.log = true;
+  o.transfer.lo = 0.05;  // the cloud's values run from about -1 to 2.5: some at or under 0
+  VolumeFrame gl, cpu, reference, linear;
+  on_gl(c, o, gl);
+  VolumeCaster().run(c.camera, c.particles, o, cpu);
+  volume_reference(c.camera, c.particles, o, reference);
+  EXPECT_LT(largest_difference(gl.picture.rgba, reference.picture.rgba), 1e-4);
+  EXPECT_LT(largest_difference(cpu.picture.rgba, reference.picture.rgba), 1e-4);
+  o.transfer.log = false;
+  volume_reference(c.camera, c.particles, o, linear);
+  EXPECT_GT(largest_difference(linear.picture.rgba, reference.picture.rgba), 0.01);
+}
+
 TEST(VolumeGl, RaysEndAtTheWallsWhereTheCastersEnd) {
   // A wall slanting through the cloud (render/backdrop.h), with and without adaptive sampling:
   // the march's picture the caster's, its rays ending at the same samples.
