@@ -555,8 +555,15 @@ void Classifier::Work::run(const detail::Positions<T>& pos, const ParticleView& 
   if (cells > 0) {
     compact(pos, view, ranges, options, radii, attributes);
   } else {
+    // No cells (no particles on this rank): the attributes asked for are there, with no
+    // values, as the outputs that name them expect on every rank.
     result.boundary.clear();
-    result.attributes.clear();
+    result.attributes.resize(attributes.size());
+    for (std::size_t a = 0; a < attributes.size(); ++a) {
+      result.attributes[a].name = std::string(attributes[a].name);
+      result.attributes[a].components = attributes[a].components;
+      result.attributes[a].values.clear();
+    }
   }
   lap(ClassifyPhase::compact);
 

@@ -1,8 +1,9 @@
 // The adapter inside an MPI job (run under mpiexec on 3 ranks): bad input on one rank fails the
 // step on all with one error line, and the run goes on; a rank's config that differs from rank
 // 0's is refused at start-up, naming the rank and the key; NaN positions, an empty rank and
-// every rank empty still give a picture. Every rank runs every test, in the same order (the
-// runtime's collectives need them all); only rank 0 prints.
+// every rank empty still give a picture, and an empty rank the snapshots that name attributes.
+// Every rank runs every test, in the same order (the runtime's collectives need them all); only
+// rank 0 prints.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -146,6 +147,27 @@ TEST(MpiAdapter, NanPositionsEmptyRanksAndNoFluidAtAllStillRender) {
       EXPECT_GT(png.fraction_unlike_row_background(), 0.05) << step;
     }
   }
+}
+
+// A rank with no particles names no attribute values: the snapshot and the mesh that ask for
+// the velocity are still written from the other ranks (they were a deadlock: the empty rank's
+// copy failed before the gather the others waited in).
+TEST(MpiAdapter, AnEmptyRankWithSnapshotAttributesStillWritesThem) {
+  const auto folder = shared_folder("empty-attributes");
+  const std::string outputs =
+      "outputs:\n"
+      "  vdb: {enabled: true, trigger: {every_steps: 1}, attributes: [velocity]}\n"
+      "  mesh: {enabled: true, trigger: {every_steps: 1}, attributes: [velocity]}\n";
+  Adapter adapter =
+      adapter_from_config_text(config_for(folder, 96, outputs), options(), MPI_COMM_WORLD);
+  const Block block(12, rank() != 1);
+  const std::vector<double> velocity(3 * block.x.size(), 0.5);
+  const Status s = adapter.execute(1, 0.1, block.view().with_vector("velocity", velocity.data()));
+  EXPECT_TRUE(s.ok()) << s.message;
+  adapter.finish();
+  if (rank() != 0) return;
+  EXPECT_TRUE(std::filesystem::exists(folder / "snapshots" / "fluid_00000001.vdb"));
+  EXPECT_TRUE(std::filesystem::exists(folder / "mesh" / "fluid_00000001.ply"));
 }
 
 TEST(MpiAdapter, StatsLineHasTheJobsCountsTheSlowestRankAndTheBytesEachSent) {

@@ -1,6 +1,10 @@
 #include "insitu/outputs/kinds/level_set_outputs.h"
 
+#include <exception>
+#include <string>
 #include <utility>
+
+#include "voxspan/error.h"
 
 namespace voxspan {
 
@@ -34,8 +38,16 @@ void LevelSetOutput::write(const OutputStep& step) {
     return;
   }
   // Every rank's part, gathered on the root before any slot is taken: a rank without a free
-  // slot still takes part.
-  gathered_.fill(data, attributes_, radius_);
+  // slot still takes part, and so does one whose part failed (all then fail, naming it), so
+  // that no rank waits in a collective the others never reach.
+  std::string failure;
+  try {
+    gathered_.fill(data, attributes_, radius_);
+  } catch (const std::exception& e) {
+    failure = e.what();
+  }
+  const Agreement agreed = comm_->agree(failure.empty(), failure);
+  if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
   if (!gathered_.gather(*comm_)) return;
   jobs_.submit(label_, [&](SnapshotCopy& copy) { std::swap(copy, gathered_); });
 }
