@@ -13,7 +13,9 @@
 !   rc = voxspan_adapter_execute(adapter, step, time, particles, c_null_ptr)
 !
 ! The arrays must be TARGETs and stay in place until the execute call that uses them returns.
-! Grid indices may be 1-based: voxspan_grid_set_index_base(grid, 1).
+! Grid indices may be 1-based: voxspan_grid_set_index_base(grid, 1). Names and paths are
+! NUL-terminated: "velocity" // c_null_char. Every function of voxspan.h is bound here
+! (tests/cli/fortran_bindings_check.sh holds it so); link the compiled module with the solver.
 module voxspan
   use, intrinsic :: iso_c_binding
   implicit none
@@ -59,6 +61,11 @@ module voxspan
     function voxspan_last_error_c() bind(C, name="voxspan_last_error") result(message)
       import :: c_ptr
       type(c_ptr) :: message
+    end function
+
+    function voxspan_version_c() bind(C, name="voxspan_version") result(version)
+      import :: c_ptr
+      type(c_ptr) :: version
     end function
 
     subroutine voxspan_adapter_options_init(options) bind(C)
@@ -115,6 +122,71 @@ module voxspan
       integer(c_int) :: rc
     end function
 
+    ! Compacts the named particle attribute beside the surface-shell particles.
+    function voxspan_adapter_add_attribute(adapter, name) bind(C) result(rc)
+      import :: c_ptr, c_int, c_char
+      type(c_ptr), value :: adapter
+      character(kind=c_char), dimension(*), intent(in) :: name
+      integer(c_int) :: rc
+    end function
+
+    ! 1 when the runtime renders at (step, time): pass the attributes the config names then.
+    function voxspan_adapter_is_render_step(adapter, step, time) bind(C) result(yes)
+      import :: c_ptr, c_int, c_int64_t, c_double
+      type(c_ptr), value :: adapter
+      integer(c_int64_t), value :: step
+      real(c_double), value :: time
+      integer(c_int) :: yes
+    end function
+
+    ! The summary line into buffer (NUL-terminated, cut to size); its full length.
+    function voxspan_adapter_summary(adapter, buffer, size) bind(C) result(length)
+      import :: c_ptr, c_char, c_size_t
+      type(c_ptr), value :: adapter
+      character(kind=c_char), dimension(*), intent(out) :: buffer
+      integer(c_size_t), value :: size
+      integer(c_size_t) :: length
+    end function
+
+    ! The latest render step's surface-shell particles (packed x, y, z, radius floats in
+    ! xyzr: c_f_pointer it to real(c_float) :: a(4, count)); their count.
+    function voxspan_adapter_boundary(adapter, xyzr) bind(C) result(count)
+      import :: c_ptr, c_size_t
+      type(c_ptr), value :: adapter
+      type(c_ptr), intent(out) :: xyzr
+      integer(c_size_t) :: count
+    end function
+
+    ! The scenery kept from the last set_scenery, as voxspan_adapter_boundary gives particles.
+    function voxspan_adapter_scenery(adapter, xyzr) bind(C) result(count)
+      import :: c_ptr, c_size_t
+      type(c_ptr), value :: adapter
+      type(c_ptr), intent(out) :: xyzr
+      integer(c_size_t) :: count
+    end function
+
+    ! The latest render step's cell states (bytes, x fastest) in states; the number of cells.
+    function voxspan_adapter_cell_states(adapter, origin, cell_size, dims, states) bind(C) &
+        result(count)
+      import :: c_ptr, c_size_t, c_double, c_int
+      type(c_ptr), value :: adapter
+      real(c_double), intent(out) :: origin(3), cell_size
+      integer(c_int), intent(out) :: dims(3)
+      type(c_ptr), intent(out) :: states
+      integer(c_size_t) :: count
+    end function
+
+    ! A compacted attribute of the latest render step: its floats in values, `components` a
+    ! particle; the float count (0 when the name was not asked for).
+    function voxspan_adapter_attribute(adapter, name, values, components) bind(C) result(count)
+      import :: c_ptr, c_size_t, c_char, c_int
+      type(c_ptr), value :: adapter
+      character(kind=c_char), dimension(*), intent(in) :: name
+      type(c_ptr), intent(out) :: values
+      integer(c_int), intent(out) :: components
+      integer(c_size_t) :: count
+    end function
+
     function voxspan_adapter_stats(adapter, stats) bind(C) result(rc)
       import :: c_ptr, c_int, voxspan_step_stats
       type(c_ptr), value :: adapter
@@ -163,6 +235,43 @@ module voxspan
       integer(c_int) :: rc
     end function
 
+    ! Per-particle radii (stride 0: packed); c_null_ptr clears them.
+    function voxspan_particles_set_radii(particles, type, radii, stride_bytes) bind(C) &
+        result(rc)
+      import :: c_ptr, c_int, c_size_t
+      type(c_ptr), value :: particles, radii
+      integer(c_int), value :: type
+      integer(c_size_t), value :: stride_bytes
+      integer(c_int) :: rc
+    end function
+
+    ! A named attribute, one value a particle (stride 0: packed); the name is copied.
+    function voxspan_particles_set_scalar(particles, name, type, values, stride_bytes) &
+        bind(C) result(rc)
+      import :: c_ptr, c_int, c_size_t, c_char
+      type(c_ptr), value :: particles, values
+      character(kind=c_char), dimension(*), intent(in) :: name
+      integer(c_int), value :: type
+      integer(c_size_t), value :: stride_bytes
+      integer(c_int) :: rc
+    end function
+
+    ! A named attribute, x, y, z a particle (a real :: v(3, n) array; stride 0: packed).
+    function voxspan_particles_set_vector(particles, name, type, xyz, stride_bytes) &
+        bind(C) result(rc)
+      import :: c_ptr, c_int, c_size_t, c_char
+      type(c_ptr), value :: particles, xyz
+      character(kind=c_char), dimension(*), intent(in) :: name
+      integer(c_int), value :: type
+      integer(c_size_t), value :: stride_bytes
+      integer(c_int) :: rc
+    end function
+
+    subroutine voxspan_particles_clear_attributes(particles) bind(C)
+      import :: c_ptr
+      type(c_ptr), value :: particles
+    end subroutine
+
     function voxspan_grid_create() bind(C) result(grid)
       import :: c_ptr
       type(c_ptr) :: grid
@@ -177,6 +286,18 @@ module voxspan
         bind(C) result(rc)
       import :: c_ptr, c_int, c_double
       type(c_ptr), value :: grid, offsets
+      real(c_double), intent(in) :: origin(3)
+      real(c_double), value :: cell_size
+      integer(c_int), intent(in) :: dims(3)
+      integer(c_int), value :: index_type
+      integer(c_int) :: rc
+    end function
+
+    ! Cell c holds sorted slots [cell_begin(c), cell_end(c)).
+    function voxspan_grid_set_begin_end(grid, origin, cell_size, dims, index_type, cell_begin, &
+                                        cell_end) bind(C) result(rc)
+      import :: c_ptr, c_int, c_double
+      type(c_ptr), value :: grid, cell_begin, cell_end
       real(c_double), intent(in) :: origin(3)
       real(c_double), value :: cell_size
       integer(c_int), intent(in) :: dims(3)
@@ -217,6 +338,11 @@ module voxspan
       integer(c_int), value :: base
       integer(c_int) :: rc
     end function
+
+    subroutine voxspan_grid_clear(grid) bind(C)
+      import :: c_ptr
+      type(c_ptr), value :: grid
+    end subroutine
   end interface
 
 contains
@@ -224,8 +350,20 @@ contains
   ! The message of the latest failed call on this thread, as a Fortran string.
   function voxspan_error_message() result(message)
     character(len=:), allocatable :: message
+    message = fortran_string(voxspan_last_error_c())
+  end function
+
+  ! The loaded library's version ("0.1.0").
+  function voxspan_version() result(version)
+    character(len=:), allocatable :: version
+    version = fortran_string(voxspan_version_c())
+  end function
+
+  ! A NUL-terminated C string as a Fortran string.
+  function fortran_string(p) result(text)
+    type(c_ptr), intent(in) :: p
+    character(len=:), allocatable :: text
     character(kind=c_char), pointer :: chars(:)
-    type(c_ptr) :: p
     integer :: n
     interface
       function strlen(s) bind(C, name="strlen") result(length)
@@ -234,11 +372,10 @@ contains
         integer(c_size_t) :: length
       end function
     end interface
-    p = voxspan_last_error_c()
     n = int(strlen(p))
     call c_f_pointer(p, chars, [n])
-    allocate(character(len=n) :: message)
-    message = transfer(chars(1:n), message)
+    allocate(character(len=n) :: text)
+    text = transfer(chars(1:n), text)
   end function
 
 end module voxspan
