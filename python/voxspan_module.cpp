@@ -353,11 +353,18 @@ class PyAdapter {
   Adapter adapter_;
 };
 
+// A path argument as text: a str, or anything os.fspath takes (pathlib.Path); None: none.
+std::optional<std::string> path_text(const py::object& path) {
+  if (path.is_none()) return std::nullopt;
+  return py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>();
+}
+
 Config config_of(const std::optional<std::string>& path) {
   return path ? load_config_file(*path) : default_config();
 }
 
-py::dict particle_file(const std::string& path, const std::vector<std::string>& arrays) {
+py::dict particle_file(const py::object& path_object, const std::vector<std::string>& arrays) {
+  const std::string path = path_text(path_object).value_or("");
   ParticleReadOptions options;
   options.arrays = arrays;
   ParticleData d;
@@ -409,8 +416,8 @@ py::list viewed_axes(const py::object& x, const py::object& y, const py::object&
   return out;
 }
 
-py::array png_file(const std::string& path) {
-  ImageRGBA8 image = read_png(path);
+py::array png_file(const py::object& path) {
+  ImageRGBA8 image = read_png(path_text(path).value_or(""));
   return owning_array(std::move(image.pixels), {image.height, image.width, 4});
 }
 
@@ -457,18 +464,20 @@ PYBIND11_MODULE(_voxspan, m) {
           py::arg("order") = py::none(), py::arg("index_base") = 0);
 
   auto factory = [](bool text) {
-    return
-        [text](const std::optional<std::string>& source, std::optional<double> spacing,
-               std::optional<double> radius, std::optional<int> full_count,
-               std::optional<double> cell_size, bool validate, std::vector<std::string> attributes,
-               py::object comm, bool offline, std::string output) {
-          PyAdapter::Settings s{spacing,         radius,   cell_size,
-                                full_count,      validate, std::move(attributes),
-                                std::move(comm), offline,  std::move(output)};
-          Config config =
-              text ? load_config_string(source.value_or(""), "<config text>") : config_of(source);
-          return std::make_unique<PyAdapter>(std::move(config), s);
-        };
+    return [text](const py::object& source, std::optional<double> spacing,
+                  std::optional<double> radius, std::optional<int> full_count,
+                  std::optional<double> cell_size, bool validate,
+                  std::vector<std::string> attributes, py::object comm, bool offline,
+                  const py::object& output) {
+      PyAdapter::Settings s{spacing,         radius,   cell_size,
+                            full_count,      validate, std::move(attributes),
+                            std::move(comm), offline,  path_text(output).value_or("")};
+      Config config =
+          text ? load_config_string(source.is_none() ? std::string() : source.cast<std::string>(),
+                                    "<config text>")
+               : config_of(path_text(source));
+      return std::make_unique<PyAdapter>(std::move(config), s);
+    };
   };
   auto settings_args = [](auto&& def, const char* first) {
     return def(py::arg(first), py::kw_only(), py::arg("spacing") = py::none(),

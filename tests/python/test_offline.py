@@ -26,6 +26,23 @@ def test_render_estimates_the_spacing(tmp_path, block):
     assert numpy.array_equal(given["main"], estimated["main"])
 
 
+def test_render_takes_what_a_notebook_has(tmp_path, block):
+    """One render() call copies what the library cannot view (a list, big-endian, reversed,
+    integers) and takes a radius per particle and pathlib paths."""
+    reference = voxspan.render(block, spacing=SPACING, output=tmp_path / "a")["main"]
+    for name, positions in [("list", block.tolist()), ("big", block.astype(">f8")),
+                            ("reversed", block[::-1])]:
+        picture = voxspan.render(positions, spacing=SPACING, output=tmp_path / name)["main"]
+        assert numpy.array_equal(picture, reference), name
+    radii = numpy.full(len(block), SPACING)
+    per_particle = voxspan.render(block, spacing=SPACING, radius=radii, output=tmp_path / "r")
+    assert numpy.array_equal(per_particle["main"], reference)
+    smaller = voxspan.render(block, spacing=SPACING, radius=0.5 * radii, output=tmp_path / "s")
+    assert not numpy.array_equal(smaller["main"], reference)
+    png = next((tmp_path / "a").rglob("main_*.png"))
+    assert numpy.array_equal(voxspan.read_png(png), reference)  # a pathlib.Path
+
+
 def test_no_particles_render_the_empty_pictures(tmp_path, block):
     """Zero rows are zero particles: no spacing to estimate, a picture with no fluid in it."""
     empty = voxspan.render(numpy.zeros((0, 3)), output=str(tmp_path / "empty"))["main"]
