@@ -90,8 +90,9 @@ const Classification& Adapter::Impl::classify(std::int64_t step, const ParticleV
   stats.seconds_compact = c.seconds_compact;
   stats.rendered = true;
   if (c.counts.dropped_nonfinite > 0)
-    log_quietly(LogLevel::warning, "step ", step, ": left out ", c.counts.dropped_nonfinite,
-                " particles with a NaN or infinite position or radius");
+    log_quietly(
+        LogLevel::warning, "step ", step, ": left out ", c.counts.dropped_nonfinite,
+        " particles with a NaN or infinite position, or a NaN, infinite or negative radius");
   if (c.counts.not_in_grid > 0)
     log_quietly(LogLevel::warning, "step ", step, ": ", c.counts.not_in_grid,
                 " particles are in no cell of the grid and were left out");
@@ -156,8 +157,9 @@ std::size_t Adapter::set_scenery(const ParticleView& scenery) {
   const std::size_t dropped = pack_spheres(scenery, m.options.classify, m.scenery);
   ++m.scenery_version;
   if (dropped > 0)
-    log_quietly(LogLevel::warning, "scenery: left out ", dropped,
-                " particles with a NaN or infinite position or radius");
+    log_quietly(
+        LogLevel::warning, "scenery: left out ", dropped,
+        " particles with a NaN or infinite position, or a NaN, infinite or negative radius");
   return m.scenery.size();
 }
 

@@ -2,6 +2,8 @@
 //  .csv: a header row names the columns (ParaView's "Save Data" CSV works as is), or, where the
 //        first row holds numbers, the '#' comment line just before it with as many names
 //        (numpy.savetxt's header), else the columns are x, y, z, column4... (said in `chosen`).
+//        Columns x, y and z may stand apart in any order; an empty field is NaN (pandas);
+//        an unnamed column (pandas' index) is column<k>; Excel's byte-order mark is skipped.
 //        Fields are separated by commas, else semicolons (DualSPHysics), else tabs, else white
 //        space, as the first row has them; a unit after a name ("Pos.x [m]") is left out of it.
 //        Positions are x,y,z or Points:0,Points:1,Points:2 (any case); three consecutive columns
@@ -11,9 +13,12 @@
 //  .xyz: whitespace-separated "x y z [radius] [more...]" per line, '#' comments; the
 //        extended-XYZ header (a count line, then a comment line) and a leading element symbol
 //        on each line are accepted. Extra columns become attributes column4, column5...
+#include <algorithm>
+#include <array>
 #include <charconv>
 #include <cctype>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,8 +49,13 @@ std::string lower(std::string s) {
   return s;
 }
 
+// A field's number; an empty field is a missing value, NaN (pandas writes NaN so).
 bool parse_number(std::string_view text, double& out) {
   std::string t = field_text(text);
+  if (t.empty()) {
+    out = std::numeric_limits<double>::quiet_NaN();
+    return true;
+  }
   const char* b = t.data();
   const char* e = b + t.size();
   if (b != e && *b == '+') ++b;
@@ -90,11 +100,12 @@ char separator_of(const std::string& row) {
   return kWhiteSpace;
 }
 
-// A trimmed row's fields; a separator ending the row (DualSPHysics ends every row with one)
-// opens no field.
-std::vector<std::string> fields_of(const std::string& row, char sep) {
+// A trimmed row's fields. `closed`: every row ends with a separator that opens no field
+// (DualSPHysics'); otherwise one at the end opens an empty last field (pandas' NaN).
+std::vector<std::string> fields_of(const std::string& row, char sep, bool closed = false) {
   if (sep == kWhiteSpace) return split_whitespace(row);
-  return split(!row.empty() && row.back() == sep ? row.substr(0, row.size() - 1) : row, sep);
+  return split(closed && !row.empty() && row.back() == sep ? row.substr(0, row.size() - 1) : row,
+               sep);
 }
 
 // A column's name without a unit after it: "Vel.x [m/s]" is "Vel.x"; "f[0]" (no space before
@@ -157,18 +168,20 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
   while (first_row.empty() && std::getline(in, line)) {
     ++line_no;
     std::string t = trim(line);
+    if (line_no == 1 && t.starts_with("\xEF\xBB\xBF")) t = trim(t.substr(3));  // Excel's BOM
     if (!t.empty() && t[0] == '#') comment = trim(std::string_view(t).substr(1));
     if (!t.empty() && t[0] != '#') first_row = t;
   }
   if (first_row.empty()) throw fail(line_no, "no header row (the first row must name the columns)");
   const char sep = separator_of(first_row);
+  const bool closed = sep != kWhiteSpace && first_row.back() == sep;
   std::vector<std::string> header;
-  for (const std::string& f : fields_of(first_row, sep)) header.push_back(field_text(f));
+  for (const std::string& f : fields_of(first_row, sep, closed)) header.push_back(field_text(f));
   double probe = 0;
   // The first row is data where it holds numbers; the comment line before it names its columns
   // if it has as many names, else the columns are x, y, z and column4... as in .xyz files.
   std::string pending, chosen;
-  if (parse_number(header[0], probe)) {
+  if (!header[0].empty() && parse_number(header[0], probe)) {
     std::vector<std::string> names = fields_of(comment, sep);
     if (names.size() != header.size() || parse_number(names[0], probe)) {
       if (header.size() < 3)
@@ -184,7 +197,8 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
     header.clear();
     for (const std::string& f : names) header.push_back(field_text(f));
   }
-  for (std::string& name : header) name = without_unit(name);
+  for (std::size_t c = 0; c < header.size(); ++c)  // pandas' index column has no name
+    header[c] = header[c].empty() ? "column" + std::to_string(c + 1) : without_unit(header[c]);
 
   std::vector<Column> columns;
   int position = -1;  // index into columns
@@ -203,12 +217,30 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
       i += 1;
     }
   }
-  if (position < 0)
-    throw fail(line_no, "no position columns (x,y,z or Points:0,Points:1,Points:2)");
+  // x, y and z apart, in any order (a table written column by column): the position.
+  std::array<std::size_t, 3> xyz{};
+  if (position >= 0) {
+    const std::size_t first = columns[std::size_t(position)].first;
+    xyz = {first, first + 1, first + 2};
+  } else {
+    std::array<int, 3> found{-1, -1, -1};
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      for (int a = 0; a < 3; ++a)
+        if (columns[c].components == 1 && lower(columns[c].name) == std::string(1, char('x' + a)))
+          found[std::size_t(a)] = int(c);
+    if (found[0] < 0 || found[1] < 0 || found[2] < 0)
+      throw fail(line_no, "no position columns (x,y,z or Points:0,Points:1,Points:2)");
+    for (int a = 0; a < 3; ++a)
+      xyz[std::size_t(a)] = columns[std::size_t(found[std::size_t(a)])].first;
+  }
+  const auto is_position = [&](std::size_t c) {
+    return int(c) == position || (position < 0 && columns[c].components == 1 &&
+                                  std::find(xyz.begin(), xyz.end(), columns[c].first) != xyz.end());
+  };
 
   ParticleData data;
   for (std::size_t c = 0; c < columns.size(); ++c)
-    if (int(c) != position) data.attributes.push_back({columns[c].name, columns[c].components, {}});
+    if (!is_position(c)) data.attributes.push_back({columns[c].name, columns[c].components, {}});
   std::vector<double> values(header.size());
   // The rows after the header: the first row itself first where it is data.
   const auto next_row = [&](std::string& t) {
@@ -223,7 +255,7 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
   };
   for (std::string t; next_row(t);) {
     if (t.empty() || t[0] == '#') continue;
-    std::vector<std::string> fields = fields_of(t, sep);
+    std::vector<std::string> fields = fields_of(t, sep, closed);
     if (fields.size() != header.size())
       throw fail(line_no, std::to_string(fields.size()) + " fields; the header has " +
                               std::to_string(header.size()));
@@ -231,11 +263,10 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
       if (!parse_number(fields[f], values[f]))
         throw fail(line_no, "column \"" + header[f] + "\" is not a number: \"" +
                                 field_text(fields[f]) + "\"");
-    const Column& p = columns[std::size_t(position)];
-    data.positions.push_back({values[p.first], values[p.first + 1], values[p.first + 2]});
+    data.positions.push_back({values[xyz[0]], values[xyz[1]], values[xyz[2]]});
     std::size_t a = 0;
     for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (int(c) == position) continue;
+      if (is_position(c)) continue;
       for (int k = 0; k < columns[c].components; ++k)
         data.attributes[a].values.push_back(float(values[columns[c].first + std::size_t(k)]));
       ++a;

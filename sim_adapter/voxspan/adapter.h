@@ -137,8 +137,9 @@ class Adapter {
   // runtime.md, "Scenery"). Walls that stand still are given once; moving ones again whenever
   // they have moved (each call costs one copy and makes the views draw them anew). Radii as the
   // classification takes them (the view's, the options' radius, or the spacing). Particles with
-  // a NaN or infinite position or radius are left out and counted; returns the count kept.
-  // Throws voxspan::Error when no radius can be found. Under MPI each rank gives its own part.
+  // a NaN or infinite position or a NaN, infinite or negative radius are left out and counted;
+  // returns the count kept. Throws voxspan::Error when no radius can be found. Under MPI each rank
+  // gives its own part.
   std::size_t set_scenery(const ParticleView& scenery);
   // The scenery kept from the last set_scenery (empty when none was given).
   std::span<const ParticleSphere> scenery() const;

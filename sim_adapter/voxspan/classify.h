@@ -132,8 +132,8 @@ class Classifier {
 };
 
 // Every particle of `particles` (ghosts too) as a sphere into `out` (resized), radii as run()
-// takes them; those with a NaN or infinite position or radius are left out. Returns how many
-// were left out; throws voxspan::Error when no radius can be found.
+// takes them; those with a NaN or infinite position or a NaN, infinite or negative radius are left
+// out. Returns how many were left out; throws voxspan::Error when no radius can be found.
 std::size_t pack_spheres(const ParticleView& particles, const ClassifyOptions& options,
                          std::vector<ParticleSphere>& out);
 

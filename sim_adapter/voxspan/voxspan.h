@@ -108,7 +108,8 @@ void voxspan_adapter_destroy(voxspan_adapter* adapter);
 int voxspan_adapter_add_attribute(voxspan_adapter* adapter, const char* name);
 /* The solver's walls and obstacles, copied (Adapter::set_scenery): the views draw them as opaque
  * solids. Given once for walls that stand still, again whenever they move. Sets *kept (may be
- * NULL) to the particles kept (those with a NaN or infinite position or radius are left out). */
+ * NULL) to the particles kept (those with a NaN or infinite position, or a NaN, infinite or
+ * negative radius, are left out). */
 int voxspan_adapter_set_scenery(voxspan_adapter* adapter, const voxspan_particles* scenery,
                                 size_t* kept);
 /* The per-step call; grid may be NULL (the adapter sorts the particles itself). */

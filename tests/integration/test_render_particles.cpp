@@ -153,6 +153,26 @@ TEST(RenderParticles, ReaderErrorsSayWhichFileAndWhy) {
 // A file with no particles (an inlet's fluid before it flows in) is a step like the others: its
 // pictures are written and the run succeeds, with a warning naming the file. Leading empty
 // files leave the spacing to the first file with particles.
+// An .xyz file's fourth column is its radius: a density there gives spheres a thousand times
+// the spacing, which the tool says rather than drawing one giant blob silently.
+TEST(RenderParticles, RadiiFarFromTheSpacingAreSaid) {
+  test::TempFolder dir;
+  {
+    std::ofstream f(dir / "rho.xyz");
+    for (int k = 0; k < 6; ++k)
+      for (int j = 0; j < 6; ++j)
+        for (int i = 0; i < 6; ++i)
+          f << i * 0.01 << ' ' << j * 0.01 << ' ' << k * 0.01 << " 1000\n";
+  }
+  const ToolRun r =
+      run_tool(dir.path(), "--output " + (dir / "out").string() + " " + (dir / "rho.xyz").string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("rho.xyz: the particles' radii (median 1e+03) are far from their spacing "
+                       "0.01: is another column read as radii"),
+            std::string::npos)
+      << r.err;
+}
+
 TEST(RenderParticles, AFileWithNoParticlesIsRenderedWithAWarning) {
   test::TempFolder dir;
   std::ofstream(dir / "empty.csv") << "x,y,z\n";

@@ -28,6 +28,7 @@
 // file. A file with no particles is rendered (no fluid in its pictures) with a warning.
 #include <mpi.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -203,6 +204,24 @@ double spacing_of(const Options& o, const voxspan::Config& config,
   return spacing;
 }
 
+// A file's radii far from the spacing are most often another column read as radii (an .xyz
+// file's fourth column is the radius by convention; a density or a velocity there gives giant or
+// missing spheres): said once, with the way out.
+void warn_of_odd_radii(const voxspan::ParticleData& d, const std::filesystem::path& file,
+                       double spacing) {
+  if (d.radii.empty()) return;
+  std::vector<float> r = d.radii;
+  const auto middle = r.begin() + std::ptrdiff_t(r.size() / 2);
+  std::nth_element(r.begin(), middle, r.end());
+  const double median = *middle;
+  if (median >= 0.1 * spacing && median <= 10 * spacing) return;
+  std::fprintf(stderr,
+               "render_particles: warning: %s: the particles' radii (median %.3g) are far from "
+               "their spacing %.3g: is another column read as radii (an .xyz file's fourth "
+               "column is its radius)?\n",
+               file.string().c_str(), median, spacing);
+}
+
 int render(const Options& o, const Ranks& ranks) {
   const bool talk = ranks.rank == 0;
   try {
@@ -211,6 +230,7 @@ int render(const Options& o, const Ranks& ranks) {
     voxspan::ParticleData first = voxspan::read_particles(o.files[0], o.read);
     if (talk && !first.chosen.empty()) std::printf("reading %s\n", first.chosen.c_str());
     const double spacing = spacing_of(o, config, first, talk);
+    if (talk) warn_of_odd_radii(first, o.files[0], spacing);
     voxspan::AdapterOptions options;
     options.classify.particle_spacing = spacing;
     options.classify.radius = o.radius;
@@ -243,6 +263,13 @@ int render(const Options& o, const Ranks& ranks) {
       // The file's own step where it gives one (PySPH's iteration), else the next: triggers
       // need them in order, and the frames sort by them.
       const std::int64_t step = data.step_after(previous_step);
+      if (talk && data.step && *data.step != step)
+        std::fprintf(stderr,
+                     "render_particles: warning: %s is step %lld, not after the file before it "
+                     "(step %lld): rendered as step %lld; give the files in the order of their "
+                     "steps\n",
+                     o.files[i].string().c_str(), static_cast<long long>(*data.step),
+                     static_cast<long long>(previous_step), static_cast<long long>(step));
       previous_step = step;
       const double time = data.time.value_or(double(i));
       // The walls, given again only when they moved (each time the views draw them anew); by
@@ -265,7 +292,8 @@ int render(const Options& o, const Ranks& ranks) {
       }
       if (talk)
         std::printf(
-            "%s: step %lld, %zu particles, %zu in the surface shell, %zu left out (NaN/inf), %.2f "
+            "%s: step %lld, %zu particles, %zu in the surface shell, %zu left out (NaN/inf or "
+            "negative radius), %.2f "
             "s%s\n",
             o.files[i].string().c_str(), static_cast<long long>(step), st.counts.particles,
             st.counts.boundary, st.counts.dropped_nonfinite, st.seconds_total,

@@ -95,6 +95,26 @@ TEST(CsvParticles, WithoutAHeaderTheFirstColumnsAreThePositions) {
             "columns 1 to 3 as x, y, z (no header row names them), the others as column4..");
 }
 
+// As pandas and Excel write tables: x, y, z apart in any order, Excel's byte-order mark, pandas'
+// unnamed index column and its NaN as an empty field (the last one too).
+TEST(CsvParticles, PandasAndExcelTables) {
+  test::TempFolder dir;
+  ParticleData d = read_text(dir, "excel.csv", "\xEF\xBB\xBFrho,z,y,x\n1000,3,2,1\n");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_DOUBLE_EQ(d.positions[0][0], 1);
+  EXPECT_DOUBLE_EQ(d.positions[0][2], 3);
+  ASSERT_EQ(d.attributes.size(), 1u);
+  EXPECT_EQ(d.attributes[0].name, "rho");
+  d = read_text(dir, "pandas.csv", ",x,y,z,p\n0,0.0,0.0,0.0,\n1,1,,1,2\n");
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_TRUE(std::isnan(d.positions[1][1]));  // left out, counted, by the pipeline
+  ASSERT_NE(d.attribute("p"), nullptr);
+  EXPECT_TRUE(std::isnan(d.attribute("p")->values[0]));
+  EXPECT_EQ(d.attribute("p")->values[1], 2.f);
+  ASSERT_NE(d.attribute("column1"), nullptr);
+  EXPECT_EQ(d.attribute("column1")->values, (std::vector<float>{0, 1}));
+}
+
 // DualSPHysics' CSV: semicolons, a unit after each name, a semicolon ending every row.
 TEST(CsvParticles, SemicolonsUnitsAndDottedVectors) {
   test::TempFolder dir;
