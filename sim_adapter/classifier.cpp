@@ -400,7 +400,12 @@ Tallies Classifier::Work::count(const detail::Positions<T>& positions, const Par
           counts[c] = emit[c] = 0;
           const std::int64_t b = ranges.begin[c] - ranges.base, e = ranges.end[c] - ranges.base;
           if (b == e) continue;
-          if (b < 0 || e < b || e > n64) {
+          if (e < b) {
+            error.offer(c, "grid cell ", CellName{g, c}, " lists particles [", b, ", ", e,
+                        "): its range ends before it begins (offsets must not decrease)");
+            continue;
+          }
+          if (b < 0 || e > n64) {
             error.offer(c, "grid cell ", CellName{g, c}, " lists particles [", b, ", ", e,
                         "), outside the ", n, " particles");
             continue;

@@ -72,11 +72,14 @@ const Section<WriterConfig>& writer_section() {
   using W = WriterConfig;
   static const Section<W> s{
       "writer",
-      {schema::integer("queue_size", &W::queue_size, 1, 4096, "jobs waiting for the writer thread"),
+      {schema::integer("queue_size", &W::queue_size, 1, 4096,
+                       "jobs waiting for the writer thread (each file of a step is one: with "
+                       "`drop`, hold at least one step's files, or a step loses some)"),
        schema::choice(
            "when_full", &W::when_full, kQueuePolicyNames,
            "`wait` blocks the solver until a slot frees; `drop` skips the file and "
-           "counts it (a warning at the 1st, 10th, 100th... drop, a summary at the end)"),
+           "counts it (a warning at the 1st, 10th, 100th... drop, a summary at the end), "
+           "except on the solver's last step, whose files finish() waits for anyway"),
        schema::flag("fsync", &W::fsync, "files are fsynced before they get their final name")}};
   return s;
 }

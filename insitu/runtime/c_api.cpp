@@ -102,6 +102,15 @@ voxspan::StridedScalars strided(int type, const void* data, std::size_t stride,
           stride ? stride : scalar_size(t)};
 }
 
+// A stride given (not 0) must step past one particle's `values` scalars: a smaller one reads the
+// particles overlapping, as garbage.
+void require_stride(int type, std::size_t stride, int values, const std::string& what) {
+  const std::size_t least = std::size_t(values) * scalar_size(scalar_type(type));
+  if (stride != 0 && stride < least)
+    throw voxspan::make_error(what, ": a stride of ", stride, " bytes is less than one particle's ",
+                              values == 3 ? "x, y, z" : "value", " (", least, " bytes)");
+}
+
 voxspan::IndexArray index_array(int type, const void* data) {
   if (type < VOXSPAN_INT32 || type > VOXSPAN_UINT64)
     throw voxspan::make_error("index type ", type,
@@ -370,6 +379,7 @@ int voxspan_particles_set_aos(voxspan_particles* p, int type, const void* xyz, s
   return guarded("voxspan_particles_set_aos", [&] {
     require(p, "particles");
     if (count > 0) require(xyz, "positions");
+    require_stride(type, stride_bytes, 3, "positions");
     const voxspan::StridedScalars x =
         strided(type, xyz, stride_bytes ? stride_bytes : 3 * scalar_size(scalar_type(type)));
     const auto axis = [&](std::size_t k) {
@@ -420,6 +430,7 @@ int voxspan_particles_set_radii(voxspan_particles* p, int type, const void* radi
                                 size_t stride_bytes) {
   return guarded("voxspan_particles_set_radii", [&] {
     require(p, "particles");
+    if (radii) require_stride(type, stride_bytes, 1, "radii");
     p->view.with_radii(radii ? strided(type, radii, stride_bytes) : voxspan::StridedScalars{});
     return VOXSPAN_OK;
   });
@@ -430,6 +441,7 @@ int voxspan_particles_set_scalar(voxspan_particles* p, const char* name, int typ
   return guarded("voxspan_particles_set_scalar", [&] {
     require(p, "particles");
     require(values, "attribute values");
+    require_stride(type, stride_bytes, 1, "attribute '" + std::string(name ? name : "") + "'");
     const voxspan::StridedScalars v = strided(type, values, stride_bytes);
     attribute_slot(p, name) = {name, 1, {v, {}, {}}};
     return VOXSPAN_OK;
@@ -441,6 +453,7 @@ int voxspan_particles_set_vector(voxspan_particles* p, const char* name, int typ
   return guarded("voxspan_particles_set_vector", [&] {
     require(p, "particles");
     require(xyz, "attribute values");
+    require_stride(type, stride_bytes, 3, "attribute '" + std::string(name ? name : "") + "'");
     const std::size_t stride = stride_bytes ? stride_bytes : 3 * scalar_size(scalar_type(type));
     attribute_slot(p, name) = {name,
                                3,

@@ -566,6 +566,7 @@ bool InsituPipeline::confirm_step(std::int64_t step, double time, const Particle
 void InsituPipeline::mark_last_step(std::int64_t step) {
   Impl& m = *impl_;
   m.last_step = step;
+  m.writer.keep_every_file();
   // Already planned without knowing it was the last: add the `last` conditions (the
   // particles' conditions stay as they were: decided or still waiting).
   if (step != m.planned_step) return;

@@ -153,6 +153,8 @@ class Adapter {
   Status execute_last(std::int64_t step, double time, const ParticleView& particles,
                       const GridView& grid = GridView()) noexcept;
   // Waits for the pipeline's pending work (files being written); the destructor does it too.
+  // A drain, not an end: steps may follow it (the files of the steps before are complete
+  // then, for a solver that reads them back); the summary covers every step so far.
   void finish() noexcept;
   // The pipeline's summary line (empty without a pipeline).
   std::string summary() const;

@@ -125,6 +125,16 @@ TEST(CApi, NullAndInvalidArgumentsAreErrors) {
   voxspan_particles* p = voxspan_particles_create();
   EXPECT_EQ(voxspan_particles_set_aos(p, 5, nullptr, 0, 0), VOXSPAN_INVALID_INPUT);
   EXPECT_EQ(voxspan_particles_set_aos(p, VOXSPAN_FLOAT32, nullptr, 3, 0), VOXSPAN_INVALID_INPUT);
+  // A stride shorter than one particle's values reads them overlapping: refused, named.
+  const float xyz[9] = {};
+  EXPECT_EQ(voxspan_particles_set_aos(p, VOXSPAN_FLOAT32, xyz, 3, 4), VOXSPAN_INVALID_INPUT);
+  EXPECT_NE(std::string(voxspan_last_error())
+                .find("positions: a stride of 4 bytes is less than one particle's x, y, z "
+                      "(12 bytes)"),
+            std::string::npos)
+      << voxspan_last_error();
+  EXPECT_EQ(voxspan_particles_set_vector(p, "v", VOXSPAN_FLOAT64, xyz, 16), VOXSPAN_INVALID_INPUT);
+  EXPECT_EQ(voxspan_particles_set_aos(p, VOXSPAN_FLOAT32, xyz, 3, 12), VOXSPAN_OK);
   voxspan_particles_destroy(p);
   voxspan_grid* g = voxspan_grid_create();
   const double origin[3] = {0, 0, 0};

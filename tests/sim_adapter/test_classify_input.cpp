@@ -131,6 +131,11 @@ TEST(ClassifyInput, RangesOutOfBoundsAreErrorsAlways) {
   EXPECT_NE(error_of(view, GridView::offsets(g, offsets.data()), options())
                 .find("grid cell (1, 1, 1) lists particles [56, 69), outside the 64 particles"),
             std::string::npos);
+  std::vector<std::uint32_t> backwards = s.offsets;
+  backwards[1] = backwards[2] + 1;  // cell 0 ends after cell 1's end: cell 1 runs backwards
+  EXPECT_NE(error_of(view, GridView::offsets(g, backwards.data()), options())
+                .find("its range ends before it begins (offsets must not decrease)"),
+            std::string::npos);
   std::vector<std::uint32_t> order = s.order;
   order[3] = 1000;
   EXPECT_NE(

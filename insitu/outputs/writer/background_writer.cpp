@@ -39,6 +39,11 @@ BackgroundWriter::~BackgroundWriter() {
                 " jobs) was full; raise writer.queue_size or use when_full: wait");
 }
 
+void BackgroundWriter::keep_every_file() {
+  std::lock_guard lock(mutex_);
+  policy_ = QueuePolicy::wait;
+}
+
 bool BackgroundWriter::submit(std::string label, Job job) {
   std::unique_lock lock(mutex_);
   if (queued_ >= capacity_) {

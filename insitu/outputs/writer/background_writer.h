@@ -53,6 +53,9 @@ class BackgroundWriter {
   bool submit(std::string label, Job job);
   // Blocks until the queue is empty and no job runs.
   void drain();
+  // From now on a full queue waits, whatever the policy: the solver's last step, whose files
+  // finish() waits for anyway (dropping them would lose the run's last pictures for nothing).
+  void keep_every_file();
   WriterStats stats() const;
   std::size_t queued() const;
 
@@ -65,7 +68,7 @@ class BackgroundWriter {
   void record_failure(const std::string& label, const std::string& message, int kind);
 
   const std::size_t capacity_;
-  const QueuePolicy policy_;
+  QueuePolicy policy_;  // guarded by mutex_
   mutable std::mutex mutex_;
   std::condition_variable work_ready_;   // writer thread waits for jobs
   std::condition_variable space_ready_;  // submitters wait for room (policy wait)

@@ -105,6 +105,26 @@ TEST(BackgroundWriter, DropPolicyNeverBlocksAndCountsWithAWarning) {
   EXPECT_NE(warnings[2].find("22 files were dropped"), std::string::npos) << warnings[2];
 }
 
+// The solver's last step: its files are kept even under `drop` (finish() waits for them).
+TEST(BackgroundWriter, AfterKeepEveryFileAFullQueueWaitsUnderDrop) {
+  Gate gate;
+  std::atomic<int> ran{0};
+  BackgroundWriter w(2, QueuePolicy::drop);
+  w.submit("blocker", [&] { gate.wait(); });
+  gate.wait_entered();
+  w.keep_every_file();
+  std::thread opener([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    gate.open();
+  });
+  for (int i = 0; i < 6; ++i) EXPECT_TRUE(w.submit("last " + std::to_string(i), [&] { ++ran; }));
+  opener.join();
+  w.drain();
+  EXPECT_EQ(ran.load(), 6);
+  EXPECT_EQ(w.stats().dropped, 0u);
+  EXPECT_GT(w.stats().waits, 0u);
+}
+
 TEST(BackgroundWriter, EachKindOfFailureIsReportedOnceThenCounted) {
   test::LogCapture log;
   BackgroundWriter w(8, QueuePolicy::wait);
