@@ -86,9 +86,11 @@ ParticleData read_particles(const std::filesystem::path& path, const ParticleRea
   const std::string ext = extension_of(path);
   if (ext == ".hdf5" || ext == ".h5") return read_hdf5_particles(path, options);
   const bool vtk = ext == ".vtp" || ext == ".vtu" || ext == ".vtk";
-  if (!vtk && ext != ".csv" && ext != ".xyz")
+  // numpy.savetxt's and many codes' plain tables: read as CSV (any separator, header or none).
+  const bool table = ext == ".csv" || ext == ".txt" || ext == ".dat";
+  if (!vtk && !table && ext != ".xyz")
     throw make_error("cannot read particles from ", path.string(), ": unknown extension \"", ext,
-                     "\" (known: .vtp .vtu .vtk .csv .xyz .hdf5 .h5)");
+                     "\" (known: .vtp .vtu .vtk .csv .txt .dat .xyz .hdf5 .h5)");
   // Named arrays would otherwise read as the whole file, silently; `all` is what it holds.
   const auto refuse_names = [&](const char* what, const std::vector<std::string>& list) {
     std::string names;
@@ -107,7 +109,7 @@ ParticleData read_particles(const std::filesystem::path& path, const ParticleRea
   if (!options.scenery.empty() && !only(options.scenery, "none"))
     refuse_names("scenery arrays", options.scenery);
   if (vtk) return read_vtk_particles(path);
-  return ext == ".csv" ? read_csv_particles(path) : read_xyz_particles(path);
+  return table ? read_csv_particles(path) : read_xyz_particles(path);
 }
 
 }  // namespace voxspan

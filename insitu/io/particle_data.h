@@ -52,7 +52,8 @@ struct ParticleReadOptions {
   std::vector<std::string> scenery;
 };
 
-// By extension (any case): .vtp/.vtu (VTK XML), .vtk (legacy VTK), .csv, .xyz, .hdf5/.h5 (PySPH's
+// By extension (any case): .vtp/.vtu (VTK XML), .vtk (legacy VTK), .csv (also .txt and .dat:
+// numpy.savetxt's tables), .xyz, .hdf5/.h5 (PySPH's
 // layout, or a GADGET-format snapshot: SWIFT, GIZMO...). Throws voxspan::Error naming the file
 // and what is wrong with it; also where options.arrays names arrays (other than `all`) and the
 // file is not HDF5: the other formats hold one unnamed set of particles.

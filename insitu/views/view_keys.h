@@ -37,18 +37,19 @@ std::vector<schema::Key<S>> sph_sum_keys(std::string quantity_help, std::string 
 // says what `auto` takes.
 template <class S>
 std::vector<schema::Key<S>> color_map_keys(std::string map_help, std::string range_auto) {
-  return {schema::choice("color_map", &S::color_map, kColorMapNames, std::move(map_help)),
-          schema::interval_or_auto(
-              "range", &S::range,
-              "the values at the colour map's ends; `auto` = " + std::move(range_auto) +
-                  " (on a `log` scale: the smallest above 0)"),
-          schema::choice("scale", &S::scale, kColorScaleNames,
-                         "how the values spread along the map: `linear`, or `log` (by their "
-                         "logarithm, for fields spanning decades; values at or under 0 take "
-                         "its lowest colour)"),
-          schema::text("units", &S::units,
-                       "the values' units, shown after the colour bar's title (the quantity's "
-                       "name): `m/s` gives \"speed [m/s]\"; empty: the name alone")};
+  return {
+      schema::choice("color_map", &S::color_map, kColorMapNames, std::move(map_help)),
+      schema::interval_or_auto(
+          "range", &S::range,
+          "the values at the colour map's ends; `auto` = " + std::move(range_auto) +
+              " (on a `log` scale: the smallest above 0)"),
+      schema::choice("scale", &S::scale, kColorScaleNames,
+                     "how the values spread along the map: `linear`, or `log` (by their "
+                     "logarithm, for fields spanning decades; values at or under 0 take "
+                     "its lowest colour)"),
+      schema::text("units", &S::units,
+                   "the values' units, shown after the colour bar's title (the quantity's "
+                   "name): `m/s` on `velocity` gives \"velocity [m/s]\"; empty: the name alone")};
 }
 
 // A log scale's range must lie above 0 (called by each view kind's check).

@@ -64,7 +64,8 @@ constexpr char kUsage[] =
     "usage: render_particles [--config FILE] [--output DIR] [--spacing DX] "
     "[--radius R] [--arrays NAME,...] [--scenery NAME,...|none] "
     "[--split slabs|uneven|interleaved] FILE...\n"
-    "  FILE: .vtp .vtu .vtk .csv .xyz .hdf5/.h5 (PySPH, GADGET/SWIFT); each file is one step\n"
+    "  FILE: .vtp .vtu .vtk .csv/.txt/.dat .xyz .hdf5/.h5 (PySPH, GADGET/SWIFT); each file is one "
+    "step\n"
     "  under mpiexec each rank renders its part (--split) and rank 0 writes the pictures\n";
 
 bool parse(int argc, char** argv, Options& o) {

@@ -87,6 +87,9 @@ TEST(CsvParticles, WithoutAHeaderTheFirstColumnsAreThePositions) {
   EXPECT_DOUBLE_EQ(d.positions[1][2], 6);
   EXPECT_TRUE(d.attributes.empty());
   EXPECT_EQ(d.chosen, "columns 1 to 3 as x, y, z (no header row names them)");
+  d = read_text(dir, "savetxt.txt", "1.0 2.0 3.0\n4.0 5.0 6.0\n");  // numpy.savetxt's default
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_DOUBLE_EQ(d.positions[0][1], 2);
   d = read_text(dir, "more.csv", "# x y\n1 2 3 7 8\n");
   ASSERT_EQ(d.size(), 1u);
   ASSERT_NE(d.attribute("column5"), nullptr);
