@@ -203,6 +203,16 @@ Status Adapter::execute(std::int64_t step, double time, const ParticleView& part
     fail(s.status, StatusCode::invalid_input, e.what());
   } catch (const std::bad_alloc&) {
     fail(s.status, StatusCode::internal_error, "out of memory");
+    try {  // the sizes that asked for it, where memory is left to say them
+      const GridGeometry& g = grid.geometry();
+      std::string what =
+          "out of memory classifying " + std::to_string(particles.size()) + " particles";
+      if (grid.layout() != GridView::Layout::none)
+        what += " on a grid of " + std::to_string(g.dims[0]) + " x " + std::to_string(g.dims[1]) +
+                " x " + std::to_string(g.dims[2]) + " cells";
+      fail(s.status, StatusCode::internal_error, what.c_str());
+    } catch (...) {  // "out of memory" stands
+    }
   } catch (const std::exception& e) {
     fail(s.status, StatusCode::internal_error, e.what());
   } catch (...) {

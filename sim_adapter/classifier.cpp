@@ -249,6 +249,13 @@ void check_geometry(const GridGeometry& g) {
     throw make_error("invalid grid geometry: cell size ", g.cell_size, ", dims ", g.dims[0], " x ",
                      g.dims[1], " x ", g.dims[2], ", origin (", g.origin[0], ", ", g.origin[1],
                      ", ", g.origin[2], ")");
+  // Cells are counted in 32 bits, and each holds a few bytes of state: a grid this large is a
+  // cell size far below the domain's, not a fluid.
+  const double cells = double(g.dims[0]) * double(g.dims[1]) * double(g.dims[2]);
+  if (cells > 4294967295.0)
+    throw make_error("grid of ", g.dims[0], " x ", g.dims[1], " x ", g.dims[2], " cells (", cells,
+                     ") has more than 2^32 cells: a cell size (", g.cell_size,
+                     ") far below the domain's?");
 }
 
 }  // namespace

@@ -120,6 +120,20 @@ TEST(ClassifyInput, ValidationFindsMissingAndDuplicatedParticles) {
             std::string::npos);
 }
 
+// A grid of more cells than 32 bits count (a cell size far below the domain) is refused,
+// named, before anything is allocated for it.
+TEST(ClassifyInput, AGridOfMoreThan2To32CellsIsRefused) {
+  std::vector<Point> pts;
+  test::add_lattice(pts, {0, 0, 0}, {2, 2, 2}, 1.0);
+  const auto view = ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point));
+  const GridView huge =
+      GridView::geometry_only(GridGeometry{{0, 0, 0}, 1e-5, {100000, 100000, 100000}});
+  EXPECT_NE(error_of(view, huge, options())
+                .find("grid of 100000 x 100000 x 100000 cells (1e+15) has more than 2^32 cells"),
+            std::string::npos)
+      << error_of(view, huge, options());
+}
+
 TEST(ClassifyInput, RangesOutOfBoundsAreErrorsAlways) {
   std::vector<Point> pts;
   test::add_lattice(pts, {0, 0, 0}, {4, 4, 4}, 1.0);
