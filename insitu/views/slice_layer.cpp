@@ -127,6 +127,7 @@ void SliceLayer::interpolate(const ParticleView& particles, const Bounds& fluid_
   q.rest_volume = spacing_ * spacing_ * spacing_;
   q.kernel = field_.kernel;
   q.smoothing_length = field_.smoothing_length.value_or(kAutoSmoothingFactor * spacing_);
+  q.smoothing = field_.smoothing_attribute;
   q.shepard = field_.shepard;
   sum_ranks(particles, q, width, height);
   if ((comm_ == nullptr || comm_->root()) && values_.pixels_reached == 0) {

@@ -49,6 +49,7 @@ struct SliceField {
   std::optional<double> smoothing_length;  // h, world units; nullopt = 1.3 spacings
   bool shepard = false;
   std::string mass = "mass", density = "density";
+  std::string smoothing_attribute;  // h per particle; empty: smoothing_length for all
   SlicePlaneConfig plane;
   std::optional<double> extent;  // the plane's width, world units; nullopt = fit the fluid
   ColorMap color_map = ColorMap::viridis;

@@ -118,14 +118,14 @@ void interpolate_at_points(const ParticleView& particles, const SliceQuantity& q
   if (points.empty()) {
     // Still checked, so that a missing attribute fails on every step, with or without fluid.
     sph_terms(
-        particles, q, [](const glm::dvec3&) { return false; }, out.near);
+        particles, q, [](const glm::dvec3&, double) { return false; }, out.near);
     return;
   }
   const PointGrid grid(points, kernel_support(q.kernel) * std::max(h, 0.0));
   const std::vector<std::uint8_t>& reached = reached_cells(grid, points, out);
   sph_terms(
       particles, q,
-      [&](const glm::dvec3& p) {
+      [&](const glm::dvec3& p, double) {
         const auto c = grid.cell_of(p);
         return grid.inside(c) && reached[grid.index(c)] != 0;
       },

@@ -37,10 +37,14 @@ glm::dvec3 SlicePlane::pixel_centre(int i, int j, int image_width, int image_hei
 }
 
 void sph_terms(const ParticleView& particles, const SliceQuantity& q,
-               const std::function<bool(const glm::dvec3&)>& near, std::vector<SphTerm>& out) {
+               const std::function<bool(const glm::dvec3&, double)>& near,
+               std::vector<SphTerm>& out) {
   if (!(q.smoothing_length > 0))
     throw make_error("slice: the smoothing length must be positive; got ", q.smoothing_length);
   const AttributeView* quantity = &require_attribute(particles, q.name, q.key);
+  const AttributeView* h_of =
+      q.smoothing.empty() ? nullptr
+                          : &require_attribute(particles, q.smoothing, "smoothing_attribute");
   const AttributeView* mass = particles.find_attribute(q.mass);
   const AttributeView* density = particles.find_attribute(q.density);
   const bool per_particle_volume = mass != nullptr && density != nullptr;
@@ -52,12 +56,13 @@ void sph_terms(const ParticleView& particles, const SliceQuantity& q,
     if (!particles.position_finite(i)) return false;
     const auto a = particles.position(i);
     const glm::dvec3 p(a[0], a[1], a[2]);
-    if (!near(p)) return false;
+    const double h = h_of != nullptr ? h_of->magnitude(i) : q.smoothing_length;
+    if (!(h > 0) || !std::isfinite(h) || !near(p, h)) return false;
     const double volume =
         per_particle_volume ? mass->magnitude(i) / density->magnitude(i) : q.rest_volume;
     const double value = quantity->magnitude(i);
     if (!std::isfinite(volume) || !std::isfinite(value)) return false;
-    t = {p, volume * value, volume};
+    t = {p, volume * value, volume, h};
     return true;
   };
   // In parallel and in the particles' order (the sums do not depend on the thread count):
@@ -83,6 +88,42 @@ void sph_terms(const ParticleView& particles, const SliceQuantity& q,
   });
 }
 
+namespace {
+
+// Each term adds itself to the pixels whose centres its support reaches (per-particle h): the
+// rows in bands, in parallel, each band's pixels getting the terms in their order.
+void scatter_slice(const std::vector<SphTerm>& near, SphKernel kernel, const SlicePlane& plane,
+                   SliceImage& out) {
+  const int width = out.width, height = out.height;
+  const double px = plane.width / width, py = plane.height / height;
+  constexpr int kBand = 8;
+  tbb::parallel_for(0, (height + kBand - 1) / kBand, [&](int band) {
+    const int j0 = band * kBand, j1 = std::min(height, j0 + kBand) - 1;
+    for (const SphTerm& t : near) {
+      const glm::dvec3 d = t.p - plane.origin;
+      const double off = glm::dot(d, plane.normal), support = kernel_support(kernel) * t.h;
+      const double reach = std::sqrt(std::max(0.0, support * support - off * off));
+      // Pixel centres at s = ((i + 0.5) / W - 0.5) width, t = (0.5 - (j + 0.5) / H) height.
+      const double s = glm::dot(d, plane.u), v = glm::dot(d, plane.v);
+      const int i_lo = std::max(0, int(std::ceil((s - reach + 0.5 * plane.width) / px - 0.5)));
+      const int i_hi =
+          std::min(width - 1, int(std::floor((s + reach + 0.5 * plane.width) / px - 0.5)));
+      const int jt_lo = std::max(j0, int(std::ceil((0.5 * plane.height - v - reach) / py - 0.5)));
+      const int jt_hi = std::min(j1, int(std::floor((0.5 * plane.height - v + reach) / py - 0.5)));
+      for (int j = jt_lo; j <= jt_hi; ++j)
+        for (int i = i_lo; i <= i_hi; ++i) {
+          const std::size_t pixel = std::size_t(i) + std::size_t(width) * std::size_t(j);
+          SphSum sum{out.sum[pixel], out.weight[pixel]};
+          sum.add(t, plane.pixel_centre(i, j, width, height), kernel, t.h);
+          out.sum[pixel] = sum.sum;
+          out.weight[pixel] = sum.weight;
+        }
+    }
+  });
+}
+
+}  // namespace
+
 void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
                        const SlicePlane& plane, int width, int height, SliceImage& out) {
   const double h = q.smoothing_length;
@@ -90,10 +131,21 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
   std::vector<SphTerm>& near = out.near;
   sph_terms(
       particles, q,
-      [&](const glm::dvec3& p) {
-        return std::abs(glm::dot(p - plane.origin, plane.normal)) < support;
+      [&](const glm::dvec3& p, double hp) {
+        return std::abs(glm::dot(p - plane.origin, plane.normal)) < kernel_support(q.kernel) * hp;
       },
       near);
+  if (!q.smoothing.empty()) {
+    out.width = width;
+    out.height = height;
+    out.values.assign(std::size_t(width) * std::size_t(height), 0.0f);
+    out.sum.assign(out.values.size(), 0.0);
+    out.weight.assign(out.values.size(), 0.0);
+    out.particles_near = near.size();
+    scatter_slice(near, q.kernel, plane, out);
+    finish_slice(out, q.shepard);
+    return;
+  }
 
   // Bins of the support's size on the plane: a pixel's particles are in the 3x3 around it.
   const int bx = std::max(1, int(std::ceil(plane.width / support)));

@@ -8,7 +8,10 @@
 // particles count (ghosts are another rank's), so the sum over ranks is the one-process sum.
 // What the `slice` view kind will draw; the sums are done in double, stored as float.
 // Costs: one pass over the particles (those within the support of the plane are binned on
-// it), then per pixel the particles of the 3x3 bins around it; rows in parallel (oneTBB).
+// it), then per pixel the particles of the 3x3 bins around it; rows in parallel (oneTBB). With
+// each particle's own h (astrophysics codes' adaptive smoothing lengths, spanning decades, which
+// one bin size cannot serve) each particle adds itself to the pixels its support's disc on the
+// plane covers instead, per band of rows in parallel, in the particles' order.
 #pragma once
 
 #include <cstdint>
@@ -49,13 +52,14 @@ struct SliceQuantity {
   double rest_volume = 0;
   SphKernel kernel = SphKernel::cubic_spline;
   double smoothing_length = 0;  // h, world units (> 0)
+  std::string_view smoothing;   // the attribute with each particle's h; empty: smoothing_length
   bool shepard = false;
 };
 
-// One owned particle's part of an SPH sum: its position, (m / rho) A and m / rho.
+// One owned particle's part of an SPH sum: its position, (m / rho) A, m / rho and its h.
 struct SphTerm {
   glm::dvec3 p;
-  double volume_value, volume;
+  double volume_value, volume, h;
 };
 
 // The sums at one point x: sum_j (m_j / rho_j) A_j W and sum_j (m_j / rho_j) W.
@@ -73,11 +77,13 @@ struct SphSum {
   double value(bool shepard) const { return weight > 0 ? (shepard ? sum / weight : sum) : 0.0; }
 };
 
-// The terms of `q` of the owned particles at finite positions for which near(position) holds,
-// those with a finite volume and value, into `out` (cleared first). Throws voxspan::Error naming
-// the attribute when the quantity is missing, or when h is not positive.
+// The terms of `q` of the owned particles at finite positions for which near(position, h)
+// holds, those with a finite volume, value and positive h, into `out` (cleared first). Throws
+// voxspan::Error naming the attribute when the quantity or q.smoothing is missing, or when h is
+// not positive.
 void sph_terms(const ParticleView& particles, const SliceQuantity& q,
-               const std::function<bool(const glm::dvec3&)>& near, std::vector<SphTerm>& out);
+               const std::function<bool(const glm::dvec3&, double)>& near,
+               std::vector<SphTerm>& out);
 
 struct SliceImage {
   int width = 0, height = 0;

@@ -19,7 +19,7 @@ namespace voxspan {
 inline constexpr double kAutoSmoothingFactor = 1.3;
 
 // The keys of an SPH sum, for any settings with these members: quantity, kernel,
-// smoothing_length, shepard, mass, density.
+// smoothing_length, smoothing_attribute, shepard, mass, density.
 template <class S>
 std::vector<schema::Key<S>> sph_sum_keys(std::string quantity_help, std::string shepard_help) {
   return {
@@ -27,6 +27,9 @@ std::vector<schema::Key<S>> sph_sum_keys(std::string quantity_help, std::string 
       schema::choice("kernel", &S::kernel, kSphKernelNames, "the SPH kernel W (3D, normalised)"),
       schema::number_or_auto("smoothing_length", &S::smoothing_length, schema::above(0),
                              "h, world units; `auto` = 1.3 particle spacings"),
+      schema::text("smoothing_attribute", &S::smoothing_attribute,
+                   "the attribute with each particle's h (astrophysics codes); empty: "
+                   "smoothing_length for all"),
       schema::flag("shepard", &S::shepard, std::move(shepard_help)),
       schema::text("mass", &S::mass,
                    "the mass attribute; without it or `density`, m / rho = spacing^3"),

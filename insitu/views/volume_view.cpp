@@ -118,9 +118,6 @@ std::vector<schema::Key<VolumeSettings>> volume_keys() {
           "divide by sum (m / rho) W ([HOK16]'s CSPH): a uniform field stays flat up to the "
           "free surface; off with no quantity"),
       std::vector<schema::Key<S>>{
-          schema::text("smoothing_attribute", &S::smoothing_attribute,
-                       "the attribute with each particle's h (astrophysics codes); empty: "
-                       "smoothing_length for all"),
           schema::choice("mode", &S::mode, kVolumeModeNames,
                          "`dvr`: the field as a glowing, absorbing medium; `iso`: its iso "
                          "surfaces; `mixed`: both ([FAW10] sec. 5)")},

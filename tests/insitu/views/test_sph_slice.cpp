@@ -103,6 +103,49 @@ TEST(SphSlice, EqualsTheDoubleSumAtSamplePointsForEveryKernel) {
       }
 }
 
+// Each particle's own h (q.smoothing, astrophysics codes): the particles scatter into the pixels
+// their supports' discs cover, which gives the brute-force sum with each particle's h, for every
+// kernel, h varying fourfold across the block; and with one h for all, the gather's picture.
+TEST(SphSlice, EachParticlesOwnHIsTheDoubleSumWithIt) {
+  const Particles s(16, 12, 10);
+  std::vector<double> h(s.x.size());
+  for (std::size_t i = 0; i < h.size(); ++i) h[i] = (0.8 + 2.4 * s.x[i] / 1.6) * kSpacing;
+  const ParticleView view = s.view().with_scalar("h", h.data());
+  const SlicePlane plane = SlicePlane::make({0.8, 0.6, 0.5}, {0.3, 1, 0.2}, 1.8, 1.2);
+  for (const auto& [name, kernel] : kSphKernelNames) {
+    SliceQuantity q = quantity("field");
+    q.kernel = kernel;
+    q.smoothing = "h";
+    SliceImage image;
+    interpolate_slice(view, q, plane, 45, 30, image);
+    double worst = 0;
+    for (int j = 0; j < 30; j += 3)
+      for (int i = 0; i < 45; i += 4) {
+        const glm::dvec3 p = plane.pixel_centre(i, j, 45, 30);
+        double want = 0;
+        for (std::size_t k = 0; k < h.size(); ++k)
+          want += s.mass[k] / s.density[k] * s.field[k] *
+                  kernel_value(kernel, glm::length(p - glm::dvec3(s.x[k], s.y[k], s.z[k])), h[k]);
+        const double got = image.values[std::size_t(i + 45 * j)];
+        if (std::abs(want) > 1e-3) worst = std::max(worst, std::abs(got - want) / std::abs(want));
+        else EXPECT_NEAR(got, want, 1e-8);
+      }
+    EXPECT_LT(worst, 1e-5) << name;
+  }
+  std::vector<double> same(h.size(), 1.3 * kSpacing);
+  SliceQuantity q = quantity("field");
+  q.shepard = true;
+  SliceImage gathered, scattered;
+  interpolate_slice(s.view(), q, plane, 45, 30, gathered);
+  q.smoothing = "h";
+  interpolate_slice(s.view().with_scalar("h", same.data()), q, plane, 45, 30, scattered);
+  ASSERT_EQ(scattered.pixels_reached, gathered.pixels_reached);
+  for (std::size_t k = 0; k < gathered.values.size(); ++k)
+    EXPECT_NEAR(scattered.values[k], gathered.values[k], 1e-5 * (1 + std::abs(gathered.values[k])));
+  q.smoothing = "hh";
+  EXPECT_THROW(interpolate_slice(s.view(), q, plane, 45, 30, scattered), Error);
+}
+
 // interpolate_at_points (insitu/views/sph_points.h, a surface view's colours) leaves out the
 // particles of cells no point reads, and of a point's cells those its support cannot reach: its
 // sums are the full double sum's, at points on a sheet (a first surface: most particles far
