@@ -135,13 +135,13 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
         return std::abs(glm::dot(p - plane.origin, plane.normal)) < kernel_support(q.kernel) * hp;
       },
       near);
+  out.width = width;
+  out.height = height;
+  out.values.assign(std::size_t(width) * std::size_t(height), 0.0f);
+  out.sum.assign(out.values.size(), 0.0);
+  out.weight.assign(out.values.size(), 0.0);
+  out.particles_near = near.size();
   if (!q.smoothing.empty()) {
-    out.width = width;
-    out.height = height;
-    out.values.assign(std::size_t(width) * std::size_t(height), 0.0f);
-    out.sum.assign(out.values.size(), 0.0);
-    out.weight.assign(out.values.size(), 0.0);
-    out.particles_near = near.size();
     scatter_slice(near, q.kernel, plane, out);
     finish_slice(out, q.shepard);
     return;
@@ -177,12 +177,6 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
   for (std::size_t k = 0; k < near.size(); ++k)
     if (bin[k] < bins) sorted[fill[bin[k]]++] = near[k];
 
-  out.width = width;
-  out.height = height;
-  out.values.assign(std::size_t(width) * std::size_t(height), 0.0f);
-  out.sum.assign(out.values.size(), 0.0);
-  out.weight.assign(out.values.size(), 0.0);
-  out.particles_near = near.size();
   tbb::parallel_for(0, height, [&](int j) {
     for (int i = 0; i < width; ++i) {
       const glm::dvec3 x = plane.pixel_centre(i, j, width, height);
