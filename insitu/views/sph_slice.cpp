@@ -105,11 +105,19 @@ void scatter_slice(const std::vector<SphTerm>& near, SphKernel kernel, const Sli
       const double reach = std::sqrt(std::max(0.0, support * support - off * off));
       // Pixel centres at s = ((i + 0.5) / W - 0.5) width, t = (0.5 - (j + 0.5) / H) height.
       const double s = glm::dot(d, plane.u), v = glm::dot(d, plane.v);
-      const int i_lo = std::max(0, int(std::ceil((s - reach + 0.5 * plane.width) / px - 0.5)));
-      const int i_hi =
-          std::min(width - 1, int(std::floor((s + reach + 0.5 * plane.width) / px - 0.5)));
-      const int jt_lo = std::max(j0, int(std::ceil((0.5 * plane.height - v - reach) / py - 0.5)));
-      const int jt_hi = std::min(j1, int(std::floor((0.5 * plane.height - v + reach) / py - 0.5)));
+      // Clamped in double first: a particle near the plane far outside the picture gives
+      // indices no int holds.
+      const auto index = [](double x, int lo, int hi) {
+        return int(std::clamp(x, double(lo) - 1, double(hi) + 1));
+      };
+      const int i_lo =
+          std::max(0, index(std::ceil((s - reach + 0.5 * plane.width) / px - 0.5), 0, width));
+      const int i_hi = std::min(
+          width - 1, index(std::floor((s + reach + 0.5 * plane.width) / px - 0.5), 0, width));
+      const int jt_lo =
+          std::max(j0, index(std::ceil((0.5 * plane.height - v - reach) / py - 0.5), j0, j1));
+      const int jt_hi =
+          std::min(j1, index(std::floor((0.5 * plane.height - v + reach) / py - 0.5), j0, j1));
       for (int j = jt_lo; j <= jt_hi; ++j)
         for (int i = i_lo; i <= i_hi; ++i) {
           const std::size_t pixel = std::size_t(i) + std::size_t(width) * std::size_t(j);
