@@ -82,7 +82,11 @@ std::vector<std::string> types_to_read(const ParticleReadOptions& options,
     for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
     return list;
   };
-  if (options.arrays.size() == 1 && options.arrays[0] == "all") return available;
+  if (options.arrays.size() == 1 && options.arrays[0] == "all") {
+    if (available.empty())
+      throw make_error(path, ": no particle types (no /PartType0 to /PartType5 group)");
+    return available;
+  }
   if (options.arrays.empty()) {
     if (std::find(available.begin(), available.end(), type_name(0)) == available.end())
       throw make_error(path, ": no gas particles (PartType0), the SPH particles; the file has ",

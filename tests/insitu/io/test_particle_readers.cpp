@@ -562,6 +562,12 @@ TEST(GadgetParticles, MissingTypesAndOtherLayoutsSaySo) {
             (dir / "dark.hdf5").string() +
                 ": no gas particles (PartType0), the SPH particles; the file has PartType1 "
                 "(--arrays picks)");
+  f = H5Fcreate((dir / "header.hdf5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  H5Gclose(H5Gcreate2(f, "Header", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  H5Fclose(f);
+  EXPECT_EQ(
+      error_of(dir / "header.hdf5", {{"all"}, {}}),
+      (dir / "header.hdf5").string() + ": no particle types (no /PartType0 to /PartType5 group)");
   f = H5Fcreate((dir / "other.h5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   H5Gclose(H5Gcreate2(f, "grid", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
   H5Fclose(f);
