@@ -60,6 +60,11 @@ void validate(const VolumeOptions& o) {
   validate(shade);
 }
 
+TransferTable::Place TransferTable::place() const {
+  const double a = log ? std::log2(lo) : lo, b = log ? std::log2(hi) : hi;
+  return {float(a), float((kTransferEntries - 1) / (b - a))};
+}
+
 VolumeLattice volume_lattice(double tan_half_y, int height, const VolumeOptions& options) {
   return VolumeLattice(options.anchor, 2 * tan_half_y / height / options.sampling);
 }
@@ -80,9 +85,9 @@ ShadeUniforms environment_uniforms(const VolumeOptions& o) {
 VolumeHost::VolumeHost(const VolumeOptions& o) : ShadeUniforms(environment_uniforms(o)) {
   const TransferTable& t = o.transfer;
   u_tf_log = t.log ? 1u : 0u;
-  const double lo = t.log ? std::log2(t.lo) : t.lo, hi = t.log ? std::log2(t.hi) : t.hi;
-  u_tf_lo = float(lo);
-  u_tf_scale = float((kTransferEntries - 1) / (hi - lo));
+  const TransferTable::Place place = t.place();
+  u_tf_lo = place.lo;
+  u_tf_scale = place.scale;
   for (std::size_t k = 0; k < transfer_.size(); ++k) transfer_[k] = t.rgba[k];
   u_opacity_length = float(o.opacity_length);
   u_mode = uint(o.mode);

@@ -70,6 +70,12 @@ struct TransferTable {
   // taking its first entry; else q from lo to hi.
   bool log = false;
   std::array<glm::vec4, kTransferEntries> rgba{};
+  // Where the compositing (volume.glsl's vx_transfer, in float) finds q in the table:
+  // (v - lo) * scale with v = q, or log2 q on a log scale; lo and scale as it has them.
+  struct Place {
+    float lo, scale;
+  };
+  Place place() const;
 };
 
 inline constexpr int kMaxIsoSurfaces = 4;

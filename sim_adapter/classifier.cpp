@@ -225,6 +225,7 @@ struct Classifier::Work {
   Tallies count(const detail::Positions<T>& pos, const ParticleView& view, const CellRanges& ranges,
                 const ClassifyOptions& options, const detail::Radii& radii);
   void classify_states(std::size_t cells);
+  void size_attributes(const std::vector<AttributeView>& attributes, std::size_t particles);
   template <class T>
   void compact(const detail::Positions<T>& pos, const ParticleView& view, const CellRanges& ranges,
                const ClassifyOptions& options, const detail::Radii& radii,
@@ -434,6 +435,17 @@ Tallies Classifier::Work::count(const detail::Positions<T>& positions, const Par
   return total(tallies);
 }
 
+// The result's attributes: those asked for, named, with room for `particles` particles each.
+void Classifier::Work::size_attributes(const std::vector<AttributeView>& attributes,
+                                       std::size_t particles) {
+  result.attributes.resize(attributes.size());
+  for (std::size_t a = 0; a < attributes.size(); ++a) {
+    result.attributes[a].name = std::string(attributes[a].name);
+    result.attributes[a].components = attributes[a].components;
+    result.attributes[a].values.resize(particles * std::size_t(attributes[a].components));
+  }
+}
+
 // Compact: the particles of the cells that are not inner, in cell order, into the boundary
 // spheres and the attributes asked for; inner cells' emit counts zeroed on the way.
 template <class T>
@@ -451,12 +463,7 @@ void Classifier::Work::compact(const detail::Positions<T>& positions, const Part
   emit_offsets.resize(cells + 1);
   const std::size_t total = detail::exclusive_scan(emit, emit_offsets);
   result.boundary.resize(total);
-  result.attributes.resize(attributes.size());
-  for (std::size_t a = 0; a < attributes.size(); ++a) {
-    result.attributes[a].name = std::string(attributes[a].name);
-    result.attributes[a].components = attributes[a].components;
-    result.attributes[a].values.resize(total * std::size_t(attributes[a].components));
-  }
+  size_attributes(attributes, total);
   result.counts.boundary = total;
 
   tbb::parallel_for(
@@ -570,12 +577,7 @@ void Classifier::Work::run(const detail::Positions<T>& pos, const ParticleView& 
     // No cells (no particles on this rank): the attributes asked for are there, with no
     // values, as the outputs that name them expect on every rank.
     result.boundary.clear();
-    result.attributes.resize(attributes.size());
-    for (std::size_t a = 0; a < attributes.size(); ++a) {
-      result.attributes[a].name = std::string(attributes[a].name);
-      result.attributes[a].components = attributes[a].components;
-      result.attributes[a].values.clear();
-    }
+    size_attributes(attributes, 0);
   }
   lap(ClassifyPhase::compact);
 

@@ -59,6 +59,12 @@ std::vector<std::string> member_names(hid_t group) {
   return names;
 }
 
+std::string joined(const std::vector<std::string>& names) {
+  std::string list;
+  for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+  return list;
+}
+
 bool has_member(hid_t group, const char* name) { return H5Lexists(group, name, H5P_DEFAULT) > 0; }
 
 std::vector<double> numeric_attribute(hid_t object, const char* name) {

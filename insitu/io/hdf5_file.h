@@ -1,6 +1,7 @@
-// insitu/io/hdf5_file.h - what the HDF5 particle readers share: owned identifiers, HDF5's own
-// error printing held off, a file opened with the reason it cannot be, a group's members, and
-// numeric attributes (scalars, or the first value of an array: SWIFT stores its header's
+// insitu/io/hdf5_file.h - the HDF5 particle readers (read_hdf5_particles, particle_data.cpp,
+// opens the file and tells the layouts apart) and what they share: owned identifiers, HDF5's
+// own error printing held off, a file opened with the reason it cannot be, a group's members,
+// and numeric attributes (scalars, or the first value of an array: SWIFT stores its header's
 // scalars as arrays of one).
 #pragma once
 
@@ -10,6 +11,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "insitu/io/particle_data.h"
 
 namespace voxspan::hdf5 {
 
@@ -52,11 +55,21 @@ Handle open_particle_file(const std::filesystem::path& path);
 // The names of a group's members, in name order.
 std::vector<std::string> member_names(hid_t group);
 
+// Names as a message lists them: "fluid, wall".
+std::string joined(const std::vector<std::string>& names);
+
 // Whether `name` is a member of `group` (no error when it is not).
 bool has_member(hid_t group, const char* name);
 
 // A numeric attribute of an object as doubles, all its values; empty where it is absent or not
 // numeric.
 std::vector<double> numeric_attribute(hid_t object, const char* name);
+
+// The particles of an open file (`path` for messages) in PySPH's layout (/particles,
+// read_pysph_hdf5.cpp) and in the GADGET family's (/Header, /PartType<k>, read_gadget_hdf5.cpp).
+ParticleData read_pysph_layout(hid_t file, const std::string& path,
+                               const ParticleReadOptions& options);
+ParticleData read_gadget_layout(hid_t file, const std::string& path,
+                                const ParticleReadOptions& options);
 
 }  // namespace voxspan::hdf5

@@ -64,22 +64,20 @@ std::string extension_of(const std::filesystem::path& path) {
 
 ParticleData read_hdf5_particles(const std::filesystem::path& path,
                                  const ParticleReadOptions& options) {
-  bool pysph = false;
-  {
-    hdf5::Quiet quiet;
-    const hdf5::Handle h5 = hdf5::open_particle_file(path);
-    pysph = hdf5::has_member(h5.get(), "particles");
-    if (!pysph && !hdf5::has_member(h5.get(), "Header")) {
-      std::string members;
-      for (const std::string& n : hdf5::member_names(h5.get()))
-        members += (members.empty() ? "/" : ", /") + n;
-      throw make_error("cannot read particles from ", path.string(),
-                       ": neither PySPH's layout (/particles) nor a GADGET-format snapshot "
-                       "(/Header, /PartType0...); the file has ",
-                       members.empty() ? std::string("nothing") : members);
-    }
+  const hdf5::Quiet quiet;
+  const hdf5::Handle h5 = hdf5::open_particle_file(path);
+  if (hdf5::has_member(h5.get(), "particles"))
+    return hdf5::read_pysph_layout(h5.get(), path.string(), options);
+  if (!hdf5::has_member(h5.get(), "Header")) {
+    std::string members;
+    for (const std::string& n : hdf5::member_names(h5.get()))
+      members += (members.empty() ? "/" : ", /") + n;
+    throw make_error("cannot read particles from ", path.string(),
+                     ": neither PySPH's layout (/particles) nor a GADGET-format snapshot "
+                     "(/Header, /PartType0...); the file has ",
+                     members.empty() ? std::string("nothing") : members);
   }
-  return pysph ? read_pysph_hdf5(path, options) : read_gadget_hdf5(path, options);
+  return hdf5::read_gadget_layout(h5.get(), path.string(), options);
 }
 
 ParticleData read_particles(const std::filesystem::path& path, const ParticleReadOptions& options) {

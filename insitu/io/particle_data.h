@@ -63,13 +63,9 @@ ParticleData read_vtk_particles(const std::filesystem::path& path);
 ParticleData read_csv_particles(const std::filesystem::path& path);
 ParticleData read_xyz_particles(const std::filesystem::path& path);
 // HDF5: PySPH's layout (/particles) or the GADGET family's (/Header, /PartType<k>), as the file
-// has it; the two readers behind it.
+// has it.
 ParticleData read_hdf5_particles(const std::filesystem::path& path,
                                  const ParticleReadOptions& options = {});
-ParticleData read_pysph_hdf5(const std::filesystem::path& path,
-                             const ParticleReadOptions& options = {});
-ParticleData read_gadget_hdf5(const std::filesystem::path& path,
-                              const ParticleReadOptions& options = {});
 
 // Throws voxspan::Error naming the file unless it is a file that exists. Every reader calls
 // it first: HDF5 would call a missing file "not an HDF5 file", VTK "not readable".

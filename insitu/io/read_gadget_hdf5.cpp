@@ -24,6 +24,7 @@ namespace voxspan {
 namespace {
 
 using hdf5::Handle;
+using hdf5::joined;
 
 constexpr int kTypes = 6;  // PartType0 .. PartType5
 
@@ -77,11 +78,6 @@ TypeData read_type(hid_t file, const std::string& name, const std::string& path)
 std::vector<std::string> types_to_read(const ParticleReadOptions& options,
                                        const std::vector<std::string>& available,
                                        const std::string& path) {
-  const auto joined = [](const std::vector<std::string>& names) {
-    std::string list;
-    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
-    return list;
-  };
   if (options.arrays.size() == 1 && options.arrays[0] == "all") {
     if (available.empty())
       throw make_error(path, ": no particle types (no /PartType0 to /PartType5 group)");
@@ -117,22 +113,19 @@ std::vector<double> volumes(const std::vector<const TypeData*>& types) {
 
 }  // namespace
 
-ParticleData read_gadget_hdf5(const std::filesystem::path& path,
-                              const ParticleReadOptions& options) {
-  hdf5::Quiet quiet;
-  const std::string file = path.string();
-  Handle h5 = hdf5::open_particle_file(path);
-  Handle header(H5Gopen2(h5.get(), "Header", H5P_DEFAULT), H5Gclose);
-  if (!header.valid()) throw make_error(file, ": no /Header group (not a GADGET-format snapshot)");
+ParticleData hdf5::read_gadget_layout(hid_t h5, const std::string& file,
+                                      const ParticleReadOptions& options) {
+  Handle header(H5Gopen2(h5, "Header", H5P_DEFAULT), H5Gclose);
+  if (!header.valid()) throw make_error(file, ": cannot open /Header");
   if (!options.scenery.empty() && !(options.scenery.size() == 1 && options.scenery[0] == "none"))
     throw make_error(file, ": scenery arrays were named, but a GADGET-format snapshot has none");
 
   std::vector<std::string> available;
   for (int k = 0; k < kTypes; ++k)
-    if (hdf5::has_member(h5.get(), type_name(k).c_str())) available.push_back(type_name(k));
+    if (hdf5::has_member(h5, type_name(k).c_str())) available.push_back(type_name(k));
   const std::vector<std::string> names = types_to_read(options, available, file);
   std::vector<TypeData> types;
-  for (const std::string& n : names) types.push_back(read_type(h5.get(), n, file));
+  for (const std::string& n : names) types.push_back(read_type(h5, n, file));
 
   // Masses from the mass table where a type stores none (all its particles weigh the same).
   const std::vector<double> mass_table = hdf5::numeric_attribute(header.get(), "MassTable");

@@ -27,6 +27,7 @@ namespace voxspan {
 namespace {
 
 using hdf5::Handle;
+using hdf5::joined;
 using hdf5::member_names;
 
 // Whether PySPH stored a property (its "stored" attribute). h5py writes numpy's bool as an
@@ -110,12 +111,6 @@ bool moves(const ArrayData& a) {
   return false;
 }
 
-std::string joined(const std::vector<std::string>& names) {
-  std::string list;
-  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-  return list;
-}
-
 // The arrays a file's fluid is when none are named (see the file's comment), and why.
 std::vector<std::size_t> pick_fluid(const std::vector<std::string>& names,
                                     const std::vector<ArrayData>& arrays, std::string& why) {
@@ -187,13 +182,10 @@ void add_scenery(const ArrayData& a, ParticleData& data) {
 
 }  // namespace
 
-ParticleData read_pysph_hdf5(const std::filesystem::path& path,
-                             const ParticleReadOptions& options) {
-  hdf5::Quiet quiet;
-  const std::string file = path.string();
-  Handle h5 = hdf5::open_particle_file(path);
-  Handle particles(H5Gopen2(h5.get(), "particles", H5P_DEFAULT), H5Gclose);
-  if (!particles.valid()) throw make_error(file, ": no /particles group (not a PySPH output file)");
+ParticleData hdf5::read_pysph_layout(hid_t h5, const std::string& file,
+                                     const ParticleReadOptions& options) {
+  Handle particles(H5Gopen2(h5, "particles", H5P_DEFAULT), H5Gclose);
+  if (!particles.valid()) throw make_error(file, ": cannot open /particles");
 
   std::vector<std::string> available = member_names(particles.get());
   const bool everything = options.arrays.size() == 1 && options.arrays[0] == "all";
@@ -268,7 +260,7 @@ ParticleData read_pysph_hdf5(const std::filesystem::path& path,
     }
   }
 
-  Handle solver(H5Gopen2(h5.get(), "solver_data", H5P_DEFAULT), H5Gclose);
+  Handle solver(H5Gopen2(h5, "solver_data", H5P_DEFAULT), H5Gclose);
   if (solver.valid()) {
     if (auto t = hdf5::numeric_attribute(solver.get(), "t"); !t.empty()) data.time = t[0];
     if (auto count = hdf5::numeric_attribute(solver.get(), "count"); !count.empty())

@@ -233,14 +233,15 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
     for (int a = 0; a < 3; ++a)
       xyz[std::size_t(a)] = columns[std::size_t(found[std::size_t(a)])].first;
   }
-  const auto is_position = [&](std::size_t c) {
-    return int(c) == position || (position < 0 && columns[c].components == 1 &&
-                                  std::find(xyz.begin(), xyz.end(), columns[c].first) != xyz.end());
-  };
+  // The other columns are the attributes, in their order.
+  std::vector<Column> attribute_columns;
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    if (int(c) != position && (position >= 0 || columns[c].components != 1 ||
+                               std::find(xyz.begin(), xyz.end(), columns[c].first) == xyz.end()))
+      attribute_columns.push_back(columns[c]);
 
   ParticleData data;
-  for (std::size_t c = 0; c < columns.size(); ++c)
-    if (!is_position(c)) data.attributes.push_back({columns[c].name, columns[c].components, {}});
+  for (const Column& c : attribute_columns) data.attributes.push_back({c.name, c.components, {}});
   std::vector<double> values(header.size());
   // The rows after the header: the first row itself first where it is data.
   const auto next_row = [&](std::string& t) {
@@ -264,13 +265,10 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
         throw fail(line_no, "column \"" + header[f] + "\" is not a number: \"" +
                                 field_text(fields[f]) + "\"");
     data.positions.push_back({values[xyz[0]], values[xyz[1]], values[xyz[2]]});
-    std::size_t a = 0;
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (is_position(c)) continue;
-      for (int k = 0; k < columns[c].components; ++k)
-        data.attributes[a].values.push_back(float(values[columns[c].first + std::size_t(k)]));
-      ++a;
-    }
+    for (std::size_t a = 0; a < attribute_columns.size(); ++a)
+      for (int k = 0; k < attribute_columns[a].components; ++k)
+        data.attributes[a].values.push_back(
+            float(values[attribute_columns[a].first + std::size_t(k)]));
   }
   data.chosen = chosen;
   adopt_radius_attribute(data);

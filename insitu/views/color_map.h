@@ -61,6 +61,14 @@ struct ValueSpan {
   }
 };
 
+// Every rank's values seen, on every rank: one collective minimum (`comm`: a Communicator,
+// insitu/parallel/communicator.h) over the span's ends.
+template <class Comm> void span_over_ranks(Comm& comm, ValueSpan& v) {
+  double ends[3] = {v.lo, -v.hi, v.lo_positive};
+  comm.min(ends);
+  v.lo = ends[0], v.hi = -ends[1], v.lo_positive = ends[2];
+}
+
 // The automatic axis for the values `seen`: their smallest (on a log scale: smallest above 0)
 // to their largest, widened about them when (nearly) equal so that the map's middle shows;
 // [0, 1] ([1, 10] on a log scale) when there are none.

@@ -255,10 +255,7 @@ class ParticlesView final : public View {
   // The nearest glyph of all ranks per pixel on the root (ties: the lower rank), the value range
   // and the counts of all. Collective.
   void combine_ranks() {
-    ValueSpan& v = glyphs_.values;
-    double ends[3] = {v.lo, -v.hi, v.lo_positive};
-    comm_->min(ends);
-    v.lo = ends[0], v.hi = -ends[1], v.lo_positive = ends[2];
+    span_over_ranks(*comm_, glyphs_.values);
     const auto fields = GlyphCounts::fields(glyphs_.counts);
     std::array<std::int64_t, fields.size()> counts;
     for (std::size_t k = 0; k < fields.size(); ++k) counts[k] = *fields[k];

@@ -97,6 +97,11 @@ void scatter_slice(const std::vector<SphTerm>& near, SphKernel kernel, const Sli
   const int width = out.width, height = out.height;
   const double px = plane.width / width, py = plane.height / height;
   constexpr int kBand = 8;
+  // An index clamped in double first: a particle near the plane far outside the picture gives
+  // indices no int holds.
+  const auto index = [](double x, int lo, int hi) {
+    return int(std::clamp(x, double(lo) - 1, double(hi) + 1));
+  };
   tbb::parallel_for(0, (height + kBand - 1) / kBand, [&](int band) {
     const int j0 = band * kBand, j1 = std::min(height, j0 + kBand) - 1;
     for (const SphTerm& t : near) {
@@ -105,11 +110,6 @@ void scatter_slice(const std::vector<SphTerm>& near, SphKernel kernel, const Sli
       const double reach = std::sqrt(std::max(0.0, support * support - off * off));
       // Pixel centres at s = ((i + 0.5) / W - 0.5) width, t = (0.5 - (j + 0.5) / H) height.
       const double s = glm::dot(d, plane.u), v = glm::dot(d, plane.v);
-      // Clamped in double first: a particle near the plane far outside the picture gives
-      // indices no int holds.
-      const auto index = [](double x, int lo, int hi) {
-        return int(std::clamp(x, double(lo) - 1, double(hi) + 1));
-      };
       const int i_lo =
           std::max(0, index(std::ceil((s - reach + 0.5 * plane.width) / px - 0.5), 0, width));
       const int i_hi = std::min(

@@ -286,9 +286,7 @@ class VolumeView final : public View {
       }
       const Agreement agreed = comm_->agree(ok, failure);
       if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
-      double ends[3] = {found.lo, -found.hi, found.lo_positive};
-      comm_->min(ends);
-      found.lo = ends[0], found.hi = -ends[1], found.lo_positive = ends[2];
+      span_over_ranks(*comm_, found);
     }
     if (settings_.quantity.empty() && !settings_.range) return {0.0, 1.0};
     return color_axis(settings_.range, found, settings_.scale);

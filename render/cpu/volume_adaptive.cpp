@@ -1,5 +1,4 @@
 #include "render/cpu/volume_adaptive.h"
-#include "render/model/volume_host.h"
 
 #include <algorithm>
 #include <bit>
@@ -21,10 +20,10 @@ double relaxed(double level_width, double full_rate_width, double relax) {
 }  // namespace
 
 TransferBounds::TransferBounds(const VolumeOptions& o)
-    : log_(o.transfer.log), inv_length_(1 / double(float(o.opacity_length))) {
-  const model::VolumeHost host(o);  // the table's position as the compositing finds it
-  lo_ = double(host.u_tf_lo);
-  scale_ = double(host.u_tf_scale);
+    : log_(o.transfer.log),
+      lo_(double(o.transfer.place().lo)),
+      scale_(double(o.transfer.place().scale)),
+      inv_length_(1 / double(float(o.opacity_length))) {
   for (std::size_t k = 0; k < rgba_.size(); ++k) {
     rgba_[k] = glm::dvec4(o.transfer.rgba[k]);
     for (std::size_t ch = 0; ch < 4; ++ch)

@@ -115,7 +115,7 @@ class TransferBounds {
  private:
   static constexpr int kLevels = 9;  // 2^8 = kTransferEntries
   bool log_;
-  double lo_ = 0, scale_ = 1, inv_length_;
+  double lo_, scale_, inv_length_;
   // Per level j and entry k: the lowest and highest of entries k .. k + 2^j - 1, per channel
   // (r, g, b, alpha).
   std::array<std::array<std::array<double, 8>, kTransferEntries>, kLevels> table_{};
