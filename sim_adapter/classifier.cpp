@@ -23,6 +23,7 @@
 #include "cell_occupancy.h"
 #include "cell_sort.h"
 #include "first_error.h"
+#include "near_name.h"
 #include "parallel_scan.h"
 #include "positions.h"
 #include "voxspan/classify.h"
@@ -606,13 +607,10 @@ const Classification& Classifier::run(const ParticleView& view, const GridView& 
   attributes.clear();  // keeps its storage: a solver's steady loop allocates nothing here
   for (const std::string& name : options.attributes) {
     const AttributeView* a = view.find_attribute(name);
-    if (!a) {
-      std::string known;
-      for (int k = 0; k < view.attribute_count(); ++k)
-        known += (k ? ", " : "") + std::string(view.attribute(k).name);
-      throw make_error("attribute '", name, "' was asked for but the particle view has ",
-                       known.empty() ? std::string("no attributes") : "only: " + known);
-    }
+    if (!a)
+      throw make_error("attribute '", name,
+                       "' was asked for but the solver passes no attribute of ", "that name (",
+                       attributes_instead(view, name), ")");
     if (a->components != 1 && a->components != 3)
       throw make_error("attribute '", name, "' has ", a->components, " components (1 or 3)");
     for (int j = 0; j < a->components; ++j)

@@ -13,7 +13,7 @@
 #include <set>
 #include <vector>
 
-#include "insitu/config/yaml_reader.h"
+#include "sim_adapter/near_name.h"
 
 namespace voxspan {
 namespace {
@@ -37,7 +37,7 @@ std::string joined(const std::vector<std::string_view>& names) {
 // "unknown <what> \"<name>\" (did you mean \"<near>\"? <list>)".
 std::string unknown(std::string_view what, std::string_view name,
                     const std::vector<std::string_view>& known, std::string_view list) {
-  const std::string near = yaml::closest(name, known);
+  const std::string near = near_name(name, known);
   std::string text = "unknown " + std::string(what) + " \"" + std::string(name) + "\" (";
   if (!near.empty()) text += "did you mean \"" + near + "\"? ";
   return text + std::string(list) + ")";

@@ -9,37 +9,10 @@
 #include <string_view>
 #include <utility>
 
+#include "sim_adapter/near_name.h"
 #include "voxspan/error.h"
 
 namespace voxspan::yaml {
-namespace {
-
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
-}  // namespace
-
-std::string closest(std::string_view key, std::span<const std::string_view> allowed) {
-  std::string best;
-  std::size_t best_distance = 3;  // suggest only near misses
-  for (std::string_view candidate : allowed) {
-    std::size_t d = edit_distance(key, candidate);
-    if (d < best_distance) best_distance = d, best = std::string(candidate);
-  }
-  return best;
-}
 
 std::string Checker::where(const YAML::Mark& mark, const std::string& path) const {
   std::ostringstream s;
@@ -135,7 +108,7 @@ MapReader::MapReader(Checker& checker, const YAML::Node& node, std::string path,
         checker_.error(key_node, key_path, "was renamed '" + std::string(now) + "'");
         continue;
       }
-      std::string hint = closest(key, allowed);
+      std::string hint = near_name(key, allowed);
       std::string known;
       for (std::string_view k : allowed) known += (known.empty() ? "" : ", ") + std::string(k);
       checker_.error(key_node, key_path,

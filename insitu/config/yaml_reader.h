@@ -42,10 +42,6 @@ class Checker {
 // A YAML node as text for messages: scalars quoted, maps and sequences by kind.
 std::string describe(const YAML::Node& node);
 
-// The name in `allowed` nearest to `key` when it is a near miss (under 3 edits), else empty:
-// the "did you mean" of the messages.
-std::string closest(std::string_view key, std::span<const std::string_view> allowed);
-
 // The shortest text that reads back as exactly v ("0.8", not "0.80000000000000004").
 std::string number_text(double v);
 

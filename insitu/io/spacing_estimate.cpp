@@ -14,6 +14,19 @@ bool finite(const std::array<double, 3>& p) {
   return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
 }
 
+constexpr std::size_t kFullSearchLimit = 4096;
+
+double nearest_by_full_search(std::span<const std::array<double, 3>> positions, std::size_t i) {
+  const auto& p = positions[i];
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& q : positions) {
+    if (!finite(q)) continue;
+    const double d = std::hypot(q[0] - p[0], q[1] - p[1], q[2] - p[2]);
+    if (d > 0) best = std::min(best, d);
+  }
+  return best;
+}
+
 }  // namespace
 
 double estimate_particle_spacing(std::span<const std::array<double, 3>> positions,
@@ -65,6 +78,9 @@ double estimate_particle_spacing(std::span<const std::array<double, 3>> position
             if (d > 0) best = std::min(best, d);
           }
         }
+    // A sample alone in its neighbourhood (two particles far apart, a sparse line): in a small
+    // set its nearest neighbour is found by a full search, or the estimate would be the cell.
+    if (!std::isfinite(best) && n <= kFullSearchLimit) best = nearest_by_full_search(positions, i);
     if (std::isfinite(best)) nearest.push_back(best);
   }
   if (nearest.empty()) return cell;  // every sample alone in its neighbourhood: the mean spacing

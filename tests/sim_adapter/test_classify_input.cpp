@@ -226,9 +226,15 @@ TEST(ClassifyInput, AttributesFollowTheBoundaryOrder) {
   const std::string e = error_of(ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point))
                                      .with_scalar("density", density.data()),
                                  GridView(), o);
-  EXPECT_NE(e.find("attribute 'pressure' was asked for but the particle view has only: density"),
+  EXPECT_NE(e.find("attribute 'pressure' was asked for but the solver passes no attribute of that "
+                   "name (it passes: density)"),
             std::string::npos)
       << e;
+  o.attributes = {"densty"};  // a typo is named with its near miss
+  const std::string typo = error_of(ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point))
+                                        .with_scalar("density", density.data()),
+                                    GridView(), o);
+  EXPECT_NE(typo.find("(did you mean \"density\"? it passes: density)"), std::string::npos) << typo;
 }
 
 TEST(ClassifyInput, TooManyAttributesIsAnErrorNotACrash) {

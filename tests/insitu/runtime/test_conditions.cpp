@@ -394,9 +394,11 @@ TEST(ConditionSchedule, AMissingAttributeIsSaidOnceAndTheConditionIsFalse) {
   }
   const std::vector<std::string> errors = log.at(LogLevel::error);
   ASSERT_EQ(errors.size(), 1u) << log.all();
-  EXPECT_NE(errors[0].find("run.yaml:1:17: trigger.when \"velocty\": the solver passes no "
-                           "attribute of that name (it passes: pressure, velocity)"),
-            std::string::npos)
+  EXPECT_NE(
+      errors[0].find("run.yaml:1:17: trigger.when \"velocty\": the solver passes no "
+                     "attribute of that name (did you mean \"velocity\"? it passes: pressure, "
+                     "velocity)"),
+      std::string::npos)
       << errors[0];
 }
 
