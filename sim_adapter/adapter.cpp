@@ -93,6 +93,16 @@ const Classification& Adapter::Impl::classify(std::int64_t step, const ParticleV
     log_quietly(
         LogLevel::warning, "step ", step, ": left out ", c.counts.dropped_nonfinite,
         " particles with a NaN or infinite position, or a NaN, infinite or negative radius");
+  if (c.counts.not_in_grid > 0 &&
+      c.counts.not_in_grid + c.counts.dropped_nonfinite >= c.counts.particles) {
+    // Every finite particle outside the grid: a picture of nothing would hide the mismatch.
+    const GridGeometry& g = c.geometry;
+    throw make_error("none of the ", c.counts.not_in_grid, " particles is in a cell of the grid (",
+                     g.dims[0], " x ", g.dims[1], " x ", g.dims[2], " cells of ", g.cell_size,
+                     " from (", g.origin[0], ", ", g.origin[1], ", ", g.origin[2],
+                     ")): the grid's geometry or cell arrays do not match the positions (a wrong "
+                     "origin, cell size or stride?)");
+  }
   if (c.counts.not_in_grid > 0)
     log_quietly(LogLevel::warning, "step ", step, ": ", c.counts.not_in_grid,
                 " particles are in no cell of the grid and were left out");

@@ -144,6 +144,29 @@ TEST(Adapter, BadInputIsAStatusNotAnException) {
   EXPECT_EQ(adapter.last_stats().counts.particles, 0u);
 }
 
+// A grid that holds none of the particles (its origin in other units, a wrong stride) fails the
+// step by name; some particles outside it are left out with a warning.
+TEST(Adapter, AGridHoldingNoParticleIsAnError) {
+  QuietLog quiet;
+  std::vector<Point> pts;
+  test::add_lattice(pts, {0, 0, 0}, {4, 4, 4}, 1.0);
+  Adapter adapter(every(1));
+  const auto view = ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point));
+  GridGeometry far = test::cube_grid(2.0, 2);
+  far.origin = {1000, 0, 0};
+  const Status none = adapter.execute(0, 0, view, GridView::geometry_only(far));
+  EXPECT_EQ(none.code, StatusCode::invalid_input);
+  EXPECT_NE(none.message.find("none of the 64 particles is in a cell of the grid (2 x 2 x 2 cells "
+                              "of 2 from (1000, 0, 0))"),
+            std::string::npos)
+      << none.message;
+
+  GridGeometry half = test::cube_grid(2.0, 2);
+  half.dims[0] = 1;  // x in [0, 2): half the lattice
+  EXPECT_TRUE(adapter.execute(1, 0, view, GridView::geometry_only(half)).ok());
+  EXPECT_EQ(adapter.last_stats().counts.not_in_grid, 32u);
+}
+
 TEST(Adapter, PipelineExceptionsAreCaught) {
   QuietLog quiet;
   std::vector<Point> pts(3, Point{1, 1, 1});
