@@ -607,6 +607,7 @@ const Classification& Classifier::run(const ParticleView& view, const GridView& 
   attributes.clear();  // keeps its storage: a solver's steady loop allocates nothing here
   for (const std::string& name : options.attributes) {
     const AttributeView* a = view.find_attribute(name);
+    if (!a && options.skip_missing_attributes) continue;
     if (!a)
       throw make_error("attribute '", name,
                        "' was asked for but the solver passes no attribute of ", "that name (",

@@ -207,6 +207,7 @@ void read_output(MapReader& outs, const OutputConfigKind& kind, const TriggerSpe
   const std::string name(kind.name);
   const YAML::Node node = outs.find(name);
   if (out.follows_render_trigger) out.trigger = render_trigger;
+  if (node) out.source.where = outs.checker().where(node.Mark(), outs.path(name));
   kind.read(outs.checker(), node, outs.path(name), out);
   // An output on the render trigger that never fires is the top-level trigger's fault: said
   // there, once (read_outputs), not here for every output that follows it.

@@ -66,6 +66,9 @@ struct OutputSettings {
   TriggerSpec trigger;
   // Not a key: the kind's trigger defaults to the render trigger (PNG frames, stats lines).
   bool follows_render_trigger = false;
+  // Where the config gave the output ("run.yaml:7:3: outputs.vdb"), for what is found wrong
+  // only when the solver's data arrives (an attribute it does not pass).
+  ConfigSource source;
 
   OutputSettings(bool enabled_by_default, std::string default_folder, TriggerSpec default_trigger)
       : enabled(enabled_by_default), folder(std::move(default_folder)), trigger(default_trigger) {}
@@ -144,9 +147,7 @@ struct ViewSettings {
   bool operator==(const ViewSettings&) const = default;
   // The key path of one of the view's keys for messages: "run.yaml:12:5: views[2].quantity",
   // or the key alone for a default view.
-  std::string key_path(std::string_view key) const {
-    return source.where.empty() ? std::string(key) : source.where + "." + std::string(key);
-  }
+  std::string key_path(std::string_view key) const { return source.key_path(key, key); }
 
  protected:
   ViewSettings(const ViewSettings&) = default;

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <string_view>
 
 namespace voxspan {
 
@@ -25,6 +26,11 @@ namespace voxspan {
 struct ConfigSource {
   std::string where;
   bool operator==(const ConfigSource&) const { return true; }
+  // One of the section's keys for messages: "run.yaml:12:5: views[2].quantity", or `fallback`
+  // (the key's path alone) for a section the config did not give.
+  std::string key_path(std::string_view key, std::string_view fallback) const {
+    return where.empty() ? std::string(fallback) : where + "." + std::string(key);
+  }
 };
 
 struct TriggerSpec {

@@ -18,6 +18,7 @@ AdapterOptions adapter_options_for(const Config& config, AdapterOptions options)
     c.particle_spacing = *config.classification.particle_spacing;
   if (config.classification.full_count) c.full_count = int(*config.classification.full_count);
   c.validate = c.validate || config.classification.validate_grid;
+  c.skip_missing_attributes = true;  // the outputs that name one say so (snapshot_copy.h)
   for (const std::string& n : config.output_attributes())
     if (std::find(c.attributes.begin(), c.attributes.end(), n) == c.attributes.end())
       c.attributes.push_back(n);

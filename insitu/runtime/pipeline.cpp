@@ -600,6 +600,8 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
     render_ms = render.ms();
   } else {
     for (std::size_t i = 0; i < m.results.size(); ++i) m.results[i] = {m.views[i].name};
+    // A stats line of a step that rendered nothing has no views' figures (not the last ones').
+    for (auto& view : m.record.views) view.second.zero();
   }
   const Stopwatch outputs;
   OutputStep step{data, m.results, nullptr, m.orbit_pictures};

@@ -46,8 +46,11 @@ struct ClassifyOptions {
   // Ghost particles (past ParticleView::owned_count()) count towards the cells' occupancy
   // always; with this on they are also compacted when they are boundary particles.
   bool include_ghosts = true;
-  // Names of the particle attributes to compact beside the spheres.
+  // Names of the particle attributes to compact beside the spheres. One the view lacks is an
+  // error, or with skip_missing_attributes left out (the in-situ runtime's outputs that name it
+  // then fail alone, each naming its key, while the pictures and the other outputs go on).
   std::vector<std::string> attributes;
+  bool skip_missing_attributes = false;
   // A grid the adapter builds never has more cells than this, nor more than 64 per particle
   // (2^20 at least): its cells grow instead.
   std::size_t max_built_cells = std::size_t(1) << 27;

@@ -249,25 +249,39 @@ TEST(MidRun, FileSizeLimitFailsTheLargeFiles) {
   expect_run_went_on(r, "File too large");
 }
 
+// A 4 x 4 x 4 block at spacing 0.01, as x, y, z of each particle.
+std::vector<float> block_of_64() {
+  std::vector<float> xyz;
+  for (int i = 0; i < 64; ++i)
+    xyz.insert(xyz.end(), {0.01f * float(i % 4), 0.01f * float(i / 4 % 4), 0.01f * float(i / 16)});
+  return xyz;
+}
+
+// A config with one 64x48 view rendered every step and `outputs` (the map's lines) in `dir`.
+std::string one_view_every_step(const test::TempFolder& dir, const std::string& outputs) {
+  return "output_folder: " + dir.path().string() +
+         "\ntrigger: {every_steps: 1}\nviews: [{name: a, width: 64, height: 48}]\noutputs:" +
+         outputs;
+}
+
+AdapterOptions spacing_options() {
+  AdapterOptions options;
+  options.classify.particle_spacing = 0.01;
+  return options;
+}
+
 // Zero particles and NaN positions are valid steps for every output: pictures of the empty
 // environment, snapshots of nothing, the NaNs counted and left out.
 TEST(MidRun, EmptyAndNanStepsRenderAndWrite) {
   test::TempFolder dir;
   test::LogCapture log;
-  const std::string yaml = "output_folder: " + dir.path().string() + R"(
-trigger: {every_steps: 1}
-views: [{name: a, width: 64, height: 48}]
-outputs:
+  const std::string yaml = one_view_every_step(dir, R"(
   vdb: {enabled: true, trigger: {every_steps: 1}}
   vtk: {enabled: true, trigger: {every_steps: 1}}
-)";
-  AdapterOptions options;
-  options.classify.particle_spacing = 0.01;
-  Adapter adapter = adapter_from_config_text(yaml, options, "empty.yaml");
+)");
+  Adapter adapter = adapter_from_config_text(yaml, spacing_options(), "empty.yaml");
   EXPECT_TRUE(adapter.execute(1, 0.0, ParticleView()).ok()) << adapter.last_stats().status.message;
-  std::vector<float> xyz;
-  for (int i = 0; i < 64; ++i)
-    xyz.insert(xyz.end(), {0.01f * float(i % 4), 0.01f * float(i / 4 % 4), 0.01f * float(i / 16)});
+  std::vector<float> xyz = block_of_64();
   xyz[3 * 5] = std::nanf("");
   EXPECT_TRUE(adapter.execute(2, 0.1, ParticleView::aos(xyz.data(), 64)).ok())
       << adapter.last_stats().status.message;
@@ -280,6 +294,43 @@ outputs:
   EXPECT_TRUE(test::read_vdb(dir / "snapshots" / "fluid_00000002.vdb").ok);
   EXPECT_TRUE(test::read_vtp(dir / "vtk" / "particles_00000002.vtp").ok);
   EXPECT_EQ(log.at(LogLevel::error).size(), 0u) << log.all();
+}
+
+// An attribute the solver does not pass, named by an output (a typo the config check cannot
+// see): that output fails on its steps, naming its key, line and the near miss; the pictures, the
+// stats and the outputs that name no such attribute are all written.
+TEST(MidRun, AnOutputsUnknownAttributeFailsThatOutputAlone) {
+  test::TempFolder dir;
+  test::LogCapture log;
+  const std::string yaml = one_view_every_step(dir, R"(
+  stats: {enabled: true}
+  vdb: {enabled: true, trigger: {every_steps: 2}, attributes: [velocty]}
+  vtk: {enabled: true, trigger: {every_steps: 1}, attributes: [velocity]}
+)");
+  Adapter adapter = adapter_from_config_text(yaml, spacing_options(), "typo.yaml");
+  const std::vector<float> xyz = block_of_64();
+  const std::vector<float> velocity(3 * 64, 1.0f);
+  const ParticleView particles =
+      ParticleView::aos(xyz.data(), 64).with_vector("velocity", velocity.data());
+  EXPECT_TRUE(adapter.execute(1, 0.0, particles).ok()) << adapter.last_stats().status.message;
+  const Status vdb_step = adapter.execute(2, 0.1, particles);
+  EXPECT_FALSE(vdb_step.ok());
+  EXPECT_NE(vdb_step.message.find(
+                "outputs.vdb: typo.yaml:6:8: outputs.vdb.attributes \"velocty\": the solver "
+                "passes no attribute of that name (did you mean \"velocity\"? "
+                "it passes: velocity)"),
+            std::string::npos)
+      << vdb_step.message;
+  adapter.finish();
+  EXPECT_EQ(test::files_in(dir / "frames"),
+            (std::vector<std::string>{"a_00000001.png", "a_00000002.png"}));
+  EXPECT_TRUE(test::read_vtp(dir / "vtk" / "particles_00000002.vtp").ok);
+  EXPECT_FALSE(std::filesystem::exists(dir / "snapshots" / "fluid_00000002.vdb"));
+  std::ifstream stats(dir / "stats.jsonl");
+  std::string line;
+  int lines = 0;
+  while (std::getline(stats, line)) ++lines;
+  EXPECT_EQ(lines, 2);
 }
 
 // --- a writer queue that overflows ------------------------------------------------------

@@ -133,5 +133,35 @@ writer: {fsync: false}
   EXPECT_EQ(test::pvd_files(dir.path() / "vtk" / "particles.pvd"), vtp);
 }
 
+// Stats lines on every step, pictures on every other: a line of a step that rendered nothing
+// carries its views with every figure 0, not the last render step's figures again (which a
+// sum over the file would count twice).
+TEST(StatsLines, AStepThatRenderedNothingHasNoViewFigures) {
+  test::TempFolder dir;
+  const std::string yaml = "output_folder: " + dir.path().string() + R"(
+trigger: {every_steps: 2}
+views: [{name: v, width: 48, height: 32}]
+outputs: {stats: {trigger: {every_steps: 1}}}
+)";
+  dambreak::DamBreak sim(test::small_dambreak());
+  Adapter adapter = adapter_from_config_text(yaml, test::solver_options(sim), "run.yaml");
+  for (std::int64_t step = 1; step <= 4; ++step) {
+    sim.step();
+    const dambreak::Fluid& f = sim.fluid();
+    ASSERT_TRUE(adapter
+                    .execute(step, sim.time(),
+                             ParticleView::soa(f.x.data(), f.y.data(), f.z.data(), f.size()))
+                    .ok());
+  }
+  adapter.finish();
+  const std::vector<std::string> lines = test::read_lines(dir.path() / "stats.jsonl");
+  ASSERT_EQ(lines.size(), 4u);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string views = lines[i].substr(lines[i].find("\"views\":"));
+    const bool figures = std::regex_search(views, std::regex(":[0-9.e+-]*[1-9]"));
+    EXPECT_EQ(figures, i % 2 == 1) << lines[i];  // steps 2 and 4 rendered
+  }
+}
+
 }  // namespace
 }  // namespace voxspan

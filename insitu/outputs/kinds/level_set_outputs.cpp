@@ -20,10 +20,9 @@ std::vector<schema::Key<FluidLevelSetSettings>> fluid_level_set_keys() {
 }
 
 LevelSetOutput::LevelSetOutput(const OutputContext& context, std::optional<double> radius,
-                               std::span<const std::string> attributes, const char* label,
-                               WriteFile write_file)
+                               AttributeNames attributes, const char* label, WriteFile write_file)
     : label_(label),
-      attributes_(attributes.begin(), attributes.end()),
+      attributes_(std::move(attributes)),
       radius_(radius.value_or(context.particle_spacing > 0 ? 0.5 * context.particle_spacing : 0.0)),
       comm_(context.comm),
       jobs_(context.writer, context.slots, [write_file = std::move(write_file)](SnapshotCopy& s) {

@@ -51,7 +51,7 @@ class LevelSetOutput : public Output {
  public:
   using WriteFile = std::function<void(const VdbSnapshotInput&)>;
   LevelSetOutput(const OutputContext& context, std::optional<double> radius,
-                 std::span<const std::string> attributes, const char* label, WriteFile write_file);
+                 AttributeNames attributes, const char* label, WriteFile write_file);
 
   // Collective in an MPI job (every rank, every step it is due).
   void write(const OutputStep& step) final;
@@ -59,7 +59,7 @@ class LevelSetOutput : public Output {
 
  private:
   const char* const label_;
-  const std::vector<std::string> attributes_;
+  const AttributeNames attributes_;
   const double radius_;  // 0: the spheres' own radii
   Communicator* const comm_;
   SnapshotCopy gathered_;  // with ranks: the job's whole snapshot, on the root

@@ -54,7 +54,7 @@ const schema::Section<MeshSettings>& mesh_section() {
 class MeshOutput final : public LevelSetOutput {
  public:
   MeshOutput(const MeshSettings& s, const OutputContext& c)
-      : LevelSetOutput(c, s.radius, s.attributes, "fluid mesh",
+      : LevelSetOutput(c, s.radius, attribute_names(s, "mesh"), "fluid mesh",
                        [surface = s.surface, format = s.format, folder = c.folder,
                         fsync = c.fsync](const FluidMeshInput& input) {
                          const char* extension = format == MeshFormat::ply ? "ply" : "obj";

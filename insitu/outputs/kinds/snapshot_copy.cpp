@@ -5,22 +5,28 @@
 #include <cstring>
 
 #include "insitu/parallel/byte_packing.h"
+#include "sim_adapter/near_name.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
 
-void SnapshotCopy::fill(const StepData& data, std::span<const std::string> names, double radius) {
+void SnapshotCopy::fill(const StepData& data, const AttributeNames& names, double radius) {
   step = data.step;
   time = data.time;
   spheres.assign(data.boundary.begin(), data.boundary.end());
   if (radius > 0)
     for (ParticleSphere& s : spheres) s.radius = float(radius);
-  attributes.resize(names.size());
-  for (std::size_t k = 0; k < names.size(); ++k) {
+  attributes.resize(names.names.size());
+  for (std::size_t k = 0; k < names.names.size(); ++k) {
+    const std::string& name = names.names[k];
     const auto found = std::find_if(data.attributes.begin(), data.attributes.end(),
-                                    [&](const Attribute& a) { return a.name == names[k]; });
-    if (found == data.attributes.end())
-      throw make_error("attribute \"", names[k], "\" was not compacted by the adapter");
+                                    [&](const Attribute& a) { return a.name == name; });
+    if (found == data.attributes.end()) {
+      if (data.particles == nullptr || data.particles->find_attribute(name) != nullptr)
+        throw make_error("attribute \"", name, "\" was not compacted by the adapter");
+      throw make_error(names.key, " \"", name, "\": the solver passes no attribute of that name (",
+                       attributes_instead(*data.particles, name), ")");
+    }
     attributes[k].assign(found->view());
   }
   cells.assign(data.cells);

@@ -6,14 +6,29 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "insitu/config/settings.h"
 #include "insitu/parallel/communicator.h"
 #include "voxspan/adapter.h"
 #include "voxspan/attribute.h"
 #include "voxspan/cell_states.h"
 
 namespace voxspan {
+
+// The attributes an output names, with its key for messages ("run.yaml:7:3:
+// outputs.vdb.attributes").
+struct AttributeNames {
+  std::vector<std::string> names;
+  std::string key;
+};
+// Those of `outputs.<kind>`.
+inline AttributeNames attribute_names(const OutputSettings& s, std::string_view kind) {
+  const std::span<const std::string> names = s.needed_attributes();
+  const std::string path = "outputs." + std::string(kind) + ".attributes";
+  return {{names.begin(), names.end()}, s.source.key_path("attributes", path)};
+}
 
 struct SnapshotCopy {
   std::vector<ParticleSphere> spheres;
@@ -23,8 +38,9 @@ struct SnapshotCopy {
   double time = 0;
 
   // Copies the step; every sphere's radius becomes `radius` when it is > 0. Throws
-  // voxspan::Error when the adapter did not compact one of `names`.
-  void fill(const StepData& data, std::span<const std::string> names, double radius = 0);
+  // voxspan::Error when the adapter did not compact one of `names`: with their key and what the
+  // solver passes instead where it passes no such attribute.
+  void fill(const StepData& data, const AttributeNames& names, double radius = 0);
   // In an MPI job, every rank's copy gathered on the root (collective): the spheres and the
   // attributes one after the other in rank order, the cell states of every rank's grid in one
   // grid over them all (they must share a cell size and lie on one lattice). Returns whether

@@ -32,7 +32,7 @@ const schema::Section<VdbSettings>& vdb_section() {
 class VdbOutput final : public LevelSetOutput {
  public:
   VdbOutput(const VdbSettings& s, const OutputContext& c)
-      : LevelSetOutput(c, s.radius, s.attributes, "VDB snapshot",
+      : LevelSetOutput(c, s.radius, attribute_names(s, "vdb"), "VDB snapshot",
                        [snapshot = s.snapshot, folder = c.folder,
                         fsync = c.fsync](const VdbSnapshotInput& input) {
                          write_vdb_snapshot(folder / step_file_name("fluid", input.step, "vdb"),

@@ -42,6 +42,7 @@ class VtkOutput final : public Output {
  public:
   VtkOutput(const VtkSettings& s, const OutputContext& c)
       : settings_(s),
+        attributes_(attribute_names(s, "vtk")),
         folder_(c.folder),
         fsync_(c.fsync),
         rank_(c.comm != nullptr ? c.comm->rank() : 0),
@@ -53,8 +54,7 @@ class VtkOutput final : public Output {
   }
 
   void write(const OutputStep& step) override {
-    jobs_.submit("VTK files",
-                 [&](SnapshotCopy& copy) { copy.fill(step.data, settings_.attributes); });
+    jobs_.submit("VTK files", [&](SnapshotCopy& copy) { copy.fill(step.data, attributes_); });
   }
 
   OutputTally tally() const override { return jobs_.tally(); }
@@ -96,6 +96,7 @@ class VtkOutput final : public Output {
   }
 
   const VtkSettings settings_;
+  const AttributeNames attributes_;
   const std::filesystem::path folder_;
   const bool fsync_;
   const int rank_, ranks_;

@@ -48,8 +48,11 @@ Box differing(const FloatImage& a, const FloatImage& b) {
 TEST(Annotations, TheColourBarsTitleCarriesTheUnitsAboveTheBar) {
   const Box d = differing(picture("caption: '', units: m/s"), picture("caption: ''"));
   ASSERT_LE(d.x0, d.x1) << "the units changed nothing";
-  // The title row: above the bar (its top at a tenth of the height), flush with its right edge.
-  EXPECT_LT(d.y1, kHeight / 10 - 3);
+  // The title row: above the bar (its top at a tenth of the height) and its top value's label
+  // (centred on the bar's top) with at least 4 blank rows between (3 read as one line), flush
+  // with the bar's right edge.
+  const int s = text_scale(kHeight), label_top = kHeight / 10 - 7 * s / 2 - s;
+  EXPECT_LT(d.y1, label_top - 4 * s);
   EXPECT_GT(d.x0, kWidth / 2);
 }
 
