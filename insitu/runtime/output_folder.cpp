@@ -1,6 +1,7 @@
 #include "insitu/runtime/output_folder.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -14,7 +15,7 @@ namespace voxspan {
 std::vector<std::filesystem::path> prepare_output_folder(const std::filesystem::path& folder,
                                                          std::string_view what) {
   auto fail = [&](const std::string& why) -> Error {
-    return make_error("cannot use ", what, " folder ", folder.string(), ": ", why);
+    return make_error("cannot use ", what, " ", folder.string(), ": ", why);
   };
   if (folder.empty()) throw fail("the folder name is empty");
   std::error_code ec;
@@ -39,10 +40,39 @@ std::vector<std::filesystem::path> prepare_output_folders(const Config& config) 
   for (const ConfiguredOutput& o : config.outputs) {
     if (!o.settings->enabled) continue;
     const std::vector<std::filesystem::path> now =
-        prepare_output_folder(config.folder_of(*o.settings), "outputs." + o.kind);
+        prepare_output_folder(config.folder_of(*o.settings), "outputs." + o.kind + " folder");
     made.insert(made.end(), now.begin(), now.end());
   }
   return made;
+}
+
+FolderLock::FolderLock(const std::filesystem::path& folder) : file_(folder / ".voxspan.lock") {
+  fd_ = ::open(file_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0)
+    throw make_error("cannot lock output folder ", folder.string(), ": ", std::strerror(errno));
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    std::string holder(256, '\0');
+    const ssize_t n = ::pread(fd_, holder.data(), holder.size() - 1, 0);
+    holder.resize(n > 0 ? std::size_t(n) : 0);
+    while (!holder.empty() && (holder.back() == '\n' || holder.back() == '\0')) holder.pop_back();
+    ::close(fd_);
+    throw make_error("output folder ", folder.string(), " is in use by another run (",
+                     holder.empty() ? std::string("its lock file is empty") : holder,
+                     "): give each run its own output_folder");
+  }
+  char host[256] = {};
+  ::gethostname(host, sizeof host - 1);
+  const std::string holder = "process " + std::to_string(::getpid()) + " on " + host + "\n";
+  if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, holder.data(), holder.size(), 0) < 0) {
+    // The lock holds without its text; the other run's message then says less.
+  }
+}
+
+FolderLock::~FolderLock() {
+  // Removed while still locked: a run that opens it now locks a file no longer in the folder
+  // and makes its own, so at worst the two runs' start-ups race as they would without a lock.
+  ::unlink(file_.c_str());
+  ::close(fd_);
 }
 
 void remove_empty_folders(const std::vector<std::filesystem::path>& made) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -12,7 +13,8 @@
 namespace voxspan {
 
 // Creates folder (and its parents) when missing, then proves it writable by creating and
-// removing a probe file. Throws voxspan::Error "cannot use <what> folder <path>: <why>".
+// removing a probe file. Throws voxspan::Error "cannot use <what> <path>: <why>" (what:
+// "outputs.png folder", "output_folder").
 // Returns the folders it made, deepest first.
 std::vector<std::filesystem::path> prepare_output_folder(const std::filesystem::path& folder,
                                                          std::string_view what);
@@ -20,6 +22,23 @@ std::vector<std::filesystem::path> prepare_output_folder(const std::filesystem::
 // prepare_output_folder for the folder of every enabled output; returns the folders made,
 // each before its parents.
 std::vector<std::filesystem::path> prepare_output_folders(const Config& config);
+
+// A run's hold on its output folder, so that two runs never write into one (their stats lines
+// spliced, their series lists each missing the other's files): a file `.voxspan.lock` in it
+// holding the run's process id and host, locked (flock) until the run's finish() or end and
+// removed then.
+class FolderLock {
+ public:
+  // Throws voxspan::Error naming the folder and the holder when another run holds it.
+  explicit FolderLock(const std::filesystem::path& folder);
+  ~FolderLock();
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  std::filesystem::path file_;
+  int fd_ = -1;
+};
 
 // Removes those of `made` that are empty (a run that failed before writing a file leaves
 // nothing behind; one that wrote keeps its folders).

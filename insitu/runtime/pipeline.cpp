@@ -41,11 +41,38 @@ Config with_log_level(const Config& config) {
   return config;
 }
 
+// The run's hold on output_folder (on the root, where an output writes under it), taken before
+// anything is written there; a folder that holds an earlier run's files is said once.
+std::unique_ptr<FolderLock> lock_output_folder(const Config& config, const Communicator* comm,
+                                               std::vector<std::filesystem::path>& made) {
+  if (comm != nullptr && !comm->root()) return nullptr;
+  const bool under = std::any_of(config.outputs.begin(), config.outputs.end(), [&](const auto& o) {
+    return o.settings->enabled && !std::filesystem::path(o.settings->folder).is_absolute();
+  });
+  if (!under) return nullptr;
+  const std::filesystem::path folder = config.output_folder;
+  std::error_code ec;
+  bool earlier = false;  // a file other than a lock a killed run left
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec))
+    earlier = earlier || entry.path().filename() != ".voxspan.lock";
+  made = prepare_output_folder(folder, "output_folder");
+  auto lock = std::make_unique<FolderLock>(folder);
+  if (earlier)
+    log_warning("output folder ", folder.string(),
+                " holds files of an earlier run: files of the "
+                "same names are replaced, the others stay (a new output_folder keeps runs apart)");
+  return lock;
+}
+
 // Folders first: a bad folder is reported before the (slower) GL start-up. Ranks on one node
 // take its GPUs in turn unless the config names one.
 gl::ContextOptions prepared(const Config& config, const Communicator* comm,
-                            std::vector<std::filesystem::path>& made) {
+                            std::vector<std::filesystem::path>& made,
+                            std::unique_ptr<FolderLock>& lock) {
+  std::vector<std::filesystem::path> made_above;  // output_folder and its parents, removed last
+  lock = lock_output_folder(config, comm, made_above);
   made = prepare_output_folders(config);
+  made.insert(made.end(), made_above.begin(), made_above.end());
   const int device = config.renderer.gpu_device ? int(*config.renderer.gpu_device)
                      : comm != nullptr          ? comm->node_rank()
                                                 : -1;
@@ -137,6 +164,7 @@ struct InsituPipeline::Impl {
   std::int64_t last_step = std::numeric_limits<std::int64_t>::min();
 
   std::vector<std::filesystem::path> made_folders;  // removed at the end if no step ran
+  std::unique_ptr<FolderLock> folder_lock;          // released before they are
   bool processed_any = false;
   BackendChoice backend;  // its GL context, when the GL renderer draws
   std::thread::id gl_thread = std::this_thread::get_id();
@@ -158,8 +186,8 @@ struct InsituPipeline::Impl {
         comm(communicator),
         schedule(config, communicator),
         plan(schedule.blank()),
-        backend(
-            choose_backend(config.renderer.backend, prepared(config, communicator, made_folders))),
+        backend(choose_backend(config.renderer.backend,
+                               prepared(config, communicator, made_folders, folder_lock))),
         recorder(make_recorder(backend)),
         writer(config.writer),
         scene(communicator) {
@@ -196,6 +224,7 @@ struct InsituPipeline::Impl {
     for (OutputState& o : outputs)
       if (o.output) o.output->close();
     outputs.clear();  // their files closed (an unused stats file removed) before the folders
+    folder_lock.reset();
     // Only where no step ran: under MPI another rank may still be writing into a folder
     // that is empty here.
     if (!processed_any) remove_empty_folders(made_folders);
@@ -626,6 +655,9 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
 void InsituPipeline::finish() {
   impl_->writer.drain();
   if (impl_->live) impl_->live->finish();
+  // The run's files are written: the folder is free for the next run (a solver or a Python
+  // `with` block may make it before this adapter goes).
+  impl_->folder_lock.reset();
 }
 
 PipelineTotals InsituPipeline::totals() const {

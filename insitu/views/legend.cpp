@@ -258,11 +258,12 @@ void draw_color_bar(FloatImage& picture, ColorMap map, const ColorAxis& axis,
   label(axis.hi, top);
   label(axis.value(0.5), (top + bottom - 1) / 2);
   label(axis.lo, bottom - 1);
-  // Above the top value's label with a blank line's height between them (read as one line
-  // otherwise), flush with the bar's outer edge.
+  // Above the top value's label with a line's height between them where the picture has room
+  // (closer, they read as one line), flush with the bar's outer edge.
   const int title_x = side == BarSide::right ? x0 + bar - text_width(title, s) : x0;
-  const int title_y = top - 7 * s / 2 - 7 * s - 7 * s;
-  draw_text(picture, std::max(0, title_x), std::max(s, title_y), title, s);
+  const int label_top = top - 7 * s / 2, spaced = label_top - 7 * s - 7 * s;
+  draw_text(picture, std::max(0, title_x), spaced >= s ? spaced : label_top - 3 * s - 7 * s, title,
+            s);
 }
 
 namespace {

@@ -68,7 +68,7 @@ TEST(StartUp, OutputFolderThatCannotBeWrittenFailsBeforeStepOne) {
   std::ofstream(dir / "a-file") << "x";
   // A folder under a regular file, and a folder in /proc: neither can exist (root included).
   std::string e = start_error("output_folder: " + (dir / "a-file").string() + "/run\n");
-  EXPECT_NE(e.find("cannot use outputs.png folder " + (dir / "a-file").string() + "/run/frames"),
+  EXPECT_NE(e.find("cannot use output_folder " + (dir / "a-file").string() + "/run: Not a "),
             std::string::npos)
       << e;
   e = start_error(
@@ -124,6 +124,37 @@ TEST(StartUp, ARunThatWroteNothingLeavesNothing) {
   }
   EXPECT_TRUE(std::filesystem::exists(out / "stats.jsonl"));
   EXPECT_FALSE(test::files_in(out / "frames").empty());
+}
+
+// Two runs never share an output folder (their stats lines would splice): the second is refused
+// at start-up, naming the folder and the run that holds it. A run into a folder that an earlier
+// run wrote says so, once; the lock goes with its run.
+TEST(StartUp, ARunsOutputFolderIsItsOwn) {
+  test::TempFolder dir;
+  const std::filesystem::path out = dir / "out";
+  const std::string yaml = "output_folder: " + out.string() + "\n";
+  dambreak::DamBreak sim(test::small_dambreak());
+  test::LogCapture log;
+  {
+    Adapter first = adapter_from_config_text(yaml, test::solver_options(sim), "run.yaml");
+    const std::string e = test::error_message([&] {
+      Adapter second = adapter_from_config_text(yaml, test::solver_options(sim), "run.yaml");
+    });
+    EXPECT_NE(e.find("output folder " + out.string() + " is in use by another run (process " +
+                     std::to_string(::getpid()) + " on "),
+              std::string::npos)
+        << e;
+    EXPECT_NE(e.find("give each run its own output_folder"), std::string::npos) << e;
+    EXPECT_EQ(test::run_dambreak(sim, first, 1).failed, 0);
+  }
+  EXPECT_FALSE(std::filesystem::exists(out / ".voxspan.lock"));
+  EXPECT_EQ(log.at(LogLevel::warning).size(), 0u) << log.all();
+  { Adapter again = adapter_from_config_text(yaml, test::solver_options(sim), "run.yaml"); }
+  const std::vector<std::string> warnings = log.at(LogLevel::warning);
+  ASSERT_EQ(warnings.size(), 1u) << log.all();
+  EXPECT_NE(warnings[0].find("output folder " + out.string() + " holds files of an earlier run"),
+            std::string::npos)
+      << warnings[0];
 }
 
 // --- a disk that fills mid-run ----------------------------------------------------------

@@ -78,7 +78,10 @@ TEST(RenderParticles, RendersEveryFileWithTheConfig) {
   // b.xyz has no pressure column: its step fails, named, and the run goes on.
   ASSERT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("particle spacing 0.01 (estimated"), std::string::npos) << r.out;
-  EXPECT_NE(r.err.find(dir.path().string() + "/b.xyz: attribute 'pressure'"), std::string::npos)
+  EXPECT_NE(r.err.find(dir.path().string() + "/b.xyz: outputs.vtk: " + dir.path().string() +
+                       "/offline.yaml:5:8: outputs.vtk.attributes \"pressure\": the solver "
+                       "passes no attribute of that name (it passes none)"),
+            std::string::npos)
       << r.err;
   EXPECT_NE(r.out.find("a.csv: step 0, 2744 particles"), std::string::npos) << r.out;
 

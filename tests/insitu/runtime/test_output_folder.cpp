@@ -17,7 +17,7 @@ namespace voxspan {
 namespace {
 
 std::string error_of(const std::filesystem::path& folder) {
-  return test::error_message([&] { prepare_output_folder(folder, "outputs.png"); });
+  return test::error_message([&] { prepare_output_folder(folder, "outputs.png folder"); });
 }
 
 TEST(OutputFolder, CreatesMissingFoldersAndLeavesNoProbe) {
