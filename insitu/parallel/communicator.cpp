@@ -64,6 +64,11 @@ Agreement Communicator::agree(bool ok, const std::string& message) {
   return {false, first, broadcast(rank_ == first ? message : std::string(), first)};
 }
 
+void Communicator::agree_or_throw(bool ok, const std::string& message) {
+  const Agreement agreed = agree(ok, message);
+  if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
+}
+
 void Communicator::min(std::span<double> v) {
   check(MPI_Allreduce(MPI_IN_PLACE, v.data(), as_count(v.size(), "min"), MPI_DOUBLE, MPI_MIN,
                       mpi_->comm),

@@ -146,8 +146,7 @@ class ParticlesView final : public View {
     }
     if (comm_ != nullptr) {
       // Every rank takes part even when its own part failed; then all throw together.
-      const Agreement a = comm_->agree(failure.empty(), failure);
-      if (!a.ok) throw make_error("rank ", a.rank, ": ", a.message);
+      comm_->agree_or_throw(failure.empty(), failure);
       auto t = recorder.host(pass::glyph_composite);
       combine_ranks();
       gather_trail_points();

@@ -152,10 +152,7 @@ void SliceLayer::sum_ranks(const ParticleView& particles, const SliceQuantity& q
     if (!failure.empty()) throw Error(failure);
     return;
   }
-  std::int64_t failed[1] = {failure.empty() ? 0 : 1};
-  comm_->sum(failed);
-  if (failed[0] > 0)
-    throw make_error(failure.empty() ? "the slice failed on another rank" : failure);
+  comm_->agree_or_throw(failure.empty(), failure);
   comm_->sum(values_.sum);
   comm_->sum(values_.weight);
   finish_slice(values_, q.shepard);

@@ -25,8 +25,7 @@ std::vector<std::byte> SpanCompositor::merge(const SpanImage& local, Recorder& r
 }
 
 void SpanCompositor::agree(bool ok, const std::string& failure) {
-  const Agreement agreed = comm_.agree(ok, failure);
-  if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
+  comm_.agree_or_throw(ok, failure);
 }
 
 bool SpanCompositor::composite(const SpanImage& local, std::int64_t bytes_before,

@@ -50,8 +50,7 @@ SurfaceColors::SurfaceColors(const ColorBySettings& settings, std::string view_n
 void SurfaceColors::sample(const ParticleView& particles, const Camera& camera,
                            const FloatImage* first_hit, const std::string& failure) {
   if (comm_ != nullptr) {
-    const Agreement a = comm_->agree(failure.empty(), failure);
-    if (!a.ok) throw make_error("rank ", a.rank, ": ", a.message);
+    comm_->agree_or_throw(failure.empty(), failure);
   } else if (!failure.empty()) {
     throw Error(failure);
   }
@@ -99,8 +98,7 @@ void SurfaceColors::sum_ranks(const ParticleView& particles) {
     if (!mine.empty()) throw Error(mine);
     return;
   }
-  const Agreement a = comm_->agree(mine.empty(), mine);
-  if (!a.ok) throw make_error(a.message);
+  comm_->agree_or_throw(mine.empty(), mine);
   comm_->sum(sums_.sum);
   comm_->sum(sums_.weight);
 }

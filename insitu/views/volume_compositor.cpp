@@ -174,8 +174,7 @@ bool zero(const FieldSums& f) { return f.s == 0 && f.w == 0; }
 }  // namespace
 
 void VolumeCompositor::agree(bool ok, const std::string& failure) {
-  const Agreement agreed = comm_.agree(ok, failure);
-  if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
+  comm_.agree_or_throw(ok, failure);
 }
 
 bool VolumeCompositor::render(VolumeRenderer& renderer, const Camera& camera,

@@ -251,8 +251,7 @@ class VolumeView final : public View {
       }
     }
     if (comm_ == nullptr) return made;
-    const Agreement agreed = comm_->agree(failure.empty(), failure);
-    if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
+    comm_->agree_or_throw(failure.empty(), failure);
     std::array<std::uint64_t, 2> header{made != nullptr ? 1u : 0u,
                                         made != nullptr ? made->version : 0};
     comm_->broadcast(std::as_writable_bytes(std::span(header)));
@@ -284,8 +283,7 @@ class VolumeView final : public View {
         ok = false;
         failure = e.what();
       }
-      const Agreement agreed = comm_->agree(ok, failure);
-      if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
+      comm_->agree_or_throw(ok, failure);
       span_over_ranks(*comm_, found);
     }
     if (settings_.quantity.empty() && !settings_.range) return {0.0, 1.0};

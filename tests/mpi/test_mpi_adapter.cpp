@@ -99,6 +99,38 @@ TEST(MpiAdapter, BadInputOnOneRankFailsTheStepOnAllWithOneErrorLine) {
   }
 }
 
+// An attribute one rank's solver does not pass, named by any kind of view: every rank's step
+// fails with the rank and its reason (the key, the attribute, what that rank passes), and rank 0
+// logs it once.
+TEST(MpiAdapter, AnAttributeOneRankLacksIsNamedWithTheRankByEveryViewKind) {
+  const std::vector<std::string> views = {
+      "{name: s, kind: slice, width: 64, height: 48, quantity: p}",
+      "{name: c, width: 64, height: 48, color_by: p}",
+      "{name: g, kind: particles, width: 64, height: 48, color_by: p}",
+      "{name: d, kind: volume, width: 64, height: 48, quantity: p}"};
+  for (const std::string& view : views) {
+    const auto folder = shared_folder("lacks-p");
+    test::LogCapture log;
+    const std::string yaml = "output_folder: " + folder.string() +
+                             "\ntrigger: {every_steps: 1}\nviews: [" + view + "]\n";
+    Adapter adapter = adapter_from_config_text(yaml, options(), MPI_COMM_WORLD);
+    const Block block(12);
+    const std::vector<double> p(block.x.size(), 1.0), q(block.x.size(), 1.0);
+    ParticleView particles = block.view();
+    if (rank() == 1) particles.with_scalar("q", q.data());
+    else particles.with_scalar("p", p.data());
+    const Status failed = adapter.execute(1, 0.1, particles);
+    EXPECT_FALSE(failed.ok()) << view;
+    EXPECT_NE(failed.message.find("rank 1: "), std::string::npos) << view << ": " << failed.message;
+    EXPECT_NE(failed.message.find("\"p\": the solver passes no attribute of that name (did you "
+                                  "mean \"q\"? it passes: q)"),
+              std::string::npos)
+        << view << ": " << failed.message;
+    EXPECT_EQ(log.at(LogLevel::error).size(), rank() == 0 ? 1u : 0u) << view << ": " << log.all();
+    adapter.finish();
+  }
+}
+
 // A rank that throws in the middle of the step, after every rank has classified and while the
 // others voxelize: its grid is longer than a GL 3D texture may be, so the GL renderer's
 // cell-state upload fails inside its render pass. Every rank abandons the step, one line names

@@ -45,8 +45,7 @@ void LevelSetOutput::write(const OutputStep& step) {
   } catch (const std::exception& e) {
     failure = e.what();
   }
-  const Agreement agreed = comm_->agree(failure.empty(), failure);
-  if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
+  comm_->agree_or_throw(failure.empty(), failure);
   if (!gathered_.gather(*comm_)) return;
   jobs_.submit(label_, [&](SnapshotCopy& copy) { std::swap(copy, gathered_); });
 }
