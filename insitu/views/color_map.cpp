@@ -5,6 +5,7 @@
 #include <span>
 
 #include "render/srgb8_image.h"
+#include "voxspan/log.h"
 
 namespace voxspan {
 namespace {
@@ -76,6 +77,20 @@ ColorAxis color_axis(const std::optional<std::array<double, 2>>& range, const Va
                      ColorScale scale) {
   if (range) return {(*range)[0], (*range)[1], scale};
   return display_axis(seen, scale);
+}
+
+ColorAxis ViewColorAxis::operator()(const std::optional<std::array<double, 2>>& range,
+                                    const ValueSpan& seen, ColorScale scale) const {
+  const bool values = seen.lo <= seen.hi, none_positive = !(seen.lo_positive <= seen.hi);
+  if (!range && scale == ColorScale::log && values && none_positive && !told_) {
+    told_ = true;
+    if (reports_)
+      log_warning("view ", view_, ": scale log, but no value of \"", quantity_,
+                  "\" is above 0 (they run from ", seen.lo, " to ", seen.hi,
+                  "): all take the map's lowest colour; scale: linear, or a range, shows them "
+                  "(said once)");
+  }
+  return color_axis(range, seen, scale);
 }
 
 }  // namespace voxspan

@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <string>
+#include <utility>
 
 #include <glm/glm.hpp>
 
@@ -76,5 +78,21 @@ ColorAxis display_axis(const ValueSpan& seen, ColorScale scale);
 // `range` where given (a config's), else display_axis.
 ColorAxis color_axis(const std::optional<std::array<double, 2>>& range, const ValueSpan& seen,
                      ColorScale scale);
+
+// A view's color_axis over its steps, which warns once (where `reports`: one rank) when a log
+// scale's automatic range finds values but none above 0 to start from: every one then takes
+// the map's lowest colour under a legend of [1, 10].
+class ViewColorAxis {
+ public:
+  ViewColorAxis(std::string view, std::string quantity, bool reports)
+      : view_(std::move(view)), quantity_(std::move(quantity)), reports_(reports) {}
+  ColorAxis operator()(const std::optional<std::array<double, 2>>& range, const ValueSpan& seen,
+                       ColorScale scale) const;
+
+ private:
+  std::string view_, quantity_;
+  bool reports_;
+  mutable bool told_ = false;  // a note, not the axis: the views' const paths may say it
+};
 
 }  // namespace voxspan

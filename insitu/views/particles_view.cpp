@@ -160,7 +160,7 @@ class ParticlesView final : public View {
     GlyphShading shading;
     shading.by_value = !settings_.color_by.empty();
     shading.map = settings_.color_map;
-    shading.axis = color_axis(settings_.range, glyphs_.values, settings_.scale);
+    shading.axis = color_axis_(settings_.range, glyphs_.values, settings_.scale);
     shading.ao_radius = 4 * selection.radius;
     shading.ao_strength = settings_.ambient_occlusion;
     shade_glyphs(glyphs_, step.camera, shading, out.picture);
@@ -314,6 +314,8 @@ class ParticlesView final : public View {
   const std::string trail_id_key_ = settings_.key_path("trails.id");
   const double spacing_;
   Communicator* const comm_;  // null in one process
+  const ViewColorAxis color_axis_{settings_.name, settings_.color_by,
+                                  comm_ == nullptr || comm_->root()};
   GlyphImage glyphs_;
   std::vector<GlyphHit> hits_;
   std::vector<TrailPoint> trail_points_;

@@ -86,7 +86,9 @@ std::vector<schema::Key<SliceField>> slice_field_keys() {
                                  "the plane's width, world units (the height follows the "
                                  "picture's aspect); `auto` = the fluid's box as the plane "
                                  "sees it")},
-      color_map_keys<S>("the colour map", "the step's smallest and largest"),
+      color_map_keys<S>("the colour map",
+                        "the step's smallest and largest, on a `log` scale without `shepard` "
+                        "those of the pixels at least half inside the fluid"),
       std::vector<schema::Key<S>>{schema::integer(
           "isolines", &S::isolines, 0, 64, "isolines, evenly spaced inside the range; 0: none")});
 }
@@ -105,7 +107,8 @@ SliceLayer::SliceLayer(const SliceField& field, std::string view_name, std::stri
       view_name_(std::move(view_name)),
       quantity_key_(key.empty() ? "quantity" : key + ".quantity"),
       spacing_(spacing),
-      comm_(comm) {
+      comm_(comm),
+      color_axis_(view_name_, field.quantity, comm == nullptr || comm->root()) {
   if (!field.smoothing_length && !(spacing > 0))
     throw make_error("view ", view_name_,
                      ": smoothing_length is `auto` but the particle spacing is unknown; set it");
@@ -158,11 +161,18 @@ void SliceLayer::sum_ranks(const ParticleView& particles, const SliceQuantity& q
   finish_slice(values_, q.shepard);
 }
 
+// On a log scale the raw sum's tail at the fluid's edge (1e-11 of the bulk where a kernel's
+// support ends) would set the range's low end and leave the fluid one colour: there the range
+// comes from the pixels at least half inside the fluid (their kernel weight, the SPH free
+// surface's usual level, at least 0.5), where any are.
 ColorAxis SliceLayer::axis() const {
-  ValueSpan seen;
-  for (std::size_t k = 0; k < values_.values.size(); ++k)
+  const bool tail = field_.scale == ColorScale::log && !field_.shepard;
+  ValueSpan seen, inside;
+  for (std::size_t k = 0; k < values_.values.size(); ++k) {
     if (values_.weight[k] > 0) seen.add(values_.values[k]);
-  return color_axis(field_.range, seen, field_.scale);
+    if (tail && values_.weight[k] >= 0.5) inside.add(values_.values[k]);
+  }
+  return color_axis_(field_.range, inside.lo <= inside.hi ? inside : seen, field_.scale);
 }
 
 // The colour of plane pixel k (which a particle reaches): the map, darkened on an isoline (a

@@ -116,6 +116,7 @@ class SliceLayer {
   const std::string quantity_key_;
   const double spacing_;
   Communicator* const comm_;  // null in one process
+  const ViewColorAxis color_axis_;
   SlicePlane plane_;
   SliceImage values_;
   std::int64_t misses_ = 0;

@@ -35,7 +35,8 @@ SurfaceColors::SurfaceColors(const ColorBySettings& settings, std::string view_n
     : settings_(settings),
       bar_title_(color_bar_title(settings.color_by, settings.units)),
       key_(std::move(key)),
-      comm_(comm) {
+      comm_(comm),
+      color_axis_(view_name, settings.color_by, comm == nullptr || comm->root()) {
   if (!(spacing > 0) || !std::isfinite(spacing))
     throw make_error("view ", view_name,
                      ": color_by needs the particle spacing (its smoothing length is 1.3 "
@@ -106,7 +107,7 @@ void SurfaceColors::sum_ranks(const ParticleView& particles) {
 ColorAxis SurfaceColors::axis() const {
   ValueSpan seen;
   for (double v : values_) seen.add(v);
-  return color_axis(settings_.range, seen, settings_.scale);
+  return color_axis_(settings_.range, seen, settings_.scale);
 }
 
 double SurfaceColors::value(int x, int y) const {

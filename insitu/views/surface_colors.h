@@ -82,6 +82,7 @@ class SurfaceColors {
   const std::string key_;
   SliceQuantity quantity_;
   Communicator* const comm_;  // null in one process
+  const ViewColorAxis color_axis_;
   ViewFrame frame_;
   std::vector<float> distances_;        // per pixel, from the shading process
   std::vector<std::int64_t> point_of_;  // per pixel: its index in points_, -1: no hit

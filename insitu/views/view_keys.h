@@ -49,7 +49,7 @@ std::vector<schema::Key<S>> color_map_keys(std::string map_help, std::string ran
       schema::choice("scale", &S::scale, kColorScaleNames,
                      "how the values spread along the map: `linear`, or `log` (by their "
                      "logarithm, for fields spanning decades; values at or under 0 take "
-                     "its lowest colour)"),
+                     "its lowest colour, and a view with none above 0 says so)"),
       schema::text("units", &S::units,
                    "the values' units, shown after the colour bar's title (the quantity's "
                    "name): `m/s` on `velocity` gives \"velocity [m/s]\"; empty: the name alone")};

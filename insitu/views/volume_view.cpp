@@ -287,7 +287,7 @@ class VolumeView final : public View {
       span_over_ranks(*comm_, found);
     }
     if (settings_.quantity.empty() && !settings_.range) return {0.0, 1.0};
-    return color_axis(settings_.range, found, settings_.scale);
+    return color_axis_(settings_.range, found, settings_.scale);
   }
 
   // The step's owned particles as the renderer reads them; returns the span of their values.
@@ -368,6 +368,8 @@ class VolumeView final : public View {
   std::unique_ptr<VolumeRenderer> renderer_;
   Communicator* const comm_;                    // null in one process
   std::optional<VolumeCompositor> compositor_;  // in an MPI job
+  const ViewColorAxis color_axis_{settings_.name, settings_.quantity,
+                                  comm_ == nullptr || comm_->root()};
   SceneryLayer scenery_;
   Backdrop received_;               // an MPI job's walls, on the ranks but the root
   std::uint64_t sent_version_ = 0;  // the walls' version last sent to them

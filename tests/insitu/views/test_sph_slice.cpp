@@ -9,9 +9,12 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "insitu/views/color_map.h"
+#include "insitu/views/slice_layer.h"
+#include "tests/support/log_capture.h"
 #include "voxspan/error.h"
 
 namespace voxspan {
@@ -261,6 +264,42 @@ TEST(SphSlice, AMissingQuantityOrVolumeIsAnErrorNamingIt) {
   EXPECT_THROW(interpolate_slice(s.view(), q, plane, 8, 8, image), Error);
   q.rest_volume = kSpacing * kSpacing * kSpacing;
   EXPECT_NO_THROW(interpolate_slice(s.view(), q, plane, 8, 8, image));
+}
+
+// A log scale's automatic range on a slice without Shepard normalisation starts inside the fluid,
+// not in the kernel's tail at its edge; a field with no value above 0 is said once.
+TEST(SliceLayer, ALogScalesAutomaticRangeStartsInsideTheFluid) {
+  Particles s(20, 8, 8);
+  for (std::size_t i = 0; i < s.x.size(); ++i) s.field[i] = std::pow(10.0, 1 + 1.5 * s.x[i]);
+  Bounds box;
+  box.lo = {0, 0, 0}, box.hi = {2, 0.8, 0.8};
+  for (const bool shepard : {false, true}) {
+    SliceField f;
+    f.quantity = "field";
+    f.scale = ColorScale::log;
+    f.shepard = shepard;
+    SliceLayer layer(f, "s", "views[0]", kSpacing, nullptr);
+    layer.interpolate(s.view(), box, {0, 0, 1}, 1, 96, 48);
+    const ColorAxis axis = layer.axis();
+    EXPECT_GT(axis.lo, 5.0) << "shepard " << shepard;  // the field's least is 10 or so
+    EXPECT_LT(axis.hi, 1e4) << "shepard " << shepard;
+  }
+  for (double& v : s.field) v = -v;
+  SliceField f;
+  f.quantity = "field";
+  f.scale = ColorScale::log;
+  SliceLayer layer(f, "s", "views[0]", kSpacing, nullptr);
+  test::LogCapture log;
+  for (std::int64_t step = 1; step <= 2; ++step) {
+    layer.interpolate(s.view(), box, {0, 0, 1}, step, 96, 48);
+    const ColorAxis axis = layer.axis();
+    EXPECT_EQ(axis.lo, 1.0);
+  }
+  const std::vector<std::string> warnings = log.at(LogLevel::warning);
+  ASSERT_EQ(warnings.size(), 1u) << log.all();
+  EXPECT_NE(warnings[0].find("view s: scale log, but no value of \"field\" is above 0"),
+            std::string::npos)
+      << warnings[0];
 }
 
 TEST(ColorMap, EndsAreThePublishedColoursAndLuminanceRisesAlongViridis) {
