@@ -13,10 +13,12 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <deque>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -196,18 +198,37 @@ void build_step(StepArrays& s, const py::object& x, const py::object& y, const p
     s.view.with_owned(*owned);
   }
   if (!radius.is_none()) {
-    if (py::isinstance<py::array>(radius)) s.view.with_radii(column(radius, "radius", n));
-    else s.view.with_radius(radius.cast<double>());
+    if (py::isinstance<py::array>(radius)) {
+      s.view.with_radii(column(radius, "radius", n));
+    } else {
+      const double r = radius.cast<double>();
+      if (!(r > 0 && std::isfinite(r)))
+        throw py::value_error("radius = " + py::repr(radius).cast<std::string>() +
+                              " is not a positive finite number (None: the adapter's)");
+      s.view.with_radius(r);
+    }
   }
   if (scalars.size() + vectors.size() > std::size_t(ParticleView::kMaxAttributes))
     throw py::value_error("at most " + std::to_string(ParticleView::kMaxAttributes) +
                           " attributes per step");
-  for (auto [key, value] : scalars) {
+  // A name given twice (a scalar and a vector) would hide one of them; "" names nothing.
+  std::set<std::string> seen;
+  const auto named = [&](const py::handle& key, const char* dict) -> const std::string& {
+    if (!py::isinstance<py::str>(key))
+      throw py::type_error(std::string(dict) + ": attribute names must be str, got " +
+                           py::repr(key).cast<std::string>());
     const std::string& name = s.names.emplace_back(py::str(key));
+    if (name.empty()) throw py::value_error(std::string(dict) + ": an attribute name is empty");
+    if (!seen.insert(name).second)
+      throw py::value_error("the attribute '" + name + "' is given twice (in scalars and vectors)");
+    return name;
+  };
+  for (auto [key, value] : scalars) {
+    const std::string& name = named(key, "scalars");
     s.view.with_attribute({name, 1, {column(value, "scalars['" + name + "']", n), {}, {}}});
   }
   for (auto [key, value] : vectors) {
-    const std::string& name = s.names.emplace_back(py::str(key));
+    const std::string& name = named(key, "vectors");
     const std::string argument = "vectors['" + name + "']";
     std::array<StridedScalars, 3> c;
     if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {

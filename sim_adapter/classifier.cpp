@@ -103,6 +103,10 @@ std::int64_t particle_at(const CellRanges& r, std::int64_t k) {
 // The particles' radii: per particle from the view, else the view's one radius, the option's,
 // or the spacing.
 detail::Radii radii_of(const ParticleView& view, const ClassifyOptions& options) {
+  const double given = view.uniform_radius();  // 0: none given
+  if (given != 0 && !(given > 0 && std::isfinite(given)))
+    throw make_error("the particle view's radius ", given,
+                     " is not a positive finite number (0 leaves the options' radius)");
   detail::Radii radii{view.radii(), 0.f};
   const double uniform = view.uniform_radius() > 0 ? view.uniform_radius()
                          : options.radius > 0      ? options.radius
@@ -603,6 +607,15 @@ const Classification& Classifier::run(const ParticleView& view, const GridView& 
   if (!view.overflowed_attribute().empty())
     throw make_error("too many particle attributes: '", view.overflowed_attribute(),
                      "' is past the limit of ", ParticleView::kMaxAttributes);
+  for (int k = 0; k < view.attribute_count(); ++k) {
+    const std::string_view name = view.attribute(k).name;
+    if (name.empty()) throw make_error("attribute ", k, " of the particle view has no name");
+    for (int j = 0; j < k; ++j)
+      if (view.attribute(j).name == name)
+        throw make_error("the particle view has two attributes named '", name, "' (",
+                         view.attribute(j).components, " and ", view.attribute(k).components,
+                         " components): one would hide the other");
+  }
   std::vector<AttributeView>& attributes = work_->requested;
   attributes.clear();  // keeps its storage: a solver's steady loop allocates nothing here
   for (const std::string& name : options.attributes) {

@@ -46,6 +46,21 @@ def test_wrong_shapes_and_lengths_are_value_errors(adapter, block):
     assert adapter.steps_seen == 0  # nothing reached the library
 
 
+def test_bad_radii_and_attribute_names_are_errors_naming_them(adapter, block):
+    for radius in (0.0, -1.0, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match=r"radius = .* is not a positive finite number"):
+            adapter.execute(0, 0.0, block, radius=radius)
+    ones = numpy.ones(len(block))
+    with pytest.raises(ValueError, match="'velocity' is given twice"):
+        adapter.execute(0, 0.0, block, scalars={"velocity": ones},
+                        vectors={"velocity": numpy.ones((len(block), 3))})
+    with pytest.raises(ValueError, match="scalars: an attribute name is empty"):
+        adapter.execute(0, 0.0, block, scalars={"": ones})
+    with pytest.raises(TypeError, match="attribute names must be str, got 1"):
+        adapter.execute(0, 0.0, block, scalars={1: ones})
+    assert adapter.steps_seen == 0
+
+
 def test_nan_positions_are_counted_and_left_out(adapter, block):
     block[:7] = numpy.nan
     block[7, 1] = numpy.inf

@@ -246,6 +246,24 @@ TEST(ClassifyInput, TooManyAttributesIsAnErrorNotACrash) {
   EXPECT_NE(error_of(view, GridView(), options()).find("'the_extra_one'"), std::string::npos);
 }
 
+// What would silently pick one of two values, or none: each an error naming it.
+TEST(ClassifyInput, TwinAndEmptyAttributeNamesAndBadRadiiAreNamed) {
+  std::vector<Point> pts(1, Point{1, 1, 1});
+  std::vector<float> v(3, 0.f);
+  const auto view = [&] { return ParticleView::aos(&pts[0].x, 1, sizeof(Point)); };
+  EXPECT_NE(error_of(view().with_scalar("velocity", v.data()).with_vector("velocity", v.data()),
+                     GridView(), options())
+                .find("two attributes named 'velocity' (1 and 3 components)"),
+            std::string::npos);
+  EXPECT_NE(error_of(view().with_scalar("", v.data()), GridView(), options()).find("no name"),
+            std::string::npos);
+  for (double r : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()})
+    EXPECT_NE(error_of(view().with_radius(r), GridView(), options())
+                  .find("is not a positive finite number"),
+              std::string::npos)
+        << r;
+}
+
 TEST(ClassifyInput, FarFlungParticlesKeepTheBuiltGridBounded) {
   std::vector<Point> pts{{0, 0, 0}, {1, 1, 1}, {1e6f, 1e6f, 1e6f}};
   ClassifyOptions o = options();
