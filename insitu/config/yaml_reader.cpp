@@ -38,13 +38,32 @@ void Checker::throw_if_errors() const {
 std::string describe(const YAML::Node& node) {
   switch (node.Type()) {
     case YAML::NodeType::Scalar: return "\"" + node.Scalar() + "\"";
-    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Sequence: {
+      // A short list of scalars as written, [0.1, 0.5]; any other as what it is.
+      if (node.size() > 6) return "a list";
+      std::string text = "[";
+      for (std::size_t i = 0; i < node.size(); ++i) {
+        if (!node[i].IsScalar()) return "a list";
+        text += (i ? ", " : "") + node[i].Scalar();
+      }
+      return text + "]";
+    }
     case YAML::NodeType::Map: return "a map";
     case YAML::NodeType::Null: return "nothing";
     case YAML::NodeType::Undefined: break;
   }
   return "nothing";
 }
+
+namespace {
+
+// ", whose item k + 1 is ..." for a list whose item k is the one found wrong; "" otherwise.
+std::string item_text(const YAML::Node& list, std::size_t k) {
+  if (!list.IsSequence() || k >= list.size()) return "";
+  return ", whose item " + std::to_string(k + 1) + " is " + describe(list[k]);
+}
+
+}  // namespace
 
 std::string number_text(double v) {
   char text[32];
@@ -274,7 +293,8 @@ bool MapReader::get_integers(std::string_view key, std::vector<std::int64_t>& ou
   if (!value.IsDefined()) return false;
   std::vector<std::int64_t> v;
   bool ok = value.IsSequence() || value.IsNull();
-  for (std::size_t i = 0; ok && value.IsSequence() && i < value.size(); ++i) {
+  std::size_t i = 0;
+  for (; ok && value.IsSequence() && i < value.size(); ++i) {
     try {
       v.push_back(value[i].as<std::int64_t>());
       ok = v.back() >= min && v.back() <= max;
@@ -285,7 +305,7 @@ bool MapReader::get_integers(std::string_view key, std::vector<std::int64_t>& ou
   if (!ok) {
     checker_.error(value, path(key),
                    "expected a list of integers in [" + std::to_string(min) + ", " +
-                       std::to_string(max) + "]; got " + describe(value));
+                       std::to_string(max) + "]; got " + describe(value) + item_text(value, i - 1));
     return false;
   }
   std::sort(v.begin(), v.end());
@@ -302,7 +322,8 @@ bool MapReader::get_pairs(std::string_view key, std::vector<std::array<double, 2
   if (!value.IsDefined()) return false;
   std::vector<std::array<double, 2>> v;
   bool ok = value.IsSequence();
-  for (std::size_t i = 0; ok && i < value.size(); ++i) {
+  std::size_t i = 0;
+  for (; ok && i < value.size(); ++i) {
     const YAML::Node pair = value[i];
     ok = pair.IsSequence() && pair.size() == 2;
     try {
@@ -314,7 +335,8 @@ bool MapReader::get_pairs(std::string_view key, std::vector<std::array<double, 2
   }
   if (!ok) {
     checker_.error(value, path(key),
-                   "expected a list of [a, b] pairs of numbers; got " + describe(value));
+                   "expected a list of [a, b] pairs of numbers; got " + describe(value) +
+                       item_text(value, i - 1));
     return false;
   }
   out = std::move(v);

@@ -246,6 +246,12 @@ struct InsituPipeline::Impl {
 
   void make_output(const ConfiguredOutput& o) {
     const OutputKind& kind = registered_output_kind(o.kind);
+    // One the config turned on that draws from views, with none (`views: []`): nothing to write.
+    const bool from_views = kind.needs.any() || kind.orbits;
+    if (o.settings->enabled && from_views && config.views.empty() &&
+        !kind.config.defaults()->enabled)
+      throw make_error("outputs.", o.kind, " is enabled but the config has no views (views: []), ",
+                       "so it would write nothing: add a view, or enabled: false");
     const bool here = !kind.root_only || comm == nullptr || comm->root();
     totals.outputs.push_back({o.kind, kind.noun, o.settings->enabled && here, {}});
     OutputState state{&kind, nullptr, {}, {}};

@@ -81,6 +81,18 @@ TEST(StartUp, OutputFolderThatCannotBeWrittenFailsBeforeStepOne) {
 
 // The platform the config asks for, where it cannot work (no NVIDIA EGL device here), is one
 // error at start-up naming it: no step runs on a renderer that is not there.
+TEST(StartUp, AnOutputOfViewsWithNoViewsIsRefused) {
+  test::TempFolder dir;
+  const std::string e = start_error("output_folder: " + dir.path().string() +
+                                    "\nviews: []\noutputs: {cinema: {enabled: true}}\n");
+  EXPECT_NE(e.find("outputs.cinema is enabled but the config has no views"), std::string::npos)
+      << e;
+  // PNG frames are on by default: a run of snapshots alone leaves them with nothing to draw.
+  EXPECT_EQ(start_error("output_folder: " + dir.path().string() +
+                        "\nviews: []\noutputs: {vdb: {enabled: true}}\n"),
+            "");
+}
+
 TEST(StartUp, UnusableGlPlatformFailsBeforeStepOne) {
   test::TempFolder dir;
   const char* forced = std::getenv("VOXSPAN_GL_PLATFORM");  // it would override the config

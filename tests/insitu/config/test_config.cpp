@@ -276,6 +276,12 @@ TEST(Config, WrongTypesAndBadValuesNameKeyAndLine) {
       {"outputs: {vdb: {attributes: [v, v]}}\n", "outputs.vdb.attributes: \"v\" given twice"},
       {"outputs: {vtk: {enabled: true, particles: false, cells: false}}\n",
        "outputs.vtk: enabled but writes nothing"},
+      {"views:\n  - {kind: volume, opacity: [0.1, 0.5]}\n",
+       "views[0].opacity: expected a list of [a, b] pairs of numbers; got [0.1, 0.5], whose item "
+       "1 is \"0.1\""},
+      {"outputs: {cinema: {phi: [0, 200]}}\n",
+       "outputs.cinema.phi: expected a list of integers in [-180, 180]; got [0, 200], whose item 2 "
+       "is \"200\""},
       {"views: [\n", "test.yaml:2:1: (top level): not valid YAML"},
   };
   for (const Case& c : cases) {
