@@ -1,5 +1,6 @@
 #include "insitu/runtime/live_page.h"
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -17,7 +18,8 @@ LivePage::LivePage(const LiveConfig& config, std::vector<std::string> view_names
     if (config.interactive) mailbox_ = std::make_unique<CameraMailbox>(view_names.size());
     server_ = std::make_unique<LiveServer>(config, *feed_, mailbox_.get());
     // Said once, at a level shown by default: the token is in it (as Jupyter prints its URL).
-    log_warning("live page: ", server_->url());
+    // A log level that hides warnings would leave the page unreachable: it is said anyway.
+    log_message(std::min(LogLevel::warning, log_level()), "live page: " + server_->url());
   }
   if (config.interactive) cameras_.emplace(std::move(view_names), mailbox_.get(), comm);
 }

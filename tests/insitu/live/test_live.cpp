@@ -1,6 +1,7 @@
 // The live page's parts without a job: the feed turns handed-over pictures into the PNGs and the
 // state it serves; the server starts on a free port with a random token, and a port taken is a
-// start-up error that names it. Its rules over HTTP: tests/integration/live/.
+// start-up error that names it; the page says its address at any log level. Its rules over
+// HTTP: tests/integration/live/.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,7 +11,10 @@
 #include "insitu/live/live_feed.h"
 #include "insitu/live/live_server.h"
 #include "insitu/outputs/formats/png_image.h"
+#include "insitu/runtime/live_page.h"
 #include "tests/support/error_message.h"
+#include "tests/support/log_capture.h"
+#include "voxspan/log.h"
 
 namespace voxspan {
 namespace {
@@ -117,6 +121,20 @@ TEST(LiveServer, ListensOnAFreePortWithARandomTokenAndNamesAPortTaken) {
   EXPECT_NE(e.find("live page: cannot listen on 127.0.0.1:" + std::to_string(server.port())),
             std::string::npos)
       << e;
+}
+
+// The page's address, with its token, is the only way in: said even where the log level hides
+// warnings.
+TEST(LivePage, SaysItsAddressAtAnyLogLevel) {
+  for (const LogLevel level : {LogLevel::warning, LogLevel::error}) {
+    test::LogCapture log;  // restores the level it found
+    set_log_level(level);
+    LiveConfig config;
+    config.enabled = true;
+    const LivePage page(config, {"main"}, true, nullptr);
+    EXPECT_NE(log.all().find("live page: http://127.0.0.1:"), std::string::npos)
+        << int(level) << ": " << log.all();
+  }
 }
 
 }  // namespace
