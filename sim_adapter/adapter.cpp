@@ -3,6 +3,7 @@
 // failure becomes a Status and a log line.
 #include "voxspan/adapter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <new>
@@ -59,6 +60,28 @@ template <class... Parts> void log_quietly(LogLevel level, const Parts&... parts
   } catch (...) {}
 }
 
+// A particle spacing off by a factor (other units, h for dx) gives blobs or dots with no error:
+// the cells' occupancy against what a cell holds at rest density says so, once, on the first
+// step with 1 000 particles. Returns whether it looked.
+bool checked_spacing(std::int64_t step, const ClassifyCounts& c, double spacing) noexcept {
+  const std::size_t valid =
+      c.particles - std::min(c.particles, c.dropped_nonfinite + c.not_in_grid);
+  const std::size_t occupied = c.cells_partial + c.cells_full;
+  if (valid < 1000 || occupied == 0 || c.full_count < 1 || !(spacing > 0)) return false;
+  const double mean = double(valid) / double(occupied), ratio = mean / c.full_count;
+  if (ratio > 4)
+    log_quietly(LogLevel::warning, "step ", step, ": the grid's cells hold ", mean,
+                " particles on average, ", ratio, " times what a cell holds at rest density at ",
+                "particle_spacing ", spacing, ": unless the fluid is compressed that much, the ",
+                "spacing is too large (surfaces merge into one blob); check its units");
+  else if (mean < 1.25 && c.full_count >= 8)
+    log_quietly(LogLevel::warning, "step ", step, ": the grid's cells hold ", mean,
+                " particles on average where one at rest density holds ", c.full_count,
+                " at particle_spacing ", spacing, ": unless the fluid is spray, the spacing is ",
+                "too small (surfaces break into dots); check its units");
+  return true;
+}
+
 }  // namespace
 
 struct Adapter::Impl {
@@ -66,6 +89,7 @@ struct Adapter::Impl {
   Classifier classifier;
   std::shared_ptr<Pipeline> pipeline;
   StepStats stats;
+  bool spacing_checked = false;
   std::int64_t steps_seen = 0, render_steps = 0, failed_steps = 0;
   double seconds_in_situ = 0;
   std::vector<ParticleSphere> scenery;
@@ -106,6 +130,8 @@ const Classification& Adapter::Impl::classify(std::int64_t step, const ParticleV
   if (c.counts.not_in_grid > 0)
     log_quietly(LogLevel::warning, "step ", step, ": ", c.counts.not_in_grid,
                 " particles are in no cell of the grid and were left out");
+  if (!spacing_checked)
+    spacing_checked = checked_spacing(step, c.counts, options.classify.particle_spacing);
   return c;
 }
 

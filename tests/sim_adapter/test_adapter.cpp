@@ -11,6 +11,7 @@
 
 #include "tests/sim_adapter/particle_sets.h"
 #include "tests/support/allocation_counter.h"
+#include "tests/support/log_capture.h"
 #include "voxspan/adapter.h"
 #include "voxspan/error.h"
 #include "voxspan/log.h"
@@ -165,6 +166,30 @@ TEST(Adapter, AGridHoldingNoParticleIsAnError) {
   half.dims[0] = 1;  // x in [0, 2): half the lattice
   EXPECT_TRUE(adapter.execute(1, 0, view, GridView::geometry_only(half)).ok());
   EXPECT_EQ(adapter.last_stats().counts.not_in_grid, 32u);
+}
+
+// A spacing off by ten (other units; h for dx) is said once; the right one says nothing.
+TEST(Adapter, ASpacingFarFromTheParticlesIsSaidOnce) {
+  std::vector<Point> pts;
+  test::add_lattice(pts, {0, 0, 0}, {16, 16, 16}, 0.01);
+  const auto view = ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point));
+  for (const double spacing : {0.001, 0.01, 0.1}) {
+    test::LogCapture log;
+    AdapterOptions o;
+    o.classify.particle_spacing = spacing;
+    Adapter adapter(o);
+    for (std::int64_t step = 1; step <= 3; ++step) ASSERT_TRUE(adapter.execute(step, 0, view).ok());
+    const std::vector<std::string> warnings = log.at(LogLevel::warning);
+    if (spacing == 0.01) {
+      EXPECT_TRUE(warnings.empty()) << log.all();
+      continue;
+    }
+    ASSERT_EQ(warnings.size(), 1u) << spacing << ": " << log.all();
+    EXPECT_NE(
+        warnings[0].find(spacing < 0.01 ? "the spacing is too small" : "the spacing is too large"),
+        std::string::npos)
+        << warnings[0];
+  }
 }
 
 TEST(Adapter, PipelineExceptionsAreCaught) {
