@@ -565,6 +565,16 @@ InsituPipeline::InsituPipeline(const Config& config, double particle_spacing,
 
 Status InsituPipeline::agree(const Status& local) {
   if (!comm_) return local;
+  // Ranks at different steps (one skipped a call) would composite one step's particles with
+  // another's: said on every rank, each step, until they meet again.
+  double steps[2] = {double(impl_->planned_step), -double(impl_->planned_step)};
+  comm_->min(steps);
+  if (steps[0] != -steps[1]) {
+    std::ostringstream why;
+    why << "the ranks are at different steps (" << std::int64_t(steps[0]) << " to "
+        << std::int64_t(-steps[1]) << "): every rank must call execute with the same steps";
+    return {StatusCode::invalid_input, why.str()};
+  }
   const Agreement agreed = comm_->agree(local.ok(), local.message);
   if (agreed.ok || !local.ok()) return local;
   return {StatusCode::pipeline_failed,

@@ -131,6 +131,23 @@ TEST(MpiAdapter, AnAttributeOneRankLacksIsNamedWithTheRankByEveryViewKind) {
   }
 }
 
+// A rank one step ahead of the others (it skipped a call) fails the step on every rank, naming
+// both steps, instead of compositing two steps' particles; once they meet again they render.
+TEST(MpiAdapter, RanksAtDifferentStepsAreSaidNotComposited) {
+  const auto folder = shared_folder("steps-apart");
+  test::LogCapture log;
+  Adapter adapter = adapter_from_config_text(config_for(folder), options(), MPI_COMM_WORLD);
+  const Block block(12);
+  EXPECT_TRUE(adapter.execute(1, 0.1, block.view()).ok());
+  const Status apart = adapter.execute(rank() == 1 ? 3 : 2, 0.2, block.view());
+  EXPECT_FALSE(apart.ok());
+  EXPECT_NE(apart.message.find("the ranks are at different steps (2 to 3)"), std::string::npos)
+      << apart.message;
+  EXPECT_EQ(log.at(LogLevel::error).size(), rank() == 0 ? 1u : 0u) << log.all();
+  EXPECT_TRUE(adapter.execute(4, 0.4, block.view()).ok());
+  adapter.finish();
+}
+
 // A rank that throws in the middle of the step, after every rank has classified and while the
 // others voxelize: its grid is longer than a GL 3D texture may be, so the GL renderer's
 // cell-state upload fails inside its render pass. Every rank abandons the step, one line names
