@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -58,7 +59,8 @@ void usage() {
       "  --steps S            time steps to run (default 1000)\n"
       "  --until T            run until Martin & Moyce's T = t sqrt(2g/a) instead\n"
       "  --stop-file PATH     end early, cleanly, at the first step that finds PATH there (the\n"
-      "                       last render step, its files written): touch it to stop the run\n"
+      "                       last render step, its files written): touch it to stop the run;\n"
+      "                       Ctrl-C does the same (twice: at once)\n"
       "  --render-every K     adapter render steps (default 10)\n"
       "  --no-render          call the adapter every step but never render (writes nothing)\n"
       "  --validate           have the adapter check the grid against the particles\n"
@@ -118,11 +120,21 @@ bool parse(int argc, char** argv, Options& o) {
   return true;
 }
 
-// Whether the stop file is there; in a distributed run the root looks for every rank (one
-// broadcast a step), so that all of them end at the same step.
+// Ctrl-C (or SIGTERM) ends the run as the stop file does, its last step's files written; a
+// second one stops it at once.
+volatile std::sig_atomic_t interrupted = 0;
+extern "C" void on_interrupt(int) {
+  interrupted = 1;
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+}
+
+// Whether the run should end here (an interrupt, the stop file); in a distributed run the root
+// decides for every rank (one broadcast a step), so that all of them end at the same step.
 bool stop_asked(const std::string& stop_file, bool root, bool distributed) {
   std::error_code unreadable;  // a folder it cannot look into: not there yet
-  int asked = root && std::filesystem::exists(stop_file, unreadable);
+  int asked = root && (interrupted != 0 ||
+                       (!stop_file.empty() && std::filesystem::exists(stop_file, unreadable)));
   if (distributed) MPI_Bcast(&asked, 1, MPI_INT, 0, MPI_COMM_WORLD);
   return asked != 0;
 }
@@ -217,7 +229,11 @@ int run(const Options& o) {
     const auto ts = Clock::now();
     sim.step();
     step_seconds.push_back(std::chrono::duration<double>(Clock::now() - ts).count());
-    stopped = !o.stop_file.empty() && stop_asked(o.stop_file, root, domain != nullptr);
+    stopped = stop_asked(o.stop_file, root, domain != nullptr);
+    if (stopped && interrupted != 0 && root)
+      std::fprintf(stderr,
+                   "dambreak: interrupted: this step is the last (its files written); "
+                   "interrupt again to stop at once\n");
     const bool final_step =
         stopped || (o.until > 0 ? sim.nondimensional_time() >= o.until : step == o.steps);
     if (domain && dambreak::sum_over_ranks(sim.owned_count(), MPI_COMM_WORLD) != fluid_count) {
@@ -257,7 +273,7 @@ int run(const Options& o) {
       if (root)
         std::printf(
             "step %6ld  t %.4f s  T %.3f  dt %.3g s  front x/a %.3f  max|drho|/rho0 %.2f%%  "
-            "%.3g particles/s  surface shell %zu of %zu%s  in situ %.1f s (%lld render steps)\n",
+            "%.3g particles/s  surface shell %zu of %zu%s  in situ %.1f s (%lld steps)\n",
             step, sim.time(), sim.nondimensional_time(), sim.dt(), d.front / o.config.column_width,
             100 * d.max_density_error, double(d.fluid) * double(step - last_step) / wall,
             st.counts.boundary, st.counts.particles, domain ? " on rank 0" : "", adapter_seconds,
@@ -285,13 +301,14 @@ int run(const Options& o) {
   if (!root) return ids_ok ? 0 : 1;
   std::printf(
       "dambreak: %ld steps to t %.4f s (T %.3f) in %.2f s: %.3g particle-steps/s; "
-      "adapter %.2f s (%ld render steps, %ld failed)\n",
+      "adapter %.2f s (%ld steps in situ, %ld failed)\n",
       steps, sim.time(), sim.nondimensional_time(), total,
       steps > 0 ? double(fluid_count) * double(steps) / solver : 0.0, adapter_seconds,
       long(adapter->render_steps()), failed);
   std::printf(
       "time: solver %.1f s (median step %.2f ms), in situ %.1f s on the solver's thread "
-      "(%.1f %% of the solver's time) + %.1f s waiting for the last files\n",
+      "(%.1f %% of the solver's time) + %.1f s in finish() (the last files, a live page's "
+      "linger)\n",
       solver, 1e3 * median(step_seconds), adapter_seconds,
       solver > 0 ? 100 * adapter_seconds / solver : 0.0, finish_seconds);
   std::printf("final: T %.4f  front x/a %.5f  max|drho|/rho0 %.2f%%  fluid particles %zu\n",
@@ -314,6 +331,8 @@ int main(int argc, char** argv) {
   // Started without mpiexec, Open MPI makes the program a job of one rank.
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
   const int code = run(o);
   MPI_Finalize();
   return code;

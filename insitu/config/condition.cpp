@@ -157,6 +157,9 @@ class Scan {
                            i < in_.size() ? i : begin);
     Reduction r{op, {}, {}};
     if (op != ReductionOp::count) r.attribute = args.front().first;
+    if (op != ReductionOp::count && boxes_.count(r.attribute) > 0)
+      throw ConditionError("\"" + r.attribute + "\" is a box, not an attribute: " + shape,
+                           args.front().second);
     if (args.size() == least + 1) r.box = box(args.back().first, args.back().second);
     return place(std::move(r), begin, i + 1);
   }

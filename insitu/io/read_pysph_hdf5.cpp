@@ -128,7 +128,9 @@ std::vector<std::size_t> pick_fluid(const std::vector<std::string>& names,
     why = "their particles move, the others' do not";
     return moving;
   }
-  why = "no array is named like a fluid or alone in moving";
+  why = names.size() == 1              ? "the file's only array"
+        : named.size() == names.size() ? "every array is named like a fluid"
+                                       : "no array is named like a fluid or alone in moving";
   return all;
 }
 

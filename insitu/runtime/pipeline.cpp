@@ -455,6 +455,7 @@ struct InsituPipeline::Impl {
     for (std::size_t i = 0; i < outputs.size(); ++i) {
       OutputState& o = outputs[i];
       if (!p.outputs[i] || !o.output || o.kind->reports_step != reports_step) continue;
+      ++totals.outputs[i].due;
       try {
         o.output->write(step);
       } catch (const std::exception& e) {
@@ -721,6 +722,8 @@ std::string InsituPipeline::summary() const {
     separator = ", ";
     no_slot += o.tally.no_slot;
   }
+  for (const OutputTotals& o : t.outputs)
+    if (o.enabled && o.due == 0) s << "; outputs." << o.kind << "'s trigger never fired";
   if (t.writer.failed)
     s << "; " << t.writer.failed << " files failed (first: " << t.writer.first_error << ")";
   if (t.writer.dropped) s << "; " << t.writer.dropped << " files dropped (writer queue full)";

@@ -37,6 +37,7 @@ struct OutputTotals {
   std::string_view noun;  // "PNG", "VTK sets"
   bool enabled = false;
   OutputTally tally;
+  std::int64_t due = 0;  // steps its trigger fired (0 at the end: a trigger that never did)
 };
 
 // What the run did so far.

@@ -99,10 +99,15 @@ void check_volume(yaml::MapReader& r, VolumeSettings& v) {
   }
   if (points.empty())
     r.checker().error(r.find("opacity"), r.path("opacity"), "needs at least one point");
-  if (v.mode != VolumeMode::dvr && v.iso.empty())
+  // An `iso` the reader refused has its own error; one given in mode dvr would be drawn nowhere.
+  if (v.mode != VolumeMode::dvr && v.iso.empty() && !r.has("iso"))
     r.checker().error(r.has("mode") ? r.find("mode") : r.node(), r.path("iso"),
                       "mode `" + std::string(name_of(kVolumeModeNames, v.mode)) +
                           "` needs at least one iso surface");
+  if (v.mode == VolumeMode::dvr && !v.iso.empty())
+    r.checker().error(r.find("iso"), r.path("iso"),
+                      "mode `dvr` draws no iso surfaces: set mode: mixed (or iso), or leave iso "
+                      "out");
   if (v.quantity.empty() && r.has("shepard") && v.shepard)
     r.checker().error(r.find("shepard"), r.path("shepard"),
                       "with no `quantity` the field is the volume fraction, which Shepard "

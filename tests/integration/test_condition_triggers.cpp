@@ -135,13 +135,15 @@ writer: {fsync: false}
 
 // Stats lines on every step, pictures on every other: a line of a step that rendered nothing
 // carries its views with every figure 0, not the last render step's figures again (which a
-// sum over the file would count twice).
+// sum over the file would count twice). A trigger that never fired is said in the summary.
 TEST(StatsLines, AStepThatRenderedNothingHasNoViewFigures) {
   test::TempFolder dir;
   const std::string yaml = "output_folder: " + dir.path().string() + R"(
 trigger: {every_steps: 2}
 views: [{name: v, width: 48, height: 32}]
-outputs: {stats: {trigger: {every_steps: 1}}}
+outputs:
+  stats: {trigger: {every_steps: 1}}
+  vtk: {enabled: true, trigger: {when: max(x) > 100}}
 )";
   dambreak::DamBreak sim(test::small_dambreak());
   Adapter adapter = adapter_from_config_text(yaml, test::solver_options(sim), "run.yaml");
@@ -154,6 +156,9 @@ outputs: {stats: {trigger: {every_steps: 1}}}
                     .ok());
   }
   adapter.finish();
+  // An output whose trigger never fired is said in the summary, not only by its count of 0.
+  EXPECT_NE(adapter.summary().find("outputs.vtk's trigger never fired"), std::string::npos)
+      << adapter.summary();
   const std::vector<std::string> lines = test::read_lines(dir.path() / "stats.jsonl");
   ASSERT_EQ(lines.size(), 4u);
   for (std::size_t i = 0; i < lines.size(); ++i) {

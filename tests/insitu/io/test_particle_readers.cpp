@@ -407,6 +407,13 @@ TEST(PySphParticles, WithoutNamesTheFluidIsReadAndTheSpacingComesFromMassAndDens
   ASSERT_EQ(moving.scenery.size(), 2u);
   EXPECT_DOUBLE_EQ(moving.scenery[1][0], 1.0);
   EXPECT_TRUE(read_particles(dir / "moving.h5", {{}, {"none"}}).scenery.empty());
+
+  f = H5Fcreate((dir / "one.h5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  particles = H5Gcreate2(f, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  write_array(particles, "fluid", {{0.5, 0.5, 0.5}}, true, {});
+  H5Gclose(particles);
+  H5Fclose(f);
+  EXPECT_EQ(read_particles(dir / "one.h5").chosen, "PySPH arrays fluid (the file's only array)");
   EXPECT_EQ(read_particles(dir / "moving.h5", {{"water"}, {"tank"}}).scenery.size(), 2u);
   EXPECT_NE(error_of(dir / "moving.h5", {{"water"}, {"wall"}})
                 .find("no particle array \"wall\" for the scenery (the file has: tank, water)"),

@@ -95,6 +95,9 @@ TEST(Condition, MistakesSayWhatAndWhere) {
   std::tie(m, at) = error("max(velocity, left) > 2");
   EXPECT_EQ(at, 14u);
   EXPECT_NE(m.find("unknown box \"left\" (boxes: right)"), std::string::npos) << m;
+  std::tie(m, at) = error("mean(right) > 2");  // a box where the attribute goes
+  EXPECT_EQ(at, 5u);
+  EXPECT_EQ(m, "\"right\" is a box, not an attribute: mean(attribute) or mean(attribute, box)");
   std::tie(m, at) = error("max(2 * velocity) > 2");
   EXPECT_NE(m.find("expected max(attribute) or max(attribute, box)"), std::string::npos) << m;
   std::tie(m, at) = error("count(x) > 2");  // count takes a box only

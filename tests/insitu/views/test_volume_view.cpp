@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "insitu/views/volume_view.h"
+#include "tests/support/error_message.h"
 #include "tests/support/view_tests.h"
 
 namespace voxspan {
@@ -54,9 +55,20 @@ TEST(VolumeView, BadTransferFunctionsAndIsoSurfacesAreRefusedWithTheirLine) {
                  {"mode: iso, iso: [{value: .nan}]", "views[0].iso[0].value"},
                  {"mode: iso, iso: [{value: .inf}]", "views[0].iso[0].value"},
                  {"mode: iso, iso: [{color: [1, 1, 1]}]", "needs its `value`"},
-                 {"iso: [{value: 1}, {value: 2}, {value: 3}, {value: 4}, {value: 5}]", "at most 4"},
+                 {"mode: iso, iso: [{value: 1}, {value: 2}, {value: 3}, {value: 4}, {value: 5}]",
+                  "at most 4"},
+                 {"iso: [{value: 1}]", "mode `dvr` draws no iso surfaces"},
                  {"shepard: true", "volume fraction"},
                  {"sampling: 0", "sampling"}});
+  // Too many iso surfaces is that one error, not also "needs at least one".
+  const std::string e = test::error_message([] {
+    load_config_string(
+        "views:\n  - {kind: volume, mode: iso, iso: [{value: 1}, {value: 2}, "
+        "{value: 3}, {value: 4}, {value: 5}]}\n",
+        "v.yaml");
+  });
+  EXPECT_EQ(e.find("needs at least one"), std::string::npos) << e;
+  EXPECT_NE(e.find("at most 4"), std::string::npos) << e;
 }
 
 TEST(VolumeView, AMissingQuantityFailsTheStepByName) {
