@@ -2,7 +2,7 @@
 // the particles' attributes, the step, the simulated time and the config's constants, parsed
 // once at start-up (muparser) and then evaluated without allocating.
 //
-//   max(velocity) > 2.5 and time > 0.3      max(x) > 0.8 * tank_length
+//   max(velocity) > 1 and time > 0.05      max(x) > 0.8 * tank_length
 //   count(outlet) > 100 or not (mean(density, tank) < 1010)
 //
 // Reductions: min(a), max(a), sum(a), mean(a) of a particle attribute `a` (x, y, z: the

@@ -44,7 +44,7 @@ const Section<TriggerSpec>& trigger_section() {
        schema::flag("first", &T::first, "the first step the runtime sees"),
        schema::flag("last", &T::last, "the step the solver marks as its last"),
        schema::text("when", &T::when,
-                    "a condition on the particles (`max(velocity) > 2.5 and time > 0.3`): "
+                    "a condition on the particles (`max(velocity) > 1 and time > 0.05`): "
                     "fires when it becomes true; checked on every step, at the cost of a pass "
                     "over the particles (docs/runtime.md, \"Triggers on conditions\")")
            .default_shown_as("none")
