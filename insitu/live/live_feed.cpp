@@ -89,6 +89,7 @@ void LiveFeed::publish(const LiveStep& step) {
     h.time = step.time;
     h.particles = step.particles;
     h.in_situ_ms = step.in_situ_ms;
+    h.render_steps = ++published_;
     h.at = std::chrono::steady_clock::now();
     for (auto& pass : h.passes) pass.second = 0;
     for (const auto& [name, ms] : step.solver_passes) add_pass(h, name, ms);
@@ -178,7 +179,7 @@ void LiveFeed::take(Handed& work) {
   h.in_situ_ms = work.in_situ_ms;
   h.sum_in_situ_ms += work.in_situ_ms;
   h.wall_ms = std::chrono::duration<double, std::milli>(work.at - h.start).count();
-  ++h.render_steps;
+  h.render_steps = work.render_steps;  // a step handed over before the last was taken counts
   History::Row row{work.step, std::vector<double>(h.passes.size(), 0.0)};
   for (const auto& [name, ms] : work.passes) {
     const std::size_t i = h.pass_index(name);

@@ -79,11 +79,13 @@ class LiveFeed {
     std::int64_t step = 0;
     double time = 0, in_situ_ms = 0;
     std::int64_t particles = 0;
+    std::int64_t render_steps = 0;  // published so far, those the feed never took included
     std::chrono::steady_clock::time_point at;
     std::vector<SharedPicture> pictures;
     std::vector<std::pair<std::string, double>> passes;  // summed over the views
   };
   static void add_pass(Handed& h, std::string_view name, double ms);
+  std::int64_t published_ = 0;  // under mailbox_mutex_
   void run();
   void take(Handed& work);
   void encode_waiting();

@@ -101,6 +101,8 @@ TEST(LiveFeed, SnapshotsAtMostEveryIntervalTheNewestStepAlways) {
   const auto last = snapshot_with(feed, "\"running\":false");
   EXPECT_NE(last->state.find("{\"name\":\"main\",\"step\":4,"), std::string::npos) << last->state;
   EXPECT_EQ(*last->pictures[0], png(0.4f));
+  // Step 2, handed over before the feed took step 1's successor, still counts.
+  EXPECT_NE(last->state.find("\"render_steps\":4"), std::string::npos) << last->state;
 }
 
 TEST(LiveServer, ListensOnAFreePortWithARandomTokenAndNamesAPortTaken) {
