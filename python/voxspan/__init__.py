@@ -36,6 +36,18 @@ def _floats(a):
     return numpy.ascontiguousarray(a, dtype=dtype)
 
 
+def _config_text(config):
+    """The YAML text `config` is, or None where it names a file (or is None): a dict is written
+    as JSON, which YAML reads as the same map."""
+    import json
+    import os
+    if isinstance(config, dict):
+        return json.dumps(config)
+    if isinstance(config, str) and ("\n" in config or ":" in config) and not os.path.exists(config):
+        return config
+    return None
+
+
 def render(x, y=None, z=None, *, config=None, output="voxspan-output", spacing=None, radius=None,
            scalars=None, vectors=None, step=0, time=0.0, linear=False):
     """Renders particles the caller already has, once, through the same runtime as a run:
@@ -45,7 +57,8 @@ def render(x, y=None, z=None, *, config=None, output="voxspan-output", spacing=N
     list (one call: what the library cannot view is copied; Adapter.execute never copies).
     spacing: the rest spacing (default: estimated, the median nearest-neighbour distance);
     radius: the sphere radius, a number or one per particle (default: the spacing); config: a
-    YAML file (default: every key at its default); config and output may be pathlib paths.
+    YAML file, YAML text (a str holding a newline or a ':' and naming no file) or a dict of the
+    same keys (default: every key at its default); config and output may be pathlib paths.
     No particles (zero rows) give the empty pictures. Raises voxspan.Error when the particles
     cannot be rendered."""
     import numpy
@@ -65,8 +78,10 @@ def render(x, y=None, z=None, *, config=None, output="voxspan-output", spacing=N
         if not spacing > 0:
             raise Error("cannot estimate the particle spacing (fewer than two distinct "
                         "particles); pass spacing=")
-    with Adapter.from_config_file(config, spacing=spacing, radius=radius, offline=True,
-                                  output=output) as adapter:
+    text = _config_text(config)
+    make = Adapter.from_config_file if text is None else Adapter.from_config_text
+    with make(config if text is None else text, spacing=spacing, radius=radius, offline=True,
+              output=output) as adapter:
         status = adapter.execute_last(step, time, x, y, z, radius=radii, scalars=scalars,
                                       vectors=vectors)
         if not status:

@@ -43,6 +43,18 @@ def test_render_takes_what_a_notebook_has(tmp_path, block):
     assert numpy.array_equal(voxspan.read_png(png), reference)  # a pathlib.Path
 
 
+def test_render_takes_the_config_as_a_file_text_or_dict(tmp_path, block):
+    """The same view from a YAML file, YAML text and a dict: one picture."""
+    keys = {"views": [{"name": "small", "width": 64, "height": 48}]}
+    text = "views: [{name: small, width: 64, height: 48}]\n"
+    (tmp_path / "c.yaml").write_text(text)
+    pictures = [voxspan.render(block, spacing=SPACING, config=config, output=tmp_path / name)
+                for name, config in [("file", tmp_path / "c.yaml"), ("text", text),
+                                     ("dict", keys)]]
+    assert all(list(p) == ["small"] and p["small"].shape == (48, 64, 4) for p in pictures)
+    assert all(numpy.array_equal(p["small"], pictures[0]["small"]) for p in pictures)
+
+
 def test_no_particles_render_the_empty_pictures(tmp_path, block):
     """Zero rows are zero particles: no spacing to estimate, a picture with no fluid in it."""
     empty = voxspan.render(numpy.zeros((0, 3)), output=str(tmp_path / "empty"))["main"]
