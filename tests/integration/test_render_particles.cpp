@@ -84,6 +84,11 @@ TEST(RenderParticles, RendersEveryFileWithTheConfig) {
             std::string::npos)
       << r.err;
   EXPECT_NE(r.out.find("a.csv: step 0, 2744 particles"), std::string::npos) << r.out;
+  // A CSV holds no time: the caption's t is the file's index, and the tool says so once.
+  EXPECT_NE(r.out.find("a.csv gives no time: the time (a caption's {time}) is the file's index"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("b.xyz gives no time"), std::string::npos) << r.out;
 
   // Attributes every file has (none): both files go through.
   std::ofstream(dir / "offline.yaml", std::ios::trunc)

@@ -243,6 +243,7 @@ int render(const Options& o, const Ranks& ranks) {
 
     int failures = 0;
     std::int64_t previous_step = -1;
+    bool told_time = false;                      // that the files give no time: once
     std::vector<std::array<double, 3>> scenery;  // the last given
     for (std::size_t i = 0; i < o.files.size(); ++i) {
       voxspan::ParticleData data;
@@ -273,6 +274,13 @@ int render(const Options& o, const Ranks& ranks) {
                      static_cast<long long>(previous_step), static_cast<long long>(step));
       previous_step = step;
       const double time = data.time.value_or(double(i));
+      if (talk && !data.time && !told_time) {
+        told_time = true;  // a caption's "t = 2" would read as a simulated time
+        std::printf(
+            "render_particles: %s gives no time: the time (a caption's {time}) is the "
+            "file's index, 0, 1, 2...\n",
+            o.files[i].string().c_str());
+      }
       // The walls, given again only when they moved (each time the views draw them anew); by
       // the root alone, as every rank read them all.
       if (ranks.rank == 0 && data.scenery != scenery) {
