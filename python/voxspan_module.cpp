@@ -12,13 +12,13 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <deque>
 #include <memory>
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -211,17 +211,17 @@ void build_step(StepArrays& s, const py::object& x, const py::object& y, const p
   if (scalars.size() + vectors.size() > std::size_t(ParticleView::kMaxAttributes))
     throw py::value_error("at most " + std::to_string(ParticleView::kMaxAttributes) +
                           " attributes per step");
-  // A name given twice (a scalar and a vector) would hide one of them; "" names nothing.
-  std::set<std::string> seen;
+  // A name given twice (a scalar and a vector) would hide one of them; "" names nothing. The
+  // names so far are s.names (at most kMaxAttributes): no set to allocate every step.
   const auto named = [&](const py::handle& key, const char* dict) -> const std::string& {
     if (!py::isinstance<py::str>(key))
       throw py::type_error(std::string(dict) + ": attribute names must be str, got " +
                            py::repr(key).cast<std::string>());
-    const std::string& name = s.names.emplace_back(py::str(key));
+    std::string name = py::str(key);
     if (name.empty()) throw py::value_error(std::string(dict) + ": an attribute name is empty");
-    if (!seen.insert(name).second)
+    if (std::find(s.names.begin(), s.names.end(), name) != s.names.end())
       throw py::value_error("the attribute '" + name + "' is given twice (in scalars and vectors)");
-    return name;
+    return s.names.emplace_back(std::move(name));
   };
   for (auto [key, value] : scalars) {
     const std::string& name = named(key, "scalars");

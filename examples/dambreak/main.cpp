@@ -129,14 +129,22 @@ extern "C" void on_interrupt(int) {
   std::signal(SIGTERM, SIG_DFL);
 }
 
-// Whether the run should end here (an interrupt, the stop file); in a distributed run the root
-// decides for every rank (one broadcast a step), so that all of them end at the same step.
-bool stop_asked(const std::string& stop_file, bool root, bool distributed) {
+// A step's checks: the fluid particles over the ranks, and whether the run ends here (an
+// interrupt, the stop file). In a distributed run both in one reduction a step, the root
+// deciding for every rank, so that all of them end at the same step.
+struct StepChecks {
+  std::uint64_t fluid = 0;
+  bool stop = false;
+};
+StepChecks step_checks(std::uint64_t owned, const std::string& stop_file, bool root,
+                       bool distributed) {
   std::error_code unreadable;  // a folder it cannot look into: not there yet
-  int asked = root && (interrupted != 0 ||
-                       (!stop_file.empty() && std::filesystem::exists(stop_file, unreadable)));
-  if (distributed) MPI_Bcast(&asked, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  return asked != 0;
+  const bool asked =
+      root &&
+      (interrupted != 0 || (!stop_file.empty() && std::filesystem::exists(stop_file, unreadable)));
+  std::uint64_t sums[2] = {owned, asked ? 1u : 0u};
+  if (distributed) MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+  return {sums[0], sums[1] > 0};
 }
 
 voxspan::GridGeometry adapter_geometry(const dambreak::GridShape& s) {
@@ -229,14 +237,15 @@ int run(const Options& o) {
     const auto ts = Clock::now();
     sim.step();
     step_seconds.push_back(std::chrono::duration<double>(Clock::now() - ts).count());
-    stopped = stop_asked(o.stop_file, root, domain != nullptr);
+    const StepChecks checks = step_checks(sim.owned_count(), o.stop_file, root, domain != nullptr);
+    stopped = checks.stop;
     if (stopped && interrupted != 0 && root)
       std::fprintf(stderr,
                    "dambreak: interrupted: this step is the last (its files written); "
                    "interrupt again to stop at once\n");
     const bool final_step =
         stopped || (o.until > 0 ? sim.nondimensional_time() >= o.until : step == o.steps);
-    if (domain && dambreak::sum_over_ranks(sim.owned_count(), MPI_COMM_WORLD) != fluid_count) {
+    if (domain && checks.fluid != fluid_count) {
       if (root) std::fprintf(stderr, "dambreak: fluid particles lost at step %ld\n", step);
       return 1;
     }

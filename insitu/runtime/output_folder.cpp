@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "voxspan/error.h"
+#include "voxspan/log.h"
 
 namespace voxspan {
 
@@ -63,9 +64,10 @@ FolderLock::FolderLock(const std::filesystem::path& folder) : file_(folder / ".v
   char host[256] = {};
   ::gethostname(host, sizeof host - 1);
   const std::string holder = "process " + std::to_string(::getpid()) + " on " + host + "\n";
-  if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, holder.data(), holder.size(), 0) < 0) {
-    // The lock holds without its text; the other run's message then says less.
-  }
+  // Without its text the lock still holds; another run's message then says less.
+  const bool said = ::ftruncate(fd_, 0) == 0 &&
+                    ::pwrite(fd_, holder.data(), holder.size(), 0) == ssize_t(holder.size());
+  if (!said) log_debug("output folder ", folder.string(), ": the lock file holds no holder's name");
 }
 
 FolderLock::~FolderLock() {

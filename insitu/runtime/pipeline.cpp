@@ -52,9 +52,12 @@ std::unique_ptr<FolderLock> lock_output_folder(const Config& config, const Commu
   if (!under) return nullptr;
   const std::filesystem::path folder = config.output_folder;
   std::error_code ec;
-  bool earlier = false;  // a file other than a lock a killed run left
+  bool earlier = false;  // a file other than a lock a killed run left (one is enough to know)
   for (const auto& entry : std::filesystem::directory_iterator(folder, ec))
-    earlier = earlier || entry.path().filename() != ".voxspan.lock";
+    if (entry.path().filename() != ".voxspan.lock") {
+      earlier = true;
+      break;
+    }
   made = prepare_output_folder(folder, "output_folder");
   auto lock = std::make_unique<FolderLock>(folder);
   if (earlier)
@@ -162,6 +165,9 @@ struct InsituPipeline::Impl {
   std::int64_t planned_step = std::numeric_limits<std::int64_t>::min();
   double planned_time = 0;
   std::int64_t last_step = std::numeric_limits<std::int64_t>::min();
+  // agree() runs after the classification and again after process(): the ranks' steps are
+  // compared in the first only (every rank runs process() exactly when all agreed in it).
+  bool processed = false;
 
   std::vector<std::filesystem::path> made_folders;  // removed at the end if no step ran
   std::unique_ptr<FolderLock> folder_lock;          // released before they are
@@ -568,13 +574,15 @@ Status InsituPipeline::agree(const Status& local) {
   if (!comm_) return local;
   // Ranks at different steps (one skipped a call) would composite one step's particles with
   // another's: said on every rank, each step, until they meet again.
-  double steps[2] = {double(impl_->planned_step), -double(impl_->planned_step)};
-  comm_->min(steps);
-  if (steps[0] != -steps[1]) {
-    std::ostringstream why;
-    why << "the ranks are at different steps (" << std::int64_t(steps[0]) << " to "
-        << std::int64_t(-steps[1]) << "): every rank must call execute with the same steps";
-    return {StatusCode::invalid_input, why.str()};
+  if (!std::exchange(impl_->processed, false)) {
+    double steps[2] = {double(impl_->planned_step), -double(impl_->planned_step)};
+    comm_->min(steps);
+    if (steps[0] != -steps[1]) {
+      std::ostringstream why;
+      why << "the ranks are at different steps (" << std::int64_t(steps[0]) << " to "
+          << std::int64_t(-steps[1]) << "): every rank must call execute with the same steps";
+      return {StatusCode::invalid_input, why.str()};
+    }
   }
   const Agreement agreed = comm_->agree(local.ok(), local.message);
   if (agreed.ok || !local.ok()) return local;
@@ -624,6 +632,7 @@ void InsituPipeline::mark_last_step(std::int64_t step) {
 Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
   Impl& m = *impl_;
   m.processed_any = true;
+  m.processed = true;  // the step's second agree() follows
   const Stopwatch process;
   const std::int64_t bytes_before = m.comm != nullptr ? m.comm->bytes_sent() : 0;
   if (data.step != m.planned_step) wants_step(data.step, data.time);
