@@ -180,6 +180,53 @@ TEST(LegacyVtkParticles, PolyDataAndUnstructuredGridPointsWithTheirArrays) {
   EXPECT_NE(error_of(dir / "text.vtk").find("text.vtk: not a legacy VTK file"), std::string::npos);
 }
 
+// DualSPHysics writes several sections of each kind (Vel and Ace; Type, Rhop, Press): every one
+// is read, not only the first SCALARS and the first VECTORS, which is all VTK reads by default.
+TEST(LegacyVtkParticles, EverySectionOfEachKindIsRead) {
+  test::TempFolder dir;
+  ParticleData d =
+      read_text(dir, "PartFluid_0001.vtk",
+                "# vtk DataFile Version 3.0\nPart_0001\nASCII\nDATASET POLYDATA\n"
+                "POINTS 2 float\n0 0 0 0.1 0.2 0.3\nPOINT_DATA 2\n"
+                "SCALARS Type unsigned_char 1\nLOOKUP_TABLE default\n2 2\n"
+                "VECTORS Vel float\n1 2 3 4 5 6\nVECTORS Ace float\n0 0 -9.8 0 0 -9.8\n"
+                "SCALARS Rhop float 1\nLOOKUP_TABLE default\n1000 1001\n"
+                "SCALARS Press float 1\nLOOKUP_TABLE default\n10 20\n");
+  for (const char* name : {"Type", "Vel", "Ace", "Rhop", "Press"})
+    EXPECT_NE(d.attribute(name), nullptr) << name;
+  ASSERT_NE(d.attribute("Press"), nullptr);
+  EXPECT_EQ(d.attribute("Press")->values, (std::vector<float>{10, 20}));
+  EXPECT_EQ(d.attribute("Ace")->components, 3);
+}
+
+// A file cut short is refused with VTK's reason, not rendered from what was read before the cut
+// (legacy ASCII and binary) or as an empty set (XML).
+TEST(VtkParticles, FilesCutShortAreRefused) {
+  test::TempFolder dir;
+  const auto expect_refused = [&](const char* name, const std::string& text) {
+    std::ofstream(dir / name, std::ios::binary) << text;
+    const std::string e = error_of(dir / name);
+    EXPECT_NE(e.find(std::string(name) + ": the file is cut short or corrupt (VTK's reader: "),
+              std::string::npos)
+        << e;
+  };
+  expect_refused("ascii.vtk",
+                 "# vtk DataFile Version 3.0\ncut\nASCII\nDATASET POLYDATA\n"
+                 "POINTS 4 float\n0 0 0 1 1 1 2");
+  // Binary: big-endian floats, of which the cut leaves 7 of 12.
+  std::string binary =
+      "# vtk DataFile Version 3.0\ncut\nBINARY\nDATASET POLYDATA\n"
+      "POINTS 4 float\n";
+  binary.append(7 * 4, '\x3f');
+  expect_refused("binary.vtk", binary);
+  expect_refused("cut.vtp",
+                 "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" "
+                 "byte_order=\"LittleEndian\">\n<PolyData>\n<Piece NumberOfPoints=\"2\" "
+                 "NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+                 "NumberOfPolys=\"0\">\n<Points>\n<DataArray type=\"Float32\" "
+                 "NumberOfComponents=\"3\" format=\"ascii\">\n0 0 0 1 1");
+}
+
 TEST(CsvParticles, ErrorsNameFileAndLine) {
   test::TempFolder dir;
   std::ofstream(dir / "a.csv") << "1,2\n";
