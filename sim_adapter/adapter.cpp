@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <cstdlib>
+#include <mutex>
 #include <new>
 #include <set>
 
@@ -80,6 +82,47 @@ bool checked_spacing(std::int64_t step, const ClassifyCounts& c, double spacing)
                 " at particle_spacing ", spacing, ": unless the fluid is spray, the spacing is ",
                 "too small (surfaces break into dots); check its units");
   return true;
+}
+
+// The pipelines a process has made. A solver that exits without finish() (a C program returning
+// from main, exit() on an error path, Fortran's error stop) would otherwise lose the files still
+// queued and race its writer thread against the static destructors that exit() runs. Never
+// destroyed: the exit handler reads it after other statics are gone.
+struct OpenPipelines {
+  std::mutex mutex;
+  std::vector<std::weak_ptr<Pipeline>> pipelines;
+};
+
+OpenPipelines& open_pipelines() {
+  static auto* open = new OpenPipelines;
+  return *open;
+}
+
+void finish_open_pipelines() {
+  OpenPipelines& open = open_pipelines();
+  const std::lock_guard lock(open.mutex);
+  for (const std::weak_ptr<Pipeline>& p : open.pipelines)
+    if (const std::shared_ptr<Pipeline> pipeline = p.lock()) {
+      try {
+        pipeline->finish();
+      } catch (...) {
+        // exit() is under way: nothing is left to report to
+      }
+    }
+  open.pipelines.clear();
+}
+
+// Registers the handler again for each pipeline: exit() runs handlers and static destructors
+// newest first, so the newest registration runs before the statics the pipeline made (OpenVDB's,
+// the GL driver's).
+void finish_at_exit(const std::shared_ptr<Pipeline>& pipeline) {
+  OpenPipelines& open = open_pipelines();
+  {
+    const std::lock_guard lock(open.mutex);
+    std::erase_if(open.pipelines, [](const std::weak_ptr<Pipeline>& p) { return p.expired(); });
+    open.pipelines.push_back(pipeline);
+  }
+  std::atexit(finish_open_pipelines);
 }
 
 }  // namespace
@@ -185,6 +228,7 @@ Adapter::Adapter(Adapter&&) noexcept = default;
 Adapter& Adapter::operator=(Adapter&&) noexcept = default;
 
 void Adapter::set_pipeline(std::shared_ptr<Pipeline> pipeline) {
+  if (pipeline) finish_at_exit(pipeline);
   impl_->pipeline = std::move(pipeline);
 }
 

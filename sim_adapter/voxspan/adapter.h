@@ -152,7 +152,8 @@ class Adapter {
   // execute() for the solver's last step: the triggers with `last: true` fire on it.
   Status execute_last(std::int64_t step, double time, const ParticleView& particles,
                       const GridView& grid = GridView()) noexcept;
-  // Waits for the pipeline's pending work (files being written); the destructor does it too.
+  // Waits for the pipeline's pending work (files being written); the destructor does it too,
+  // and so does the process's exit (exit(), a return from main) for an adapter never destroyed.
   // A drain, not an end: steps may follow it (the files of the steps before are complete
   // then, for a solver that reads them back); the summary covers every step so far.
   void finish() noexcept;

@@ -98,7 +98,8 @@ voxspan_adapter* voxspan_adapter_create(const voxspan_adapter_options* options);
  * the key and line of a bad config) is in voxspan_last_error(). */
 voxspan_adapter* voxspan_adapter_create_from_config(const voxspan_adapter_options* options,
                                                     const char* config_path);
-/* Waits for pending outputs (files being written); destroy does it too. */
+/* Waits for pending outputs (files being written); destroy does it too, and so does the
+ * process's exit (exit(), a return from main, Fortran's stop) for an adapter never destroyed. */
 int voxspan_adapter_finish(voxspan_adapter* adapter);
 /* Copies the pipeline's summary line into buffer (NUL-terminated, cut to size); returns its
  * full length ("" without a pipeline). */

@@ -26,10 +26,12 @@ inline void write_child_report(const std::string& report) {
   std::ofstream(std::getenv("VOXSPAN_CHILD_REPORT")) << report;
 }
 
-// `setup` returns "" to go on, or a report (e.g. "skip=why\n") to give back at once.
+// `setup` returns "" to go on, or a report (e.g. "skip=why\n") to give back at once. The
+// child's wait status goes to `status` when given.
 inline std::string run_test_in_fresh_process(const std::filesystem::path& folder,
                                              const std::filesystem::path& report,
-                                             const std::function<std::string()>& setup) {
+                                             const std::function<std::string()>& setup,
+                                             int* status = nullptr) {
   const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
   const std::string filter =
       std::string("--gtest_filter=") + info->test_suite_name() + "." + info->name();
@@ -49,8 +51,9 @@ inline std::string run_test_in_fresh_process(const std::filesystem::path& folder
     ::execv(self, argv);
     ::_exit(127);
   }
-  int status = 0;
-  ::waitpid(pid, &status, 0);
+  int waited = 0;
+  ::waitpid(pid, &waited, 0);
+  if (status) *status = waited;
   std::ifstream in(report);
   return std::string(std::istreambuf_iterator<char>(in), {});
 }

@@ -292,6 +292,47 @@ TEST(MidRun, FileSizeLimitFailsTheLargeFiles) {
   expect_run_went_on(r, "File too large");
 }
 
+// A solver that exits without finish() (a C program returning from main, exit() on an error
+// path, Fortran's error stop) still gets the files its last steps queued, and exits cleanly:
+// without the adapter's exit handler the writer thread raced exit()'s static destructors
+// (crashes in OpenVDB's logging) and the last snapshot was lost.
+TEST(MidRun, ExitWithoutFinishWritesTheQueuedFiles) {
+  if (const char* folder = test::child_folder()) {
+    dambreak::DamBreak sim(test::small_dambreak());
+    const std::string yaml = std::string("output_folder: ") + folder + R"(
+trigger: {every_steps: 2, last: true}
+views: [{name: a, width: 96, height: 64}]
+outputs:
+  vdb: {enabled: true, trigger: {last: true}, attributes: [velocity]}
+)";
+    // Never destroyed, as a C solver's adapter is when main returns.
+    auto* adapter =
+        new Adapter(adapter_from_config_text(yaml, test::solver_options(sim), "x.yaml"));
+    for (std::int64_t step = 1; step <= 6; ++step) {
+      sim.step();
+      const dambreak::Fluid& f = sim.fluid();
+      const auto particles = ParticleView::soa(f.x.data(), f.y.data(), f.z.data(), f.size())
+                                 .with_vector("velocity", f.vx.data(), f.vy.data(), f.vz.data());
+      if (step < 6) adapter->execute(step, sim.time(), particles);
+      else adapter->execute_last(step, sim.time(), particles);
+    }
+    test::write_child_report("ran=1\n");
+    std::exit(0);
+  }
+  test::TempFolder dir;
+  int status = -1;
+  const std::string report = test::run_test_in_fresh_process(
+      dir / "run", dir / "report.txt", [] { return std::string(); }, &status);
+  ASSERT_EQ(report, "ran=1\n");
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "wait status " << status;
+  EXPECT_EQ(test::files_in(dir / "run" / "frames").size(), 3u);
+  const auto snapshots = test::files_in(dir / "run" / "snapshots");
+  ASSERT_EQ(snapshots.size(), 1u);
+  EXPECT_TRUE(test::read_vdb(dir / "run" / "snapshots" / snapshots[0]).ok);
+  EXPECT_TRUE(test::temporaries_under(dir / "run").empty());
+  EXPECT_FALSE(std::filesystem::exists(dir / "run" / ".voxspan.lock"));
+}
+
 // A 4 x 4 x 4 block at spacing 0.01, as x, y, z of each particle.
 std::vector<float> block_of_64() {
   std::vector<float> xyz;

@@ -16,9 +16,6 @@
 
 namespace voxspan {
 
-// openvdb::initialize(), once per process (vdb_snapshot.cpp).
-void ensure_openvdb_initialized();
-
 // Times consecutive stages into `stats` as "<prefix><name>": next() ends the running stage and
 // starts another.
 class Stages {

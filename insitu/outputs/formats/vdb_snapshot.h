@@ -71,6 +71,11 @@ struct VdbSnapshotReport : FluidLevelSetReport {
   FrameStats timings;
 };
 
+// openvdb::initialize(), once per process. The outputs call it when they are made, on the
+// solver's thread: initialized first on the writer thread, its statics would be newer than the
+// exit handler that drains the writer (sim_adapter/adapter.cpp) and gone before it runs.
+void ensure_openvdb_initialized();
+
 // Builds the grids and writes them atomically (temp name, fsync when sync, rename). Throws
 // WriteError on I/O failure, voxspan::Error on bad input (attribute sizes, voxel size).
 VdbSnapshotReport write_vdb_snapshot(const std::filesystem::path& path,

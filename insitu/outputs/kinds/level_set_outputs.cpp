@@ -28,7 +28,9 @@ LevelSetOutput::LevelSetOutput(const OutputContext& context, std::optional<doubl
       jobs_(context.writer, context.slots, [write_file = std::move(write_file)](SnapshotCopy& s) {
         const std::vector<AttributeSpan> spans = s.attribute_spans();
         write_file({s.spheres, s.cells.view(), spans, s.step, s.time});
-      }) {}
+      }) {
+  ensure_openvdb_initialized();
+}
 
 void LevelSetOutput::write(const OutputStep& step) {
   const StepData& data = step.data;
