@@ -34,6 +34,13 @@
 namespace voxspan {
 namespace {
 
+// Adds a failure to a step's: every view and output that failed is named, not the first alone.
+void add_failure(std::string& failure, const std::string& what) {
+  if (what.empty()) return;
+  if (!failure.empty()) failure += "; ";
+  failure += what;
+}
+
 // The log level from the config, before anything else logs.
 Config with_log_level(const Config& config) {
   LogLevel level;
@@ -295,14 +302,15 @@ struct InsituPipeline::Impl {
     return chosen;
   }
 
-  // The orbits of every output due on this step, into orbit_pictures; the first failure's
-  // message comes back (empty when all went well). Every rank renders them alike.
+  // The orbits of every output due on this step, into orbit_pictures; each output's first
+  // failure comes back (empty when all went well). Every rank renders them alike.
   std::string render_orbits(const StepData& data, const StepPlan& p) {
     orbit_pictures.clear();
     std::string failure;
     for (std::size_t o = 0; o < outputs.size(); ++o) {
       const OutputState& out = outputs[o];
       if (!p.outputs[o] || out.orbit_views.empty()) continue;
+      bool failed = false;
       const ViewNeeds needs{.picture = true, .first_hit_depth = out.orbits.depth};
       for (const std::size_t i : out.orbit_views) {
         ViewState& v = views[i];
@@ -329,10 +337,10 @@ struct InsituPipeline::Impl {
             } catch (const std::exception& e) {
               recorder->collect();
               drop_pending(v.orbit_products);
-              if (failure.empty())
-                failure = "outputs." + std::string(out.kind->config.name) + ": view " + v.name +
-                          " at phi " + std::to_string(phi) + ", theta " + std::to_string(theta) +
-                          ": " + e.what();
+              if (!std::exchange(failed, true))
+                add_failure(failure, "outputs." + std::string(out.kind->config.name) + ": view " +
+                                         v.name + " at phi " + std::to_string(phi) + ", theta " +
+                                         std::to_string(theta) + ": " + e.what());
             }
           }
       }
@@ -362,7 +370,7 @@ struct InsituPipeline::Impl {
     return n;
   }
 
-  // Renders every view; the first failure's message comes back (empty when all went well).
+  // Renders every view; the failures come back, each view's (empty when all went well).
   std::string render_views(const StepData& data, const ViewNeeds& needs) {
     std::string failure;
     const Bounds step_box = scene.fluid_box(data.boundary);
@@ -407,7 +415,7 @@ struct InsituPipeline::Impl {
         recorder->collect();  // closes the scopes of the failed frame
         drop_pending(v.products);
         ++totals.failed_views;
-        if (failure.empty()) failure = "view " + v.name + ": " + e.what();
+        add_failure(failure, "view " + v.name + ": " + e.what());
       }
     }
     return failure;
@@ -465,8 +473,7 @@ struct InsituPipeline::Impl {
       try {
         o.output->write(step);
       } catch (const std::exception& e) {
-        if (failure.empty())
-          failure = "outputs." + std::string(o.kind->config.name) + ": " + e.what();
+        add_failure(failure, "outputs." + std::string(o.kind->config.name) + ": " + e.what());
       }
     }
   }
@@ -649,8 +656,7 @@ Status InsituPipeline::process(const StepData& data, const StepStats& stats) {
     const Stopwatch render;
     if (m.live) m.live->take_cameras();
     failure = m.render_views(data, m.needs(p));
-    const std::string orbits = m.render_orbits(data, p);
-    if (failure.empty()) failure = orbits;
+    add_failure(failure, m.render_orbits(data, p));
     ++m.totals.render_steps;
     render_ms = render.ms();
   } else {

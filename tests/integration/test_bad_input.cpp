@@ -417,6 +417,32 @@ TEST(MidRun, AnOutputsUnknownAttributeFailsThatOutputAlone) {
   EXPECT_EQ(lines, 2);
 }
 
+// Every view and output that fails a step is named in its status, not the first alone.
+TEST(MidRun, EveryFailingViewAndOutputIsNamed) {
+  test::TempFolder dir;
+  test::LogCapture log;
+  const std::string yaml = "output_folder: " + dir.path().string() + R"(
+views:
+  - {name: good, width: 64, height: 48}
+  - {name: speed, width: 64, height: 48, color_by: speed}
+  - {name: pressure, kind: slice, width: 64, height: 48, quantity: pressure}
+outputs:
+  vdb: {enabled: true, attributes: [velocty]}
+)";
+  Adapter adapter = adapter_from_config_text(yaml, spacing_options(), "views.yaml");
+  const std::vector<float> xyz = block_of_64();
+  const std::vector<float> velocity(3 * 64, 1.0f);
+  const Status s = adapter.execute(
+      0, 0.0, ParticleView::aos(xyz.data(), 64).with_vector("velocity", velocity.data()));
+  EXPECT_FALSE(s.ok());
+  for (const char* named : {"view speed: views.yaml:4:5: views[1].color_by \"speed\"",
+                            "; view pressure: views.yaml:5:5: views[2].quantity \"pressure\"",
+                            "; outputs.vdb: views.yaml:7:8: outputs.vdb.attributes \"velocty\""})
+    EXPECT_NE(s.message.find(named), std::string::npos) << named << "\n" << s.message;
+  adapter.finish();
+  EXPECT_EQ(test::files_in(dir / "frames"), (std::vector<std::string>{"good_00000000.png"}));
+}
+
 // --- a writer queue that overflows ------------------------------------------------------
 
 std::int64_t number_before(const std::string& text, const std::string& what) {

@@ -293,9 +293,10 @@ int render(const Options& o, const Ranks& ranks) {
                                                         : adapter.execute(step, time, view);
       const voxspan::StepStats& st = adapter.last_stats();
       if (!s.ok()) {
+        // The library has logged the step's failures (every view's and output's) just above.
         if (talk)
-          std::fprintf(stderr, "render_particles: %s: %s\n", o.files[i].string().c_str(),
-                       s.message.c_str());
+          std::fprintf(stderr, "render_particles: %s: not rendered (the error above)\n",
+                       o.files[i].string().c_str());
         ++failures;
         continue;
       }
