@@ -55,6 +55,15 @@ void adopt_radius_attribute(ParticleData& data) {
   data.attributes.erase(it);
 }
 
+std::optional<std::int64_t> step_in_name(const std::filesystem::path& path) {
+  const std::string stem = path.stem().string();
+  std::size_t begin = stem.size();
+  while (begin > 0 && std::isdigit(static_cast<unsigned char>(stem[begin - 1]))) --begin;
+  // 18 digits at most: an int64 holds them all.
+  if (begin == stem.size() || stem.size() - begin > 18) return std::nullopt;
+  return std::stoll(stem.substr(begin));
+}
+
 std::string extension_of(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -80,7 +89,10 @@ ParticleData read_hdf5_particles(const std::filesystem::path& path,
   return hdf5::read_gadget_layout(h5.get(), path.string(), options);
 }
 
-ParticleData read_particles(const std::filesystem::path& path, const ParticleReadOptions& options) {
+namespace {
+
+ParticleData read_particles_of_format(const std::filesystem::path& path,
+                                      const ParticleReadOptions& options) {
   const std::string ext = extension_of(path);
   if (ext == ".hdf5" || ext == ".h5") return read_hdf5_particles(path, options);
   const bool vtk = ext == ".vtp" || ext == ".vtu" || ext == ".vtk";
@@ -108,6 +120,14 @@ ParticleData read_particles(const std::filesystem::path& path, const ParticleRea
     refuse_names("scenery arrays", options.scenery);
   if (vtk) return read_vtk_particles(path);
   return table ? read_csv_particles(path) : read_xyz_particles(path);
+}
+
+}  // namespace
+
+ParticleData read_particles(const std::filesystem::path& path, const ParticleReadOptions& options) {
+  ParticleData data = read_particles_of_format(path, options);
+  if (!data.step) data.step = step_in_name(path);
+  return data;
 }
 
 }  // namespace voxspan

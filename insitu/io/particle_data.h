@@ -23,7 +23,7 @@ struct ParticleData {
   std::vector<float> radii;  // empty when the file has no radius
   std::vector<Attribute> attributes;
   std::optional<double> time;        // simulated time, when the file says
-  std::optional<std::int64_t> step;  // step/iteration, when the file says
+  std::optional<std::int64_t> step;  // step/iteration, when the file (or its name) says
   std::optional<double> spacing;     // the rest spacing, when the file gives it (PySPH: m, rho)
   std::string chosen;                // what of the file was read, when it had a choice
   // The walls and obstacles (PySPH's arrays that are not the fluid: Adapter::set_scenery).
@@ -73,6 +73,11 @@ void require_particle_file(const std::filesystem::path& path);
 
 // The file's extension in lower case, with its dot: what picks its reader.
 std::string extension_of(const std::filesystem::path& path);
+
+// The number that ends a file's name before its extension, as a series' files carry their
+// step ("PartFluid_0050.vtk": 50, "ParticleData_Fluid_10.vtk": 10); nullopt when none does.
+// read_particles gives it as the step of a file whose format stores none.
+std::optional<std::int64_t> step_in_name(const std::filesystem::path& path);
 
 // Names the files use for radii (first match wins): radius, radii, r.
 bool is_radius_name(std::string_view name);

@@ -287,6 +287,13 @@ ParticleData hdf5::read_pysph_layout(hid_t h5, const std::string& file,
     data.chosen = "PySPH arrays " + joined(chosen) + " (" + why + ")" +
                   (scenery.empty() ? "" : "; scenery: " + joined(scenery) + " (--scenery picks)") +
                   (unused.empty() ? "" : "; left out: " + joined(unused) + " (--arrays picks)");
+  // A 2D run may store no z at all (output arrays without it): said, as it sets the spacing's
+  // dimensions and the picture's axis.
+  const bool no_z = std::any_of(filled.begin(), filled.end(),
+                                [](const ArrayData* a) { return !a->properties.count("z"); });
+  if (no_z)
+    data.chosen += std::string(data.chosen.empty() ? "" : "; ") +
+                   "no z stored: read as a 2D run in the x-y plane (z = 0)";
   adopt_radius_attribute(data);
   return data;
 }

@@ -8,17 +8,23 @@
 //        space, as the first row has them; a unit after a name ("Pos.x [m]") is left out of it.
 //        Positions are x,y,z or Points:0,Points:1,Points:2 (any case); three consecutive columns
 //        named <base>_x/_y/_z, <base>:0/:1/:2, <base>.x/.y/.z or <base>x/y/z become the vector
-//        attribute <base>; a column radius/radii/r gives the radii; every other column is a scalar
-//        attribute.
+//        attribute <base> (u, v, w: "velocity"); a column radius/radii/r gives the radii; every
+//        other column is a scalar attribute.
 //  .xyz: whitespace-separated "x y z [radius] [more...]" per line, '#' comments; the
 //        extended-XYZ header (a count line, then a comment line) and a leading element symbol
-//        on each line are accepted. Extra columns become attributes column4, column5...
+//        on each line are accepted. Extra columns become attributes column4, column5... A
+//        comment line with extended XYZ's Properties=name:type:count:... (ASE, OVITO) names the
+//        columns instead: pos the positions, radius/radii/r the radii, other R and I columns
+//        attributes (3 wide: a vector), S and L columns (species, flags) skipped.
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <cctype>
 #include <fstream>
+#include <functional>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -117,8 +123,10 @@ std::string without_unit(std::string name) {
   return name;
 }
 
-// The base name when a, b, c are the x, y, z components of one vector; empty otherwise.
+// The base name when a, b, c are the x, y, z components of one vector; empty otherwise. PySPH's
+// u, v, w (its saved columns) are "velocity", as its HDF5 files read.
 std::string vector_base(const std::string& a, const std::string& b, const std::string& c) {
+  if (lower(a) == "u" && lower(b) == "v" && lower(c) == "w") return "velocity";
   static const std::vector<std::array<std::string, 3>> suffixes = {
       {"_x", "_y", "_z"}, {":0", ":1", ":2"}, {"[0]", "[1]", "[2]"},
       {"_0", "_1", "_2"}, {".x", ".y", ".z"}, {"x", "y", "z"}};
@@ -275,6 +283,86 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
   return data;
 }
 
+// One column group of extended XYZ's Properties: name, type (R real, I integer, S string, L
+// logical) and its width in fields.
+struct XyzProperty {
+  std::string name;
+  char type;
+  std::size_t count;
+};
+
+// The Properties= of an extended-XYZ comment line (empty when it has none). Throws a message for
+// one that does not read as name:type:count triples.
+std::vector<XyzProperty> xyz_properties(const std::string& comment) {
+  const std::size_t at = comment.find("Properties=");
+  if (at == std::string::npos) return {};
+  std::string value = comment.substr(at + 11);
+  value = value.substr(0, value.find_first_of(" \t"));
+  std::erase(value, '"');
+  std::vector<std::string> parts;
+  for (std::size_t begin = 0;;) {
+    const std::size_t end = value.find(':', begin);
+    parts.push_back(value.substr(begin, end - begin));
+    if (end == std::string::npos) break;
+    begin = end + 1;
+  }
+  const std::string bad = "Properties=" + value + ": not name:type:count triples";
+  if (parts.size() % 3 != 0) throw std::runtime_error(bad);
+  std::vector<XyzProperty> properties;
+  for (std::size_t i = 0; i < parts.size(); i += 3) {
+    double count = 0;
+    if (parts[i].empty() || parts[i + 1].size() != 1 ||
+        std::string_view("RISL").find(parts[i + 1][0]) == std::string_view::npos ||
+        !parse_number(parts[i + 2], count) || count < 1 || count != std::floor(count))
+      throw std::runtime_error(bad);
+    properties.push_back({parts[i], parts[i + 1][0], std::size_t(count)});
+  }
+  return properties;
+}
+
+// The particles of an extended-XYZ file's lines [start, end) as its Properties name them.
+ParticleData read_xyz_by_properties(
+    const std::vector<std::string>& lines, std::size_t start,
+    const std::vector<XyzProperty>& properties,
+    const std::function<Error(std::size_t, const std::string&)>& fail) {
+  ParticleData data;
+  std::size_t fields = 0, pos = std::string::npos;
+  std::vector<std::pair<std::size_t, std::size_t>> attribute_at;  // (first field, attribute)
+  std::size_t radius_at = std::string::npos;
+  for (const XyzProperty& p : properties) {
+    const bool numeric = p.type == 'R' || p.type == 'I';
+    if (p.name == "pos" && numeric && p.count == 3) pos = fields;
+    else if (numeric && p.count == 1 && is_radius_name(p.name)) radius_at = fields;
+    else if (numeric && (p.count == 1 || p.count == 3)) {
+      attribute_at.push_back({fields, data.attributes.size()});
+      data.attributes.push_back({p.name, int(p.count), {}});
+    }
+    fields += p.count;
+  }
+  if (pos == std::string::npos) throw fail(2, "Properties= names no pos:R:3 column");
+  for (std::size_t l = start; l < lines.size(); ++l) {
+    const std::string t = trim(lines[l]);
+    if (t.empty()) continue;
+    const std::vector<std::string> f = split_whitespace(t);
+    if (f.size() != fields)
+      throw fail(l + 1,
+                 std::to_string(f.size()) + " fields; Properties= names " + std::to_string(fields));
+    const auto number = [&](std::size_t c) {
+      double v = 0;
+      if (!parse_number(f[c], v))
+        throw fail(l + 1, "field " + std::to_string(c + 1) + " is not a number: \"" + f[c] + "\"");
+      return v;
+    };
+    data.positions.push_back({number(pos), number(pos + 1), number(pos + 2)});
+    if (radius_at != std::string::npos) data.radii.push_back(float(number(radius_at)));
+    for (const auto& [first, a] : attribute_at)
+      for (int k = 0; k < data.attributes[a].components; ++k)
+        data.attributes[a].values.push_back(float(number(first + std::size_t(k))));
+  }
+  data.chosen = "the columns Properties= names";
+  return data;
+}
+
 ParticleData read_xyz_particles(const std::filesystem::path& path) {
   std::ifstream in = open_text(path);
   auto fail = [&](std::size_t line, const std::string& why) {
@@ -288,6 +376,21 @@ ParticleData read_xyz_particles(const std::filesystem::path& path) {
       lines.empty() ? std::vector<std::string>{} : split_whitespace(lines[0]);
   double count = 0;
   if (first.size() == 1 && parse_number(first[0], count) && lines.size() >= 2) start = 2;
+  if (start == 2) {
+    std::vector<XyzProperty> properties;
+    try {
+      properties = xyz_properties(lines[1]);
+    } catch (const std::runtime_error& e) {
+      throw fail(2, e.what());
+    }
+    if (!properties.empty()) {
+      ParticleData data = read_xyz_by_properties(lines, start, properties, fail);
+      if (data.positions.size() != std::size_t(count))
+        throw fail(1, "the header says " + first[0] + " particles; the file has " +
+                          std::to_string(data.positions.size()));
+      return data;
+    }
+  }
 
   ParticleData data;
   std::size_t columns = 0;

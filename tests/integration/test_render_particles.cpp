@@ -207,5 +207,25 @@ TEST(RenderParticles, AFileWithNoParticlesIsRenderedWithAWarning) {
   EXPECT_EQ(test::files_in(out / "frames"), (std::vector<std::string>{"main_00000000.png"}));
 }
 
+// A series whose names end in their steps, unpadded and given in the shell's order (_10
+// before _2): rendered in the order of the steps, each as its own step, and said.
+TEST(RenderParticles, ASeriesTakesItsStepsAndOrderFromItsNames) {
+  test::TempFolder dir;
+  for (const char* name : {"fluid_1.csv", "fluid_10.csv", "fluid_2.csv"})
+    write_block_csv(dir / name);
+  const std::filesystem::path out = dir / "out";
+  const ToolRun r = run_tool(
+      dir.path(), "--output " + out.string() + " " + (dir / "fluid_1.csv").string() + " " +
+                      (dir / "fluid_10.csv").string() + " " + (dir / "fluid_2.csv").string());
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("the files are rendered in the order of the numbers that end their names "
+                       "(fluid_10.csv was given before fluid_2.csv)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(
+      test::files_in(out / "frames"),
+      (std::vector<std::string>{"main_00000001.png", "main_00000002.png", "main_00000010.png"}));
+}
+
 }  // namespace
 }  // namespace voxspan

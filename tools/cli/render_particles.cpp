@@ -35,6 +35,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -197,8 +198,8 @@ double spacing_of(const Options& o, const voxspan::Config& config,
   const double spacing = voxspan::estimate_particle_spacing(data->positions);
   if (!(spacing > 0))
     throw voxspan::make_error(name,
-                              ": cannot estimate the particle spacing (fewer than two "
-                              "particles); pass --spacing");
+                              ": cannot estimate the particle spacing (fewer than two particles "
+                              "at finite, distinct positions); pass --spacing");
   if (talk)
     std::printf("particle spacing %.6g (estimated from %s; --spacing sets it)\n", spacing,
                 name.c_str());
@@ -223,8 +224,35 @@ void warn_of_odd_radii(const voxspan::ParticleData& d, const std::filesystem::pa
                file.string().c_str(), median, spacing);
 }
 
-int render(const Options& o, const Ranks& ranks) {
+// A series whose names end in their steps, given in the shell's order ("_10" before "_2" when
+// the numbers are not padded): rendered in the order of the steps, and said.
+void order_by_steps_in_names(std::vector<std::filesystem::path>& files, bool talk) {
+  std::vector<std::int64_t> steps;
+  for (const std::filesystem::path& f : files) {
+    const std::optional<std::int64_t> s = voxspan::step_in_name(f);
+    if (!s) return;
+    steps.push_back(*s);
+  }
+  if (std::is_sorted(steps.begin(), steps.end())) return;
+  std::vector<std::size_t> order(files.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return steps[a] < steps[b]; });
+  std::vector<std::filesystem::path> sorted;
+  for (std::size_t i : order) sorted.push_back(files[i]);
+  const auto late = std::is_sorted_until(steps.begin(), steps.end()) - steps.begin();
+  if (talk)
+    std::printf(
+        "render_particles: the files are rendered in the order of the numbers that end "
+        "their names (%s was given before %s)\n",
+        files[std::size_t(late - 1)].filename().string().c_str(),
+        files[std::size_t(late)].filename().string().c_str());
+  files = std::move(sorted);
+}
+
+int render(Options o, const Ranks& ranks) {
   const bool talk = ranks.rank == 0;
+  order_by_steps_in_names(o.files, talk);
   try {
     const voxspan::Config config = offline_config(o);
     // The first file is read before the runtime starts: it may give the spacing.
@@ -232,13 +260,13 @@ int render(const Options& o, const Ranks& ranks) {
     if (talk && !first.chosen.empty()) std::printf("reading %s\n", first.chosen.c_str());
     const double spacing = spacing_of(o, config, first, talk);
     if (talk) warn_of_odd_radii(first, o.files[0], spacing);
+    if (talk && first.radii.empty() && first.size() > 0)
+      std::printf("sphere radius %.6g (%s; --radius sets it)\n", o.radius > 0 ? o.radius : spacing,
+                  o.radius > 0 ? "--radius" : "the spacing, as the file gives no radii");
     voxspan::AdapterOptions options;
     options.classify.particle_spacing = spacing;
     options.classify.radius = o.radius;
-    if (ranks.mpi) {
-      options.mpi_comm = int(MPI_Comm_c2f(MPI_COMM_WORLD));
-      options.classify.include_ghosts = false;  // a ghost is another rank's to voxelize
-    }
+    if (ranks.mpi) options.mpi_comm = int(MPI_Comm_c2f(MPI_COMM_WORLD));
     voxspan::Adapter adapter = voxspan::make_insitu_adapter(config, options);
 
     int failures = 0;

@@ -69,8 +69,8 @@ TEST(CsvParticles, NumpysHeaderInACommentAndWhiteSpace) {
   ASSERT_EQ(d.size(), 2u);
   EXPECT_DOUBLE_EQ(d.positions[1][0], 0.15);
   EXPECT_DOUBLE_EQ(d.positions[1][2], 3);
-  ASSERT_NE(d.attribute("w"), nullptr);
-  EXPECT_EQ(d.attribute("w")->values, (std::vector<float>{3, 6}));
+  ASSERT_NE(d.attribute("velocity"), nullptr);  // u, v, w
+  EXPECT_EQ(d.attribute("velocity")->values, (std::vector<float>{1, 2, 3, 4, 5, 6}));
 
   d = read_text(dir, "tabs.csv", "X\tY\tZ\tp\n1\t2\t3\t4\n");
   ASSERT_EQ(d.size(), 1u);
@@ -119,6 +119,16 @@ TEST(CsvParticles, PandasAndExcelTables) {
 }
 
 // DualSPHysics' CSV: semicolons, a unit after each name, a semicolon ending every row.
+// PySPH's u, v, w columns are its velocity, as in its HDF5 files.
+TEST(CsvParticles, UVWColumnsAreTheVelocity) {
+  test::TempFolder dir;
+  const ParticleData d = read_text(dir, "p.csv", "x,y,z,u,v,w,rho\n0,0,0,1,2,3,1000\n");
+  ASSERT_NE(d.attribute("velocity"), nullptr);
+  EXPECT_EQ(d.attribute("velocity")->components, 3);
+  EXPECT_EQ(d.attribute("velocity")->values, (std::vector<float>{1, 2, 3}));
+  EXPECT_NE(d.attribute("rho"), nullptr);
+}
+
 TEST(CsvParticles, SemicolonsUnitsAndDottedVectors) {
   test::TempFolder dir;
   ParticleData d = read_text(
@@ -227,6 +237,19 @@ TEST(VtkParticles, FilesCutShortAreRefused) {
                  "NumberOfComponents=\"3\" format=\"ascii\">\n0 0 0 1 1");
 }
 
+// A series' files carry their steps in their names; a file whose format stores none takes it.
+TEST(ParticleFiles, TheNumberEndingANameIsTheStep) {
+  EXPECT_EQ(step_in_name("out/PartFluid_0050.vtk"), 50);
+  EXPECT_EQ(step_in_name("ParticleData_Fluid_10.vtk"), 10);
+  EXPECT_EQ(step_in_name("fluid0007.csv"), 7);
+  EXPECT_EQ(step_in_name("particles.csv"), std::nullopt);
+  EXPECT_EQ(step_in_name("run2/particles.csv"), std::nullopt);
+  EXPECT_EQ(step_in_name("f_1234567890123456789.csv"), std::nullopt);  // past int64
+  test::TempFolder dir;
+  EXPECT_EQ(read_text(dir, "block_0042.csv", "x,y,z\n0,0,0\n").step, 42);
+  EXPECT_EQ(read_text(dir, "block.csv", "x,y,z\n0,0,0\n").step, std::nullopt);
+}
+
 TEST(CsvParticles, ErrorsNameFileAndLine) {
   test::TempFolder dir;
   std::ofstream(dir / "a.csv") << "1,2\n";
@@ -275,6 +298,32 @@ TEST(XyzParticles, PlainAndExtended) {
   std::ofstream(dir / "x.xyz") << "0 0 0 1 7\n1 1 1\n";
   EXPECT_NE(error_of(dir / "x.xyz").find("x.xyz:2: 3 columns; earlier lines have 5"),
             std::string::npos);
+}
+
+// Extended XYZ's Properties= (ASE, OVITO) names the columns: positions, radii and attributes
+// where it says, strings skipped; without it a fourth column would read as the radius.
+TEST(XyzParticles, PropertiesNameTheColumns) {
+  test::TempFolder dir;
+  ParticleData d = read_text(dir, "p.xyz",
+                             "2\nLattice=\"1 0 0 0 1 0 0 0 1\" Properties=species:S:1:pos:R:3:"
+                             "rho:R:1:vel:R:3:radius:R:1 time=0.5\n"
+                             "H 0 0 0 1000 1 2 3 0.01\nH 1 2 3 1001 4 5 6 0.02\n");
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_DOUBLE_EQ(d.positions[1][2], 3);
+  EXPECT_EQ(d.radii, (std::vector<float>{0.01f, 0.02f}));
+  ASSERT_NE(d.attribute("rho"), nullptr);
+  EXPECT_EQ(d.attribute("rho")->values, (std::vector<float>{1000, 1001}));
+  ASSERT_NE(d.attribute("vel"), nullptr);
+  EXPECT_EQ(d.attribute("vel")->components, 3);
+  EXPECT_EQ(d.attribute("vel")->values[3], 4.f);
+  std::ofstream(dir / "bad.xyz") << "1\nProperties=species:S:1:rho:R:1\nH 1\n";
+  EXPECT_NE(error_of(dir / "bad.xyz").find("bad.xyz:2: Properties= names no pos:R:3 column"),
+            std::string::npos)
+      << error_of(dir / "bad.xyz");
+  std::ofstream(dir / "odd.xyz") << "1\nProperties=pos:R\n0 0 0\n";
+  EXPECT_NE(error_of(dir / "odd.xyz").find("odd.xyz:2: Properties=pos:R: not name:type:count"),
+            std::string::npos)
+      << error_of(dir / "odd.xyz");
 }
 
 // ---- PySPH ----
@@ -486,6 +535,9 @@ TEST(PySphParticles, TwoDimensionalRunsGetZeroZ) {
   EXPECT_DOUBLE_EQ(d.positions[1][2], 0);
   EXPECT_FALSE(d.time.has_value());
   EXPECT_EQ(d.attribute("velocity")->values[5], 0.f);
+  EXPECT_NE(d.chosen.find("no z stored: read as a 2D run in the x-y plane (z = 0)"),
+            std::string::npos)
+      << d.chosen;
 }
 
 // As PySPH writes a 2D run (trivial_inlet_outlet): z stored, all 0, the mass an area's; and
@@ -571,7 +623,7 @@ TEST(GadgetParticles, TheGasWithItsFieldsTimeAndSpacing) {
   EXPECT_DOUBLE_EQ(d.positions[2][2], 1);
   ASSERT_TRUE(d.time.has_value());
   EXPECT_DOUBLE_EQ(*d.time, 0.125);
-  EXPECT_FALSE(d.step.has_value());
+  EXPECT_EQ(d.step, 7);  // the header holds none: the number ending the name
   ASSERT_NE(d.attribute("Velocities"), nullptr);
   EXPECT_EQ(d.attribute("Velocities")->components, 3);
   EXPECT_EQ(d.attribute("Velocities")->values[5], 6.f);
