@@ -1,8 +1,8 @@
-// render/sph_kernel.h - the SPH smoothing kernels W(r, h) the views interpolate with, 3D and
-// normalised to integrate to 1 over space: Monaghan's cubic spline, Wendland's C2 and Morris's
-// quintic spline (the forms and constants of PySPH's kernels, support 2h, 2h and 3h), and
-// Mueller's poly6 ([FAW10] sec. 6's fluid kernel, support h). The shape functions are inline:
-// the volume renderers call them once per sample and particle.
+// render/sph_kernel.h - the SPH smoothing kernels W(r, h) the views interpolate with, 3D (or 2D,
+// for a run in a plane) and normalised to integrate to 1 over space: Monaghan's cubic spline,
+// Wendland's C2 and Morris's quintic spline (the forms and constants of PySPH's kernels, support
+// 2h, 2h and 3h), and Mueller's poly6 ([FAW10] sec. 6's fluid kernel, support h). The shape
+// functions are inline: the volume renderers call them once per sample and particle.
 #pragma once
 
 #include <cmath>
@@ -87,9 +87,22 @@ template <class F> decltype(auto) with_kernel(SphKernel kernel, F&& f) {
   }
 }
 
-// W(r, h), normalised.
-inline double kernel_value(SphKernel kernel, double r, double h) {
-  return with_kernel(kernel, [&]<SphKernel K>() { return kernel_shape<K>(r / h) / (h * h * h); });
+// The 2D kernel over the 3D one at the same r / h, times 1 / h: each kernel has one shape in both,
+// with its own normalisation (PySPH's constants; cubic spline 10 / (7 pi) against 1 / pi).
+constexpr double planar_ratio(SphKernel kernel) {
+  switch (kernel) {
+    case SphKernel::wendland_c2: return 4.0 / 3.0;      // 7 / (4 pi) against 21 / (16 pi)
+    case SphKernel::quintic: return 120.0 * 7 / 478.0;  // 7 / (478 pi) against 1 / (120 pi)
+    case SphKernel::poly6: return 256.0 / 315.0;        // 4 / pi against 315 / (64 pi)
+    default: return 10.0 / 7.0;
+  }
+}
+
+// W(r, h), normalised over 3D space, or over the plane (dimensions 2) for a run in a plane.
+inline double kernel_value(SphKernel kernel, double r, double h, int dimensions = 3) {
+  const double w =
+      with_kernel(kernel, [&]<SphKernel K>() { return kernel_shape<K>(r / h) / (h * h * h); });
+  return dimensions == 2 ? w * h * planar_ratio(kernel) : w;
 }
 
 }  // namespace voxspan

@@ -132,8 +132,8 @@ class ParticlesView final : public View {
     if (slice_) {
       auto t =
           recorder.host(pass::slice_sum);  // collective: before anything that may fail on one rank
-      slice_->interpolate(*step.data.particles, step.fluid_box, step.camera.up, step.data.step,
-                          settings_.width, settings_.height);
+      slice_->interpolate(*step.data.particles, step.fluid_box, step.flat_axis, step.camera.up,
+                          step.data.step, settings_.width, settings_.height);
     }
     const GlyphSelection selection = selection_for(*step.data.particles, step.camera);
     std::string failure;

@@ -114,8 +114,8 @@ SliceLayer::SliceLayer(const SliceField& field, std::string view_name, std::stri
                      ": smoothing_length is `auto` but the particle spacing is unknown; set it");
 }
 
-void SliceLayer::interpolate(const ParticleView& particles, const Bounds& fluid_box, glm::dvec3 up,
-                             std::int64_t step, int width, int height,
+void SliceLayer::interpolate(const ParticleView& particles, const Bounds& fluid_box, int flat_axis,
+                             glm::dvec3 up, std::int64_t step, int width, int height,
                              const LegendMargins& legend) {
   // With a legend to keep clear (a slice view's own picture) the sums' whole reach is fitted,
   // so that no value lies under it; a plane in a 3D view keeps the box's size.
@@ -127,7 +127,9 @@ void SliceLayer::interpolate(const ParticleView& particles, const Bounds& fluid_
   q.key = quantity_key_;
   q.mass = field_.mass;
   q.density = field_.density;
-  q.rest_volume = spacing_ * spacing_ * spacing_;
+  // A run in a plane (its particles flat along one axis) sums with the 2D kernel, over areas.
+  q.dimensions = flat_axis >= 0 ? 2 : 3;
+  q.rest_volume = q.dimensions == 2 ? spacing_ * spacing_ : spacing_ * spacing_ * spacing_;
   q.kernel = field_.kernel;
   q.smoothing_length = field_.smoothing_length.value_or(kAutoSmoothingFactor * spacing_);
   q.smoothing = field_.smoothing_attribute;

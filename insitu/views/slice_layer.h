@@ -81,10 +81,12 @@ class SliceLayer {
 
   // The step's slice on a width x height grid of the plane (fitted to the fluid's box when the
   // settings leave the origin or the extent `auto`, clear of the `legend` margins; `up` orients
-  // it). Collective in an MPI job: every rank calls it, and all throw when any failed. On the
-  // root, a plane that reaches no particle is counted and warned about.
-  void interpolate(const ParticleView& particles, const Bounds& fluid_box, glm::dvec3 up,
-                   std::int64_t step, int width, int height, const LegendMargins& legend = {});
+  // it). `flat_axis` >= 0: the particles lie in a plane across it (a 2D run), summed with the
+  // 2D kernel. Collective in an MPI job: every rank calls it, and all throw when any failed. On
+  // the root, a plane that reaches no particle is counted and warned about.
+  void interpolate(const ParticleView& particles, const Bounds& fluid_box, int flat_axis,
+                   glm::dvec3 up, std::int64_t step, int width, int height,
+                   const LegendMargins& legend = {});
 
   // The slice as its own image: the colour-mapped values, isolines darkened, no-fluid pixels
   // dark, the colour bar at the right edge and the axes in world units at the bottom and left.

@@ -36,8 +36,8 @@ class SliceView final : public View {
     {
       auto t = recorder.host(pass::slice_sum);
       const Vec3d& up = settings_.camera.up;
-      layer_.interpolate(*step.data.particles, step.fluid_box, {up[0], up[1], up[2]},
-                         step.data.step, w, h, legend_margins(w, h));
+      layer_.interpolate(*step.data.particles, step.fluid_box, step.flat_axis,
+                         {up[0], up[1], up[2]}, step.data.step, w, h, legend_margins(w, h));
     }
     if (comm_ != nullptr && !comm_->root()) return false;  // the root draws the picture
     auto t = recorder.host(pass::slice_draw);

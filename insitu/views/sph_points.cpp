@@ -101,7 +101,7 @@ SphSum sum_at(const PointGrid& grid, std::span<const std::uint32_t> start,
       const std::size_t row = grid.index({0, y, z});
       for (std::uint32_t s = start[row + std::size_t(x0)]; s < start[row + std::size_t(x1) + 1];
            ++s)
-        sum.add(sorted[s], x, q.kernel, h);
+        sum.add(sorted[s], x, q, h);
     }
   }
   return sum;

@@ -92,8 +92,8 @@ namespace {
 
 // Each term adds itself to the pixels whose centres its support reaches (per-particle h): the
 // rows in bands, in parallel, each band's pixels getting the terms in their order.
-void scatter_slice(const std::vector<SphTerm>& near, SphKernel kernel, const SlicePlane& plane,
-                   SliceImage& out) {
+void scatter_slice(const std::vector<SphTerm>& near, const SliceQuantity& q,
+                   const SlicePlane& plane, SliceImage& out) {
   const int width = out.width, height = out.height;
   const double px = plane.width / width, py = plane.height / height;
   constexpr int kBand = 8;
@@ -106,7 +106,7 @@ void scatter_slice(const std::vector<SphTerm>& near, SphKernel kernel, const Sli
     const int j0 = band * kBand, j1 = std::min(height, j0 + kBand) - 1;
     for (const SphTerm& t : near) {
       const glm::dvec3 d = t.p - plane.origin;
-      const double off = glm::dot(d, plane.normal), support = kernel_support(kernel) * t.h;
+      const double off = glm::dot(d, plane.normal), support = kernel_support(q.kernel) * t.h;
       const double reach = std::sqrt(std::max(0.0, support * support - off * off));
       // Pixel centres at s = ((i + 0.5) / W - 0.5) width, t = (0.5 - (j + 0.5) / H) height.
       const double s = glm::dot(d, plane.u), v = glm::dot(d, plane.v);
@@ -122,7 +122,7 @@ void scatter_slice(const std::vector<SphTerm>& near, SphKernel kernel, const Sli
         for (int i = i_lo; i <= i_hi; ++i) {
           const std::size_t pixel = std::size_t(i) + std::size_t(width) * std::size_t(j);
           SphSum sum{out.sum[pixel], out.weight[pixel]};
-          sum.add(t, plane.pixel_centre(i, j, width, height), kernel, t.h);
+          sum.add(t, plane.pixel_centre(i, j, width, height), q, t.h);
           out.sum[pixel] = sum.sum;
           out.weight[pixel] = sum.weight;
         }
@@ -150,7 +150,7 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
   out.weight.assign(out.values.size(), 0.0);
   out.particles_near = near.size();
   if (!q.smoothing.empty()) {
-    scatter_slice(near, q.kernel, plane, out);
+    scatter_slice(near, q, plane, out);
     finish_slice(out, q.shepard);
     return;
   }
@@ -196,7 +196,7 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
         const std::size_t row = std::size_t(bx + 2) * std::size_t(y + 1);
         for (std::uint32_t s = start[row + std::size_t(x0 + 1)];
              s < start[row + std::size_t(x1 + 2)]; ++s)
-          sum.add(sorted[s], x, q.kernel, h);
+          sum.add(sorted[s], x, q, h);
       }
       const std::size_t pixel = std::size_t(i) + std::size_t(width) * std::size_t(j);
       out.sum[pixel] = sum.sum;

@@ -54,6 +54,9 @@ struct SliceQuantity {
   double smoothing_length = 0;  // h, world units (> 0)
   std::string_view smoothing;   // the attribute with each particle's h; empty: smoothing_length
   bool shepard = false;
+  // 2: the particles lie in a plane (a 2D run): its kernel (sph_kernel.h), and rest_volume an
+  // area.
+  int dimensions = 3;
 };
 
 // One owned particle's part of an SPH sum: its position, (m / rho) A, m / rho and its h.
@@ -65,11 +68,11 @@ struct SphTerm {
 // The sums at one point x: sum_j (m_j / rho_j) A_j W and sum_j (m_j / rho_j) W.
 struct SphSum {
   double sum = 0, weight = 0;
-  void add(const SphTerm& t, glm::dvec3 x, SphKernel kernel, double h) {
+  void add(const SphTerm& t, glm::dvec3 x, const SliceQuantity& q, double h) {
     const glm::dvec3 d = x - t.p;
-    const double r2 = glm::dot(d, d), support = kernel_support(kernel) * h;
+    const double r2 = glm::dot(d, d), support = kernel_support(q.kernel) * h;
     if (r2 >= support * support) return;  // W is 0 there: most of a neighbourhood's particles
-    const double w = kernel_value(kernel, std::sqrt(r2), h);
+    const double w = kernel_value(q.kernel, std::sqrt(r2), h, q.dimensions);
     sum += t.volume_value * w;
     weight += t.volume * w;
   }

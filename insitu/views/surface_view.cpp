@@ -212,8 +212,8 @@ class SurfaceView final : public View {
     if (!slice_) return render_colored(step, with_depth, recorder, out);
     {
       auto t = recorder.host(pass::slice_sum);  // collective: before anything that may fail
-      slice_->interpolate(*step.data.particles, step.fluid_box, step.camera.up, step.data.step,
-                          settings_.width, settings_.height);
+      slice_->interpolate(*step.data.particles, step.fluid_box, step.flat_axis, step.camera.up,
+                          step.data.step, settings_.width, settings_.height);
     }
     if (!render_colored(step, with_depth, recorder, out)) return false;
     auto t = recorder.host(pass::slice_draw);

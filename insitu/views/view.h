@@ -80,6 +80,9 @@ struct ViewStep {
   // steps (trails) does not advance.
   bool again = false;
   const Scenery* scenery = nullptr;  // the solver's walls (null: none)
+  // The axis a 2D run's particles lie flat along (step_scene.h), -1 for a 3D fluid: slices
+  // interpolate such a run with the 2D kernel.
+  int flat_axis = -1;
 };
 
 class View {
