@@ -363,8 +363,6 @@ class PyAdapter {
       if (!py::hasattr(s.comm, "py2f"))
         throw py::type_error("comm must be an mpi4py communicator, got " + type_name(s.comm));
       options.mpi_comm = s.comm.attr("py2f")().cast<int>();
-      // A ghost is the rank's neighbour's to voxelize (the classification counts it).
-      c.include_ghosts = false;
     }
     if (s.offline) config = offline_config(std::move(config), s.output);
     else if (!s.output.empty()) config.output_folder = s.output;

@@ -30,6 +30,12 @@ BackendChoice choose_backend(RenderBackend wanted, const gl::ContextOptions& opt
                                               gl::platform_name(c.context->platform()) + ")";
     return c;
   }
+  if (gl::only_software_devices()) {
+    c.why =
+        "auto: EGL's only device is Mesa's software one (llvmpipe, a GPU emulated on the "
+        "CPU); renderer.backend: gl uses it";
+    return c;
+  }
   try {
     c.context = std::make_unique<gl::Context>(options);
   } catch (const Error& e) {

@@ -10,6 +10,8 @@
 #include <mutex>
 #include <new>
 #include <set>
+#include <string_view>
+#include <utility>
 
 #include "voxspan/error.h"
 #include "voxspan/stopwatch.h"
@@ -133,6 +135,11 @@ struct Adapter::Impl {
   std::shared_ptr<Pipeline> pipeline;
   StepStats stats;
   bool spacing_checked = false;
+  // The solver's cell lists are checked against the positions (ClassifyOptions::validate) on
+  // render steps until one passes: a grid with the wrong origin, cell size or index base, or
+  // particles not stored in its order, would otherwise give a wrong picture and no word.
+  bool grid_checked = false;
+  bool nonfinite_told = false;
   std::int64_t steps_seen = 0, render_steps = 0, failed_steps = 0;
   double seconds_in_situ = 0;
   std::vector<ParticleSphere> scenery;
@@ -141,6 +148,8 @@ struct Adapter::Impl {
   // Throws what the classification throws (bad input).
   const Classification& classify(std::int64_t step, const ParticleView& particles,
                                  const GridView& grid);
+  // The classification with the grid's cell lists checked (grid_checked).
+  const Classification& checked_grid(const ParticleView& particles, const GridView& grid);
   // The step's status on every rank of the pipeline (its own when alone).
   void agree();
   // Whether the pipeline's triggers that look at the particles want the step.
@@ -151,15 +160,21 @@ struct Adapter::Impl {
 
 const Classification& Adapter::Impl::classify(std::int64_t step, const ParticleView& particles,
                                               const GridView& grid) {
-  const Classification& c = classifier.run(particles, grid, options.classify);
+  const bool solver_lists = grid.layout() == GridView::Layout::cell_ranges ||
+                            grid.layout() == GridView::Layout::cell_index;
+  const bool check_grid = solver_lists && !grid_checked && !options.classify.validate;
+  const Classification& c = check_grid ? checked_grid(particles, grid)
+                                       : classifier.run(particles, grid, options.classify);
   stats.counts = c.counts;
   stats.seconds_classify = c.seconds_classify;
   stats.seconds_compact = c.seconds_compact;
   stats.rendered = true;
-  if (c.counts.dropped_nonfinite > 0)
-    log_quietly(
-        LogLevel::warning, "step ", step, ": left out ", c.counts.dropped_nonfinite,
-        " particles with a NaN or infinite position, or a NaN, infinite or negative radius");
+  // Said on the first step that has them; each step's stats line counts them
+  // (dropped_nonfinite), where a line a step would bury the solver's own output.
+  if (c.counts.dropped_nonfinite > 0 && !std::exchange(nonfinite_told, true))
+    log_quietly(LogLevel::warning, "step ", step, ": left out ", c.counts.dropped_nonfinite,
+                " particles with a NaN or infinite position, or a NaN, infinite or negative "
+                "radius (said once; the stats lines count them each step: dropped_nonfinite)");
   if (c.counts.not_in_grid > 0 &&
       c.counts.not_in_grid + c.counts.dropped_nonfinite >= c.counts.particles) {
     // Every finite particle outside the grid: a picture of nothing would hide the mismatch.
@@ -176,6 +191,23 @@ const Classification& Adapter::Impl::classify(std::int64_t step, const ParticleV
   if (!spacing_checked)
     spacing_checked = checked_spacing(step, c.counts, options.classify.particle_spacing);
   return c;
+}
+
+const Classification& Adapter::Impl::checked_grid(const ParticleView& particles,
+                                                  const GridView& grid) {
+  ClassifyOptions validating = options.classify;
+  validating.validate = true;
+  try {
+    const Classification& c = classifier.run(particles, grid, validating);
+    grid_checked = true;
+    return c;
+  } catch (const Error& e) {
+    // The checks' messages all name the grid; others (an attribute) go as they are.
+    if (std::string_view(e.what()).find("grid") == std::string_view::npos) throw;
+    throw make_error(e.what(),
+                     " (the solver's grid does not match its particles: its origin, cell size, "
+                     "index base, or the particles' order; checked until a render step passes)");
+  }
 }
 
 void Adapter::Impl::agree() {
@@ -246,6 +278,7 @@ std::size_t Adapter::set_scenery(const ParticleView& scenery) {
 std::span<const ParticleSphere> Adapter::scenery() const { return impl_->scenery; }
 
 bool Adapter::is_render_step(std::int64_t step, double time) const noexcept {
+  if (!impl_) return false;  // moved from
   const std::int64_t every = impl_->options.render_every;
   if (every <= 0 || step % every != 0) return false;
   if (!impl_->pipeline) return true;
@@ -259,6 +292,10 @@ bool Adapter::is_render_step(std::int64_t step, double time) const noexcept {
 
 Status Adapter::execute(std::int64_t step, double time, const ParticleView& particles,
                         const GridView& grid) noexcept {
+  if (!impl_) {
+    log_quietly(LogLevel::error, "step ", step, ": execute() on an adapter that was moved from");
+    return {StatusCode::invalid_input, "execute() on an adapter that was moved from"};
+  }
   Impl& m = *impl_;
   ++m.steps_seen;
   if (!is_render_step(step, time)) return {};
@@ -278,6 +315,9 @@ Status Adapter::execute(std::int64_t step, double time, const ParticleView& part
   s.seconds_classify = s.seconds_compact = s.seconds_pipeline = 0;
   const Classification* c = nullptr;
   try {
+    if (!std::isfinite(time))
+      throw make_error("the simulated time is ", time,
+                       ": pass the solver's time (finite; 0 when it keeps none)");
     c = &m.classify(step, particles, grid);
   } catch (const Error& e) {
     fail(s.status, StatusCode::invalid_input, e.what());
@@ -322,7 +362,7 @@ Status Adapter::execute(std::int64_t step, double time, const ParticleView& part
 
 Status Adapter::execute_last(std::int64_t step, double time, const ParticleView& particles,
                              const GridView& grid) noexcept {
-  if (impl_->pipeline) {
+  if (impl_ && impl_->pipeline) {
     try {
       impl_->pipeline->mark_last_step(step);
     } catch (...) {
@@ -333,7 +373,7 @@ Status Adapter::execute_last(std::int64_t step, double time, const ParticleView&
 }
 
 void Adapter::finish() noexcept {
-  if (!impl_->pipeline) return;
+  if (!impl_ || !impl_->pipeline) return;
   try {
     impl_->pipeline->finish();
   } catch (const std::exception& e) {

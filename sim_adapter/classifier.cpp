@@ -197,9 +197,14 @@ CellCount count_listed(const detail::Positions<T>& pos, const CellRanges& ranges
     }
     if (checks.cells && !point_in_cell(g, c, x, y, z)) {
       const auto ijk = cell_of_point(g, x, y, z);
-      checks.error.offer(c, "particle ", i, " at (", x, ", ", y, ", ", z, ") lies in cell (",
-                         ijk[0], ", ", ijk[1], ", ", ijk[2], ") but the grid lists it in cell ",
-                         CellName{g, c}, " (-1: outside the grid)");
+      if (std::min({ijk[0], ijk[1], ijk[2]}) < 0)
+        checks.error.offer(c, "particle ", i, " at (", x, ", ", y, ", ", z,
+                           ") lies in no cell of the grid, which lists it in cell ",
+                           CellName{g, c});
+      else
+        checks.error.offer(c, "particle ", i, " at (", x, ", ", y, ", ", z, ") lies in cell (",
+                           ijk[0], ", ", ijk[1], ", ", ijk[2], ") but the grid lists it in cell ",
+                           CellName{g, c});
     }
     ++found.valid;
     if (emits(i)) ++found.emitted;

@@ -45,7 +45,9 @@ void check_camera(MapReader& r, CameraConfig& c) {
     if (length(c.direction) == 0)
       ch.error(r.find("direction"), r.path("direction"), "must not be zero");
     else if (length(c.up) > 0 && parallel(c.direction, c.up))
-      ch.error(r.find("direction"), r.path("direction"), "must not be parallel to camera.up");
+      ch.error(r.find("direction"), r.path("direction"),
+               "must not be parallel to camera.up (the world's up, the ground's normal): for a "
+               "view from straight above or below, tilt it a little, e.g. [0, 0.05, -1]");
     return;
   }
   for (const char* key : {"direction", "margin", "framing", "bounds"})
@@ -75,7 +77,9 @@ const Section<CameraConfig>& camera_section() {
            .default_shown_as("true unless `eye`/`target` given"),
        schema::vec3("eye", &C::eye, "manual only, with `target`").only_when(manual),
        schema::vec3("target", &C::target, "manual only, with `eye`; not the eye").only_when(manual),
-       schema::vec3("up", &C::up, "not parallel to the viewing direction"),
+       schema::vec3("up", &C::up,
+                    "the world's up: the picture's up and the ground's normal; not parallel to "
+                    "the viewing direction"),
        schema::number("fov", &C::fov_degrees, schema::above_up_to(0, 179),
                       "vertical field of view, degrees"),
        schema::vec3("direction", &C::direction,

@@ -64,7 +64,8 @@ const Section<ClassificationConfig>& classification_section() {
        schema::number_or_auto("particle_spacing", &C::particle_spacing, schema::above(0),
                               "world units; `auto` = as the solver reports it"),
        schema::flag("validate_grid", &C::validate_grid,
-                    "check each particle lies in the cell the grid claims")}};
+                    "check each particle lies in the cell the grid claims on every render step "
+                    "(off: until one passes)")}};
   return s;
 }
 

@@ -19,6 +19,9 @@ AdapterOptions adapter_options_for(const Config& config, AdapterOptions options)
   if (config.classification.full_count) c.full_count = int(*config.classification.full_count);
   c.validate = c.validate || config.classification.validate_grid;
   c.skip_missing_attributes = true;  // the outputs that name one say so (snapshot_copy.h)
+  // In an MPI job each particle is its owner's to voxelize and to write: a ghost only counts
+  // towards its cell's occupancy (compacted too, it came twice into the snapshots).
+  if (options.mpi_comm) c.include_ghosts = false;
   for (const std::string& n : config.output_attributes())
     if (std::find(c.attributes.begin(), c.attributes.end(), n) == c.attributes.end())
       c.attributes.push_back(n);

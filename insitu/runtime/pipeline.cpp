@@ -321,9 +321,9 @@ struct InsituPipeline::Impl {
             try {
               const Camera camera =
                   orbited(v.camera, double(phi), double(theta), v.framing.pivot());
-              const bool shown =
-                  v.view->render({data, camera, v.framing.box(), needs, true, &scene.scenery()},
-                                 *recorder, v.orbit_products);
+              const bool shown = v.view->render(
+                  {data, camera, v.framing.box(), needs, true, &scene.scenery(), scene.flat_axis()},
+                  *recorder, v.orbit_products);
               recorder->collect();
               if (!shown) {
                 drop_pending(v.orbit_products);
@@ -393,8 +393,9 @@ struct InsituPipeline::Impl {
                       point_text(v.framing.box().lo), " to ", point_text(v.framing.box().hi),
                       ", over 4 times its size before); said once");
         }
-        const bool shown = v.view->render({data, camera, v.framing.box(), needs, false, &scenery},
-                                          *recorder, v.products);
+        const bool shown = v.view->render(
+            {data, camera, v.framing.box(), needs, false, &scenery, scene.flat_axis()}, *recorder,
+            v.products);
         recorder->collect();
         for (const FrameStats::Pass& pass : stats.passes)
           totals.passes.add_time(pass.name, pass.ms);
@@ -607,8 +608,10 @@ InsituPipeline::~InsituPipeline() {
 
 bool InsituPipeline::wants_step(std::int64_t step, double time) {
   Impl& m = *impl_;
-  // Idempotent per step: is_render_step() and execute() may both ask.
-  if (step != m.planned_step || time != m.planned_time) {
+  // Idempotent per step: is_render_step() and execute() may both ask (a NaN time too, which
+  // the adapter then refuses: planned twice, `first` and `every_steps` would fire on neither).
+  const bool same_time = time == m.planned_time || (std::isnan(time) && std::isnan(m.planned_time));
+  if (step != m.planned_step || !same_time) {
     m.plan.clear();
     m.schedule.plan(step, time, step == m.last_step, m.plan);
     m.planned_step = step;
@@ -737,6 +740,7 @@ std::string InsituPipeline::summary() const {
     separator = ", ";
     no_slot += o.tally.no_slot;
   }
+  if (*separator == ' ') s << " nothing (no output is enabled)";
   for (const OutputTotals& o : t.outputs)
     if (o.enabled && o.due == 0) s << "; outputs." << o.kind << "'s trigger never fired";
   if (t.writer.failed)

@@ -58,6 +58,7 @@ struct Device {
   EGLDeviceEXT handle;
   int index;
   bool nvidia;
+  bool software;
   std::string description;
 };
 
@@ -80,7 +81,8 @@ std::vector<Device> enumerate_devices() {
                               (nvidia     ? " (EGL_NV_device_cuda)"
                                : software ? " (EGL_MESA_device_software)"
                                           : "");
-    devices.push_back({handles[static_cast<std::size_t>(i)], i, nvidia, std::move(description)});
+    devices.push_back(
+        {handles[static_cast<std::size_t>(i)], i, nvidia, software, std::move(description)});
   }
   std::stable_partition(devices.begin(), devices.end(), [](const Device& d) { return d.nvidia; });
   return devices;
@@ -182,6 +184,12 @@ EGLContext create_core_context(EGLDisplay display, bool debug, std::string& fail
 }
 
 }  // namespace
+
+bool only_software_devices() {
+  const std::vector<Device> devices = enumerate_devices();
+  return !devices.empty() &&
+         std::all_of(devices.begin(), devices.end(), [](const Device& d) { return d.software; });
+}
 
 Platform requested_platform(Platform configured) {
   const char* env = std::getenv("VOXSPAN_GL_PLATFORM");

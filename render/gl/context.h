@@ -34,6 +34,11 @@ bool parse_platform(std::string_view text, Platform& platform);
 // The platform a Context made with `configured` tries: VOXSPAN_GL_PLATFORM when set, else
 // `configured`. Throws voxspan::Error naming the variable when it holds no platform's name.
 Platform requested_platform(Platform configured);
+// Whether EGL lists devices and every one is Mesa's software device (EGL_MESA_device_software:
+// llvmpipe), asked of EGL without making a display or a context: the automatic renderer's
+// choice then needs no GL context (whose llvmpipe start-up costs time and memory, and raises
+// floating-point exceptions a solver built to trap them dies of).
+bool only_software_devices();
 
 struct ContextOptions {
   Platform platform = Platform::automatic;

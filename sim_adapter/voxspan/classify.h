@@ -41,10 +41,13 @@ struct ClassifyOptions {
   // Sphere radius when the view has no radius; 0: particle_spacing (a sphere of radius >=
   // sqrt(3)/2 spacing leaves no holes in the rest lattice).
   double radius = 0;
-  // Checks that every particle lies in the cell the grid claims, and appears once.
+  // Checks that every particle lies in the cell the grid claims, and appears once. (The
+  // Adapter checks a solver's grid this way until one render step passes, and on every one
+  // with this on.)
   bool validate = false;
   // Ghost particles (past ParticleView::owned_count()) count towards the cells' occupancy
-  // always; with this on they are also compacted when they are boundary particles.
+  // always; with this on they are also compacted when they are boundary particles (the
+  // in-situ runtime turns it off in an MPI job, where each particle is its owner's).
   bool include_ghosts = true;
   // Names of the particle attributes to compact beside the spheres. One the view lacks is an
   // error, or with skip_missing_attributes left out (the in-situ runtime's outputs that name it

@@ -64,8 +64,10 @@ typedef struct voxspan_adapter_options {
   double full_fraction;    /* default 1 */
   double particle_radius;  /* when the particles have none; 0: particle_spacing */
   double cell_size;        /* of a grid built when the solver gives none; 0: 2 spacings */
-  int validate;            /* 1: check that the grid matches the particles */
-  int include_ghosts;      /* 1 (default): compact ghost boundary particles too */
+  int validate;            /* 1: check that the grid matches the particles on every render
+                              step (0: until one render step passes) */
+  int include_ghosts;      /* 1 (default): compact ghost boundary particles too (not in an
+                              MPI job: there each particle is its owner's) */
   int has_mpi_comm;        /* 1: the adapter runs inside an MPI job on mpi_comm (default 0) */
   int mpi_comm;            /* the communicator as its Fortran handle: MPI_Comm_c2f(comm) in C,
                               the communicator itself in Fortran */

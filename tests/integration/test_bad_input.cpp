@@ -10,10 +10,12 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <cfenv>
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -21,6 +23,7 @@
 #include "dambreak_run.h"
 #include "fresh_child.h"
 #include "output_files.h"
+#include "tests/support/child_process.h"
 #include "tests/support/error_message.h"
 #include "tests/support/log_capture.h"
 #include "tests/support/temp_folder.h"
@@ -415,6 +418,52 @@ TEST(MidRun, AnOutputsUnknownAttributeFailsThatOutputAlone) {
   int lines = 0;
   while (std::getline(stats, line)) ++lines;
   EXPECT_EQ(lines, 2);
+}
+
+// A solver built to trap floating-point exceptions (gfortran's -ffpe-trap=invalid,zero,overflow)
+// starts and renders with no renderer named: where EGL's only device is llvmpipe, whose start-up
+// raises them, the automatic choice asks EGL's device list and makes no GL context.
+TEST(StartUp, ASolverThatTrapsFloatingPointExceptionsRenders) {
+  test::TempFolder dir;
+  const std::string result = test::run_in_child([&] {
+    feenableexcept(FE_INVALID | FE_DIVBYZERO | FE_OVERFLOW);
+    Adapter adapter = adapter_from_config_text(
+        "output_folder: " + dir.path().string() + "\nviews: [{width: 64, height: 48}]\n",
+        spacing_options(), "trap.yaml");
+    const std::vector<float> xyz = block_of_64();
+    const Status s = adapter.execute(0, 0.0, ParticleView::aos(xyz.data(), 64));
+    adapter.finish();
+    return s.ok() ? std::string("rendered") : s.message;
+  });
+  EXPECT_EQ(result, "rendered");
+}
+
+// A NaN time fails each render step, said; the step triggers still fire on their steps (a NaN
+// planned the step twice, and neither plan fired: no frame and no word).
+TEST(MidRun, ANanTimeIsSaidOnEveryRenderStep) {
+  test::TempFolder dir;
+  test::LogCapture log;
+  const std::string yaml = "output_folder: " + dir.path().string() +
+                           "\ntrigger: {every_steps: 2, first: true}\nviews: [{name: a, width: "
+                           "64, height: 48}]\noutputs: {png: {enabled: false}, stats: {enabled: "
+                           "false}}\n";
+  Adapter adapter = adapter_from_config_text(yaml, spacing_options(), "nan.yaml");
+  const std::vector<float> xyz = block_of_64();
+  const ParticleView particles = ParticleView::aos(xyz.data(), 64);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::int64_t> failed;
+  for (std::int64_t step = 1; step <= 5; ++step) {
+    const Status s = adapter.execute(step, nan, particles);
+    if (s.ok()) continue;
+    failed.push_back(step);
+    EXPECT_EQ(s.code, StatusCode::invalid_input);
+    EXPECT_NE(s.message.find("the simulated time is nan"), std::string::npos) << s.message;
+  }
+  EXPECT_EQ(failed, (std::vector<std::int64_t>{1, 2, 4}));
+  EXPECT_TRUE(adapter.execute(6, 0.5, particles).ok());
+  // Nothing enabled: said so, not an empty list.
+  EXPECT_NE(adapter.summary().find("written: nothing (no output is enabled);"), std::string::npos)
+      << adapter.summary();
 }
 
 // Every view and output that fails a step is named in its status, not the first alone.

@@ -168,6 +168,66 @@ TEST(Adapter, AGridHoldingNoParticleIsAnError) {
   EXPECT_EQ(adapter.last_stats().counts.not_in_grid, 32u);
 }
 
+// The solver's cell lists are checked on render steps until one passes, without
+// classification.validate_grid: a particle listed in the wrong cell (here, two particles'
+// cells swapped) fails the step and says what to check; a grid that matches passes, once.
+TEST(Adapter, TheSolversGridIsCheckedUntilItMatches) {
+  QuietLog quiet;
+  std::vector<Point> pts;
+  test::add_lattice(pts, {0, 0, 0}, {4, 4, 4}, 1.0);
+  const GridGeometry g = test::cube_grid(2.0, 2);
+  std::vector<std::uint32_t> cell_of(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) cell_of[i] = test::cell_of(g, pts[i]);
+  std::vector<std::uint32_t> swapped = cell_of;
+  std::swap(swapped[0], swapped[63]);  // (0.5, 0.5, 0.5) and (3.5, 3.5, 3.5)
+  Adapter adapter(every(1));
+  const auto view = ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point));
+  const Status wrong = adapter.execute(0, 0, view, GridView::cell_index(g, swapped.data()));
+  EXPECT_EQ(wrong.code, StatusCode::invalid_input);
+  EXPECT_NE(wrong.message.find("the solver's grid does not match its particles"), std::string::npos)
+      << wrong.message;
+  const Status right = adapter.execute(1, 0, view, GridView::cell_index(g, cell_of.data()));
+  EXPECT_TRUE(right.ok()) << right.message;
+  // Checked once it matched: a later mismatch is the solver's (validate_grid checks always).
+  const Status later = adapter.execute(2, 0, view, GridView::cell_index(g, swapped.data()));
+  EXPECT_TRUE(later.ok()) << later.message;
+}
+
+// Particles with a NaN position are said on the first step that has them; the stats count
+// them on every step.
+TEST(Adapter, NonFiniteParticlesAreSaidOnceAndCountedEachStep) {
+  std::vector<Point> pts;
+  test::add_lattice(pts, {0, 0, 0}, {4, 4, 4}, 1.0);
+  pts[5].x = std::numeric_limits<float>::quiet_NaN();
+  test::LogCapture log;
+  Adapter adapter(every(1));
+  const auto view = ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point));
+  for (std::int64_t step = 1; step <= 3; ++step) {
+    ASSERT_TRUE(adapter.execute(step, 0, view).ok());
+    EXPECT_EQ(adapter.last_stats().counts.dropped_nonfinite, 1u);
+  }
+  std::size_t told = 0;
+  for (const std::string& w : log.at(LogLevel::warning))
+    told += w.find("left out 1 particles with a NaN") != std::string::npos;
+  EXPECT_EQ(told, 1u);
+}
+
+// An adapter moved from answers as one with nothing to do, and says so; it never crashes the
+// solver that calls it by mistake.
+TEST(Adapter, AMovedFromAdapterRefusesToExecute) {
+  QuietLog quiet;
+  Adapter adapter(every(1));
+  Adapter moved = std::move(adapter);
+  const std::vector<Point> pts(8, Point{0, 0, 0});
+  const auto view = ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point));
+  EXPECT_FALSE(adapter.is_render_step(0, 0));  // NOLINT(bugprone-use-after-move): the point
+  const Status s = adapter.execute_last(0, 0, view);
+  EXPECT_EQ(s.code, StatusCode::invalid_input);
+  EXPECT_EQ(s.message, "execute() on an adapter that was moved from");
+  adapter.finish();
+  EXPECT_TRUE(moved.execute(0, 0, view).ok());
+}
+
 // A spacing off by ten (other units; h for dx) is said once; the right one says nothing.
 TEST(Adapter, ASpacingFarFromTheParticlesIsSaidOnce) {
   std::vector<Point> pts;
