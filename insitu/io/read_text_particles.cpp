@@ -2,7 +2,8 @@
 //  .csv: a header row names the columns (ParaView's "Save Data" CSV works as is), or, where the
 //        first row holds numbers, the '#' comment line just before it with as many names
 //        (numpy.savetxt's header), else the columns are x, y, z, column4... (said in `chosen`).
-//        Columns x, y and z may stand apart in any order; an empty field is NaN (pandas);
+//        Columns x, y and z may stand apart in any order (x and y alone: a 2D run, z = 0, said in
+//        `chosen`); an empty field is NaN (pandas);
 //        an unnamed column (pandas' index) is column<k>; Excel's byte-order mark is skipped.
 //        Fields are separated by commas, else semicolons (DualSPHysics), else tabs, else white
 //        space, as the first row has them; a unit after a name ("Pos.x [m]") is left out of it.
@@ -225,7 +226,9 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
       i += 1;
     }
   }
-  // x, y and z apart, in any order (a table written column by column): the position.
+  // x, y and z apart, in any order (a table written column by column): the position; x and y
+  // alone, a 2D run's (z = 0, said). kNoColumn stands for the missing z.
+  const std::size_t kNoColumn = header.size();
   std::array<std::size_t, 3> xyz{};
   if (position >= 0) {
     const std::size_t first = columns[std::size_t(position)].first;
@@ -236,10 +239,14 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
       for (int a = 0; a < 3; ++a)
         if (columns[c].components == 1 && lower(columns[c].name) == std::string(1, char('x' + a)))
           found[std::size_t(a)] = int(c);
-    if (found[0] < 0 || found[1] < 0 || found[2] < 0)
-      throw fail(line_no, "no position columns (x,y,z or Points:0,Points:1,Points:2)");
+    if (found[0] < 0 || found[1] < 0)
+      throw fail(line_no, "no position columns (x,y,z or Points:0,Points:1,Points:2; x,y for 2D)");
     for (int a = 0; a < 3; ++a)
-      xyz[std::size_t(a)] = columns[std::size_t(found[std::size_t(a)])].first;
+      xyz[std::size_t(a)] =
+          found[std::size_t(a)] < 0 ? kNoColumn : columns[std::size_t(found[std::size_t(a)])].first;
+    if (xyz[2] == kNoColumn)
+      chosen += std::string(chosen.empty() ? "" : "; ") +
+                "no z column: read as a 2D run in the x-y plane (z = 0)";
   }
   // The other columns are the attributes, in their order.
   std::vector<Column> attribute_columns;
@@ -272,7 +279,8 @@ ParticleData read_csv_particles(const std::filesystem::path& path) {
       if (!parse_number(fields[f], values[f]))
         throw fail(line_no, "column \"" + header[f] + "\" is not a number: \"" +
                                 field_text(fields[f]) + "\"");
-    data.positions.push_back({values[xyz[0]], values[xyz[1]], values[xyz[2]]});
+    data.positions.push_back(
+        {values[xyz[0]], values[xyz[1]], xyz[2] == kNoColumn ? 0.0 : values[xyz[2]]});
     for (std::size_t a = 0; a < attribute_columns.size(); ++a)
       for (int k = 0; k < attribute_columns[a].components; ++k)
         data.attributes[a].values.push_back(

@@ -119,6 +119,19 @@ TEST(CsvParticles, PandasAndExcelTables) {
 }
 
 // DualSPHysics' CSV: semicolons, a unit after each name, a semicolon ending every row.
+// A 2D run's table has x and y alone: z is 0, and the reader says so.
+TEST(CsvParticles, XAndYAloneAreA2DRun) {
+  test::TempFolder dir;
+  const ParticleData d = read_text(dir, "flat.csv", "x,y,p\n1,2,10\n3,4,20\n");
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_DOUBLE_EQ(d.positions[1][1], 4);
+  EXPECT_DOUBLE_EQ(d.positions[1][2], 0);
+  EXPECT_EQ(d.attribute("p")->values, (std::vector<float>{10, 20}));
+  EXPECT_EQ(d.chosen, "no z column: read as a 2D run in the x-y plane (z = 0)");
+  std::ofstream(dir / "x.csv") << "x,p\n1,2\n";
+  EXPECT_NE(error_of(dir / "x.csv").find("no position columns"), std::string::npos);
+}
+
 // PySPH's u, v, w columns are its velocity, as in its HDF5 files.
 TEST(CsvParticles, UVWColumnsAreTheVelocity) {
   test::TempFolder dir;
