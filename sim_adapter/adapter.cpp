@@ -7,6 +7,7 @@
 #include <cmath>
 #include <exception>
 #include <cstdlib>
+#include <limits>
 #include <mutex>
 #include <new>
 #include <set>
@@ -140,6 +141,9 @@ struct Adapter::Impl {
   // particles not stored in its order, would otherwise give a wrong picture and no word.
   bool grid_checked = false;
   bool nonfinite_told = false;
+  // The last render step, to say once that a step came twice (its files are written again).
+  std::int64_t last_render_step = std::numeric_limits<std::int64_t>::min();
+  bool repeat_told = false;
   std::int64_t steps_seen = 0, render_steps = 0, failed_steps = 0;
   double seconds_in_situ = 0;
   std::vector<ParticleSphere> scenery;
@@ -306,6 +310,11 @@ Status Adapter::execute(std::int64_t step, double time, const ParticleView& part
   }
 
   ++m.render_steps;
+  if (step == m.last_render_step && !std::exchange(m.repeat_told, true))
+    log_quietly(LogLevel::warning, "step ", step,
+                " came twice: its files are written again and its stats line repeats (a solver "
+                "calls execute once a step; said once)");
+  m.last_render_step = step;
   StepStats& s = m.stats;
   s.step = step;
   s.time = time;

@@ -212,6 +212,22 @@ TEST(Adapter, NonFiniteParticlesAreSaidOnceAndCountedEachStep) {
   EXPECT_EQ(told, 1u);
 }
 
+// A step executed twice is said once (its files would be written again, silently).
+TEST(Adapter, AStepThatComesTwiceIsSaidOnce) {
+  std::vector<Point> pts;
+  test::add_lattice(pts, {0, 0, 0}, {4, 4, 4}, 1.0);
+  test::LogCapture log;
+  Adapter adapter(every(1));
+  const auto view = ParticleView::aos(&pts[0].x, pts.size(), sizeof(Point));
+  for (const std::int64_t step : {1, 2, 2, 3, 3, 1})  // the last: a restart, not a repeat
+    ASSERT_TRUE(adapter.execute(step, 0, view).ok());
+  std::size_t told = 0;
+  for (const std::string& w : log.at(LogLevel::warning))
+    told += w.find("step 2 came twice") != std::string::npos;
+  EXPECT_EQ(told, 1u);
+  EXPECT_EQ(log.at(LogLevel::warning).size(), 1u);
+}
+
 // An adapter moved from answers as one with nothing to do, and says so; it never crashes the
 // solver that calls it by mistake.
 TEST(Adapter, AMovedFromAdapterRefusesToExecute) {
