@@ -23,7 +23,6 @@
 #include <cctype>
 #include <cstdint>
 #include <fstream>
-#include <mutex>
 #include <string>
 #include <thread>
 
@@ -70,15 +69,14 @@ class Complaints : public vtkCommand {
     // The callback is the process's: another thread's VTK messages are not this file's.
     if (std::this_thread::get_id() == me->thread_ && message.message) me->keep(message.message);
   }
+  // Only ever on the reading thread: logged() filters the others out.
   void keep(const char* message) {
-    const std::lock_guard lock(mutex_);
     if (first_.empty()) first_ = message;
   }
 
   const std::thread::id thread_ = std::this_thread::get_id();
   const std::string callback_id_ =
       "voxspan particle file " + std::to_string(reinterpret_cast<std::uintptr_t>(this));
-  std::mutex mutex_;
   std::string first_;
 };
 
