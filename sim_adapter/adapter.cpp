@@ -17,6 +17,7 @@
 #include "voxspan/error.h"
 #include "voxspan/stopwatch.h"
 #include "voxspan/log.h"
+#include "floating_point_traps.h"
 
 namespace voxspan {
 namespace {
@@ -102,6 +103,7 @@ OpenPipelines& open_pipelines() {
 }
 
 void finish_open_pipelines() {
+  const FloatingPointTrapsHeld held;
   OpenPipelines& open = open_pipelines();
   const std::lock_guard lock(open.mutex);
   for (const std::weak_ptr<Pipeline>& p : open.pipelines)
@@ -254,11 +256,14 @@ void Adapter::Impl::process(std::int64_t step, double time, const Classification
 }
 
 Adapter::Adapter(AdapterOptions options) : impl_(std::make_unique<Impl>()) {
+  const FloatingPointTrapsHeld held;
   check_options(options);
   impl_->options = std::move(options);
 }
 Adapter::~Adapter() {
+  const FloatingPointTrapsHeld held;  // the pipeline's GL objects go with it
   if (impl_) finish();
+  impl_.reset();
 }
 Adapter::Adapter(Adapter&&) noexcept = default;
 Adapter& Adapter::operator=(Adapter&&) noexcept = default;
@@ -303,6 +308,7 @@ Status Adapter::execute(std::int64_t step, double time, const ParticleView& part
   Impl& m = *impl_;
   ++m.steps_seen;
   if (!is_render_step(step, time)) return {};
+  const FloatingPointTrapsHeld held;
   const Stopwatch t0;
   if (!m.confirm(step, time, particles)) {
     m.seconds_in_situ += t0.seconds();
@@ -383,6 +389,7 @@ Status Adapter::execute_last(std::int64_t step, double time, const ParticleView&
 
 void Adapter::finish() noexcept {
   if (!impl_ || !impl_->pipeline) return;
+  const FloatingPointTrapsHeld held;
   try {
     impl_->pipeline->finish();
   } catch (const std::exception& e) {

@@ -7,6 +7,7 @@
 
 #include "insitu/runtime/config_file.h"
 #include "insitu/runtime/pipeline.h"
+#include "sim_adapter/floating_point_traps.h"
 #include "voxspan/insitu.h"
 
 namespace voxspan {
@@ -29,6 +30,7 @@ AdapterOptions adapter_options_for(const Config& config, AdapterOptions options)
 }
 
 Adapter make_insitu_adapter(const Config& config, AdapterOptions options) {
+  const FloatingPointTrapsHeld held;  // the GL context and the threads are made here
   Adapter adapter(adapter_options_for(config, std::move(options)));  // checked before GL
   adapter.set_pipeline(std::make_shared<InsituPipeline>(
       config, adapter.options().classify.particle_spacing, adapter.options().mpi_comm));

@@ -429,21 +429,38 @@ TEST(MidRun, AnOutputsUnknownAttributeFailsThatOutputAlone) {
 }
 
 // A solver built to trap floating-point exceptions (gfortran's -ffpe-trap=invalid,zero,overflow)
-// starts and renders with no renderer named: where EGL's only device is llvmpipe, whose start-up
-// raises them, the automatic choice asks EGL's device list and makes no GL context.
-TEST(StartUp, ASolverThatTrapsFloatingPointExceptionsRenders) {
+// renders on either renderer, and gets its traps back after each call: with no renderer named,
+// where EGL's only device is llvmpipe, the automatic choice makes no GL context; with the GL
+// renderer named, llvmpipe (whose start-up and shaders raise them) runs with the traps held.
+std::string render_with_traps_on(const std::string& renderer) {
   test::TempFolder dir;
-  const std::string result = test::run_in_child([&] {
-    feenableexcept(FE_INVALID | FE_DIVBYZERO | FE_OVERFLOW);
-    Adapter adapter = adapter_from_config_text(
-        "output_folder: " + dir.path().string() + "\nviews: [{width: 64, height: 48}]\n",
-        spacing_options(), "trap.yaml");
-    const std::vector<float> xyz = block_of_64();
-    const Status s = adapter.execute(0, 0.0, ParticleView::aos(xyz.data(), 64));
-    adapter.finish();
-    return s.ok() ? std::string("rendered") : s.message;
+  return test::run_in_child([&] {
+    const int traps = FE_INVALID | FE_DIVBYZERO | FE_OVERFLOW;
+    feenableexcept(traps);
+    std::string said;
+    {
+      Adapter adapter = adapter_from_config_text(
+          "output_folder: " + dir.path().string() + "\n" + renderer +
+              "views: [{width: 64, height: 48}, {kind: volume, width: 64, height: 48}]\n",
+          spacing_options(), "trap.yaml");
+      const std::vector<float> xyz = block_of_64();
+      const Status s = adapter.execute(0, 0.0, ParticleView::aos(xyz.data(), 64));
+      adapter.finish();
+      said = s.ok() ? "rendered" : s.message;
+    }
+    if (fegetexcept() != traps) said += "; the solver's traps were not restored";
+    if (std::fetestexcept(FE_ALL_EXCEPT) != 0) said += "; the library's flags were left raised";
+    return said;
   });
-  EXPECT_EQ(result, "rendered");
+}
+
+TEST(StartUp, ASolverThatTrapsFloatingPointExceptionsRenders) {
+  EXPECT_EQ(render_with_traps_on(""), "rendered");
+  EXPECT_EQ(render_with_traps_on("renderer: {backend: cpu}\n"), "rendered");
+}
+
+TEST(StartUp, ASolverThatTrapsFloatingPointExceptionsRendersOnLlvmpipe) {
+  EXPECT_EQ(render_with_traps_on("renderer: {backend: gl}\n"), "rendered");
 }
 
 // A NaN time fails each render step, said; the step triggers still fire on their steps (a NaN
