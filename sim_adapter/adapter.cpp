@@ -11,7 +11,6 @@
 #include <mutex>
 #include <new>
 #include <set>
-#include <string_view>
 #include <utility>
 
 #include "voxspan/error.h"
@@ -207,9 +206,7 @@ const Classification& Adapter::Impl::checked_grid(const ParticleView& particles,
     const Classification& c = classifier.run(particles, grid, validating);
     grid_checked = true;
     return c;
-  } catch (const Error& e) {
-    // The checks' messages all name the grid; others (an attribute) go as they are.
-    if (std::string_view(e.what()).find("grid") == std::string_view::npos) throw;
+  } catch (const GridMismatch& e) {  // others (an attribute) go as they are
     throw make_error(e.what(),
                      " (the solver's grid does not match its particles: its origin, cell size, "
                      "index base, or the particles' order; checked until a render step passes)");

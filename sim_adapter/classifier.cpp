@@ -384,7 +384,7 @@ Tallies Classifier::Work::cells_from_index(const detail::Positions<T>& pos, std:
                 cells, " cells (index base ", base, ")");
     return kNoCell;
   });
-  error.throw_if_raised();
+  error.throw_if_raised<GridMismatch>();
   return t;
 }
 
@@ -437,10 +437,11 @@ Tallies Classifier::Work::count(const detail::Positions<T>& positions, const Par
           emit[c] = found.emitted;
         }
       });
-  error.throw_if_raised();
+  error.throw_if_raised<GridMismatch>();
   if (check_once) {
     for (std::size_t i = 0; i < n; ++i)
-      if (!seen[i]) throw make_error("particle ", i, " is in no cell of the grid");
+      if (!seen[i])
+        throw GridMismatch(make_error("particle ", i, " is in no cell of the grid").what());
   }
   return total(tallies);
 }

@@ -23,8 +23,8 @@ class FirstError {
     raised_.store(true, std::memory_order_relaxed);
   }
   bool raised() const { return raised_.load(std::memory_order_relaxed); }
-  void throw_if_raised() const {
-    if (raised()) throw Error(message_);
+  template <class E = Error> void throw_if_raised() const {
+    if (raised()) throw E(message_);
   }
 
  private:

@@ -22,10 +22,19 @@
 
 #include "voxspan/attribute.h"
 #include "voxspan/cell_states.h"
+#include "voxspan/error.h"
 #include "voxspan/grid.h"
 #include "voxspan/particles.h"
 
 namespace voxspan {
+
+// What run() throws when the grid's cell lists do not match the positions: a range outside the
+// particles, a cell index outside the grid, a particle outside its claimed cell or in none (a
+// wrong origin, cell size or index base, or particles not stored in the grid's order).
+class GridMismatch : public Error {
+ public:
+  using Error::Error;
+};
 
 struct ClassifyOptions {
   // The solver's particle spacing at rest density (world units). Gives the full count, the
@@ -123,8 +132,9 @@ class Classifier {
   Classifier(Classifier&&) noexcept;
   Classifier& operator=(Classifier&&) noexcept;
 
-  // Throws voxspan::Error naming the bad input (grid ranges out of bounds, cell index out of
-  // range, a particle outside its claimed cell under validate, a missing attribute...). NaN
+  // Throws voxspan::Error naming the bad input: GridMismatch for the grid's lists (ranges out
+  // of bounds, cell index out of range, a particle outside its claimed cell under validate),
+  // Error for the rest (a missing attribute, a bad geometry...). NaN
   // and infinite positions are not errors: they are counted and left out.
   const Classification& run(const ParticleView& particles, const GridView& grid,
                             const ClassifyOptions& options);
