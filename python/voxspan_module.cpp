@@ -13,6 +13,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <functional>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -300,7 +301,7 @@ class PyAdapter {
     std::string output;
   };
 
-  PyAdapter(Config config, const Settings& s) : adapter_(make(std::move(config), s)) {}
+  PyAdapter(const std::function<Config()>& load, const Settings& s) : adapter_(make(load, s)) {}
 
   Status execute(bool last, std::int64_t step, double time, const py::object& x,
                  const py::object& y, const py::object& z, const py::object& radius,
@@ -350,7 +351,8 @@ class PyAdapter {
   }
 
  private:
-  static Adapter make(Config config, const Settings& s) {
+  // `load` reads the config: with ranks, a rank that cannot is every rank's failure.
+  static Adapter make(const std::function<Config()>& load, const Settings& s) {
     AdapterOptions options;
     ClassifyOptions& c = options.classify;
     if (s.spacing) c.particle_spacing = *s.spacing;
@@ -364,9 +366,14 @@ class PyAdapter {
         throw py::type_error("comm must be an mpi4py communicator, got " + type_name(s.comm));
       options.mpi_comm = s.comm.attr("py2f")().cast<int>();
     }
-    if (s.offline) config = offline_config(std::move(config), s.output);
-    else if (!s.output.empty()) config.output_folder = s.output;
-    return make_insitu_adapter(config, options);
+    return make_insitu_adapter(
+        [&] {
+          Config config = load();
+          if (s.offline) config = offline_config(std::move(config), s.output);
+          else if (!s.output.empty()) config.output_folder = s.output;
+          return config;
+        },
+        options);
   }
 
   Adapter adapter_;
@@ -491,11 +498,11 @@ PYBIND11_MODULE(_voxspan, m) {
       PyAdapter::Settings s{spacing,         radius,   cell_size,
                             full_count,      validate, std::move(attributes),
                             std::move(comm), offline,  path_text(output).value_or("")};
-      Config config =
-          text ? load_config_string(source.is_none() ? std::string() : source.cast<std::string>(),
-                                    "<config text>")
-               : config_of(path_text(source));
-      return std::make_unique<PyAdapter>(std::move(config), s);
+      const std::optional<std::string> given =
+          text ? std::optional(source.is_none() ? std::string() : source.cast<std::string>())
+               : path_text(source);
+      return std::make_unique<PyAdapter>(
+          [&] { return text ? load_config_string(*given, "<config text>") : config_of(given); }, s);
     };
   };
   auto settings_args = [](auto&& def, const char* first) {

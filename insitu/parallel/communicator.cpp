@@ -66,7 +66,9 @@ Agreement Communicator::agree(bool ok, const std::string& message) {
 
 void Communicator::agree_or_throw(bool ok, const std::string& message) {
   const Agreement agreed = agree(ok, message);
-  if (!agreed.ok) throw make_error("rank ", agreed.rank, ": ", agreed.message);
+  if (agreed.ok) return;
+  if (size_ == 1) throw Error(agreed.message);
+  throw make_error("rank ", agreed.rank, ": ", agreed.message);
 }
 
 void Communicator::min(std::span<double> v) {

@@ -38,8 +38,8 @@ class Communicator {
 
   // Every rank says whether its part went well; all learn the lowest failing rank's message.
   Agreement agree(bool ok, const std::string& message);
-  // agree(), then on every rank voxspan::Error "rank <r>: <its message>" when any failed: the
-  // ranks fail together, each naming the one that failed first.
+  // agree(), then on every rank voxspan::Error "rank <r>: <its message>" when any failed (the
+  // message alone with one rank): the ranks fail together, each naming the one that failed first.
   void agree_or_throw(bool ok, const std::string& message);
   // Element-wise over all ranks, in place.
   void min(std::span<double> values);

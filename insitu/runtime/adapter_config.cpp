@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
+#include <string>
 
+#include "insitu/parallel/communicator.h"
 #include "insitu/runtime/config_file.h"
 #include "insitu/runtime/pipeline.h"
 #include "sim_adapter/floating_point_traps.h"
@@ -29,21 +32,37 @@ AdapterOptions adapter_options_for(const Config& config, AdapterOptions options)
   return options;
 }
 
-Adapter make_insitu_adapter(const Config& config, AdapterOptions options) {
+Adapter make_insitu_adapter(const std::function<Config()>& load, AdapterOptions options) {
   const FloatingPointTrapsHeld held;  // the GL context and the threads are made here
-  Adapter adapter(adapter_options_for(config, std::move(options)));  // checked before GL
-  adapter.set_pipeline(std::make_shared<InsituPipeline>(
-      config, adapter.options().classify.particle_spacing, adapter.options().mpi_comm));
-  return adapter;
+  const std::optional<int> mpi_comm = options.mpi_comm;
+  std::optional<Config> config;
+  std::optional<Adapter> adapter;
+  std::string failure;
+  try {
+    config = load();
+    adapter.emplace(adapter_options_for(*config, std::move(options)));  // checked before GL
+  } catch (const std::exception& e) {
+    if (!mpi_comm) throw;
+    failure = e.what();
+  }
+  if (mpi_comm) Communicator(*mpi_comm).agree_or_throw(failure.empty(), failure);
+  adapter->set_pipeline(std::make_shared<InsituPipeline>(
+      *config, adapter->options().classify.particle_spacing, mpi_comm));
+  return std::move(*adapter);
+}
+
+Adapter make_insitu_adapter(const Config& config, AdapterOptions options) {
+  return make_insitu_adapter([&] { return config; }, std::move(options));
 }
 
 Adapter adapter_from_config_file(const std::string& path, AdapterOptions options) {
-  return make_insitu_adapter(load_config_file(path), std::move(options));
+  return make_insitu_adapter([&] { return load_config_file(path); }, std::move(options));
 }
 
 Adapter adapter_from_config_text(const std::string& yaml, AdapterOptions options,
                                  const std::string& source_name) {
-  return make_insitu_adapter(load_config_string(yaml, source_name), std::move(options));
+  return make_insitu_adapter([&] { return load_config_string(yaml, source_name); },
+                             std::move(options));
 }
 
 }  // namespace voxspan

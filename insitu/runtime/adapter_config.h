@@ -3,6 +3,8 @@
 // offline tools and benchmarks adjust the Config first).
 #pragma once
 
+#include <functional>
+
 #include "insitu/config/config.h"
 #include "voxspan/adapter.h"
 
@@ -16,5 +18,11 @@ AdapterOptions adapter_options_for(const Config& config, AdapterOptions options)
 // Checks the options, then makes the pipeline (folders, GL context, passes): throws
 // voxspan::Error naming the problem. adapter.pipeline() is an InsituPipeline.
 Adapter make_insitu_adapter(const Config& config, AdapterOptions options);
+
+// The same from a loader that reads the config (a file, a text) and may amend it. With ranks
+// (options.mpi_comm), what fails on one rank before the pipeline's collectives (a config file
+// missing on its node, a typo in its copy, an option its part of the particles gives wrong) is
+// thrown on every rank as "rank <r>: <why>": the others would wait in those collectives.
+Adapter make_insitu_adapter(const std::function<Config()>& load, AdapterOptions options);
 
 }  // namespace voxspan

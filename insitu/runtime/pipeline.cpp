@@ -568,12 +568,8 @@ InsituPipeline::InsituPipeline(const Config& config, double particle_spacing,
     failure = e.what();
   }
   if (comm_) {
-    const Agreement agreed = comm_->agree(failure.empty(), failure);
-    if (!agreed.ok) {
-      impl_.reset();
-      throw make_error(comm_->size() > 1 ? "rank " + std::to_string(agreed.rank) + ": " : "",
-                       agreed.message);
-    }
+    if (!failure.empty()) impl_.reset();
+    comm_->agree_or_throw(failure.empty(), failure);
   }
   if (!comm_ || comm_->root()) log_info("in situ: ", description());
 }

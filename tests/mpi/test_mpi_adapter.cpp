@@ -8,6 +8,8 @@
 #include <mpi.h>
 
 #include <filesystem>
+#include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -74,6 +76,46 @@ TEST(MpiAdapter, ARankWhoseConfigDiffersIsRefusedNamingItAndTheKey) {
               std::string::npos)
         << e.what();
   }
+}
+
+// What one rank alone cannot use at start-up (a typo in its copy of the config, a config file
+// missing on its node, an option its part of the particles gives wrong) is refused on every
+// rank, naming that rank: the others had waited for it for ever in the pipeline's first
+// collective.
+TEST(MpiAdapter, WhatOneRankCannotUseAtStartUpIsRefusedOnEveryRank) {
+  const auto folder = shared_folder("one-rank");
+  const bool last = rank() == ranks() - 1;
+  const auto refusal = [](const auto& make) {
+    try {
+      make();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string typo = refusal([&] {
+    adapter_from_config_text(config_for(folder, 96, last ? "writer_typo: 1\n" : ""), options(),
+                             MPI_COMM_WORLD, "mpi.yaml");
+  });
+  const std::string prefix = "rank " + std::to_string(ranks() - 1) + ": ";
+  EXPECT_EQ(typo.rfind(prefix, 0), 0u) << typo;
+  EXPECT_NE(typo.find("writer_typo: unknown key"), std::string::npos) << typo;
+
+  if (rank() == 0) std::ofstream(folder / "insitu.yaml") << config_for(folder);
+  MPI_Barrier(MPI_COMM_WORLD);
+  const std::string missing = refusal([&] {
+    adapter_from_config_file((folder / (last ? "missing.yaml" : "insitu.yaml")).string(), options(),
+                             MPI_COMM_WORLD);
+  });
+  EXPECT_EQ(missing.rfind(prefix, 0), 0u) << missing;
+  EXPECT_NE(missing.find("missing.yaml"), std::string::npos) << missing;
+
+  AdapterOptions spacing = options();
+  if (last) spacing.classify.particle_spacing = std::numeric_limits<double>::quiet_NaN();
+  const std::string option = refusal(
+      [&] { adapter_from_config_text(config_for(folder), spacing, MPI_COMM_WORLD, "mpi.yaml"); });
+  EXPECT_EQ(option.rfind(prefix, 0), 0u) << option;
+  EXPECT_NE(option.find("particle_spacing"), std::string::npos) << option;
 }
 
 TEST(MpiAdapter, BadInputOnOneRankFailsTheStepOnAllWithOneErrorLine) {
