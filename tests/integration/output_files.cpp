@@ -8,6 +8,7 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkCellData.h>
+#include <vtkDataArray.h>
 #include <vtkPolyData.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLPolyDataReader.h>
@@ -152,7 +153,11 @@ VtiContents read_vti(const std::filesystem::path& path) {
   return read_vtk_xml<VtiContents, vtkXMLImageDataReader>(
       path, [](VtiContents& out, vtkImageData& image) {
         image.GetDimensions(out.dims);
-        out.has_state = image.GetCellData()->GetArray("state") != nullptr;
+        vtkDataArray* state = image.GetCellData()->GetArray("state");
+        out.has_state = state != nullptr;
+        if (state != nullptr)
+          for (vtkIdType c = 0; c < state->GetNumberOfTuples(); ++c)
+            out.states.push_back(int(state->GetComponent(c, 0)));
       });
 }
 

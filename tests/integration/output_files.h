@@ -57,6 +57,7 @@ struct VtiContents {
   bool appended_data = false;
   int dims[3] = {0, 0, 0};  // points per axis (cells + 1)
   bool has_state = false;
+  std::vector<int> states;  // the "state" cell array
 };
 VtiContents read_vti(const std::filesystem::path& path);
 

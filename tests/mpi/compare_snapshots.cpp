@@ -1,13 +1,15 @@
 // compare_snapshots ONE MANY: the snapshots of an MPI run (MANY) against one process's (ONE):
-// the OpenVDB file of each step holds the same fluid (level-set volume and active voxels), and
+// the OpenVDB file of each step holds the same fluid (level-set volume and active voxels),
 // each step's particles.pvtp, read with VTK's parallel reader as ParaView reads it, holds the
-// same boundary particles with the same arrays as the one process's .vtp; no VTK file has an
+// same boundary particles with the same arrays as the one process's .vtp, and each step's
+// cells.vti the same cell states; every file cells.pvd lists exists; no VTK file has an
 // appended-data section. Exit status 1 when anything differs.
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkXMLPPolyDataReader.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -46,6 +48,29 @@ bool same_particles(const fs::path& one_vtp, const fs::path& many_pvtp) {
   return ok;
 }
 
+bool same_cells(const fs::path& one_vti, const fs::path& many_vti) {
+  const voxspan::test::VtiContents a = voxspan::test::read_vti(one_vti),
+                                   b = voxspan::test::read_vti(many_vti);
+  const bool ok =
+      a.ok && b.ok && a.has_state && a.states == b.states && std::equal(a.dims, a.dims + 3, b.dims);
+  std::size_t differ = 0;
+  for (std::size_t c = 0; c < std::min(a.states.size(), b.states.size()); ++c)
+    differ += a.states[c] != b.states[c];
+  std::printf("%s %s: %zu cells, %zu states differ\n", ok ? "ok  " : "FAIL", many_vti.c_str(),
+              b.states.size(), differ);
+  return ok;
+}
+
+bool series_files_exist(const fs::path& pvd) {
+  bool ok = true;
+  for (const std::string& file : voxspan::test::pvd_files(pvd))
+    if (!fs::exists(pvd.parent_path() / file)) {
+      std::printf("FAIL %s lists %s, which is not there\n", pvd.c_str(), file.c_str());
+      ok = false;
+    }
+  return ok;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -67,6 +92,13 @@ int main(int argc, char** argv) {
     ok = same_particles(e.path(), pvtp) && ok;
     ++compared;
   }
+  for (const auto& e : fs::directory_iterator(one / "vtk"))
+    if (e.path().extension() == ".vti") {
+      ok = same_cells(e.path(), many / "vtk" / e.path().filename()) && ok;
+      ++compared;
+    }
+  for (const char* series : {"particles.pvd", "cells.pvd"})
+    ok = series_files_exist(many / "vtk" / series) && ok;
   if (compared == 0) std::printf("FAIL %s: no snapshots\n", one.c_str());
   return ok && compared > 0 ? 0 : 1;
 }

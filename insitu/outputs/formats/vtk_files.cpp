@@ -126,19 +126,14 @@ std::string PvdSeries::document(std::span<const Entry> entries) {
        "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
        "  <Collection>\n";
   for (const Entry& e : entries)
-    s << "    <DataSet timestep=\"" << e.time << "\" group=\"\" part=\"" << e.part << "\" file=\""
+    s << "    <DataSet timestep=\"" << e.time << "\" group=\"\" part=\"0\" file=\""
       << xml_escape(e.file) << "\"/>\n";
   s << "  </Collection>\n</VTKFile>\n";
   return s.str();
 }
 
-void PvdSeries::add(double time, std::string file, int part) {
-  const Entry e{time, std::move(file), part};
-  add(std::span(&e, 1));
-}
-
-void PvdSeries::add(std::span<const Entry> entries) {
-  entries_.insert(entries_.end(), entries.begin(), entries.end());
+void PvdSeries::add(double time, std::string file) {
+  entries_.push_back({time, std::move(file)});
   write_file_atomically(path_, document(entries_), sync_);
 }
 

@@ -30,22 +30,18 @@ void write_vti(const std::filesystem::path& path, const CellStatesView& cells, b
 std::string pvtp_document(std::span<const std::string> pieces,
                           std::span<const AttributeSpan> attributes);
 
-// A .pvd collection. add() appends (time, file, part) and rewrites the .pvd; file is relative
-// to the .pvd's folder; the entries of one time with parts 0, 1, ... are the pieces of one
-// multi-block dataset (ParaView shows them as one). If the rewrite fails (WriteError), the
-// entry stays listed for the next one.
+// A .pvd collection, one file a time step. add() appends (time, file) and rewrites the .pvd;
+// file is relative to the .pvd's folder. If the rewrite fails (WriteError), the entry stays
+// listed for the next one.
 class PvdSeries {
  public:
   struct Entry {
     double time;
     std::string file;
-    int part = 0;
   };
   explicit PvdSeries(std::filesystem::path path, bool sync = true)
       : path_(std::move(path)), sync_(sync) {}
-  void add(double time, std::string file, int part = 0);
-  // Several entries (the parts of one step) and one rewrite.
-  void add(std::span<const Entry> entries);
+  void add(double time, std::string file);
   const std::vector<Entry>& entries() const { return entries_; }
   const std::filesystem::path& path() const { return path_; }
   static std::string document(std::span<const Entry> entries);

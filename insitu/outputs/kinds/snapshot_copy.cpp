@@ -41,6 +41,20 @@ std::vector<AttributeSpan> SnapshotCopy::attribute_spans() const {
 
 namespace {
 
+void pack_cells(const CellStatesView& c, Packer& p) {
+  p.put(c.origin), p.put(c.cell_size), p.put(c.dims);
+  p.put_all<std::uint8_t>(std::span(c.states, c.empty() ? 0 : c.cell_count()));
+}
+
+CellStates unpack_cells(Unpacker& u) {
+  CellStates c;
+  c.origin = u.get<std::array<double, 3>>();
+  c.cell_size = u.get<double>();
+  c.dims = u.get<std::array<int, 3>>();
+  u.get_all(c.states);
+  return c;
+}
+
 std::vector<std::byte> pack(const SnapshotCopy& c) {
   Packer p;
   p.put_all<ParticleSphere>(c.spheres);
@@ -50,8 +64,7 @@ std::vector<std::byte> pack(const SnapshotCopy& c) {
     p.put(a.components);
     p.put_all<float>(a.values);
   }
-  p.put(c.cells.origin), p.put(c.cells.cell_size), p.put(c.cells.dims);
-  p.put_all<std::uint8_t>(c.cells.states);
+  pack_cells(c.cells.view(), p);
   return std::move(p.bytes);
 }
 
@@ -147,16 +160,25 @@ bool SnapshotCopy::gather(Communicator& comm) {
                          " where ", a.name, " was expected");
       a.values.insert(a.values.end(), values.begin(), values.end());
     }
-    CellStates& c = cells_all[r];
-    c.origin = u.get<std::array<double, 3>>();
-    c.cell_size = u.get<double>();
-    c.dims = u.get<std::array<int, 3>>();
-    u.get_all(c.states);
+    cells_all[r] = unpack_cells(u);
   }
   spheres = std::move(spheres_all);
   attributes = std::move(attributes_all);
   cells = merge_cells(cells_all);
   return true;
+}
+
+CellStates gather_cells(Communicator& comm, const CellStatesView& mine) {
+  Packer p;
+  pack_cells(mine, p);
+  const std::vector<std::vector<std::byte>> all = comm.gather(p.bytes);
+  if (!comm.root()) return {};
+  std::vector<CellStates> parts;
+  for (const std::vector<std::byte>& bytes : all) {
+    Unpacker u(bytes, "a rank's cell states");
+    parts.push_back(unpack_cells(u));
+  }
+  return merge_cells(parts);
 }
 
 }  // namespace voxspan

@@ -49,4 +49,8 @@ struct SnapshotCopy {
   std::vector<AttributeSpan> attribute_spans() const;
 };
 
+// In an MPI job, every rank's cell states in one grid on the root (collective; empty elsewhere),
+// as SnapshotCopy::gather merges them.
+CellStates gather_cells(Communicator& comm, const CellStatesView& mine);
+
 }  // namespace voxspan

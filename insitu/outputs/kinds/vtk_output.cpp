@@ -35,9 +35,11 @@ const schema::Section<VtkSettings>& vtk_section() {
   return s;
 }
 
-// In an MPI job every rank writes its piece (<name>_<step>_<rank>.vtp/.vti); the root also
-// writes particles_<step>.pvtp over the pieces and lists the cells' pieces as the parts of one
-// dataset in cells.pvd, so ParaView opens each step as one dataset.
+// In an MPI job every rank writes its particles' piece (particles_<step>_<rank>.vtp) and the
+// root writes particles_<step>.pvtp over the pieces, so ParaView opens each step as one dataset.
+// The cell states go to the root, every rank's in one grid, as in the VDB snapshot: each rank's
+// grid may span the whole domain, and pieces that overlap would disagree where a rank holds no
+// particles.
 class VtkOutput final : public Output {
  public:
   VtkOutput(const VtkSettings& s, const OutputContext& c)
@@ -45,6 +47,7 @@ class VtkOutput final : public Output {
         attributes_(attribute_names(s, "vtk")),
         folder_(c.folder),
         fsync_(c.fsync),
+        comm_(c.comm),
         rank_(c.comm != nullptr ? c.comm->rank() : 0),
         ranks_(c.comm != nullptr ? c.comm->size() : 1),
         jobs_(c.writer, c.slots, [this](SnapshotCopy& copy) { write_files(copy); }) {
@@ -54,7 +57,13 @@ class VtkOutput final : public Output {
   }
 
   void write(const OutputStep& step) override {
-    jobs_.submit("VTK files", [&](SnapshotCopy& copy) { copy.fill(step.data, attributes_); });
+    // Collective, so before a slot is taken: a rank without a free one still takes part.
+    const bool gather = settings_.cells && ranks_ > 1;
+    if (gather) merged_cells_ = gather_cells(*comm_, step.data.cells);
+    jobs_.submit("VTK files", [&](SnapshotCopy& copy) {
+      copy.fill(step.data, attributes_);
+      if (gather) std::swap(copy.cells, merged_cells_);  // the job's on the root, none elsewhere
+    });
   }
 
   OutputTally tally() const override { return jobs_.tally(); }
@@ -66,13 +75,10 @@ class VtkOutput final : public Output {
       write_vtp(folder_ / piece(s.step, rank_, "particles", "vtp"), s.spheres, attributes, fsync_);
       if (particles_) particles_->add(s.time, particle_dataset(s.step, attributes));
     }
-    if (settings_.cells && !s.cells.states.empty())
-      write_vti(folder_ / piece(s.step, rank_, "cells", "vti"), s.cells.view(), fsync_);
-    if (cells_) {
-      std::vector<PvdSeries::Entry> parts;
-      for (int r = 0; r < ranks_; ++r)
-        parts.push_back({s.time, piece(s.step, r, "cells", "vti"), r});
-      if (ranks_ > 1 || !s.cells.states.empty()) cells_->add(parts);
+    if (settings_.cells && !s.cells.states.empty()) {
+      const std::string name = step_file_name("cells", s.step, "vti");
+      write_vti(folder_ / name, s.cells.view(), fsync_);
+      if (cells_) cells_->add(s.time, name);
     }
   }
 
@@ -99,7 +105,9 @@ class VtkOutput final : public Output {
   const AttributeNames attributes_;
   const std::filesystem::path folder_;
   const bool fsync_;
+  Communicator* const comm_;
   const int rank_, ranks_;
+  CellStates merged_cells_;                       // with ranks: the step's, on the root
   std::unique_ptr<PvdSeries> particles_, cells_;  // the root's
   PooledJobs<SnapshotCopy> jobs_;
 };
