@@ -558,6 +558,9 @@ std::unique_ptr<Communicator> communicator(const std::optional<int>& mpi_comm) {
 InsituPipeline::InsituPipeline(const Config& config, double particle_spacing,
                                std::optional<int> mpi_comm)
     : comm_(communicator(mpi_comm)) {
+  // The job's lines come from rank 0; what another rank says alone (its writer's failures)
+  // says which rank it is.
+  if (comm_ && !comm_->root()) set_log_tag("rank " + std::to_string(comm_->rank()));
   if (comm_) check_same_config(*comm_, config);
   // Every rank makes its part (folders, GL context, passes); a failure on any is one on all.
   std::string failure;
@@ -739,9 +742,13 @@ std::string InsituPipeline::summary() const {
   if (*separator == ' ') s << " nothing (no output is enabled)";
   for (const OutputTotals& o : t.outputs)
     if (o.enabled && o.due == 0) s << "; outputs." << o.kind << "'s trigger never fired";
+  // Each rank's writer writes its own files (VTK pieces) and says its failures itself.
+  const char* here = comm_ && comm_->size() > 1 ? " on rank 0" : "";
   if (t.writer.failed)
-    s << "; " << t.writer.failed << " files failed (first: " << t.writer.first_error << ")";
-  if (t.writer.dropped) s << "; " << t.writer.dropped << " files dropped (writer queue full)";
+    s << "; " << t.writer.failed << " files failed" << here << " (first: " << t.writer.first_error
+      << ")";
+  if (t.writer.dropped)
+    s << "; " << t.writer.dropped << " files dropped" << here << " (writer queue full)";
   if (no_slot) s << "; " << no_slot << " files not written (no free copy buffer)";
   if (t.writer.waits)
     s << "; the solver waited " << t.writer.waits << " times for a full writer queue";
