@@ -198,9 +198,15 @@ void draw_caption(FloatImage& picture, std::string_view text) { draw_caption_on(
 
 void draw_caption(ImageRGBA8& picture, std::string_view text) { draw_caption_on(picture, text); }
 
-std::string legend_number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
+std::string legend_number(double value, double apart) {
+  int digits = 3;
+  if (apart > 0 && std::isfinite(apart) && std::isfinite(value)) {
+    if (std::abs(value) < 1e-6 * apart) value = 0;
+    if (value != 0)
+      digits = std::clamp(int(std::floor(std::log10(std::abs(value) / apart))) + 2, 3, 15);
+  }
+  char text[40];
+  std::snprintf(text, sizeof text, "%.*g", digits, value);
   return text;
 }
 
@@ -250,13 +256,15 @@ void draw_color_bar(FloatImage& picture, ColorMap map, const ColorAxis& axis,
       picture.set(
           i, j, glm::vec4(map_color(map, double(bottom - 1 - j) / double(bottom - 1 - top)), 1.0f));
   const int s = l.scale, gap = l.gap;
+  const double middle = axis.value(0.5);
+  const double apart = std::min(std::abs(axis.hi - middle), std::abs(middle - axis.lo));
   const auto label = [&](double v, int centre_y) {
-    const std::string t = legend_number(v);
+    const std::string t = legend_number(v, apart);
     const int x = side == BarSide::right ? x0 - gap - text_width(t, s) : x0 + bar + gap;
     draw_text(picture, x, centre_y - 7 * s / 2, t, s);
   };
   label(axis.hi, top);
-  label(axis.value(0.5), (top + bottom - 1) / 2);
+  label(middle, (top + bottom - 1) / 2);
   label(axis.lo, bottom - 1);
   // Above the top value's label with a line's height between them where the picture has room
   // (closer, they read as one line), flush with the bar's outer edge.
@@ -273,6 +281,7 @@ namespace {
 struct Ticks {
   std::array<double, 10> values;
   std::size_t count = 0;
+  double step = 0;
 };
 Ticks ticks(double from, double to) {
   Ticks out;
@@ -280,13 +289,27 @@ Ticks ticks(double from, double to) {
   if (!(span > 0) || !std::isfinite(span)) return out;
   const double raw = span / 5, power = std::pow(10.0, std::floor(std::log10(raw)));
   const double step = raw / power < 1.5 ? power : raw / power < 3.5 ? 2 * power : 5 * power;
+  out.step = step;
   for (double n = std::ceil(lo / step); n * step <= hi && out.count < out.values.size(); n += 1)
     out.values[out.count++] = std::abs(n) < 0.5 ? 0.0 : n * step;  // an exact 0, never -1e-17
   return out;
 }
 
-std::string tick_label(double value, const Axis& axis, bool named) {
-  return named ? std::string(axis.name) + "=" + legend_number(value) : legend_number(value);
+std::string tick_label(double value, double step, const Axis& axis, bool named) {
+  const std::string number = legend_number(value, step);
+  return named ? std::string(axis.name) + "=" + number : number;
+}
+
+// Every how many ticks along a horizontal axis `width` pixels wide carry their label, so that the
+// labels (every one as wide as the widest) do not run into each other.
+std::size_t label_every(const Ticks& t, const Axis& axis, int width, int scale) {
+  int widest = 0;
+  for (std::size_t n = 0; n < t.count; ++n)
+    widest = std::max(widest,
+                      text_width(tick_label(t.values[n], t.step, axis, n == t.count / 2), scale));
+  for (std::size_t every = 1; every < t.count; ++every)
+    if (int((t.count + every - 1) / every) * (widest + 2 * 6 * scale) <= width) return every;
+  return std::max<std::size_t>(t.count, 1);
 }
 
 void fill_rect(FloatImage& p, int x0, int y0, int x1, int y1, glm::vec3 colour) {
@@ -302,12 +325,15 @@ void draw_axes(FloatImage& picture, const Axis& horizontal, const Axis& vertical
   const glm::vec3 light(0.9f);
   const Ticks xt = ticks(horizontal.from, horizontal.to);
   const std::span<const double> xs(xt.values.data(), xt.count);
+  const std::size_t every = label_every(xt, horizontal, w, s), named = xs.size() / 2;
   for (std::size_t n = 0; n < xs.size(); ++n) {
     const int x = int(
                   std::lround((xs[n] - horizontal.from) / (horizontal.to - horizontal.from) * w)),
               thick = std::max(1, s / 2 + 1);
     fill_rect(picture, x - thick / 2, h - mark, x - thick / 2 + thick, h, light);
-    const std::string t = tick_label(xs[n], horizontal, n == xs.size() / 2);
+    // Labels on every `every`-th tick, counted from the middle one, which names the axis.
+    if ((n > named ? n - named : named - n) % every != 0) continue;
+    const std::string t = tick_label(xs[n], xt.step, horizontal, n == named);
     const int left = std::clamp(x - text_width(t, s) / 2, s, std::max(s, w - text_width(t, s)));
     draw_text(picture, left, h - mark - s - 7 * s, t, s);
   }
@@ -319,7 +345,7 @@ void draw_axes(FloatImage& picture, const Axis& horizontal, const Axis& vertical
     if (y > h - 3 * mark - 7 * s) continue;  // leave the corner to the bottom axis's labels
     if (y - 9 * s < 12 * s) continue;        // and the top row to the caption
     // The value sits on its tick, which underlines it (beside it, a tick reads as a minus).
-    const std::string t = tick_label(ys[n], vertical, n == ys.size() / 2);
+    const std::string t = tick_label(ys[n], yt.step, vertical, n == ys.size() / 2);
     fill_rect(picture, 0, y - thick / 2, s + text_width(t, s), y - thick / 2 + thick, light);
     draw_text(picture, s, std::max(s, y - 9 * s), t, s);
   }

@@ -30,8 +30,11 @@ void draw_text(FloatImage& picture, int x, int y, std::string_view text, int sca
 // picture the bytes linear_to_srgb8 gives the float one's caption (the same once encoded).
 void draw_caption(FloatImage& picture, std::string_view text);
 void draw_caption(ImageRGBA8& picture, std::string_view text);
-// A value as the legend prints it: three significant digits ("0.125", "-3.5e+04").
-std::string legend_number(double value);
+// A value as the legend prints it: three significant digits ("0.125", "-3.5e+04"), more where
+// `apart` (how far apart the values printed beside it are) needs them to tell them apart
+// ("300", "300.025", "300.05", not "300" three times); a value under a millionth of `apart`
+// prints as 0 (a field's minimum of 2.5e-16 beside a maximum of 1).
+std::string legend_number(double value, double apart = 0);
 enum class BarSide : std::uint8_t { right, left };
 // The colour bar at the right (or left) edge, the map from the axis' hi at its top to its lo at
 // its bottom, with the two values and the one at its middle (on a log scale their geometric

@@ -179,13 +179,14 @@ ColorAxis SliceLayer::axis() const {
 
 // The colour of plane pixel k (which a particle reaches): the map, darkened on an isoline (a
 // pixel whose level differs from its right or lower neighbour's; evenly spaced along the axis,
-// so a decade apart each on a log scale spanning as many).
+// so a decade apart each on a log scale spanning as many). The range's ends are no isolines:
+// the levels are clamped, or the pixels at the maximum of an automatic range would be ringed.
 glm::vec3 SliceLayer::colour(std::size_t k, const ColorAxis& axis) const {
   const int w = values_.width, lines = field_.isolines;
   glm::vec3 c = map_color(field_.color_map, axis.t(values_.values[k]));
   if (lines == 0) return c;
   const auto level = [&](std::size_t n) {
-    return std::floor(std::max(axis.t(values_.values[n]), -1.0) * (lines + 1));
+    return std::clamp(std::floor(axis.t(values_.values[n]) * (lines + 1)), 0.0, double(lines));
   };
   const std::size_t i = k % std::size_t(w), j = k / std::size_t(w);
   const double mine = level(k);

@@ -63,6 +63,28 @@ TEST(SliceView, ColoursThePlaneWhereItMeetsTheFluid) {
   EXPECT_GT(right.r + right.g, left.r + left.g);
 }
 
+// The range's ends are no isolines: a field that rises to its maximum at x = 0.5 and stays there
+// has its last isoline at x = 0.375 (3 isolines), none where the plateau begins (the pixels at
+// the maximum of an automatic range were ringed).
+TEST(SliceView, IsolinesStayInsideTheRange) {
+  const test::ParticleBlock b{0.05, "density", [](int, double x) { return std::min(x, 0.5); }};
+  const FloatImage p = test::first_picture(
+      config("quantity: density, shepard: true, plane: {normal: [0, -1, 0]}, isolines: 3",
+             "width: 256, height: 128"),
+      b);
+  const int row = 64;  // the fluid spans about 116 pixels of it: 0.125 in x is 14
+  int plateau = 0;
+  while (plateau < p.width && !(p.at(plateau, row).r > 0.9f && p.at(plateau, row).b < 0.1f))
+    ++plateau;  // viridis' yellow end
+  ASSERT_LT(plateau, p.width);
+  int end = plateau;
+  while (end < p.width && p.at(end, row).r > 0.2f) ++end;  // dots in the plateau end no run
+  int dark = 0;
+  for (int y = row - 20; y <= row + 20; ++y)
+    for (int x = plateau - 6; x < end - 1; ++x) dark += p.at(x, y).g < 0.4f;
+  EXPECT_EQ(dark, 0) << "in the plateau, x from " << plateau << " to " << end;
+}
+
 TEST(SliceView, AMissingQuantityFailsTheStepByName) {
   // The key with the line the config gave the view on.
   test::expect_missing_attribute(config("quantity: pressure"), block(),
@@ -140,6 +162,20 @@ TEST(Legend, AFallingAxisTicksFromTheRight) {
   FloatImage small(100, 60);
   draw_axes(small, {0.0, 1.0, "u"}, {0.0, 1.0, "v"});
   for (int x = 0; x < 100; ++x) EXPECT_FALSE(light(small.at(x, 59))) << x;
+}
+
+// Values printed side by side have the digits that tell them apart: a field of 300 to 300.05 K,
+// a slice at x = 1e4; a value that is zero at the legend's resolution prints as 0.
+TEST(Legend, NumbersHaveTheDigitsThatTellThemApart) {
+  EXPECT_EQ(legend_number(0.125), "0.125");
+  EXPECT_EQ(legend_number(-35000), "-3.5e+04");
+  EXPECT_EQ(legend_number(300, 0.025), "300");
+  EXPECT_EQ(legend_number(300.025, 0.025), "300.025");
+  EXPECT_EQ(legend_number(300.05, 0.025), "300.05");
+  EXPECT_EQ(legend_number(10000.5, 0.5), "10000.5");
+  EXPECT_EQ(legend_number(4.2e6 + 20, 10), "4200020");
+  EXPECT_EQ(legend_number(2.48e-16, 0.5), "0");
+  EXPECT_EQ(legend_number(0.5, 0.5), "0.5");
 }
 
 }  // namespace
