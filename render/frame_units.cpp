@@ -77,6 +77,7 @@ ShadeOptions FrameUnits::options(const ShadeOptions& world) const {
   o.material.absorption = world.material.absorption * unit;
   Environment& e = o.environment;
   // The ground plane dot(x, up) = h holds for x / unit at h / unit, whatever up's length.
+  e.origin /= unit;
   e.ground_height = length(e.ground_height);
   e.ground_tile = length(e.ground_tile);
   e.ground_fade = length(e.ground_fade);

@@ -52,6 +52,8 @@ void validate(const ShadeOptions& o) {
   const Environment& e = o.environment;
   check_direction("environment up", e.up);
   check_direction("environment sun_direction", e.sun_direction);
+  if (!std::isfinite(e.origin.x) || !std::isfinite(e.origin.y) || !std::isfinite(e.origin.z))
+    throw make_error("environment origin is not finite");
   if (!std::isfinite(e.ground_height))
     throw make_error("environment ground_height = ", e.ground_height, " is not finite");
   if (!(e.ground_tile > 0) || !std::isfinite(e.ground_tile))

@@ -64,7 +64,11 @@ struct Environment {
   }
 
   glm::dvec3 up{0, 1, 0};
-  double ground_height = 0;
+  // The world point a frame's (0, 0, 0) stands for (render/frame_origin.h): a frame far from the
+  // world's origin is rendered shifted, and the ground's plane and checker shift back with it
+  // (in double on the host), so that they stay where the world has them.
+  glm::dvec3 origin{0};
+  double ground_height = 0;  // world units, as the other lengths here
   double ground_tile = 0.1;
   double ground_fade = 0;  // 0: 40 tiles
   // Up to this height above the ground the fluid's lower surface rests on it: a ray leaving the

@@ -17,6 +17,7 @@
 #include "insitu/views/view_keys.h"
 #include "insitu/views/volume_compositor.h"
 #include "render/backend.h"
+#include "render/frame_origin.h"
 #include "render/volume_merge.h"
 #include "voxspan/error.h"
 
@@ -193,17 +194,23 @@ class VolumeView final : public View {
 
   bool render(const ViewStep& step, Recorder& recorder, ViewProducts& out) override {
     if (step.data.particles == nullptr) throw make_error("volume: the step has no particles");
-    const ColorAxis axis = gathered_axis(*step.data.particles);
+    // Cast relative to the eye when it stands far from the world's origin: the particles'
+    // floats are then as fine as the picture needs at their depth. Every rank has the same
+    // camera, so the same frame.
+    const FrameOrigin frame = FrameOrigin::near(step.camera.eye, spacing_);
+    const ColorAxis axis = gathered_axis(*step.data.particles, frame);
     VolumeOptions o = options(step, axis);
-    o.backdrop = walls(step, o.environment, recorder);
+    o.backdrop = walls(step, o.environment, recorder);  // in world units, as the scenery is
+    o.environment = frame.environment(o.environment);
+    const Camera camera = frame.camera(step.camera);
     const bool deep = step.needs.deep;
     if (compositor_) {
-      if (!compositor_->render(*renderer_, step.camera, particles_, o, deep, recorder, frame_))
+      if (!compositor_->render(*renderer_, camera, particles_, o, deep, recorder, frame_))
         return false;  // the root draws the frame
     } else if (deep) {
-      render_with_deep(*renderer_, step.camera, particles_, o, recorder, frame_);
+      render_with_deep(*renderer_, camera, particles_, o, recorder, frame_);
     } else {
-      renderer_->render(step.camera, particles_, o, recorder, frame_);
+      renderer_->render(camera, particles_, o, recorder, frame_);
     }
     out.shaded_deep = deep ? &frame_.deep : nullptr;
     std::swap(out.picture, frame_.picture);
@@ -275,15 +282,15 @@ class VolumeView final : public View {
 
   // gather() on every rank, the failure of any failing all (before the collectives that follow);
   // the colour map's axis: the settings' range, or that of every rank's values.
-  ColorAxis gathered_axis(const ParticleView& particles) {
+  ColorAxis gathered_axis(const ParticleView& particles, const FrameOrigin& frame) {
     ValueSpan found;
     if (comm_ == nullptr) {
-      found = gather(particles);
+      found = gather(particles, frame);
     } else {
       std::string failure;
       bool ok = true;
       try {
-        found = gather(particles);
+        found = gather(particles, frame);
       } catch (const std::exception& e) {
         ok = false;
         failure = e.what();
@@ -295,8 +302,9 @@ class VolumeView final : public View {
     return color_axis_(settings_.range, found, settings_.scale);
   }
 
-  // The step's owned particles as the renderer reads them; returns the span of their values.
-  ValueSpan gather(const ParticleView& particles) {
+  // The step's owned particles as the renderer reads them, in `frame`; returns the span of
+  // their values.
+  ValueSpan gather(const ParticleView& particles, const FrameOrigin& frame) {
     const AttributeView* q =
         settings_.quantity.empty()
             ? nullptr
@@ -319,9 +327,10 @@ class VolumeView final : public View {
         const double volume =
             per_particle_volume ? mass->magnitude(i) / density->magnitude(i) : rest_volume;
         const double hi = h_attr != nullptr ? h_attr->magnitude(i) : h;
-        particles_[i] = {float(p[0]),
-                         float(p[1]),
-                         float(p[2]),
+        const glm::vec3 at = frame.position(p[0], p[1], p[2]);
+        particles_[i] = {at.x,
+                         at.y,
+                         at.z,
                          float(hi),
                          float(volume / (hi * hi * hi)),
                          q != nullptr ? float(q->magnitude(i)) : 1.0f};

@@ -23,6 +23,7 @@ void set_shade_uniforms(const gl::Program& p, const model::ShadeUniforms& u) {
   p.set("u_env_axis_b", u.u_env_axis_b);
   p.set("u_ground_height", u.u_ground_height);
   p.set("u_ground_tile", u.u_ground_tile);
+  p.set("u_ground_phase", u.u_ground_phase);
   p.set("u_ground_contact", u.u_ground_contact);
   p.set("u_wall_contact", u.u_wall_contact);
   p.set("u_ground_fade", u.u_ground_fade);

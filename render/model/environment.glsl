@@ -5,7 +5,8 @@
 //
 // Host needs uniforms: u_env_up (unit, the sky's direction), u_env_axis_a, u_env_axis_b (unit,
 // the ground's tangent axes), u_ground_height (the plane dot(x, up) = height), u_ground_tile
-// (checker side, world units), u_ground_fade (distance over which the pattern fades),
+// (checker side, world units), u_ground_phase (the checker's phase at the frame's origin, in
+// tiles: a frame shifted from the world's origin keeps the world's checker), u_ground_fade (distance over which the pattern fades),
 // u_sky_zenith, u_sky_horizon, u_ground_light, u_ground_dark, u_sun_direction (unit, towards the
 // sun), u_sun_color.
 #ifndef VX_MODEL_ENVIRONMENT
@@ -43,8 +44,8 @@ float square_over(float u, float w) {
 
 // The ground at `hit`, `distance` from where it is seen, over a footprint `width` wide (world).
 vec3 ground_color(vec3 hit, float distance, float width) {
-  float a = dot(hit, u_env_axis_a) / u_ground_tile;
-  float b = dot(hit, u_env_axis_b) / u_ground_tile;
+  float a = dot(hit, u_env_axis_a) / u_ground_tile + u_ground_phase.x;
+  float b = dot(hit, u_env_axis_b) / u_ground_tile + u_ground_phase.y;
   float w = width / u_ground_tile;
   float checker = 0.5f + 0.5f * square_over(a, w) * square_over(b, w);
   vec3 ground = mix(u_ground_dark, u_ground_light, checker);

@@ -15,8 +15,13 @@ ShadeUniforms shade_uniforms(const ShadeOptions& o) {
   u.u_env_up = vec3(up);
   u.u_env_axis_a = vec3(a);
   u.u_env_axis_b = vec3(glm::cross(up, a));
-  u.u_ground_height = float(e.ground_height);
+  // The plane and the checker in the frame's coordinates (Environment::origin), from world
+  // coordinates in double: at 4.2e6 a float would round the shift to 0.5.
+  u.u_ground_height = float(e.ground_height - glm::dot(e.origin, up));
   u.u_ground_tile = float(e.ground_tile);
+  u.u_ground_phase =
+      vec2(float(std::fmod(glm::dot(e.origin, a) / e.ground_tile, 2.0)),
+           float(std::fmod(glm::dot(e.origin, glm::cross(up, a)) / e.ground_tile, 2.0)));
   u.u_ground_contact = float(e.ground_contact);
   u.u_wall_contact = float(e.wall_contact);
   u.u_ground_fade = float(e.ground_fade > 0 ? e.ground_fade : 40 * e.ground_tile);

@@ -13,6 +13,7 @@ namespace voxspan::model {
 struct ShadeUniforms {
   vec3 u_env_up{0.0f, 1.0f, 0.0f}, u_env_axis_a{1.0f, 0.0f, 0.0f}, u_env_axis_b{0.0f, 0.0f, 1.0f};
   float u_ground_height = 0.0f, u_ground_tile = 1.0f, u_ground_fade = 1.0f, u_ground_contact = 0.0f;
+  vec2 u_ground_phase{0.0f};  // the checker's (a, b) at the frame's origin, in tiles, mod 2
   float u_wall_contact = 0.0f;
   vec3 u_sky_zenith{0.0f}, u_sky_horizon{0.0f}, u_ground_light{0.0f}, u_ground_dark{0.0f};
   vec3 u_sun_direction{0.0f, 1.0f, 0.0f}, u_sun_color{0.0f};

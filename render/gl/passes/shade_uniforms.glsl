@@ -7,6 +7,7 @@ uniform vec3 u_env_axis_a;
 uniform vec3 u_env_axis_b;
 uniform float u_ground_height;
 uniform float u_ground_tile;
+uniform vec2 u_ground_phase;
 uniform float u_ground_fade;
 uniform float u_ground_contact;
 uniform float u_wall_contact;
