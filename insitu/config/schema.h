@@ -311,7 +311,8 @@ Key<T> maps(std::string name, std::vector<M> T::*member, const Section<M>& secti
     if (!list.IsSequence() || list.size() > most) {
       r.checker().error(list, r.path(name),
                         "expected a list of at most " + std::to_string(most) + " maps; got " +
-                            yaml::describe(list));
+                            (list.IsSequence() ? "a list of " + std::to_string(list.size())
+                                               : yaml::describe(list)));
       return;
     }
     std::vector<M> items(list.size());

@@ -48,27 +48,32 @@ struct ColorAxis {
   double value(double t) const;
 };
 
-// The smallest and largest finite values seen, and the smallest above 0 (where a log scale's
-// automatic range starts).
+// The smallest and largest finite values seen, the smallest above 0 (where a log scale's
+// automatic range starts), and how many were NaN or infinite.
 struct ValueSpan {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo, lo_positive = lo;
+  double non_finite = 0;
   void add(double v) {
-    if (!std::isfinite(v)) return;
+    if (!std::isfinite(v)) {
+      ++non_finite;
+      return;
+    }
     lo = std::min(lo, v), hi = std::max(hi, v);
     if (v > 0) lo_positive = std::min(lo_positive, v);
   }
   void add(const ValueSpan& o) {
     lo = std::min(lo, o.lo), hi = std::max(hi, o.hi),
     lo_positive = std::min(lo_positive, o.lo_positive);
+    non_finite += o.non_finite;
   }
 };
 
 // Every rank's values seen, on every rank: one collective minimum (`comm`: a Communicator,
-// insitu/parallel/communicator.h) over the span's ends.
+// insitu/parallel/communicator.h) over the span's ends; non_finite becomes the most on a rank.
 template <class Comm> void span_over_ranks(Comm& comm, ValueSpan& v) {
-  double ends[3] = {v.lo, -v.hi, v.lo_positive};
+  double ends[4] = {v.lo, -v.hi, v.lo_positive, -v.non_finite};
   comm.min(ends);
-  v.lo = ends[0], v.hi = -ends[1], v.lo_positive = ends[2];
+  v.lo = ends[0], v.hi = -ends[1], v.lo_positive = ends[2], v.non_finite = -ends[3];
 }
 
 // The automatic axis for the values `seen`: their smallest (on a log scale: smallest above 0)

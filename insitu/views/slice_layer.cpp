@@ -1,6 +1,7 @@
 #include "insitu/views/slice_layer.h"
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <limits>
 
@@ -135,6 +136,11 @@ void SliceLayer::interpolate(const ParticleView& particles, const Bounds& fluid_
   q.smoothing = field_.smoothing_attribute;
   q.shepard = field_.shepard;
   sum_ranks(particles, q, width, height);
+  // Each rank says its own (its lines name it): the sums left them out, which dips the field.
+  if (values_.values_not_finite > 0 && !std::exchange(told_not_finite_, true))
+    log_warning("view ", view_name_, ": step ", step, ": ", values_.values_not_finite,
+                " particles near the plane whose ", field_.quantity,
+                " is NaN or infinite are left out of the sums (said once)");
   if ((comm_ == nullptr || comm_->root()) && values_.pixels_reached == 0) {
     ++misses_;
     log_warning("view ", view_name_, ": step ", step, ": the slice plane reaches no particle (",

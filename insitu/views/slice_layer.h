@@ -122,6 +122,7 @@ class SliceLayer {
   SlicePlane plane_;
   SliceImage values_;
   std::int64_t misses_ = 0;
+  bool told_not_finite_ = false;
 };
 
 }  // namespace voxspan

@@ -36,9 +36,9 @@ glm::dvec3 SlicePlane::pixel_centre(int i, int j, int image_width, int image_hei
   return origin + s * u + t * v;
 }
 
-void sph_terms(const ParticleView& particles, const SliceQuantity& q,
-               const std::function<bool(const glm::dvec3&, double)>& near,
-               std::vector<SphTerm>& out) {
+std::size_t sph_terms(const ParticleView& particles, const SliceQuantity& q,
+                      const std::function<bool(const glm::dvec3&, double)>& near,
+                      std::vector<SphTerm>& out) {
   if (!(q.smoothing_length > 0))
     throw make_error("slice: the smoothing length must be positive; got ", q.smoothing_length);
   const AttributeView* quantity = &require_attribute(particles, q.name, q.key);
@@ -51,19 +51,21 @@ void sph_terms(const ParticleView& particles, const SliceQuantity& q,
   if (!per_particle_volume && !(q.rest_volume > 0))
     throw make_error("slice: no \"", q.mass, "\" and \"", q.density,
                      "\" attributes and no rest volume (particle spacing)");
-  // Particle i's term, false where it is left out.
+  // Particle i's term: kept, or left out (for its value: counted).
+  enum Term { kept, left_out, not_finite };
   const auto term = [&](std::size_t i, SphTerm& t) {
-    if (!particles.position_finite(i)) return false;
+    if (!particles.position_finite(i)) return left_out;
     const auto a = particles.position(i);
     const glm::dvec3 p(a[0], a[1], a[2]);
     const double h = h_of != nullptr ? h_of->magnitude(i) : q.smoothing_length;
-    if (!(h > 0) || !std::isfinite(h) || !near(p, h)) return false;
+    if (!(h > 0) || !std::isfinite(h) || !near(p, h)) return left_out;
     const double volume =
         per_particle_volume ? mass->magnitude(i) / density->magnitude(i) : q.rest_volume;
     const double value = quantity->magnitude(i);
-    if (!std::isfinite(volume) || !std::isfinite(value)) return false;
+    if (!std::isfinite(value)) return not_finite;
+    if (!(volume > 0) || !std::isfinite(volume)) return left_out;
     t = {p, volume * value, volume, h};
-    return true;
+    return kept;
   };
   // In parallel and in the particles' order (the sums do not depend on the thread count):
   // chunks count their terms, then write them from their offsets.
@@ -72,11 +74,16 @@ void sph_terms(const ParticleView& particles, const SliceQuantity& q,
   const std::size_t chunk = std::max<std::size_t>(4096, (n + kChunks - 1) / kChunks);
   const std::size_t chunks = (n + chunk - 1) / chunk;
   std::array<std::size_t, kChunks + 1> offset{};
+  std::array<std::size_t, kChunks> for_value{};
   tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
     SphTerm t;
-    std::size_t kept = 0;
-    for (std::size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i) kept += term(i, t);
-    offset[c + 1] = kept;
+    std::size_t kept_here = 0;
+    for (std::size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i) {
+      const Term r = term(i, t);
+      kept_here += r == kept;
+      for_value[c] += r == not_finite;
+    }
+    offset[c + 1] = kept_here;
   });
   for (std::size_t c = 0; c < chunks; ++c) offset[c + 1] += offset[c];
   out.resize(offset[chunks]);
@@ -84,8 +91,11 @@ void sph_terms(const ParticleView& particles, const SliceQuantity& q,
     std::size_t k = offset[c];
     SphTerm t;
     for (std::size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i)
-      if (term(i, t)) out[k++] = t;
+      if (term(i, t) == kept) out[k++] = t;
   });
+  std::size_t left_for_value = 0;
+  for (std::size_t c = 0; c < chunks; ++c) left_for_value += for_value[c];
+  return left_for_value;
 }
 
 namespace {
@@ -137,7 +147,7 @@ void interpolate_slice(const ParticleView& particles, const SliceQuantity& q,
   const double h = q.smoothing_length;
   const double support = kernel_support(q.kernel) * h;
   std::vector<SphTerm>& near = out.near;
-  sph_terms(
+  out.values_not_finite = sph_terms(
       particles, q,
       [&](const glm::dvec3& p, double hp) {
         return std::abs(glm::dot(p - plane.origin, plane.normal)) < kernel_support(q.kernel) * hp;

@@ -81,20 +81,22 @@ struct SphSum {
 };
 
 // The terms of `q` of the owned particles at finite positions for which near(position, h)
-// holds, those with a finite volume, value and positive h, into `out` (cleared first). Throws
-// voxspan::Error naming the attribute when the quantity or q.smoothing is missing, or when h is
-// not positive.
-void sph_terms(const ParticleView& particles, const SliceQuantity& q,
-               const std::function<bool(const glm::dvec3&, double)>& near,
-               std::vector<SphTerm>& out);
+// holds, those with a positive finite volume m / rho (as the volume views take them), a finite
+// value and a positive h, into `out` (cleared first); returns how many were left out for a NaN
+// or infinite value. Throws voxspan::Error naming the attribute when the quantity or
+// q.smoothing is missing, or when h is not positive.
+std::size_t sph_terms(const ParticleView& particles, const SliceQuantity& q,
+                      const std::function<bool(const glm::dvec3&, double)>& near,
+                      std::vector<SphTerm>& out);
 
 struct SliceImage {
   int width = 0, height = 0;
-  std::vector<float> values;       // row 0 at the top; 0 where no particle reaches
-  std::vector<double> sum;         // sum_j (m_j / rho_j) A_j W (what ranks add up)
-  std::vector<double> weight;      // sum_j (m_j / rho_j) W: 0 where no particle reaches
-  std::size_t particles_near = 0;  // owned particles whose support reaches the plane
-  std::size_t pixels_reached = 0;  // pixels with a positive weight
+  std::vector<float> values;          // row 0 at the top; 0 where no particle reaches
+  std::vector<double> sum;            // sum_j (m_j / rho_j) A_j W (what ranks add up)
+  std::vector<double> weight;         // sum_j (m_j / rho_j) W: 0 where no particle reaches
+  std::size_t particles_near = 0;     // owned particles whose support reaches the plane
+  std::size_t pixels_reached = 0;     // pixels with a positive weight
+  std::size_t values_not_finite = 0;  // near particles left out for a NaN or infinite value
 
   // Working storage, kept from step to step (a step with stable sizes allocates nothing).
   std::vector<SphTerm> near;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -20,6 +22,7 @@
 #include "render/frame_origin.h"
 #include "render/volume_merge.h"
 #include "voxspan/error.h"
+#include "voxspan/log.h"
 
 namespace voxspan {
 
@@ -60,6 +63,10 @@ const schema::Section<VolumeIsoSettings>& iso_section() {
           r.checker().error(r.node(), r.path("value"), "an iso surface needs its `value`");
         if (v.color[0] < 0 || v.color[1] < 0 || v.color[2] < 0)
           r.checker().error(r.find("color"), r.path("color"), "a colour must not be negative");
+        else if (v.color[0] > 1 || v.color[1] > 1 || v.color[2] > 1)
+          r.checker().error(r.find("color"), r.path("color"),
+                            "a colour's channels are linear RGB in [0, 1] (values of 0 to 255: "
+                            "divide them by 255)");
       }};
   return s;
 }
@@ -113,6 +120,13 @@ void check_volume(yaml::MapReader& r, VolumeSettings& v) {
     r.checker().error(r.find("shepard"), r.path("shepard"),
                       "with no `quantity` the field is the volume fraction, which Shepard "
                       "normalisation would make 1 everywhere");
+  // Its bounds hold for a convex combination of the particles' values seen as a medium; taken
+  // elsewhere it would skip nothing and say nothing.
+  const bool applies = v.mode == VolumeMode::dvr && v.shepard && !v.quantity.empty();
+  if (v.adaptive.error_tolerance > 0 && !applies)
+    r.checker().error(r.find("adaptive"), r.path("adaptive"),
+                      "adaptive sampling applies to DVR of a Shepard-normalised quantity (mode: "
+                      "dvr, shepard: true, a `quantity`); this view would take every sample");
 }
 
 std::vector<schema::Key<VolumeSettings>> volume_keys() {
@@ -198,7 +212,7 @@ class VolumeView final : public View {
     // floats are then as fine as the picture needs at their depth. Every rank has the same
     // camera, so the same frame.
     const FrameOrigin frame = FrameOrigin::near(step.camera.eye, spacing_);
-    const ColorAxis axis = gathered_axis(*step.data.particles, frame);
+    const ColorAxis axis = gathered_axis(*step.data.particles, frame, step.data.step);
     VolumeOptions o = options(step, axis);
     o.backdrop = walls(step, o.environment, recorder);  // in world units, as the scenery is
     o.environment = frame.environment(o.environment);
@@ -282,7 +296,8 @@ class VolumeView final : public View {
 
   // gather() on every rank, the failure of any failing all (before the collectives that follow);
   // the colour map's axis: the settings' range, or that of every rank's values.
-  ColorAxis gathered_axis(const ParticleView& particles, const FrameOrigin& frame) {
+  ColorAxis gathered_axis(const ParticleView& particles, const FrameOrigin& frame,
+                          std::int64_t step) {
     ValueSpan found;
     if (comm_ == nullptr) {
       found = gather(particles, frame);
@@ -298,8 +313,29 @@ class VolumeView final : public View {
       comm_->agree_or_throw(ok, failure);
       span_over_ranks(*comm_, found);
     }
+    if (comm_ == nullptr || comm_->root()) tell(found, step);
     if (settings_.quantity.empty() && !settings_.range) return {0.0, 1.0};
     return color_axis_(settings_.range, found, settings_.scale);
+  }
+
+  // Said once a run, or the picture has holes or is empty without a word: values that are not
+  // numbers (left out; each step's stats count them: particles_invalid), and iso surfaces of a
+  // Shepard-normalised field, which lies between its particles' values, at levels outside them.
+  void tell(const ValueSpan& found, std::int64_t step) {
+    if (found.non_finite > 0 && !std::exchange(told_non_finite_, true))
+      log_warning("view ", settings_.name, ": step ", step, ": particles whose ",
+                  settings_.quantity, " is NaN or infinite are left out (", found.non_finite,
+                  comm_ != nullptr ? " on one rank" : "", "; said once)");
+    if (!settings_.shepard || settings_.quantity.empty() || !(found.lo <= found.hi)) return;
+    told_iso_.resize(settings_.iso.size());
+    for (std::size_t k = 0; k < settings_.iso.size(); ++k) {
+      const double v = settings_.iso[k].value;
+      if ((v >= found.lo && v <= found.hi) || told_iso_[k]) continue;
+      told_iso_[k] = true;
+      log_warning("view ", settings_.name, ": step ", step, ": iso[", k, "].value ", v,
+                  " lies outside the field's values (", found.lo, " to ", found.hi,
+                  "): that surface is nowhere (said once)");
+    }
   }
 
   // The step's owned particles as the renderer reads them, in `frame`; returns the span of
@@ -389,6 +425,8 @@ class VolumeView final : public View {
   std::uint64_t sent_version_ = 0;  // the walls' version last sent to them
   std::vector<VolumeParticle> particles_;
   VolumeFrame frame_;
+  bool told_non_finite_ = false;
+  std::vector<bool> told_iso_;
 };
 
 }  // namespace

@@ -298,6 +298,24 @@ TEST(SphSlice, AMissingQuantityOrVolumeIsAnErrorNamingIt) {
   EXPECT_NO_THROW(interpolate_slice(s.view(), q, plane, 8, 8, image));
 }
 
+// Particles whose value is not a number are left out and counted (the slice view says so once);
+// those whose m / rho is not positive (a negative density) are left out as the volume views
+// leave them: the slice is then the sum over the others.
+TEST(SphSlice, NanValuesAreCountedAndNonPositiveVolumesLeftOut) {
+  Particles s(8, 8, 8), kept = s;
+  const SliceQuantity q = quantity("field");
+  const SlicePlane plane = SlicePlane::make({0.4, 0.4, 0.4}, {0, 0, 1}, 0.8, 0.8);
+  SliceImage with_bad, without;
+  for (std::size_t i = 0; i < s.x.size(); i += 5) s.field[i] = std::nan("");
+  for (std::size_t i = 1; i < s.x.size(); i += 5) s.density[i] = -s.density[i];
+  for (std::size_t i = 0; i < s.x.size(); i += 5) kept.mass[i] = kept.mass[i + 1] = 0;
+  interpolate_slice(s.view(), q, plane, 16, 16, with_bad);
+  interpolate_slice(kept.view(), q, plane, 16, 16, without);
+  EXPECT_GT(with_bad.values_not_finite, 0u);
+  EXPECT_EQ(without.values_not_finite, 0u);
+  EXPECT_EQ(with_bad.values, without.values);
+}
+
 // A log scale's automatic range on a slice without Shepard normalisation starts inside the fluid,
 // not in the kernel's tail at its edge; a field with no value above 0 is said once.
 TEST(SliceLayer, ALogScalesAutomaticRangeStartsInsideTheFluid) {

@@ -11,6 +11,7 @@
 
 #include "insitu/views/volume_view.h"
 #include "tests/support/error_message.h"
+#include "tests/support/log_capture.h"
 #include "tests/support/view_tests.h"
 
 namespace voxspan {
@@ -59,6 +60,12 @@ TEST(VolumeView, BadTransferFunctionsAndIsoSurfacesAreRefusedWithTheirLine) {
                   "at most 4"},
                  {"iso: [{value: 1}]", "mode `dvr` draws no iso surfaces"},
                  {"shepard: true", "volume fraction"},
+                 {"mode: iso, iso: [{value: 1, color: [255, 128, 0]}]", "divide them by 255"},
+                 {"adaptive: {error_tolerance: 0.01}", "applies to DVR of a Shepard"},
+                 {"quantity: p, shepard: false, adaptive: {error_tolerance: 0.01}",
+                  "applies to DVR of a Shepard"},
+                 {"quantity: p, mode: iso, iso: [{value: 1}], adaptive: {error_tolerance: 0.01}",
+                  "applies to DVR of a Shepard"},
                  {"sampling: 0", "sampling"}});
   // Too many iso surfaces is that one error, not also "needs at least one".
   const std::string e = test::error_message([] {
@@ -68,12 +75,33 @@ TEST(VolumeView, BadTransferFunctionsAndIsoSurfacesAreRefusedWithTheirLine) {
         "v.yaml");
   });
   EXPECT_EQ(e.find("needs at least one"), std::string::npos) << e;
-  EXPECT_NE(e.find("at most 4"), std::string::npos) << e;
+  EXPECT_NE(e.find("at most 4 maps; got a list of 5"), std::string::npos) << e;
 }
 
 TEST(VolumeView, AMissingQuantityFailsTheStepByName) {
   test::expect_missing_attribute(config("quantity: temperature"), block(),
                                  "<config>:5:5: views[0].quantity", "temperature");
+}
+
+// Values that are not numbers, and an iso surface at a level the Shepard-normalised field never
+// reaches (it lies between its particles' values), are said once each: the picture would
+// otherwise have holes, or be empty, without a word.
+TEST(VolumeView, NanValuesAndUnreachedIsoLevelsAreSaidOnce) {
+  test::ParticleBlock b = block();
+  for (std::size_t i = 0; i < b.values.size(); i += 7) b.values[i] = std::nan("");
+  test::LogCapture log;
+  Adapter a = adapter_from_config_text(
+      config("quantity: pressure, mode: iso, iso: [{value: 500}, {value: 5000}]"),
+      test::spaced(b.spacing));
+  for (int step = 0; step < 2; ++step) EXPECT_TRUE(a.execute(step, 0, b.view()).ok());
+  const std::vector<std::string> said = log.at(LogLevel::warning);
+  ASSERT_EQ(said.size(), 2u) << log.all();
+  EXPECT_NE(said[0].find("particles whose pressure is NaN or infinite are left out (286;"),
+            std::string::npos)
+      << said[0];
+  EXPECT_NE(said[1].find("iso[1].value 5000 lies outside the field's values (0 to 1900)"),
+            std::string::npos)
+      << said[1];
 }
 
 // The centre pixel (over the block) and a corner (the sky) of the view of a block at `spacing`.
