@@ -96,6 +96,7 @@ std::vector<schema::Key<SliceField>> slice_field_keys() {
 
 void check_slice_field(yaml::MapReader& r, const SliceField& f) {
   check_color_axis(r, f);
+  check_sph_sum(r, f);
   if (f.quantity.empty())
     r.checker().error(r.node(), r.path("quantity"),
                       "a slice needs `quantity` (the attribute it shows)");
@@ -113,6 +114,9 @@ SliceLayer::SliceLayer(const SliceField& field, std::string view_name, std::stri
   if (!field.smoothing_length && !(spacing > 0))
     throw make_error("view ", view_name_,
                      ": smoothing_length is `auto` but the particle spacing is unknown; set it");
+  if (comm == nullptr || comm->root())
+    warn_of_odd_smoothing("view " + view_name_ + ": smoothing_length", field.smoothing_length,
+                          spacing);
 }
 
 void SliceLayer::interpolate(const ParticleView& particles, const Bounds& fluid_box, int flat_axis,

@@ -93,6 +93,7 @@ const schema::Section<VolumeAdaptiveSettings>& adaptive_section() {
 
 void check_volume(yaml::MapReader& r, VolumeSettings& v) {
   check_color_axis(r, v);
+  check_sph_sum(r, v);
   const auto& points = v.opacity;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!(points[i][0] >= 0 && points[i][0] <= 1) || !(points[i][1] >= 0 && points[i][1] <= 1))
@@ -204,6 +205,8 @@ class VolumeView final : public View {
                        ": the particle spacing is needed (the samples and "
                        "the opacity follow it); set classification.particle_spacing or pass it "
                        "to the adapter");
+    if (comm_ == nullptr || comm_->root())
+      warn_of_odd_smoothing("view " + s.name + ": smoothing_length", s.smoothing_length, spacing_);
   }
 
   bool render(const ViewStep& step, Recorder& recorder, ViewProducts& out) override {

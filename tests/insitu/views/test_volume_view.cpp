@@ -48,25 +48,28 @@ TEST(VolumeView, KeysAreReadAsWritten) {
 
 TEST(VolumeView, BadTransferFunctionsAndIsoSurfacesAreRefusedWithTheirLine) {
   test::expect_refused_with_line(
-      "volume", {{"opacity: [[0.5, 0], [0.2, 1]]", "must not decrease"},
-                 {"opacity: [[0, 0], [1, 1.5]]", "alpha in [0, 1]"},
-                 {"opacity: [[0, -0.1]]", "alpha in [0, 1]"},
-                 {"opacity: [0, 1]", "[a, b] pairs"},
-                 {"mode: iso", "needs at least one iso surface"},
-                 {"mode: iso, iso: [{value: .nan}]", "views[0].iso[0].value"},
-                 {"mode: iso, iso: [{value: .inf}]", "views[0].iso[0].value"},
-                 {"mode: iso, iso: [{color: [1, 1, 1]}]", "needs its `value`"},
-                 {"mode: iso, iso: [{value: 1}, {value: 2}, {value: 3}, {value: 4}, {value: 5}]",
-                  "at most 4"},
-                 {"iso: [{value: 1}]", "mode `dvr` draws no iso surfaces"},
-                 {"shepard: true", "volume fraction"},
-                 {"mode: iso, iso: [{value: 1, color: [255, 128, 0]}]", "divide them by 255"},
-                 {"adaptive: {error_tolerance: 0.01}", "applies to DVR of a Shepard"},
-                 {"quantity: p, shepard: false, adaptive: {error_tolerance: 0.01}",
-                  "applies to DVR of a Shepard"},
-                 {"quantity: p, mode: iso, iso: [{value: 1}], adaptive: {error_tolerance: 0.01}",
-                  "applies to DVR of a Shepard"},
-                 {"sampling: 0", "sampling"}});
+      "volume",
+      {{"opacity: [[0.5, 0], [0.2, 1]]", "must not decrease"},
+       {"opacity: [[0, 0], [1, 1.5]]", "alpha in [0, 1]"},
+       {"opacity: [[0, -0.1]]", "alpha in [0, 1]"},
+       {"opacity: [0, 1]", "[a, b] pairs"},
+       {"mode: iso", "needs at least one iso surface"},
+       {"mode: iso, iso: [{value: .nan}]", "views[0].iso[0].value"},
+       {"mode: iso, iso: [{value: .inf}]", "views[0].iso[0].value"},
+       {"mode: iso, iso: [{color: [1, 1, 1]}]", "needs its `value`"},
+       {"mode: iso, iso: [{value: 1}, {value: 2}, {value: 3}, {value: 4}, {value: 5}]",
+        "at most 4"},
+       {"iso: [{value: 1}]", "mode `dvr` draws no iso surfaces"},
+       {"shepard: true", "volume fraction"},
+       {"mode: iso, iso: [{value: 1, color: [255, 128, 0]}]", "divide them by 255"},
+       {"quantity: T, units: \"\u00b0C\"", "printable ASCII only"},
+       {"quantity: T, smoothing_length: 0.1, smoothing_attribute: h", "leave smoothing_length out"},
+       {"adaptive: {error_tolerance: 0.01}", "applies to DVR of a Shepard"},
+       {"quantity: p, shepard: false, adaptive: {error_tolerance: 0.01}",
+        "applies to DVR of a Shepard"},
+       {"quantity: p, mode: iso, iso: [{value: 1}], adaptive: {error_tolerance: 0.01}",
+        "applies to DVR of a Shepard"},
+       {"sampling: 0", "sampling"}});
   // Too many iso surfaces is that one error, not also "needs at least one".
   const std::string e = test::error_message([] {
     load_config_string(
@@ -102,6 +105,19 @@ TEST(VolumeView, NanValuesAndUnreachedIsoLevelsAreSaidOnce) {
   EXPECT_NE(said[1].find("iso[1].value 5000 lies outside the field's values (0 to 1900)"),
             std::string::npos)
       << said[1];
+}
+
+// A smoothing length in other units than the positions is said at start-up, with what it costs.
+TEST(VolumeView, ASmoothingLengthFarFromTheSpacingIsSaid) {
+  test::LogCapture log;
+  Adapter a = adapter_from_config_text(config("quantity: pressure, smoothing_length: 5"),
+                                       test::spaced(0.05));
+  const std::vector<std::string> said = log.at(LogLevel::warning);
+  ASSERT_EQ(said.size(), 1u) << log.all();
+  EXPECT_NE(said[0].find("view v: smoothing_length 5 is 100 particle spacings (0.05): each sample "
+                         "then sums about 4200000 particles"),
+            std::string::npos)
+      << said[0];
 }
 
 // The centre pixel (over the block) and a corner (the sky) of the view of a block at `spacing`.
