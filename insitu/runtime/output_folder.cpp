@@ -47,7 +47,8 @@ std::vector<std::filesystem::path> prepare_output_folders(const Config& config) 
   return made;
 }
 
-FolderLock::FolderLock(const std::filesystem::path& folder) : file_(folder / ".voxspan.lock") {
+FolderLock::FolderLock(const std::filesystem::path& folder, std::string_view key)
+    : file_(folder / ".voxspan.lock") {
   fd_ = ::open(file_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0)
     throw make_error("cannot lock output folder ", folder.string(), ": ", std::strerror(errno));
@@ -59,7 +60,7 @@ FolderLock::FolderLock(const std::filesystem::path& folder) : file_(folder / ".v
     ::close(fd_);
     throw make_error("output folder ", folder.string(), " is in use by another run (",
                      holder.empty() ? std::string("its lock file is empty") : holder,
-                     "): give each run its own output_folder");
+                     "): give each run its own ", key);
   }
   char host[256] = {};
   ::gethostname(host, sizeof host - 1);

@@ -29,8 +29,9 @@ std::vector<std::filesystem::path> prepare_output_folders(const Config& config);
 // removed then.
 class FolderLock {
  public:
-  // Throws voxspan::Error naming the folder and the holder when another run holds it.
-  explicit FolderLock(const std::filesystem::path& folder);
+  // Throws voxspan::Error naming the folder and the holder when another run holds it, and the
+  // key (`output_folder`, `outputs.png.folder`) to give each run its own.
+  FolderLock(const std::filesystem::path& folder, std::string_view key);
   ~FolderLock();
   FolderLock(const FolderLock&) = delete;
   FolderLock& operator=(const FolderLock&) = delete;

@@ -66,7 +66,7 @@ std::unique_ptr<FolderLock> lock_output_folder(const Config& config, const Commu
       break;
     }
   made = prepare_output_folder(folder, "output_folder");
-  auto lock = std::make_unique<FolderLock>(folder);
+  auto lock = std::make_unique<FolderLock>(folder, "output_folder");
   if (earlier)
     log_warning("output folder ", folder.string(),
                 " holds files of an earlier run: files of the "
@@ -74,14 +74,34 @@ std::unique_ptr<FolderLock> lock_output_folder(const Config& config, const Commu
   return lock;
 }
 
+// The run's hold on each output's own folder outside output_folder (an absolute `folder`): two
+// runs that share one would replace each other's files.
+void lock_absolute_folders(const Config& config, const Communicator* comm,
+                           std::vector<std::unique_ptr<FolderLock>>& locks) {
+  if (comm != nullptr && !comm->root()) return;
+  std::vector<std::filesystem::path> held;
+  const std::filesystem::path under = std::filesystem::weakly_canonical(config.output_folder);
+  for (const ConfiguredOutput& o : config.outputs) {
+    if (!o.settings->enabled || !std::filesystem::path(o.settings->folder).is_absolute()) continue;
+    const std::filesystem::path folder = std::filesystem::weakly_canonical(o.settings->folder);
+    const auto [inside, _] =
+        std::mismatch(under.begin(), under.end(), folder.begin(), folder.end());
+    if (inside == under.end() || std::find(held.begin(), held.end(), folder) != held.end())
+      continue;
+    locks.push_back(std::make_unique<FolderLock>(folder, "outputs." + o.kind + ".folder"));
+    held.push_back(folder);
+  }
+}
+
 // Folders first: a bad folder is reported before the (slower) GL start-up. Ranks on one node
 // take its GPUs in turn unless the config names one.
 gl::ContextOptions prepared(const Config& config, const Communicator* comm,
                             std::vector<std::filesystem::path>& made,
-                            std::unique_ptr<FolderLock>& lock) {
+                            std::vector<std::unique_ptr<FolderLock>>& locks) {
   std::vector<std::filesystem::path> made_above;  // output_folder and its parents, removed last
-  lock = lock_output_folder(config, comm, made_above);
+  if (auto lock = lock_output_folder(config, comm, made_above)) locks.push_back(std::move(lock));
   made = prepare_output_folders(config);
+  lock_absolute_folders(config, comm, locks);
   made.insert(made.end(), made_above.begin(), made_above.end());
   const int device = config.renderer.gpu_device ? int(*config.renderer.gpu_device)
                      : comm != nullptr          ? comm->node_rank()
@@ -176,8 +196,8 @@ struct InsituPipeline::Impl {
   // compared in the first only (every rank runs process() exactly when all agreed in it).
   bool processed = false;
 
-  std::vector<std::filesystem::path> made_folders;  // removed at the end if no step ran
-  std::unique_ptr<FolderLock> folder_lock;          // released before they are
+  std::vector<std::filesystem::path> made_folders;        // removed at the end if no step ran
+  std::vector<std::unique_ptr<FolderLock>> folder_locks;  // released before they are
   bool processed_any = false;
   BackendChoice backend;  // its GL context, when the GL renderer draws
   std::thread::id gl_thread = std::this_thread::get_id();
@@ -200,7 +220,7 @@ struct InsituPipeline::Impl {
         schedule(config, communicator),
         plan(schedule.blank()),
         backend(choose_backend(config.renderer.backend,
-                               prepared(config, communicator, made_folders, folder_lock))),
+                               prepared(config, communicator, made_folders, folder_locks))),
         recorder(make_recorder(backend)),
         writer(config.writer),
         scene(communicator) {
@@ -237,7 +257,7 @@ struct InsituPipeline::Impl {
     for (OutputState& o : outputs)
       if (o.output) o.output->close();
     outputs.clear();  // their files closed (an unused stats file removed) before the folders
-    folder_lock.reset();
+    folder_locks.clear();
     // Only where no step ran: under MPI another rank may still be writing into a folder
     // that is empty here.
     if (!processed_any) remove_empty_folders(made_folders);
@@ -691,7 +711,7 @@ void InsituPipeline::finish() {
   if (impl_->live) impl_->live->finish();
   // The run's files are written: the folder is free for the next run (a solver or a Python
   // `with` block may make it before this adapter goes).
-  impl_->folder_lock.reset();
+  impl_->folder_locks.clear();
 }
 
 PipelineTotals InsituPipeline::totals() const {

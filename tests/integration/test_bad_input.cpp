@@ -164,6 +164,22 @@ TEST(StartUp, ARunsOutputFolderIsItsOwn) {
   }
   EXPECT_FALSE(std::filesystem::exists(out / ".voxspan.lock"));
   EXPECT_EQ(log.at(LogLevel::warning).size(), 0u) << log.all();
+  // Each output's own folder outside output_folder is held too: two runs that name one (their
+  // output_folders apart) would replace each other's frames and stats.
+  {
+    const std::string shared = "outputs: {png: {folder: " + (dir / "frames").string() +
+                               "}, stats: {folder: " + (dir / "frames").string() + "}}\n";
+    Adapter a = adapter_from_config_text("output_folder: " + (dir / "a").string() + "\n" + shared,
+                                         test::solver_options(sim), "a.yaml");
+    const std::string e = test::error_message([&] {
+      Adapter b = adapter_from_config_text("output_folder: " + (dir / "b").string() + "\n" + shared,
+                                           test::solver_options(sim), "b.yaml");
+    });
+    EXPECT_NE(e.find("output folder " + (dir / "frames").string() + " is in use by another run"),
+              std::string::npos)
+        << e;
+    EXPECT_NE(e.find("give each run its own outputs.png.folder"), std::string::npos) << e;
+  }
   { Adapter again = adapter_from_config_text(yaml, test::solver_options(sim), "run.yaml"); }
   const std::vector<std::string> warnings = log.at(LogLevel::warning);
   ASSERT_EQ(warnings.size(), 1u) << log.all();
