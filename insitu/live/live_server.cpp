@@ -1,7 +1,11 @@
 #include "insitu/live/live_server.h"
 
+#include <arpa/inet.h>
 #include <civetweb.h>
+#include <netinet/in.h>
 #include <sys/random.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstring>
@@ -32,6 +36,30 @@ std::string random_token() {
   std::string token;
   for (unsigned char b : bytes) token += {kHex[b >> 4], kHex[b & 15]};
   return token;
+}
+
+// Why civetweb could not listen on `address`:`port`, in the system's words where a socket of our
+// own cannot bind there either ("Address already in use": another program, or a run whose page
+// still lingers), else civetweb's.
+std::string why_not_listening(const std::string& address, int port, const std::string& civetweb) {
+  sockaddr_in at{};
+  at.sin_family = AF_INET;
+  at.sin_port = htons(std::uint16_t(port));
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (fd < 0 || ::inet_pton(AF_INET, address.c_str(), &at.sin_addr) != 1) {
+    if (fd >= 0) ::close(fd);
+    return civetweb;
+  }
+  const int one = 1;  // as civetweb binds: a port in TIME_WAIT is free
+  ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+  const bool bound = ::bind(fd, reinterpret_cast<const sockaddr*>(&at), sizeof at) == 0;
+  const int error = errno;
+  ::close(fd);
+  if (bound) return civetweb;
+  std::string why = std::strerror(error);
+  if (error == EADDRINUSE)
+    why += " (another program, or a run whose page lingers; live.port: 0 takes a free one)";
+  return why;
 }
 
 // Equal strings, in a time that depends on the token's length only (which is no secret), not on
@@ -173,8 +201,10 @@ struct LiveServer::Impl {
     context = mg_start(&callbacks, this, options);
     if (context == nullptr) {
       mg_exit_library();
-      throw make_error("live page: cannot listen on ", ports, ": ",
-                       start_error.empty() ? "civetweb did not start" : start_error);
+      throw make_error(
+          "live page: cannot listen on ", ports, ": ",
+          why_not_listening(config.address, config.port,
+                            start_error.empty() ? "civetweb did not start" : start_error));
     }
     mg_server_port bound[4];
     const int n = mg_get_server_ports(context, 4, bound);
