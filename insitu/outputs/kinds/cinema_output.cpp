@@ -9,6 +9,7 @@
 // composites are collective) and written from the root; the step's pictures go to the writer
 // as one job holding references to them (no copy), which writes them, then data.csv again,
 // atomically: a row appears only once its files are whole on disk.
+#include <filesystem>
 #include <sstream>
 
 #include "insitu/outputs/formats/exr_image.h"
@@ -48,6 +49,23 @@ const schema::Section<CinemaSettings>& cinema_section() {
         for (const char* key : {"phi", "theta"})
           if (r.has(key) && (key[0] == 'p' ? v.phi : v.theta).empty())
             r.checker().error(r.find(key), r.path(key), "needs at least one angle");
+        if (!std::filesystem::path(v.folder).extension().string().ends_with(".cdb"))
+          r.checker().error(r.has("folder") ? r.find("folder") : r.node(), r.path("folder"),
+                            "a Cinema database's folder ends in .cdb (spec D: the viewers open "
+                            "only such folders); got \"" +
+                                v.folder + "\"");
+        // One picture per angle: -180 and 180 are one turn (a value given twice is refused
+        // as any list's).
+        const auto same_turn = [](std::int64_t a, std::int64_t b) { return (a - b) % 360 == 0; };
+        for (std::size_t i = 0; i < v.phi.size(); ++i)
+          for (std::size_t j = i + 1; j < v.phi.size(); ++j)
+            if (same_turn(v.phi[i], v.phi[j])) {
+              r.checker().error(r.find("phi"), r.path("phi"),
+                                std::to_string(v.phi[i]) + " and " + std::to_string(v.phi[j]) +
+                                    " are the same angle: the database would hold the picture "
+                                    "twice");
+              return;
+            }
       }};
   return s;
 }

@@ -117,7 +117,9 @@ TEST(Cinema, BadSettingsAreRefusedAtStartUp) {
            {"views: [nowhere]", ":10:61: outputs.cinema.views: there is no view \"nowhere\""},
            {"phi: []", "needs at least one angle"},
            {"theta: [90]", "theta"},
-           {"phi: [0, 0]", "phi"}}) {
+           {"phi: [0, 0]", "phi"},
+           {"phi: [-180, 0, 180]", "-180 and 180 are the same angle"},
+           {"folder: pictures", "ends in .cdb"}}) {
     try {
       Adapter a = adapter_from_config_text(config("cinema_bad", cinema), test::spaced(kSpacing));
       ADD_FAILURE() << cinema << " was accepted";
