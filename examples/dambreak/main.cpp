@@ -60,7 +60,7 @@ void usage() {
       "  --until T            run until Martin & Moyce's T = t sqrt(2g/a) instead\n"
       "  --stop-file PATH     end early, cleanly, at the first step that finds PATH there (the\n"
       "                       last render step, its files written): touch it to stop the run;\n"
-      "                       Ctrl-C does the same (twice: at once)\n"
+      "                       Ctrl-C or SIGTERM to any rank does the same (twice: at once)\n"
       "  --render-every K     adapter render steps (default 10)\n"
       "  --no-render          call the adapter every step but never render (writes nothing)\n"
       "  --validate           have the adapter check the grid against the particles\n"
@@ -130,8 +130,9 @@ extern "C" void on_interrupt(int) {
 }
 
 // A step's checks: the fluid particles over the ranks, and whether the run ends here (an
-// interrupt, the stop file). In a distributed run both in one reduction a step, the root
-// deciding for every rank, so that all of them end at the same step.
+// interrupt to any rank, which a batch system's SIGTERM may be; the stop file, looked for by the
+// root). In a distributed run both in one reduction a step, so that all ranks end at the same
+// step.
 struct StepChecks {
   std::uint64_t fluid = 0;
   bool stop = false;
@@ -139,9 +140,8 @@ struct StepChecks {
 StepChecks step_checks(std::uint64_t owned, const std::string& stop_file, bool root,
                        bool distributed) {
   std::error_code unreadable;  // a folder it cannot look into: not there yet
-  const bool asked =
-      root &&
-      (interrupted != 0 || (!stop_file.empty() && std::filesystem::exists(stop_file, unreadable)));
+  const bool asked = interrupted != 0 ||
+                     (root && !stop_file.empty() && std::filesystem::exists(stop_file, unreadable));
   std::uint64_t sums[2] = {owned, asked ? 1u : 0u};
   if (distributed) MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
   return {sums[0], sums[1] > 0};
@@ -239,10 +239,11 @@ int run(const Options& o) {
     step_seconds.push_back(std::chrono::duration<double>(Clock::now() - ts).count());
     const StepChecks checks = step_checks(sim.owned_count(), o.stop_file, root, domain != nullptr);
     stopped = checks.stop;
-    if (stopped && interrupted != 0 && root)
+    if (stopped && interrupted != 0)
       std::fprintf(stderr,
-                   "dambreak: interrupted: this step is the last (its files written); "
-                   "interrupt again to stop at once\n");
+                   "dambreak: %sinterrupted: this step is the last (its files written); "
+                   "interrupt again to stop at once\n",
+                   ranks > 1 ? ("rank " + std::to_string(rank) + " ").c_str() : "");
     const bool final_step =
         stopped || (o.until > 0 ? sim.nondimensional_time() >= o.until : step == o.steps);
     if (domain && checks.fluid != fluid_count) {
