@@ -42,7 +42,7 @@ def _config_text(config):
     import json
     import os
     if isinstance(config, dict):
-        return json.dumps(config)
+        return json.dumps(config, indent=1)  # a key a line: errors name its line
     if isinstance(config, str) and ("\n" in config or ":" in config) and not os.path.exists(config):
         return config
     return None

@@ -3,6 +3,7 @@ import json
 import subprocess
 
 import numpy
+import pytest
 
 import voxspan
 from conftest import SPACING
@@ -53,6 +54,17 @@ def test_render_takes_the_config_as_a_file_text_or_dict(tmp_path, block):
                                      ("dict", keys)]]
     assert all(list(p) == ["small"] and p["small"].shape == (48, 64, 4) for p in pictures)
     assert all(numpy.array_equal(p["small"], pictures[0]["small"]) for p in pictures)
+
+
+def test_a_dicts_bad_key_is_named_on_its_own_line(tmp_path, block):
+    """The dict is written one key a line: the error's line is that of the key, not column 527
+    of one line the user never saw."""
+    keys = {"views": [{"name": "a", "width": 64, "height": 48},
+                      {"name": "b", "width": 64, "height": 48, "legnd": False}]}
+    with pytest.raises(voxspan.Error, match=r"<config text>:\d+:\d+: views\[1\]\.legnd") as e:
+        voxspan.render(block, spacing=SPACING, config=keys, output=tmp_path)
+    line, column = map(int, str(e.value).split("<config text>:")[1].split(":")[:2])
+    assert line > 5 and column < 20, str(e.value)
 
 
 def test_no_particles_render_the_empty_pictures(tmp_path, block):
