@@ -760,6 +760,9 @@ std::string InsituPipeline::summary() const {
     no_slot += o.tally.no_slot;
   }
   if (*separator == ' ') s << " nothing (no output is enabled)";
+  // Asked for before finish(): the counts are of the files written so far.
+  const std::uint64_t pending = t.writer.submitted - t.writer.completed - t.writer.failed;
+  if (pending > 0) s << " (" << pending << " more files being written; finish() waits for them)";
   for (const OutputTotals& o : t.outputs)
     if (o.enabled && o.due == 0) s << "; outputs." << o.kind << "'s trigger never fired";
   // Each rank's writer writes its own files (VTK pieces) and says its failures itself.
