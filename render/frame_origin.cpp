@@ -1,18 +1,11 @@
 #include "render/frame_origin.h"
 
-#include <cmath>
+#include "voxspan/classify.h"
 
 namespace voxspan {
 
 FrameOrigin FrameOrigin::near(glm::dvec3 point, double unit) {
-  const double reach = std::ldexp(unit, 10);
-  const bool near_world_origin =
-      std::abs(point.x) < reach && std::abs(point.y) < reach && std::abs(point.z) < reach;
-  // A non-finite point or unit is left to the renderers' own checks.
-  if (near_world_origin || !std::isfinite(reach) || !std::isfinite(point.x) ||
-      !std::isfinite(point.y) || !std::isfinite(point.z))
-    return {};
-  return {point};
+  return of(frame_origin_near({point.x, point.y, point.z}, unit));
 }
 
 Camera FrameOrigin::camera(const Camera& world) const {
@@ -26,6 +19,12 @@ Environment FrameOrigin::environment(const Environment& world) const {
   Environment e = world;
   e.origin += at;
   return e;
+}
+
+CellStatesView FrameOrigin::cells(const CellStatesView& world) const {
+  CellStatesView c = world;
+  for (int a = 0; a < 3; ++a) c.origin[std::size_t(a)] -= at[a];
+  return c;
 }
 
 }  // namespace voxspan

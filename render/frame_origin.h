@@ -10,8 +10,11 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
+
 #include "render/camera.h"
 #include "render/shade_options.h"
+#include "voxspan/cell_states.h"
 
 namespace voxspan {
 
@@ -19,9 +22,12 @@ struct FrameOrigin {
   glm::dvec3 at{0};  // world coordinates of the frame's (0, 0, 0)
 
   // The frame of a scene around `point` whose lengths that matter are of order `unit` (the
-  // particle spacing): the world's origin while a float holds coordinates there to 2^-13 of
-  // `unit` (every |coordinate| under 2^10 units), else `point` itself.
+  // particle spacing): voxspan::frame_origin_near (voxspan/classify.h).
   static FrameOrigin near(glm::dvec3 point, double unit);
+  // The frame the boundary spheres of a step are in (StepData::origin).
+  static FrameOrigin of(const std::array<double, 3>& origin) {
+    return {glm::dvec3(origin[0], origin[1], origin[2])};
+  }
   bool shifted() const { return at != glm::dvec3(0); }
 
   // A world position as the frame's floats hold it: shifted in double, then rounded once.
@@ -29,6 +35,8 @@ struct FrameOrigin {
     return glm::vec3(glm::dvec3(x, y, z) - at);
   }
   Camera camera(const Camera& world) const;
+  // The cell grid's origin, in double.
+  CellStatesView cells(const CellStatesView& world) const;
   // The ground stays where the world has it (Environment::origin).
   Environment environment(const Environment& world) const;
 };

@@ -17,6 +17,7 @@
 #include "voxspan/stopwatch.h"
 #include "voxspan/log.h"
 #include "floating_point_traps.h"
+#include "positions.h"
 
 namespace voxspan {
 namespace {
@@ -32,6 +33,9 @@ void check_options(const AdapterOptions& options) {
   non_negative("particle_spacing", o.particle_spacing);
   non_negative("radius", o.radius);
   non_negative("cell_size", o.cell_size);
+  for (const double c : o.origin)
+    if (!std::isfinite(c))
+      throw make_error("adapter option origin has a coordinate ", c, ": it must be finite");
   if (o.full_count < 0)
     throw make_error("adapter option full_count = ", o.full_count, " must be >= 0");
   if (!(o.full_fraction > 0) || !std::isfinite(o.full_fraction))
@@ -85,6 +89,30 @@ bool checked_spacing(std::int64_t step, const ClassifyCounts& c, double spacing)
                 " at particle_spacing ", spacing, ": unless the fluid is spray, the spacing is ",
                 "too small (surfaces break into dots); check its units");
   return true;
+}
+
+// A point of the fluid to measure the boundary spheres from (ClassifyOptions::origin): the first
+// particle with a finite position (floats relative to any point of the fluid hold positions to
+// its extent's precision); NaN when none has one. Reads a handful of particles, not all.
+template <class T>
+std::array<double, 3> first_finite(const detail::Positions<T>& pos, std::size_t n) {
+  T x, y, z;
+  for (std::size_t i = 0; i < n; ++i)
+    if (pos.load(i, x, y, z)) return {double(x), double(y), double(z)};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  return {nan, nan, nan};
+}
+
+std::array<double, 3> some_position(const ParticleView& particles) noexcept {
+  const std::size_t n = particles.size();
+  bool present = n > 0;
+  for (int a = 0; a < 3; ++a)
+    present =
+        present && particles.axis(a).present() && particles.axis(a).type == particles.axis(0).type;
+  if (!present) return first_finite(detail::Positions<double>(particles), 0);
+  if (particles.axis(0).type == ScalarType::float32)
+    return first_finite(detail::Positions<float>(particles), n);
+  return first_finite(detail::Positions<double>(particles), n);
 }
 
 // The pipelines a process has made. A solver that exits without finish() (a C program returning
@@ -149,6 +177,10 @@ struct Adapter::Impl {
   double seconds_in_situ = 0;
   std::vector<ParticleSphere> scenery;
   std::uint64_t scenery_version = 0;
+  // The boundary spheres' origin (options.classify.origin) is chosen once, on the first render
+  // step with a particle on any rank, unless the solver gave one: one frame for every step,
+  // rank and output.
+  bool origin_chosen = false;
 
   // Throws what the classification throws (bad input).
   const Classification& classify(std::int64_t step, const ParticleView& particles,
@@ -157,6 +189,8 @@ struct Adapter::Impl {
   const Classification& checked_grid(const ParticleView& particles, const GridView& grid);
   // The step's status on every rank of the pipeline (its own when alone).
   void agree();
+  // options.classify.origin near the fluid, the same on every rank (collective).
+  void choose_origin(const ParticleView& particles) noexcept;
   // Whether the pipeline's triggers that look at the particles want the step.
   bool confirm(std::int64_t step, double time, const ParticleView& particles) noexcept;
   void process(std::int64_t step, double time, const Classification& c,
@@ -222,6 +256,25 @@ void Adapter::Impl::agree() {
   }
 }
 
+void Adapter::Impl::choose_origin(const ParticleView& particles) noexcept {
+  std::array<double, 3> point = some_position(particles);
+  if (pipeline) {
+    try {
+      point = pipeline->agree_point(point);
+    } catch (const std::exception& e) {
+      log_quietly(LogLevel::error, "choosing the particles' frame origin: ", e.what());
+      return;
+    }
+  }
+  if (!std::isfinite(point[0])) return;  // no particle anywhere yet: the next render step
+  const ClassifyOptions& o = options.classify;
+  const double unit = o.particle_spacing > 0 ? o.particle_spacing
+                      : o.radius > 0         ? o.radius
+                                             : o.cell_size;
+  options.classify.origin = frame_origin_near(point, unit);
+  origin_chosen = true;
+}
+
 bool Adapter::Impl::confirm(std::int64_t step, double time,
                             const ParticleView& particles) noexcept {
   if (!pipeline) return true;
@@ -239,7 +292,7 @@ bool Adapter::Impl::confirm(std::int64_t step, double time,
 void Adapter::Impl::process(std::int64_t step, double time, const Classification& c,
                             const ParticleView& particles, const GridView& grid) {
   const StepData data{step,       time,  c.boundary, c.cell_states(), c.attributes,
-                      &particles, &grid, scenery,    scenery_version};
+                      &particles, &grid, scenery,    scenery_version, c.origin};
   const Stopwatch t0;
   try {
     Status s = pipeline->process(data, stats);
@@ -256,6 +309,8 @@ Adapter::Adapter(AdapterOptions options) : impl_(std::make_unique<Impl>()) {
   const FloatingPointTrapsHeld held;
   check_options(options);
   impl_->options = std::move(options);
+  const std::array<double, 3>& given = impl_->options.classify.origin;
+  impl_->origin_chosen = given[0] != 0 || given[1] != 0 || given[2] != 0;
 }
 Adapter::~Adapter() {
   const FloatingPointTrapsHeld held;  // the pipeline's GL objects go with it
@@ -325,6 +380,8 @@ Status Adapter::execute(std::int64_t step, double time, const ParticleView& part
   s.status = {};
   s.counts = {};
   s.seconds_classify = s.seconds_compact = s.seconds_pipeline = 0;
+  // Collective: before anything that may fail on one rank alone.
+  if (!m.origin_chosen) m.choose_origin(particles);
   const Classification* c = nullptr;
   try {
     if (!std::isfinite(time))

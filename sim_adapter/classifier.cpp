@@ -466,6 +466,7 @@ void Classifier::Work::compact(const detail::Positions<T>& positions, const Part
                                const std::vector<AttributeView>& attributes) {
   const std::size_t cells = result.geometry.cell_count();
   const Emits emits{view.owned_count(), options.include_ghosts};
+  const std::array<double, 3> origin = result.origin = options.origin;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, 1 << 14),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t c = r.begin(); c != r.end(); ++c)
@@ -491,7 +492,8 @@ void Classifier::Work::compact(const detail::Positions<T>& positions, const Part
             if (!emits(i)) continue;
             const float radius = radii.get(i);
             if (!pos.load(i, x, y, z) || !detail::Radii::usable(radius)) continue;
-            result.boundary[out] = {float(x), float(y), float(z), radius};
+            result.boundary[out] = {float(double(x) - origin[0]), float(double(y) - origin[1]),
+                                    float(double(z) - origin[2]), radius};
             for (std::size_t a = 0; a < attributes.size(); ++a) {
               const AttributeView& src = attributes[a];
               float* dst = result.attributes[a].values.data() + out * std::size_t(src.components);
@@ -588,6 +590,7 @@ void Classifier::Work::run(const detail::Positions<T>& pos, const ParticleView& 
     // No cells (no particles on this rank): the attributes asked for are there, with no
     // values, as the outputs that name them expect on every rank.
     result.boundary.clear();
+    result.origin = options.origin;
     size_attributes(attributes, 0);
   }
   lap(ClassifyPhase::compact);
@@ -687,6 +690,18 @@ std::size_t pack_spheres(const ParticleView& particles, const ClassifyOptions& o
   if (particles.axis(0).type == ScalarType::float32)
     return pack_positions(detail::Positions<float>(particles), radii, particles.size(), out);
   return pack_positions(detail::Positions<double>(particles), radii, particles.size(), out);
+}
+
+std::array<double, 3> frame_origin_near(const std::array<double, 3>& point, double unit) {
+  const double reach = std::ldexp(unit, 10);
+  // A non-finite point or unit is left to the renderers' own checks.
+  bool world = !std::isfinite(reach), near_world_origin = true;
+  for (const double c : point) {
+    world = world || !std::isfinite(c);
+    near_world_origin = near_world_origin && std::abs(c) < reach;
+  }
+  if (world || near_world_origin) return {0, 0, 0};
+  return point;
 }
 
 Classification classify(const ParticleView& particles, const GridView& grid,

@@ -3,6 +3,8 @@
 // build the (allocation-free) C++ views on each execute.
 #include "voxspan/voxspan.h"
 
+#include <algorithm>
+#include <array>
 #include <exception>
 #include <string>
 #include <vector>
@@ -329,6 +331,12 @@ size_t voxspan_adapter_boundary(const voxspan_adapter* a, const float** xyzr) {
   const auto& b = a->adapter->last_classification().boundary;
   *xyzr = b.empty() ? nullptr : &b[0].x;
   return b.size();
+}
+
+void voxspan_adapter_boundary_origin(const voxspan_adapter* a, double origin[3]) {
+  if (!a || !origin) return;
+  const std::array<double, 3>& o = a->adapter->last_classification().origin;
+  std::copy(o.begin(), o.end(), origin);
 }
 
 size_t voxspan_adapter_scenery(const voxspan_adapter* a, const float** xyzr) {

@@ -393,7 +393,7 @@ struct InsituPipeline::Impl {
   // Renders every view; the failures come back, each view's (empty when all went well).
   std::string render_views(const StepData& data, const ViewNeeds& needs) {
     std::string failure;
-    const Bounds step_box = scene.fluid_box(data.boundary);
+    const Bounds step_box = scene.fluid_box(data.boundary, data.origin);
     const Scenery& scenery = scene.update_scenery(data);
     Bounds with_scenery = step_box;
     with_scenery.add(scenery.box);
@@ -615,6 +615,17 @@ Status InsituPipeline::agree(const Status& local) {
   if (agreed.ok || !local.ok()) return local;
   return {StatusCode::pipeline_failed,
           "step abandoned: rank " + std::to_string(agreed.rank) + ": " + agreed.message};
+}
+
+std::array<double, 3> InsituPipeline::agree_point(const std::array<double, 3>& local) {
+  if (!comm_) return local;
+  // A rank without a point says +inf, which loses every min; inf on every rank: none has one.
+  std::array<double, 3> point;
+  for (std::size_t a = 0; a < 3; ++a)
+    point[a] = std::isfinite(local[0]) ? local[a] : std::numeric_limits<double>::infinity();
+  comm_->min(point);
+  if (std::isinf(point[0])) point.fill(std::numeric_limits<double>::quiet_NaN());
+  return point;
 }
 
 bool InsituPipeline::reports_failures() const { return !comm_ || comm_->root(); }

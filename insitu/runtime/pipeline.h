@@ -71,6 +71,7 @@ class InsituPipeline final : public Pipeline {
   bool wants_step(std::int64_t step, double time) override;
   bool confirm_step(std::int64_t step, double time, const ParticleView& particles) override;
   Status agree(const Status& local) override;
+  std::array<double, 3> agree_point(const std::array<double, 3>& local) override;
   bool reports_failures() const override;
   void mark_last_step(std::int64_t step) override;
   Status process(const StepData& data, const StepStats& stats) override;

@@ -14,7 +14,8 @@ std::string point_text(const std::array<double, 3>& p) {
   return s.str();
 }
 
-Bounds StepScene::fluid_box(std::span<const ParticleSphere> boundary) {
+Bounds StepScene::fluid_box(std::span<const ParticleSphere> boundary,
+                            const std::array<double, 3>& origin) {
   BulkBox::Range range = BulkBox::range(boundary);
   if (comm_ != nullptr) {
     comm_->min(range.centres.lo);
@@ -32,6 +33,9 @@ Bounds StepScene::fluid_box(std::span<const ParticleSphere> boundary) {
     comm_->max(split.left_out_box.hi);
     comm_->sum(std::span(&split.left_out, 1));
   }
+  // Binned in the spheres' frame (every rank's is the same), told and framed in the world's.
+  split.box.move(origin);
+  split.left_out_box.move(origin);
   tell_strays(split);
   return split.box;
 }

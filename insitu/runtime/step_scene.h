@@ -32,8 +32,9 @@ class StepScene {
   // `comm`: null in one process; with ranks the root says the warnings.
   explicit StepScene(Communicator* comm) : comm_(comm) {}
 
-  // This step's box of the boundary spheres over every rank, without those far from the bulk.
-  Bounds fluid_box(std::span<const ParticleSphere> boundary);
+  // This step's box of the boundary spheres over every rank, without those far from the bulk,
+  // in world coordinates: the spheres' own are measured from `origin` (StepData::origin).
+  Bounds fluid_box(std::span<const ParticleSphere> boundary, const std::array<double, 3>& origin);
   // The axis every particle's centre lies flat along at the last fluid_box (flat_axis: a 2D
   // run), -1 for a 3D fluid.
   int flat_axis() const { return flat_axis_; }

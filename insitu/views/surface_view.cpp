@@ -10,6 +10,7 @@
 #include "insitu/views/view.h"
 #include "insitu/views/view_environment.h"
 #include "render/backend.h"
+#include "render/frame_origin.h"
 #include "render/stat_names.h"
 #include "voxspan/error.h"
 
@@ -280,9 +281,14 @@ class SurfaceView final : public View {
     const Backdrop* backdrop = nullptr;
     if (step.scenery != nullptr) {
       const Scenery& s = *step.scenery;
+      // In world coordinates, as the scenery is: its depths are the same in any frame.
       backdrop = scenery_.backdrop(step.camera, s.spheres, s.version, s.box, o.shade, recorder);
     }
     renderer_->use_backdrop(backdrop, recorder);
+    // The fluid is shaded in its spheres' frame (StepData::origin), the ground where the world
+    // has it.
+    ShadeOptions shade = o.shade;
+    shade.environment = FrameOrigin::of(step.data.origin).environment(o.shade.environment);
     // The pixels may land later unless this thread draws on them next (a slice, colours), and
     // as 8-bit sRGB where that is all the step's readers take.
     const bool draws = slice_ || colors_;
@@ -290,8 +296,8 @@ class SurfaceView final : public View {
     out.picture_is_srgb8 = !draws && needs.srgb8_picture() && renderer_->packs_srgb8(when);
     out.pending_picture =
         out.picture_is_srgb8
-            ? renderer_->shade_srgb8_later(o.surfaces, o.shade, recorder, out.srgb8_picture, when)
-            : renderer_->shade_later(o.surfaces, o.shade, recorder, out.picture, when);
+            ? renderer_->shade_srgb8_later(o.surfaces, shade, recorder, out.srgb8_picture, when)
+            : renderer_->shade_later(o.surfaces, shade, recorder, out.picture, when);
     if (needs.first_hit_depth)
       renderer_->first_hit(recorder, out.first_hit_depth, HitSurface::cast);
     // No copy here: the outputs copy what they keep.
@@ -306,7 +312,11 @@ class SurfaceView final : public View {
     std::string failure;
     bool made = false;
     try {
-      renderer_->make_spans(step.camera, step.data.boundary, step.data.cells, spans, recorder);
+      // The spheres are measured from the step's origin: the camera and the cell grid with them
+      // (in double). Spans and depths do not change under the translation.
+      const FrameOrigin frame = FrameOrigin::of(step.data.origin);
+      renderer_->make_spans(frame.camera(step.camera), step.data.boundary,
+                            frame.cells(step.data.cells), spans, recorder);
       made = true;
     } catch (const std::exception& e) {
       if (stages_.empty()) throw;

@@ -26,6 +26,11 @@ void Bounds::add(const Bounds& o) {
   }
 }
 
+void Bounds::move(const std::array<double, 3>& by) {
+  if (empty()) return;
+  for (std::size_t a = 0; a < 3; ++a) lo[a] += by[a], hi[a] += by[a];
+}
+
 Bounds Bounds::of_spheres(std::span<const ParticleSphere> spheres) {
   return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, spheres.size(), 16384), Bounds{},

@@ -31,6 +31,8 @@ struct Bounds {
 
   bool empty() const { return lo[0] > hi[0]; }
   void add(const Bounds& other);
+  // The box moved by `by` (nothing when empty).
+  void move(const std::array<double, 3>& by);
   // The box of the spheres (centre +- radius); NaN/inf positions and radii <= 0 are skipped.
   static Bounds of_spheres(std::span<const ParticleSphere> spheres);
 };

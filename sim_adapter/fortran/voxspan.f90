@@ -149,13 +149,22 @@ module voxspan
     end function
 
     ! The latest render step's surface-shell particles (packed x, y, z, radius floats in
-    ! xyzr: c_f_pointer it to real(c_float) :: a(4, count)); their count.
+    ! xyzr: c_f_pointer it to real(c_float) :: a(4, count)); their count. x, y, z are
+    ! measured from voxspan_adapter_boundary_origin's point.
     function voxspan_adapter_boundary(adapter, xyzr) bind(C) result(count)
       import :: c_ptr, c_size_t
       type(c_ptr), value :: adapter
       type(c_ptr), intent(out) :: xyzr
       integer(c_size_t) :: count
     end function
+
+    ! The world coordinates the surface-shell particles are measured from (a particle is at
+    ! origin + (x, y, z)): the world's origin for ordinary scenes.
+    subroutine voxspan_adapter_boundary_origin(adapter, origin) bind(C)
+      import :: c_ptr, c_double
+      type(c_ptr), value :: adapter
+      real(c_double), intent(out) :: origin(3)
+    end subroutine
 
     ! The scenery kept from the last set_scenery, as voxspan_adapter_boundary gives particles.
     function voxspan_adapter_scenery(adapter, xyzr) bind(C) result(count)

@@ -24,6 +24,7 @@
 // Standard library only; no GL, VTK or OpenVDB.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -82,6 +83,9 @@ struct StepData {
   // changes whenever they do (0: never given).
   std::span<const ParticleSphere> scenery;
   std::uint64_t scenery_version = 0;
+  // World coordinates of the boundary spheres' (0, 0, 0) (Classification::origin): the same on
+  // every step and every rank. The scenery and the cell states are in world coordinates.
+  std::array<double, 3> origin{0, 0, 0};
 };
 
 // What the runtime plugs in behind the adapter: rendering and outputs.
@@ -106,6 +110,12 @@ class Pipeline {
   // every rank skips a failed step together and none waits for another; one process returns
   // `local`.
   virtual Status agree(const Status& local) { return local; }
+  // Called on render steps before the classification until the boundary spheres' frame origin
+  // is chosen (ClassifyOptions::origin), with a point of this process's fluid (NaN where it has
+  // none): the point every process chooses from. A pipeline spread over MPI ranks returns the
+  // same on all (per axis the least of the ranks' points: within the fluid's box); one process
+  // returns `local`.
+  virtual std::array<double, 3> agree_point(const std::array<double, 3>& local) { return local; }
   // False on the processes that must not log the step's failures (every MPI rank but one).
   virtual bool reports_failures() const { return true; }
   // A render step's data. Exceptions are caught and reported as pipeline_failed; a returned

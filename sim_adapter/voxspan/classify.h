@@ -66,7 +66,18 @@ struct ClassifyOptions {
   // A grid the adapter builds never has more cells than this, nor more than 64 per particle
   // (2^20 at least): its cells grow instead.
   std::size_t max_built_cells = std::size_t(1) << 27;
+  // The world point the boundary spheres are measured from (Classification::origin): each
+  // position is shifted by it in double before it becomes a float, whose 24 bits hold a
+  // coordinate of 4.2e6 (UTM-like) only to 0.5. The Adapter chooses it on its first render step
+  // (frame_origin_near) unless the solver sets it: the same on every rank of an MPI job.
+  std::array<double, 3> origin{0, 0, 0};
 };
+
+// The frame origin of a scene around `point` whose lengths that matter are of order `unit` (the
+// particle spacing): the world's origin while a float holds coordinates there to 2^-13 of
+// `unit` (every |coordinate| under 2^10 units: ordinary scenes stay bit for bit as they were),
+// else `point` itself. A non-finite point or unit gives the world's origin.
+std::array<double, 3> frame_origin_near(const std::array<double, 3>& point, double unit);
 
 // What one classification saw. The occupancy counts (empty/partial/full) include the inner
 // cells; inner_empty and inner_full say how many of them are inner.
@@ -102,7 +113,10 @@ struct Classification {
   GridGeometry geometry;
   std::vector<std::uint8_t> states;      // one byte per cell, voxspan::cell
   std::vector<ParticleSphere> boundary;  // in cell order, then grid order within a cell
-  std::vector<Attribute> attributes;     // the requested ones, in boundary order
+  // World coordinates of the spheres' (0, 0, 0) (ClassifyOptions::origin): a sphere at (x, y, z)
+  // is at origin + (x, y, z) in the world. The cell states' geometry is in world coordinates.
+  std::array<double, 3> origin{0, 0, 0};
+  std::vector<Attribute> attributes;  // the requested ones, in boundary order
   ClassifyCounts counts;
   double seconds_classify = 0;  // counting (and sorting) and the cell states
   double seconds_compact = 0;   // the boundary spheres and attributes
@@ -147,9 +161,10 @@ class Classifier {
   std::unique_ptr<Work> work_;
 };
 
-// Every particle of `particles` (ghosts too) as a sphere into `out` (resized), radii as run()
-// takes them; those with a NaN or infinite position or a NaN, infinite or negative radius are left
-// out. Returns how many were left out; throws voxspan::Error when no radius can be found.
+// Every particle of `particles` (ghosts too) as a sphere into `out` (resized), in world
+// coordinates (options.origin is not applied: the scenery is packed before any step), radii as
+// run() takes them; those with a NaN or infinite position or a NaN, infinite or negative radius are
+// left out. Returns how many were left out; throws voxspan::Error when no radius can be found.
 std::size_t pack_spheres(const ParticleView& particles, const ClassifyOptions& options,
                          std::vector<ParticleSphere>& out);
 

@@ -124,8 +124,13 @@ int voxspan_adapter_execute_last(voxspan_adapter* adapter, int64_t step, double 
 int voxspan_adapter_is_render_step(const voxspan_adapter* adapter, int64_t step, double time);
 int voxspan_adapter_stats(const voxspan_adapter* adapter, voxspan_step_stats* stats);
 /* The latest render step's boundary particles: packed x, y, z, radius floats; returns the
- * count and sets *xyzr (valid until the next execute). */
+ * count and sets *xyzr (valid until the next execute). x, y, z are measured from the point
+ * voxspan_adapter_boundary_origin gives (the world's origin for ordinary scenes; a point of the
+ * fluid when it lies far from it, where floats would round world coordinates coarsely). */
 size_t voxspan_adapter_boundary(const voxspan_adapter* adapter, const float** xyzr);
+/* The world coordinates the boundary particles' x, y, z are measured from: a particle is at
+ * origin + (x, y, z), added in double. */
+void voxspan_adapter_boundary_origin(const voxspan_adapter* adapter, double origin[3]);
 /* The scenery kept from the last voxspan_adapter_set_scenery: packed x, y, z, radius floats;
  * returns the count and sets *xyzr (valid until the next set_scenery). */
 size_t voxspan_adapter_scenery(const voxspan_adapter* adapter, const float** xyzr);

@@ -96,9 +96,12 @@ void erode_and_narrow(vdb::FloatGrid& sdf, float distance, float band) {
 }  // namespace
 
 FluidLevelSet build_fluid_level_set(std::span<const ParticleSphere> particles,
-                                    const CellStatesView& cells,
+                                    const std::array<double, 3>& origin,
+                                    const CellStatesView& world_cells,
                                     const FluidLevelSetSettings& settings, std::string_view what,
                                     FluidLevelSetReport& report, Stages& stages) {
+  CellStatesView cells = world_cells;
+  for (std::size_t a = 0; a < 3; ++a) cells.origin[a] -= origin[a];
   SphereList list{particles, {}, 0};
   list.valid.reserve(particles.size());
   float r_min = std::numeric_limits<float>::max(), r_max = 0;
@@ -149,6 +152,17 @@ FluidLevelSet build_fluid_level_set(std::span<const ParticleSphere> particles,
     erode_and_narrow(*ls.sdf, float(list.grow), float(settings.half_width * voxel));
   }
   return ls;
+}
+
+void move_to_world(FluidLevelSet& ls, const std::array<double, 3>& origin) {
+  if (origin == std::array<double, 3>{0, 0, 0}) return;  // the file as it always was
+  const vdb::Vec3d by(origin[0], origin[1], origin[2]);
+  for (const vdb::GridBase::Ptr grid : {vdb::GridBase::Ptr(ls.sdf), vdb::GridBase::Ptr(ls.closest)})
+    if (grid) {
+      vdb::math::Transform::Ptr world = grid->transform().copy();
+      world->postTranslate(by);
+      grid->setTransform(world);
+    }
 }
 
 }  // namespace voxspan

@@ -6,6 +6,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include <array>
 #include <span>
 #include <string_view>
 
@@ -51,12 +52,17 @@ struct FluidLevelSet {
 };
 
 // The union of the valid particles' spheres, closed by settings.closing, the inner-full cells
-// filled (vdb_snapshot.h, "fluid"). Fills `report`; times the stages "rasterize", "fill" and
-// "close" with `stages`. Throws voxspan::Error, its message starting with `what`, when the voxel
-// size is not a positive number.
+// filled (vdb_snapshot.h, "fluid"), in the particles' frame: world coordinates less `origin`
+// (StepData::origin; the cells are in world coordinates), where floats hold them finely.
+// Fills `report`; times the stages "rasterize", "fill" and "close" with `stages`. Throws
+// voxspan::Error, its message starting with `what`, when the voxel size is not a positive number.
 FluidLevelSet build_fluid_level_set(std::span<const ParticleSphere> particles,
+                                    const std::array<double, 3>& origin,
                                     const CellStatesView& cells,
                                     const FluidLevelSetSettings& settings, std::string_view what,
                                     FluidLevelSetReport& report, Stages& stages);
+// The level set's grids moved from the particles' frame to the world's: `origin` goes into
+// their transforms, in double.
+void move_to_world(FluidLevelSet& ls, const std::array<double, 3>& origin);
 
 }  // namespace voxspan

@@ -145,6 +145,11 @@ class Buffered {
     const auto end = std::to_chars(text, text + sizeof text, v).ptr;
     put(text, std::size_t(end - text));
   }
+  void put_number(double v) {
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, v).ptr;
+    put(text, std::size_t(end - text));
+  }
   void put_number(std::uint64_t v) {
     char text[24];
     const auto end = std::to_chars(text, text + sizeof text, v).ptr;
@@ -183,9 +188,11 @@ void write_ply(Buffered& out, const FluidMesh& mesh, std::string_view comment) {
   const char* format =
       std::endian::native == std::endian::little ? "binary_little_endian" : "binary_big_endian";
   std::string header = "ply\nformat " + std::string(format) + " 1.0\ncomment " + one_line(comment) +
-                       "\nelement vertex " + std::to_string(mesh.points.size()) +
-                       "\nproperty float x\nproperty float y\nproperty float z\n"
-                       "property float nx\nproperty float ny\nproperty float nz\n";
+                       "\nelement vertex " + std::to_string(mesh.points.size()) + "\n";
+  const bool shifted = mesh.shifted();
+  for (const char* axis : {"x", "y", "z"})
+    header += std::string(shifted ? "property double " : "property float ") + axis + "\n";
+  header += "property float nx\nproperty float ny\nproperty float nz\n";
   for (const Attribute& a : mesh.attributes) {
     if (a.components == 1) {
       header += "property float " + one_word(a.name) + "\n";
@@ -198,7 +205,12 @@ void write_ply(Buffered& out, const FluidMesh& mesh, std::string_view comment) {
             "\nproperty list uchar int vertex_indices\nend_header\n";
   out.put(header);
   for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    out.put(mesh.points[i].data(), sizeof(Vec3));
+    if (shifted) {
+      const std::array<double, 3> p = mesh.world_point(i);
+      out.put(p.data(), sizeof p);
+    } else {
+      out.put(mesh.points[i].data(), sizeof(Vec3));
+    }
     out.put(mesh.normals[i].data(), sizeof(Vec3));
     for (const Attribute& a : mesh.attributes)
       out.put(a.values.data() + std::size_t(a.components) * i,
@@ -226,7 +238,18 @@ void write_obj(Buffered& out, const FluidMesh& mesh, std::string_view comment) {
     }
     out.put("\n");
   };
-  for (const Vec3& p : mesh.points) put_vector("v", p);
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    if (!mesh.shifted()) {
+      put_vector("v", mesh.points[i]);
+      continue;
+    }
+    out.put("v");
+    for (const double c : mesh.world_point(i)) {
+      out.put(" ");
+      out.put_number(c);
+    }
+    out.put("\n");
+  }
   for (const Vec3& n : mesh.normals) put_vector("vn", n);
   auto put_face = [&](std::span<const std::uint32_t> face) {
     out.put("f");
@@ -254,11 +277,12 @@ FluidMesh mesh_fluid(const FluidMeshInput& input, const FluidMeshSettings& setti
   FluidMeshReport local;
   FluidMeshReport& report = report_out != nullptr ? *report_out : local;
   Stages stage(report.timings, "mesh_");
-  const FluidLevelSet ls =
-      build_fluid_level_set(input.particles, input.cells, settings, "fluid mesh", report, stage);
+  const FluidLevelSet ls = build_fluid_level_set(input.particles, input.origin, input.cells,
+                                                 settings, "fluid mesh", report, stage);
 
   stage.next("extract");
   FluidMesh mesh;
+  mesh.origin = input.origin;
   std::vector<vdb::Vec3s> points;
   std::vector<vdb::Vec3I> triangles;
   std::vector<vdb::Vec4I> quads;

@@ -57,11 +57,19 @@ struct FluidMeshSettings : FluidLevelSetSettings {
 using FluidMeshInput = VdbSnapshotInput;
 
 struct FluidMesh {
+  // In the particles' frame (FluidMeshInput::origin), where floats hold them finely; the files
+  // hold origin + point, in double where origin is not the world's.
   std::vector<std::array<float, 3>> points;
+  std::array<double, 3> origin{0, 0, 0};
   std::vector<std::array<float, 3>> normals;  // unit, outward, one per point
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<std::array<std::uint32_t, 4>> quads;
   std::vector<Attribute> attributes;  // one tuple per point, the input's names and components
+
+  bool shifted() const { return origin != std::array<double, 3>{0, 0, 0}; }
+  std::array<double, 3> world_point(std::size_t i) const {
+    return {origin[0] + points[i][0], origin[1] + points[i][1], origin[2] + points[i][2]};
+  }
 };
 
 struct FluidMeshReport : FluidLevelSetReport {

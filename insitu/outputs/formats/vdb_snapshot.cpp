@@ -78,8 +78,9 @@ VdbSnapshotReport write_vdb_snapshot(const std::filesystem::path& path,
   VdbSnapshotReport report;
 
   Stages stage(report.timings, "vdb_");
-  const FluidLevelSet ls =
-      build_fluid_level_set(input.particles, input.cells, settings, "VDB snapshot", report, stage);
+  FluidLevelSet ls = build_fluid_level_set(input.particles, input.origin, input.cells, settings,
+                                           "VDB snapshot", report, stage);
+  move_to_world(ls, input.origin);
   report.level_set_voxels = ls.sdf->activeVoxelCount();
 
   stage.next("attributes");

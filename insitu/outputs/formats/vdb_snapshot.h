@@ -20,6 +20,7 @@
 // which builds "fluid" for it and for the mesh).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -61,6 +62,7 @@ struct VdbSnapshotInput {
   std::span<const AttributeSpan> attributes;  // one tuple per boundary particle
   std::int64_t step = 0;
   double time = 0;
+  std::array<double, 3> origin{0, 0, 0};  // the particles' (StepData::origin)
 };
 
 struct VdbSnapshotReport : FluidLevelSetReport {

@@ -49,21 +49,29 @@ std::string xml_escape(const std::string& s) {
   return out;
 }
 
+// Whether the points need doubles: the spheres are measured from a point away from the world's
+// origin.
+bool double_points(const std::array<double, 3>& origin) {
+  return origin[0] != 0 || origin[1] != 0 || origin[2] != 0;
+}
+
 }  // namespace
 
 std::string vtp_document(std::span<const ParticleSphere> particles,
-                         std::span<const AttributeSpan> attributes) {
+                         std::span<const AttributeSpan> attributes,
+                         const std::array<double, 3>& origin) {
   check_attributes(attributes, particles.size());
   const vtkIdType n = static_cast<vtkIdType>(particles.size());
   vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
+  if (double_points(origin)) points->SetDataTypeToDouble();
+  else points->SetDataTypeToFloat();
   points->SetNumberOfPoints(n);
   vtkNew<vtkFloatArray> radius;
   radius->SetName("radius");
   radius->SetNumberOfTuples(n);
   for (vtkIdType i = 0; i < n; ++i) {
     const ParticleSphere& p = particles[static_cast<std::size_t>(i)];
-    points->SetPoint(i, p.x, p.y, p.z);
+    points->SetPoint(i, origin[0] + p.x, origin[1] + p.y, origin[2] + p.z);
     radius->SetValue(i, p.radius);
   }
   // One vertex per point, so that ParaView shows the points in every representation.
@@ -111,8 +119,9 @@ std::string vti_document(const CellStatesView& cells) {
 }
 
 void write_vtp(const std::filesystem::path& path, std::span<const ParticleSphere> particles,
-               std::span<const AttributeSpan> attributes, bool sync) {
-  write_file_atomically(path, vtp_document(particles, attributes), sync);
+               std::span<const AttributeSpan> attributes, bool sync,
+               const std::array<double, 3>& origin) {
+  write_file_atomically(path, vtp_document(particles, attributes, origin), sync);
 }
 
 void write_vti(const std::filesystem::path& path, const CellStatesView& cells, bool sync) {
@@ -138,7 +147,8 @@ void PvdSeries::add(double time, std::string file) {
 }
 
 std::string pvtp_document(std::span<const std::string> pieces,
-                          std::span<const AttributeSpan> attributes) {
+                          std::span<const AttributeSpan> attributes,
+                          const std::array<double, 3>& origin) {
   std::ostringstream s;
   s << "<?xml version=\"1.0\"?>\n"
        "<VTKFile type=\"PPolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
@@ -151,7 +161,9 @@ std::string pvtp_document(std::span<const std::string> pieces,
       << "\" NumberOfComponents=\"" << a.components << "\"/>\n";
   s << "    </PPointData>\n"
        "    <PPoints>\n"
-       "      <PDataArray type=\"Float32\" NumberOfComponents=\"3\"/>\n"
+       "      <PDataArray type=\""
+    << (double_points(origin) ? "Float64" : "Float32")
+    << "\" NumberOfComponents=\"3\"/>\n"
        "    </PPoints>\n";
   for (const std::string& piece : pieces)
     s << "    <Piece Source=\"" << xml_escape(piece) << "\"/>\n";

@@ -6,6 +6,7 @@
 // after each new entry, so ParaView never reads a half-updated series.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -16,19 +17,25 @@
 
 namespace voxspan {
 
+// The particles' points are origin + (x, y, z), added in double: Float32 when `origin` is the
+// world's (as the spheres are), else Float64, which holds a position 4.2e6 away (UTM-like
+// coordinates) to 1e-9 where a float holds it to 0.5.
 std::string vtp_document(std::span<const ParticleSphere> particles,
-                         std::span<const AttributeSpan> attributes);
+                         std::span<const AttributeSpan> attributes,
+                         const std::array<double, 3>& origin = {0, 0, 0});
 std::string vti_document(const CellStatesView& cells);
 
 void write_vtp(const std::filesystem::path& path, std::span<const ParticleSphere> particles,
-               std::span<const AttributeSpan> attributes, bool sync = true);
+               std::span<const AttributeSpan> attributes, bool sync = true,
+               const std::array<double, 3>& origin = {0, 0, 0});
 void write_vti(const std::filesystem::path& path, const CellStatesView& cells, bool sync = true);
 
 // The .pvtp of an MPI job's step: one dataset made of every rank's .vtp piece (`pieces`,
 // relative to its folder), with the point arrays the pieces have (`radius` and `attributes`,
 // whose values are not read: only names and components).
 std::string pvtp_document(std::span<const std::string> pieces,
-                          std::span<const AttributeSpan> attributes);
+                          std::span<const AttributeSpan> attributes,
+                          const std::array<double, 3>& origin = {0, 0, 0});
 
 // A .pvd collection, one file a time step. add() appends (time, file) and rewrites the .pvd;
 // file is relative to the .pvd's folder. If the rewrite fails (WriteError), the entry stays

@@ -27,7 +27,7 @@ LevelSetOutput::LevelSetOutput(const OutputContext& context, std::optional<doubl
       comm_(context.comm),
       jobs_(context.writer, context.slots, [write_file = std::move(write_file)](SnapshotCopy& s) {
         const std::vector<AttributeSpan> spans = s.attribute_spans();
-        write_file({s.spheres, s.cells.view(), spans, s.step, s.time});
+        write_file({s.spheres, s.cells.view(), spans, s.step, s.time, s.origin});
       }) {
   ensure_openvdb_initialized();
 }

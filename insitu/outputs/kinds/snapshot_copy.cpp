@@ -14,6 +14,7 @@ void SnapshotCopy::fill(const StepData& data, const AttributeNames& names, doubl
   step = data.step;
   time = data.time;
   spheres.assign(data.boundary.begin(), data.boundary.end());
+  origin = data.origin;
   if (radius > 0)
     for (ParticleSphere& s : spheres) s.radius = float(radius);
   attributes.resize(names.names.size());

@@ -3,6 +3,7 @@
 // states, copied into a pooled slot whose vectors keep their capacity.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -32,6 +33,7 @@ inline AttributeNames attribute_names(const OutputSettings& s, std::string_view 
 
 struct SnapshotCopy {
   std::vector<ParticleSphere> spheres;
+  std::array<double, 3> origin{0, 0, 0};  // the spheres' (StepData::origin), every rank's
   std::vector<Attribute> attributes;
   CellStates cells;
   std::int64_t step = 0;
@@ -43,7 +45,8 @@ struct SnapshotCopy {
   void fill(const StepData& data, const AttributeNames& names, double radius = 0);
   // In an MPI job, every rank's copy gathered on the root (collective): the spheres and the
   // attributes one after the other in rank order, the cell states of every rank's grid in one
-  // grid over them all (they must share a cell size and lie on one lattice). Returns whether
+  // grid over them all (they must share a cell size and lie on one lattice); the spheres as they
+  // are, every rank's measured from the same origin (the adapter agrees on it). Returns whether
   // this rank holds the whole (the root).
   bool gather(Communicator& comm);
   std::vector<AttributeSpan> attribute_spans() const;

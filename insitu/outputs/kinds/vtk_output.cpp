@@ -72,8 +72,9 @@ class VtkOutput final : public Output {
   void write_files(const SnapshotCopy& s) {
     const std::vector<AttributeSpan> attributes = s.attribute_spans();
     if (settings_.particles) {
-      write_vtp(folder_ / piece(s.step, rank_, "particles", "vtp"), s.spheres, attributes, fsync_);
-      if (particles_) particles_->add(s.time, particle_dataset(s.step, attributes));
+      write_vtp(folder_ / piece(s.step, rank_, "particles", "vtp"), s.spheres, attributes, fsync_,
+                s.origin);
+      if (particles_) particles_->add(s.time, particle_dataset(s.step, attributes, s.origin));
     }
     if (settings_.cells && !s.cells.states.empty()) {
       const std::string name = step_file_name("cells", s.step, "vti");
@@ -92,12 +93,13 @@ class VtkOutput final : public Output {
   }
 
   // The file the particles' series lists for a step: the root's piece alone, else a .pvtp.
-  std::string particle_dataset(std::int64_t step, std::span<const AttributeSpan> attributes) {
+  std::string particle_dataset(std::int64_t step, std::span<const AttributeSpan> attributes,
+                               const std::array<double, 3>& origin) {
     if (ranks_ == 1) return piece(step, 0, "particles", "vtp");
     std::vector<std::string> pieces;
     for (int r = 0; r < ranks_; ++r) pieces.push_back(piece(step, r, "particles", "vtp"));
     const std::string name = step_file_name("particles", step, "pvtp");
-    write_file_atomically(folder_ / name, pvtp_document(pieces, attributes), fsync_);
+    write_file_atomically(folder_ / name, pvtp_document(pieces, attributes, origin), fsync_);
     return name;
   }
 
