@@ -157,7 +157,8 @@ FluidLevelSet build_fluid_level_set(std::span<const ParticleSphere> particles,
 void move_to_world(FluidLevelSet& ls, const std::array<double, 3>& origin) {
   if (origin == std::array<double, 3>{0, 0, 0}) return;  // the file as it always was
   const vdb::Vec3d by(origin[0], origin[1], origin[2]);
-  for (const vdb::GridBase::Ptr grid : {vdb::GridBase::Ptr(ls.sdf), vdb::GridBase::Ptr(ls.closest)})
+  for (const vdb::GridBase::Ptr& grid :
+       {vdb::GridBase::Ptr(ls.sdf), vdb::GridBase::Ptr(ls.closest)})
     if (grid) {
       vdb::math::Transform::Ptr world = grid->transform().copy();
       world->postTranslate(by);
