@@ -76,7 +76,11 @@ bool read_interval(yaml::MapReader& r, const std::string& name, Interval& v) {
     ok = false;
   }
   if (!ok || !std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
-    r.checker().error(n, r.path(name), "expected `auto` or [min, max] with min < max");
+    const bool finite = !ok || (std::isfinite(lo) && std::isfinite(hi));
+    r.checker().error(n, r.path(name),
+                      finite ? "expected `auto` or [min, max] with min < max"
+                             : "expected `auto` or [min, max] of finite numbers; got [" +
+                                   yaml::number_text(lo) + ", " + yaml::number_text(hi) + "]");
     return false;
   }
   v = std::array<double, 2>{lo, hi};

@@ -42,12 +42,13 @@ TEST(SliceView, KeysAreReadAsWritten) {
 }
 
 TEST(SliceView, BadKeysAreRefusedWithTheirLine) {
-  test::expect_refused_with_line("slice",
-                                 {{"color_map: rainbow, quantity: p", "color_map"},
-                                  {"range: [2, 1], quantity: p", "range"},
-                                  {"plane: {normal: [0, 0, 0]}, quantity: p", "must not be zero"},
-                                  {"kernel: gauss, quantity: p", "kernel"},
-                                  {"width: 10", "needs `quantity`"}});
+  test::expect_refused_with_line(
+      "slice", {{"color_map: rainbow, quantity: p", "color_map"},
+                {"range: [2, 1], quantity: p", "range"},
+                {"range: [0, .inf], quantity: p", "[min, max] of finite numbers; got [0, inf]"},
+                {"plane: {normal: [0, 0, 0]}, quantity: p", "must not be zero"},
+                {"kernel: gauss, quantity: p", "kernel"},
+                {"width: 10", "needs `quantity`"}});
 }
 
 TEST(SliceView, ColoursThePlaneWhereItMeetsTheFluid) {
