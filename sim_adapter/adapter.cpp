@@ -17,7 +17,6 @@
 #include "voxspan/stopwatch.h"
 #include "voxspan/log.h"
 #include "floating_point_traps.h"
-#include "positions.h"
 
 namespace voxspan {
 namespace {
@@ -94,25 +93,13 @@ bool checked_spacing(std::int64_t step, const ClassifyCounts& c, double spacing)
 // A point of the fluid to measure the boundary spheres from (ClassifyOptions::origin): the first
 // particle with a finite position (floats relative to any point of the fluid hold positions to
 // its extent's precision); NaN when none has one. Reads a handful of particles, not all.
-template <class T>
-std::array<double, 3> first_finite(const detail::Positions<T>& pos, std::size_t n) {
-  T x, y, z;
-  for (std::size_t i = 0; i < n; ++i)
-    if (pos.load(i, x, y, z)) return {double(x), double(y), double(z)};
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  return {nan, nan, nan};
-}
-
 std::array<double, 3> some_position(const ParticleView& particles) noexcept {
-  const std::size_t n = particles.size();
-  bool present = n > 0;
-  for (int a = 0; a < 3; ++a)
-    present =
-        present && particles.axis(a).present() && particles.axis(a).type == particles.axis(0).type;
-  if (!present) return first_finite(detail::Positions<double>(particles), 0);
-  if (particles.axis(0).type == ScalarType::float32)
-    return first_finite(detail::Positions<float>(particles), n);
-  return first_finite(detail::Positions<double>(particles), n);
+  bool present = true;
+  for (int a = 0; a < 3; ++a) present = present && particles.axis(a).present();
+  for (std::size_t i = 0; present && i < particles.size(); ++i)
+    if (particles.position_finite(i)) return particles.position(i);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  return {nan, nan, nan};  // missing positions are the classification's to refuse
 }
 
 // The pipelines a process has made. A solver that exits without finish() (a C program returning
